@@ -1,0 +1,73 @@
+use faer::Mat;
+
+use crate::{Interface, Result};
+
+/// A rigid-body mode that a body's supports leave free (the floating punch of Table 1 has
+/// one: the axial translation).
+///
+/// The contact problem carries its amplitude λ as an unknown, with the equilibrium row
+/// G_Rᵀ p = q of eqs. (2.10)–(2.11).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidMode {
+    /// A short name, e.g. `"axial translation"`.
+    pub name: String,
+    /// Normal displacement *into the body* at each interface point per unit amplitude
+    /// (the column of G_R before weighting, eq. 2.6).
+    pub interface_displacement: Vec<f64>,
+    /// Work of the given external loads on the mode per unit amplitude: the component of
+    /// the load resultant q (eq. 2.10) that the contact pressure must balance.
+    pub load: f64,
+}
+
+/// A linear-elastic body as contact sees it: its contact surface, how normal forces on that
+/// surface move it, where its given loads move it, and which rigid motions it is free to make
+/// (DESIGN §2).
+///
+/// Conventions (DESIGN §3): normal displacements are measured *into* the body, along −n,
+/// where n is the body's outward normal at the point, so that pressing a surface moves it by a
+/// positive amount; a force is a compressive normal force (pressure × weight). A body with free
+/// rigid modes reports displacements relative to an internal reference that removes those
+/// modes; the modes themselves are listed by [`ElasticBody::rigid_modes`].
+///
+/// Finite-element bodies, Green's-function bodies (half-space, half-plane), rigid bodies and
+/// user types implement it.
+pub trait ElasticBody {
+    /// Name used in messages and reports.
+    fn name(&self) -> &str;
+
+    /// The points of the proposed contact zone.
+    fn interface(&self) -> &Interface;
+
+    /// Applies the influence (Green's function) operator, eq. (2.5): given compressive normal
+    /// forces `force[j]` at the interface points, writes the normal displacement into the body
+    /// at every point to `displacement`. Both slices have the interface's length.
+    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]);
+
+    /// The dense influence matrix A (n × n, symmetric positive semi-definite) with
+    /// `A[(i, j)]` the displacement into the body at point i under a unit force at point j:
+    /// A = L K⁻¹ Lᵀ for a finite-element body. The default applies
+    /// [`ElasticBody::apply_influence`] to each unit vector; bodies that hold the matrix
+    /// return it directly.
+    fn influence_matrix(&self) -> Mat<f64> {
+        let n = self.interface().len();
+        let mut a = Mat::zeros(n, n);
+        let mut unit = vec![0.0; n];
+        let mut column = vec![0.0; n];
+        for j in 0..n {
+            unit[j] = 1.0;
+            self.apply_influence(&unit, &mut column);
+            unit[j] = 0.0;
+            for (i, v) in column.iter().enumerate() {
+                a[(i, j)] = *v;
+            }
+        }
+        a
+    }
+
+    /// Normal displacement into the body at the interface points under the given loads alone
+    /// (no contact force): f^α of eq. (2.5).
+    fn load_displacement(&self) -> Result<Vec<f64>>;
+
+    /// The rigid-body modes the supports leave free (empty for a supported body).
+    fn rigid_modes(&self) -> &[RigidMode];
+}

@@ -1,0 +1,67 @@
+use thiserror::Error;
+
+/// Result with the workspace's [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Everything that can go wrong in contopt.
+///
+/// Bad input is reported with the field that holds it and its value, never by a panic or a
+/// NaN in the output.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A parameter outside its admissible range.
+    #[error("invalid {field} = {value}: {reason}")]
+    InvalidInput {
+        /// Dotted path of the offending field, e.g. `material.nu`.
+        field: String,
+        /// The value as given.
+        value: String,
+        /// What the value must satisfy.
+        reason: String,
+    },
+    /// A mesh that cannot be used (inverted element, unknown node, face not on the boundary…).
+    #[error("mesh: {0}")]
+    Mesh(String),
+    /// The stiffness matrix of a body is singular even after its rigid-body modes were
+    /// removed: a mechanism, or an element with a degenerate Jacobian.
+    #[error("body `{body}`: stiffness matrix is not positive definite ({detail})")]
+    Singular {
+        /// Name of the body.
+        body: String,
+        /// What the factorisation reported.
+        detail: String,
+    },
+    /// Two contact surfaces that should share their points do not.
+    #[error("interfaces do not match at point {index}: {detail}")]
+    InterfaceMismatch {
+        /// Index of the first mismatching point.
+        index: usize,
+        /// The two values that differ.
+        detail: String,
+    },
+    /// An iterative method stopped before meeting its tolerance.
+    #[error("{method} did not converge in {iterations} iterations: {detail}")]
+    NotConverged {
+        /// Name of the method.
+        method: String,
+        /// Iterations performed.
+        iterations: usize,
+        /// How far it got (residuals at the last iterate).
+        detail: String,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidInput`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> Self {
+        Error::InvalidInput {
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+}

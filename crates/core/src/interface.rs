@@ -1,0 +1,151 @@
+use serde::{Deserialize, Serialize};
+
+use crate::{Error, Result};
+
+/// How the surface measure of an interface point was formed (DESIGN §3).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Geometry {
+    /// Axisymmetric: points are (r, z); weights carry the ring length 2πr.
+    Axisymmetric,
+    /// Plane stress or plane strain: points are (x, y); weights carry the thickness.
+    Plane {
+        /// Out-of-plane thickness b [mm].
+        thickness: f64,
+    },
+    /// A surface in 3-D (half-space grids): points are (x₁, x₂, x₃); weights are areas.
+    Surface,
+}
+
+/// Role of an interface point in the optimisation (§3.2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Region {
+    /// In the proposed contact zone Ω but outside Ω_opt: only p ≥ 0, d ≥ 0, pd = 0.
+    #[default]
+    Contact,
+    /// Ω_v: d = 0 and χ = v·p_max − p = 0 are prescribed.
+    OmegaV,
+    /// Ω_nv = Ω_opt − Ω_v: only d ≥ 0 and χ ≥ 0; the gap change follows Ω_v (eq. 3.3).
+    OmegaNv,
+}
+
+/// The points of a body's proposed contact zone Ω at which pressure and gap are evaluated.
+///
+/// For finite-element bodies these are the three Gauss points of every contact face (as in
+/// the paper, §2.2); for Green's-function bodies the grid-cell centres. Stored as columns
+/// (structure of arrays) because the solvers sweep them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Interface {
+    /// How the weights were formed.
+    pub geometry: Geometry,
+    /// Coordinates of the points.
+    pub points: Vec<[f64; 3]>,
+    /// Surface measure w_i attributed to each point [mm²]: the quadrature weight times
+    /// the Jacobian and 2πr (axisymmetric) or b (plane), so that ∫_Ω p dS ≈ Σ w_i p_i.
+    pub weights: Vec<f64>,
+    /// Unit outward normal of this body at each point.
+    pub normals: Vec<[f64; 3]>,
+    /// Role of each point in the optimisation.
+    pub regions: Vec<Region>,
+}
+
+impl Interface {
+    /// Builds an interface, checking that the columns have one length, the weights are
+    /// positive and finite and the normals have unit length.
+    pub fn new(
+        geometry: Geometry,
+        points: Vec<[f64; 3]>,
+        weights: Vec<f64>,
+        normals: Vec<[f64; 3]>,
+    ) -> Result<Self> {
+        let n = points.len();
+        if n == 0 {
+            return Err(Error::invalid("interface.points", 0, "at least one point"));
+        }
+        if weights.len() != n || normals.len() != n {
+            return Err(Error::invalid(
+                "interface",
+                format!(
+                    "{n} points, {} weights, {} normals",
+                    weights.len(),
+                    normals.len()
+                ),
+                "one weight and one normal per point",
+            ));
+        }
+        if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
+            return Err(Error::invalid(
+                format!("interface.weights[{i}]"),
+                weights[i],
+                "positive and finite",
+            ));
+        }
+        for (i, nrm) in normals.iter().enumerate() {
+            let len = nrm.iter().map(|c| c * c).sum::<f64>().sqrt();
+            if (len - 1.0).abs() > 1e-9 {
+                return Err(Error::invalid(
+                    format!("interface.normals[{i}]"),
+                    format!("{nrm:?}"),
+                    "unit length",
+                ));
+            }
+        }
+        Ok(Self {
+            geometry,
+            points,
+            weights,
+            normals,
+            regions: vec![Region::Contact; n],
+        })
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// Whether there are no points (never true for a constructed interface).
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// Total surface measure Σ w_i [mm²].
+    pub fn area(&self) -> f64 {
+        self.weights.iter().sum()
+    }
+
+    /// Resultant normal force Σ w_i p_i of a pressure at the points [N].
+    pub fn resultant(&self, pressure: &[f64]) -> f64 {
+        self.weights.iter().zip(pressure).map(|(w, p)| w * p).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_bad_columns() {
+        let p = vec![[0.0; 3], [1.0, 0.0, 0.0]];
+        let n = vec![[0.0, 1.0, 0.0]; 2];
+        let err = Interface::new(Geometry::Surface, p.clone(), vec![1.0], n.clone()).unwrap_err();
+        assert!(err.to_string().contains("one weight"), "{err}");
+        let err = Interface::new(Geometry::Surface, p.clone(), vec![1.0, -2.0], n).unwrap_err();
+        assert!(err.to_string().contains("weights[1] = -2"), "{err}");
+        let err = Interface::new(Geometry::Surface, p, vec![1.0; 2], vec![[0.0, 2.0, 0.0]; 2])
+            .unwrap_err();
+        assert!(err.to_string().contains("normals[0]"), "{err}");
+    }
+
+    #[test]
+    fn resultant_is_weighted_sum() {
+        let s = Interface::new(
+            Geometry::Plane { thickness: 2.0 },
+            vec![[0.0; 3], [1.0, 0.0, 0.0]],
+            vec![0.5, 1.5],
+            vec![[0.0, 1.0, 0.0]; 2],
+        )
+        .unwrap();
+        assert_eq!(s.area(), 2.0);
+        assert_eq!(s.resultant(&[2.0, 4.0]), 7.0);
+    }
+}

@@ -1,0 +1,13 @@
+//! Core of contopt: the [`ElasticBody`] trait, the contact [`Interface`] a body exposes, and the
+//! [`Error`] type shared by every crate of the workspace.
+//!
+//! Equation numbers refer to I. Páczelt, *Some new developments in contact pressure
+//! optimization* (1994). Units throughout: N, mm, MPa.
+
+mod body;
+mod error;
+mod interface;
+
+pub use body::{ElasticBody, RigidMode};
+pub use error::{Error, Result};
+pub use interface::{Geometry, Interface, Region};

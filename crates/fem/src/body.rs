@@ -1,0 +1,222 @@
+//! A finite-element body condensed to its contact face.
+
+use contopt_core::{ElasticBody, Error, Interface, Result, RigidMode};
+use faer::Mat;
+
+use crate::element::GAUSS3;
+use crate::model::FacePoint;
+use crate::system::{Dof, System};
+use crate::{Face, FeModel};
+
+/// One interface point's normal-displacement operator: the into-body displacement at the
+/// point is −Σ_k `coef[k]`·u(`dofs[k]`) over the face nodes' global DOFs (the row of L in
+/// H = L K⁻¹ Lᵀ, eq. 2.22).
+#[derive(Clone, Debug)]
+struct PointRow {
+    dofs: [usize; 6],
+    coef: [f64; 6],
+}
+
+impl PointRow {
+    fn new(model: &FeModel, face: Face, fp: &FacePoint) -> Self {
+        let nodes = model.mesh.face_nodes(face);
+        let mut row = PointRow {
+            dofs: [0; 6],
+            coef: [0.0; 6],
+        };
+        for k in 0..3 {
+            for c in 0..2 {
+                row.dofs[2 * k + c] = 2 * nodes[k] + c;
+                row.coef[2 * k + c] = fp.shape[k] * fp.normal[c];
+            }
+        }
+        row
+    }
+
+    /// Displacement into the body, −n·u, from global nodal displacements.
+    fn into_body(&self, u: &[f64]) -> f64 {
+        -self
+            .dofs
+            .iter()
+            .zip(&self.coef)
+            .map(|(&g, c)| c * u[g])
+            .sum::<f64>()
+    }
+}
+
+/// A finite-element body whose contact zone Ω is a set of boundary faces.
+///
+/// Construction assembles K, factorises it once with the face unknowns ordered last,
+/// condenses it to the face (the influence matrix A = L K⁻¹ Lᵀ at the three Gauss points of
+/// every contact face, §2.2) and solves once for the displacement under the given loads.
+/// Free rigid-body modes are detected from the supports, removed by holding one unknown each,
+/// and reported through [`ElasticBody::rigid_modes`].
+pub struct FeBody {
+    name: String,
+    model: FeModel,
+    system: System,
+    interface: Interface,
+    rows: Vec<PointRow>,
+    influence: Mat<f64>,
+    load_displacement: Vec<f64>,
+    rigid_modes: Vec<RigidMode>,
+}
+
+impl FeBody {
+    /// Builds the body with contact zone `contact` (boundary faces of the model's mesh).
+    pub fn new(name: impl Into<String>, model: FeModel, contact: &[Face]) -> Result<Self> {
+        let name = name.into();
+        let boundary: std::collections::HashSet<Face> =
+            model.mesh.boundary_faces().into_iter().collect();
+        if contact.is_empty() {
+            return Err(Error::invalid(
+                format!("{name}.contact"),
+                "[]",
+                "select at least one face",
+            ));
+        }
+        if let Some(f) = contact.iter().find(|f| !boundary.contains(f)) {
+            return Err(Error::invalid(
+                format!("{name}.contact"),
+                format!("{f:?}"),
+                "is not a boundary face of the mesh",
+            ));
+        }
+        let mut face_nodes: Vec<usize> = contact
+            .iter()
+            .flat_map(|&f| model.mesh.face_nodes(f))
+            .collect();
+        face_nodes.sort_unstable();
+        face_nodes.dedup();
+        let system = System::new(&model, &name, &face_nodes)?;
+
+        let (mut points, mut weights, mut normals, mut rows) = (vec![], vec![], vec![], vec![]);
+        for &f in contact {
+            for &(s, w) in &GAUSS3 {
+                let fp = model.face_point(f, s);
+                points.push([fp.x[0], fp.x[1], 0.0]);
+                weights.push(w * fp.jacobian * model.analysis.measure(fp.x[0]));
+                normals.push([fp.normal[0], fp.normal[1], 0.0]);
+                rows.push(PointRow::new(&model, f, &fp));
+            }
+        }
+        let interface = Interface::new(model.analysis.geometry(), points, weights, normals)?;
+
+        // A = L K⁻¹ Lᵀ from the face block of K⁻¹.
+        let tail = system.factor.tail_inverse();
+        let first_tail = system.n_free - system.n_tail;
+        let local = |g: usize| match system.dofs[g] {
+            Dof::Free(i) if i >= first_tail => Some(i - first_tail),
+            _ => None,
+        };
+        let n = rows.len();
+        let mut l = Mat::<f64>::zeros(n, system.n_tail);
+        for (i, r) in rows.iter().enumerate() {
+            for (&g, &c) in r.dofs.iter().zip(&r.coef) {
+                if let Some(k) = local(g) {
+                    l[(i, k)] += c;
+                }
+            }
+        }
+        let influence = &l * &tail * l.transpose();
+
+        let u = system.solve(&model, None);
+        let load_displacement = rows.iter().map(|r| r.into_body(&u)).collect();
+        let rigid_modes = system
+            .modes
+            .iter()
+            .map(|m| RigidMode {
+                name: m.name.clone(),
+                interface_displacement: rows.iter().map(|r| r.into_body(&m.values)).collect(),
+                load: m.values.iter().zip(&model.forces).map(|(a, b)| a * b).sum(),
+            })
+            .collect();
+        Ok(Self {
+            name,
+            model,
+            system,
+            interface,
+            rows,
+            influence,
+            load_displacement,
+            rigid_modes,
+        })
+    }
+
+    /// The model.
+    pub fn model(&self) -> &FeModel {
+        &self.model
+    }
+
+    /// Nodal displacements (u_x, u_y per node) under the given loads, compressive normal
+    /// forces `force` at the interface points [N] and rigid-mode amplitudes `rigid`
+    /// (one per [`ElasticBody::rigid_modes`]).
+    pub fn displacement(&self, force: &[f64], rigid: &[f64]) -> Result<Vec<f64>> {
+        if force.len() != self.rows.len() {
+            return Err(Error::invalid(
+                format!("{}.force", self.name),
+                force.len(),
+                format!("one per interface point ({})", self.rows.len()),
+            ));
+        }
+        if rigid.len() != self.system.modes.len() {
+            return Err(Error::invalid(
+                format!("{}.rigid", self.name),
+                rigid.len(),
+                format!("one per rigid mode ({})", self.system.modes.len()),
+            ));
+        }
+        let mut extra = vec![0.0; self.model.forces.len()];
+        for (r, f) in self.rows.iter().zip(force) {
+            for (&g, &c) in r.dofs.iter().zip(&r.coef) {
+                extra[g] -= c * f;
+            }
+        }
+        let mut u = self.system.solve(&self.model, Some(&extra));
+        for (m, a) in self.system.modes.iter().zip(rigid) {
+            for (ui, v) in u.iter_mut().zip(&m.values) {
+                *ui += a * v;
+            }
+        }
+        Ok(u)
+    }
+
+    /// Number of free unknowns of the stiffness system.
+    pub fn n_unknowns(&self) -> usize {
+        self.system.n_free
+    }
+
+    /// Nonzeros of the Cholesky factor.
+    pub fn factor_nnz(&self) -> usize {
+        self.system.factor.factor_nnz()
+    }
+}
+
+impl ElasticBody for FeBody {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn interface(&self) -> &Interface {
+        &self.interface
+    }
+
+    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+        let n = self.rows.len();
+        for (i, d) in displacement.iter_mut().enumerate().take(n) {
+            *d = (0..n).map(|j| self.influence[(i, j)] * force[j]).sum();
+        }
+    }
+
+    fn influence_matrix(&self) -> Mat<f64> {
+        self.influence.clone()
+    }
+
+    fn load_displacement(&self) -> Result<Vec<f64>> {
+        Ok(self.load_displacement.clone())
+    }
+
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &self.rigid_modes
+    }
+}

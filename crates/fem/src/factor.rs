@@ -1,0 +1,181 @@
+//! Sparse Cholesky factorisation K = L Lᵀ with the contact-face unknowns ordered last, so that
+//! the face block of K⁻¹ (the condensed compliance) comes from the trailing supernodes alone.
+
+use contopt_core::{Error, Result};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams, LltRef,
+    SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+
+/// A numeric Cholesky factor with its symbolic analysis kept for reuse.
+pub(crate) struct Factor {
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
+    /// The last `n_tail` unknowns of the matrix are the contact face.
+    n_tail: usize,
+}
+
+impl Factor {
+    /// Symbolic analysis of the upper triangle `a` (n × n): AMD on the leading
+    /// n − `n_tail` unknowns, the trailing `n_tail` kept last; then the numeric factorisation.
+    pub fn new(a: SparseColMatRef<'_, usize, f64>, n_tail: usize, body: &str) -> Result<Self> {
+        let n = a.nrows();
+        let n_int = n - n_tail;
+        let sym = a.symbolic();
+        let col_ptr = sym.col_ptr();
+        let interior = SymbolicSparseColMatRef::new_checked(
+            n_int,
+            n_int,
+            &col_ptr[..=n_int],
+            None,
+            &sym.row_idx()[..col_ptr[n_int]],
+        );
+        let mut fwd = vec![0usize; n];
+        let mut inv = vec![0usize; n];
+        let mut mem = MemBuffer::new(amd::order_scratch::<usize>(n_int, interior.compute_nnz()));
+        amd::order(
+            &mut fwd[..n_int],
+            &mut inv[..n_int],
+            interior,
+            Default::default(),
+            MemStack::new(&mut mem),
+        )
+        .map_err(|e| Error::Singular {
+            body: body.into(),
+            detail: format!("ordering failed: {e:?}"),
+        })?;
+        for i in n_int..n {
+            fwd[i] = i;
+            inv[i] = i;
+        }
+        let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
+        let symbolic = factorize_symbolic_cholesky(
+            sym,
+            Side::Upper,
+            SymmetricOrdering::Custom(perm),
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| Error::Singular {
+            body: body.into(),
+            detail: format!("symbolic analysis failed: {e:?}"),
+        })?;
+        let mut values = vec![0.0; symbolic.len_val()];
+        let mut mem = MemBuffer::new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        );
+        symbolic
+            .factorize_numeric_llt(
+                &mut values,
+                a,
+                Side::Upper,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|e| Error::Singular {
+                body: body.into(),
+                detail: format!("{e:?}; check that the supports leave no mechanism"),
+            })?;
+        Ok(Self {
+            symbolic,
+            values,
+            n_tail,
+        })
+    }
+
+    /// Number of nonzeros of L.
+    pub fn factor_nnz(&self) -> usize {
+        self.values.len()
+    }
+
+    /// Solves K X = B in place for a block of right-hand sides.
+    pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+        let mut mem = MemBuffer::new(
+            self.symbolic
+                .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq),
+        );
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
+    }
+
+    /// The trailing `n_tail × n_tail` block of K⁻¹: with Y = L⁻¹ E (E the trailing columns of
+    /// the identity, permuted), the block is Yᵀ Y. Y is zero above the first supernode that
+    /// holds a trailing unknown, so only the trailing supernodes are visited.
+    pub fn tail_inverse(&self) -> Mat<f64> {
+        let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else {
+            unreachable!("the factorisation is forced supernodal")
+        };
+        let n = self.symbolic.nrows();
+        let n_tail = self.n_tail;
+        let inv = self
+            .symbolic
+            .perm()
+            .map(|p| p.arrays().1.to_vec())
+            .unwrap_or_else(|| (0..n).collect());
+        // Positions of the trailing unknowns in the factor's order.
+        let pos: Vec<usize> = (n - n_tail..n).map(|i| inv[i]).collect();
+        let first = pos.iter().copied().min().unwrap_or(n);
+        let llt = SupernodalLltRef::new(sn, &self.values);
+        let begin = sn.supernode_begin();
+        let s0 = (0..sn.n_supernodes())
+            .find(|&s| sn.supernode_end()[s] > first)
+            .unwrap_or(sn.n_supernodes());
+        let offset = if s0 < sn.n_supernodes() { begin[s0] } else { n };
+        let mut y = Mat::<f64>::zeros(n - offset, n_tail);
+        for (k, &p) in pos.iter().enumerate() {
+            y[(p - offset, k)] = 1.0;
+        }
+        let mut tmp = Mat::<f64>::zeros(0, 0);
+        for s in s0..sn.n_supernodes() {
+            let node = llt.supernode(s);
+            let ls = node.val();
+            let size = ls.ncols();
+            let (top, bottom) = ls.split_at_row(size);
+            let start = node.start() - offset;
+            solve_lower_triangular_in_place(top, y.as_mut().subrows_mut(start, size), Par::Seq);
+            let pattern = node.pattern();
+            if pattern.is_empty() {
+                continue;
+            }
+            tmp.resize_with(pattern.len(), n_tail, |_, _| 0.0);
+            matmul(
+                tmp.as_mut(),
+                Accum::Replace,
+                bottom,
+                y.as_ref().subrows(start, size),
+                1.0,
+                Par::Seq,
+            );
+            for j in 0..n_tail {
+                for (r, &i) in pattern.iter().enumerate() {
+                    y[(i - offset, j)] -= tmp[(r, j)];
+                }
+            }
+        }
+        let mut a = Mat::<f64>::zeros(n_tail, n_tail);
+        matmul(
+            a.as_mut(),
+            Accum::Replace,
+            y.transpose(),
+            y.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        a
+    }
+}

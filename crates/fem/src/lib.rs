@@ -1,0 +1,25 @@
+//! Linear-elastic finite-element bodies with quadratic isoparametric quadrilaterals
+//! (8-node serendipity and 9-node Lagrange), for axisymmetric, plane-stress and plane-strain
+//! analysis, as in the paper's examples (§4: "quadratic isoparametric ring element").
+//!
+//! A [`FeModel`] holds a [`Mesh`], a [`Material`], an [`Analysis`], supports and loads;
+//! [`FeModel::solve`] solves a supported model, and [`FeBody`] condenses a model to its contact
+//! face as a [`contopt_core::ElasticBody`].
+
+mod analysis;
+mod body;
+pub mod element;
+mod factor;
+mod material;
+mod mesh;
+mod model;
+mod solution;
+mod system;
+
+pub use analysis::Analysis;
+pub use body::FeBody;
+pub use element::ElementKind;
+pub use material::Material;
+pub use mesh::{Face, Mesh, Spacing};
+pub use model::{Component, FeModel};
+pub use solution::{Solution, Stress};

@@ -1,0 +1,497 @@
+//! Meshes of quadratic quadrilaterals and a structured generator with grading.
+
+use contopt_core::{Error, Result};
+
+use crate::element::{ElementKind, FACE_NODES};
+
+/// Element boundaries along one axis, increasing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spacing {
+    coords: Vec<f64>,
+}
+
+impl Spacing {
+    /// Element boundaries given explicitly (strictly increasing, at least two).
+    pub fn from_coords(coords: Vec<f64>) -> Result<Self> {
+        if coords.len() < 2 {
+            return Err(Error::invalid(
+                "spacing.coords",
+                coords.len(),
+                "at least two boundaries",
+            ));
+        }
+        if let Some(i) =
+            (1..coords.len()).find(|&i| !(coords[i] > coords[i - 1]) || !coords[i].is_finite())
+        {
+            return Err(Error::invalid(
+                format!("spacing.coords[{i}]"),
+                coords[i],
+                format!(
+                    "must be finite and exceed the previous boundary {}",
+                    coords[i - 1]
+                ),
+            ));
+        }
+        Ok(Self { coords })
+    }
+
+    /// `n` equal elements on [a, b].
+    pub fn uniform(a: f64, b: f64, n: usize) -> Result<Self> {
+        Self::geometric(a, b, n, 1.0)
+    }
+
+    /// `n` elements on [a, b] whose sizes form a geometric progression with
+    /// (last size) / (first size) = `ratio`; `ratio` < 1 refines towards b.
+    pub fn geometric(a: f64, b: f64, n: usize, ratio: f64) -> Result<Self> {
+        if n == 0 {
+            return Err(Error::invalid(
+                "spacing.elements",
+                n,
+                "at least one element",
+            ));
+        }
+        if !(ratio.is_finite() && ratio > 0.0) {
+            return Err(Error::invalid(
+                "spacing.ratio",
+                ratio,
+                "must be positive and finite",
+            ));
+        }
+        if !(b > a) {
+            return Err(Error::invalid(
+                "spacing.end",
+                b,
+                format!("must exceed the start {a}"),
+            ));
+        }
+        let q = if n > 1 {
+            ratio.powf(1.0 / (n - 1) as f64)
+        } else {
+            1.0
+        };
+        let sizes: Vec<f64> = (0..n).map(|i| q.powi(i as i32)).collect();
+        let total: f64 = sizes.iter().sum();
+        let mut coords = Vec::with_capacity(n + 1);
+        let mut x = a;
+        coords.push(a);
+        for s in &sizes[..n - 1] {
+            x += (b - a) * s / total;
+            coords.push(x);
+        }
+        coords.push(b);
+        Self::from_coords(coords)
+    }
+
+    /// About `n` elements on [a, b], refined towards each of `points` (inside [a, b]) so that
+    /// elements far from them are `ratio` times larger than those next to them. The points are
+    /// element boundaries: the punch edge gets nodes on both of its sides.
+    pub fn graded(a: f64, b: f64, n: usize, points: &[f64], ratio: f64) -> Result<Self> {
+        if let Some(p) = points.iter().find(|p| !(**p >= a && **p <= b)) {
+            return Err(Error::invalid(
+                "spacing.points",
+                p,
+                format!("must lie in [{a}, {b}]"),
+            ));
+        }
+        if !(ratio >= 1.0) {
+            return Err(Error::invalid(
+                "spacing.ratio",
+                ratio,
+                "largest/smallest element ratio must be >= 1",
+            ));
+        }
+        // Cut [a, b] into pieces, each graded from one fine end to one coarse end.
+        let mut pts: Vec<f64> = points.to_vec();
+        pts.sort_by(f64::total_cmp);
+        pts.dedup();
+        let mut pieces: Vec<(f64, f64, bool)> = Vec::new(); // (start, end, fine at start)
+        let mut push = |s: f64, e: f64, fine_start: bool| {
+            if e > s {
+                pieces.push((s, e, fine_start));
+            }
+        };
+        if pts.is_empty() {
+            return Self::uniform(a, b, n);
+        }
+        push(a, pts[0], false);
+        for w in pts.windows(2) {
+            let mid = 0.5 * (w[0] + w[1]);
+            push(w[0], mid, true);
+            push(mid, w[1], false);
+        }
+        push(*pts.last().unwrap(), b, true);
+        let len = b - a;
+        let mut coords = vec![a];
+        for (s, e, fine_start) in pieces {
+            let k = ((n as f64 * (e - s) / len).round() as usize).max(1);
+            let r = if fine_start { ratio } else { 1.0 / ratio };
+            let piece = Self::geometric(s, e, k, r)?;
+            coords.extend_from_slice(&piece.coords[1..]);
+        }
+        Self::from_coords(coords)
+    }
+
+    /// Element boundaries.
+    pub fn coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.coords.len() - 1
+    }
+
+    /// Never true: a spacing has at least one element.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The sub-spacing on [a, b], whose ends must be element boundaries of `self`.
+    pub fn restrict(&self, a: f64, b: f64) -> Result<Self> {
+        let tol = 1e-9 * (self.coords[self.len()] - self.coords[0]);
+        let find = |x: f64, field: &str| {
+            self.coords
+                .iter()
+                .position(|c| (c - x).abs() <= tol)
+                .ok_or_else(|| {
+                    Error::invalid(field, x, "must be an element boundary of the spacing")
+                })
+        };
+        let (i, j) = (
+            find(a, "spacing.restrict.start")?,
+            find(b, "spacing.restrict.end")?,
+        );
+        Self::from_coords(self.coords[i..=j].to_vec())
+    }
+}
+
+/// One face (edge) of an element: `(element, local face 0..4)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Face {
+    /// Element index.
+    pub element: usize,
+    /// Local face number (see [`crate::element::FACE_NODES`]).
+    pub local: usize,
+}
+
+/// A mesh of quadratic quadrilaterals in the (x, y) plane (x = r for axisymmetry).
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    kind: ElementKind,
+    nodes: Vec<[f64; 2]>,
+    elements: Vec<Vec<usize>>,
+}
+
+impl Mesh {
+    /// A mesh from node coordinates and element connectivity (local order of
+    /// [`crate::element`], counter-clockwise). Every element must have a positive Jacobian at
+    /// its Gauss points.
+    pub fn new(kind: ElementKind, nodes: Vec<[f64; 2]>, elements: Vec<Vec<usize>>) -> Result<Self> {
+        let mesh = Self {
+            kind,
+            nodes,
+            elements,
+        };
+        mesh.validate()?;
+        Ok(mesh)
+    }
+
+    fn validate(&self) -> Result<()> {
+        if self.elements.is_empty() {
+            return Err(Error::Mesh("no elements".into()));
+        }
+        if let Some(i) = self
+            .nodes
+            .iter()
+            .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+        {
+            return Err(Error::Mesh(format!(
+                "node {i} has a non-finite coordinate {:?}",
+                self.nodes[i]
+            )));
+        }
+        for (e, conn) in self.elements.iter().enumerate() {
+            if conn.len() != self.kind.n_nodes() {
+                return Err(Error::Mesh(format!(
+                    "element {e} has {} nodes, a {:?} needs {}",
+                    conn.len(),
+                    self.kind,
+                    self.kind.n_nodes()
+                )));
+            }
+            if let Some(&n) = conn.iter().find(|&&n| n >= self.nodes.len()) {
+                return Err(Error::Mesh(format!(
+                    "element {e} refers to node {n}, mesh has {}",
+                    self.nodes.len()
+                )));
+            }
+            for &(xi, _) in &crate::element::GAUSS3 {
+                for &(eta, _) in &crate::element::GAUSS3 {
+                    let det = self.jacobian(e, xi, eta).1;
+                    if !(det > 0.0) {
+                        return Err(Error::Mesh(format!(
+                            "element {e} has Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): \
+                             inverted or degenerate (nodes must run counter-clockwise)"
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Jacobian [[∂x/∂ξ, ∂y/∂ξ], [∂x/∂η, ∂y/∂η]] and its determinant.
+    pub(crate) fn jacobian(&self, e: usize, xi: f64, eta: f64) -> ([[f64; 2]; 2], f64) {
+        let s = self.kind.shape(xi, eta);
+        let mut j = [[0.0; 2]; 2];
+        for (a, &n) in self.elements[e].iter().enumerate() {
+            let p = self.nodes[n];
+            for c in 0..2 {
+                j[0][c] += s.dxi[a] * p[c];
+                j[1][c] += s.deta[a] * p[c];
+            }
+        }
+        (j, j[0][0] * j[1][1] - j[0][1] * j[1][0])
+    }
+
+    /// A structured mesh of the rectangle `x × y`; mid-side nodes sit at the midpoints.
+    pub fn rectangle(kind: ElementKind, x: &Spacing, y: &Spacing) -> Result<Self> {
+        let (nx, ny) = (x.len(), y.len());
+        let (gx, gy) = (2 * nx + 1, 2 * ny + 1);
+        let coord = |s: &Spacing, i: usize| {
+            let c = s.coords();
+            if i % 2 == 0 {
+                c[i / 2]
+            } else {
+                0.5 * (c[i / 2] + c[i / 2 + 1])
+            }
+        };
+        let mut id = vec![usize::MAX; gx * gy];
+        let mut nodes = Vec::new();
+        for j in 0..gy {
+            for i in 0..gx {
+                if kind == ElementKind::Q8 && i % 2 == 1 && j % 2 == 1 {
+                    continue;
+                }
+                id[j * gx + i] = nodes.len();
+                nodes.push([coord(x, i), coord(y, j)]);
+            }
+        }
+        let at = |i: usize, j: usize| id[j * gx + i];
+        let mut elements = Vec::with_capacity(nx * ny);
+        for ey in 0..ny {
+            for ex in 0..nx {
+                let (i, j) = (2 * ex, 2 * ey);
+                let mut conn = vec![
+                    at(i, j),
+                    at(i + 2, j),
+                    at(i + 2, j + 2),
+                    at(i, j + 2),
+                    at(i + 1, j),
+                    at(i + 2, j + 1),
+                    at(i + 1, j + 2),
+                    at(i, j + 1),
+                ];
+                if kind == ElementKind::Q9 {
+                    conn.push(at(i + 1, j + 1));
+                }
+                elements.push(conn);
+            }
+        }
+        Self::new(kind, nodes, elements)
+    }
+
+    /// Two rectangles stacked as in the paper's Fig. 1: a lower body on `lower_x × lower_y`
+    /// and an upper body on `[upper_x.0, upper_x.1] × upper_y`, with `upper_y` starting at
+    /// the top of `lower_y`. The upper body uses the lower body's element boundaries over its
+    /// width, so the nodes of the two contact faces coincide.
+    pub fn stacked(
+        kind: ElementKind,
+        lower_x: &Spacing,
+        lower_y: &Spacing,
+        upper_x: (f64, f64),
+        upper_y: &Spacing,
+    ) -> Result<(Self, Self)> {
+        let top = *lower_y.coords().last().unwrap();
+        let base = upper_y.coords()[0];
+        if (top - base).abs() > 1e-9 * top.abs().max(1.0) {
+            return Err(Error::invalid(
+                "stacked.upper_y.start",
+                base,
+                format!("must equal the top of the lower body, {top}"),
+            ));
+        }
+        let lower = Self::rectangle(kind, lower_x, lower_y)?;
+        let upper = Self::rectangle(kind, &lower_x.restrict(upper_x.0, upper_x.1)?, upper_y)?;
+        Ok((lower, upper))
+    }
+
+    /// Moves every node by `f`, e.g. to bend a rectangle in (r, θ) into an annular sector.
+    pub fn map(mut self, f: impl Fn([f64; 2]) -> [f64; 2]) -> Result<Self> {
+        for p in &mut self.nodes {
+            *p = f(*p);
+        }
+        self.validate()?;
+        Ok(self)
+    }
+
+    /// Element type.
+    pub fn kind(&self) -> ElementKind {
+        self.kind
+    }
+
+    /// Node coordinates.
+    pub fn nodes(&self) -> &[[f64; 2]] {
+        &self.nodes
+    }
+
+    /// Element connectivity.
+    pub fn elements(&self) -> &[Vec<usize>] {
+        &self.elements
+    }
+
+    /// Global nodes (start, middle, end) of a face.
+    pub fn face_nodes(&self, f: Face) -> [usize; 3] {
+        FACE_NODES[f.local].map(|a| self.elements[f.element][a])
+    }
+
+    /// Faces that belong to one element only, in element order.
+    pub fn boundary_faces(&self) -> Vec<Face> {
+        let mut count = std::collections::HashMap::new();
+        let key = |f: Face| {
+            let [a, _, b] = self.face_nodes(f);
+            (a.min(b), a.max(b))
+        };
+        let all: Vec<Face> = (0..self.elements.len())
+            .flat_map(|element| (0..4).map(move |local| Face { element, local }))
+            .collect();
+        for &f in &all {
+            *count.entry(key(f)).or_insert(0usize) += 1;
+        }
+        all.into_iter().filter(|&f| count[&key(f)] == 1).collect()
+    }
+
+    /// Length scale for coordinate comparisons: 10⁻⁹ of the bounding-box diagonal.
+    fn tolerance(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &self.nodes {
+            for c in 0..2 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        1e-9 * ((hi[0] - lo[0]).hypot(hi[1] - lo[1]))
+    }
+
+    /// Nodes whose coordinates satisfy `pred`.
+    pub fn nodes_where(&self, pred: impl Fn([f64; 2]) -> bool) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| pred(self.nodes[i]))
+            .collect()
+    }
+
+    /// Boundary faces whose three nodes all satisfy `pred`.
+    pub fn faces_where(&self, pred: impl Fn([f64; 2]) -> bool) -> Vec<Face> {
+        self.boundary_faces()
+            .into_iter()
+            .filter(|&f| self.face_nodes(f).iter().all(|&n| pred(self.nodes[n])))
+            .collect()
+    }
+
+    /// Nodes on the line y = `y` with x in `[x0, x1]`.
+    pub fn nodes_on_y(&self, y: f64, x0: f64, x1: f64) -> Vec<usize> {
+        let t = self.tolerance();
+        self.nodes_where(|p| (p[1] - y).abs() <= t && p[0] >= x0 - t && p[0] <= x1 + t)
+    }
+
+    /// Nodes on the line x = `x` with y in `[y0, y1]`.
+    pub fn nodes_on_x(&self, x: f64, y0: f64, y1: f64) -> Vec<usize> {
+        let t = self.tolerance();
+        self.nodes_where(|p| (p[0] - x).abs() <= t && p[1] >= y0 - t && p[1] <= y1 + t)
+    }
+
+    /// Boundary faces on the line y = `y` with x in `[x0, x1]`, ordered by x.
+    pub fn faces_on_y(&self, y: f64, x0: f64, x1: f64) -> Vec<Face> {
+        let t = self.tolerance();
+        let mut f = self.faces_where(|p| (p[1] - y).abs() <= t && p[0] >= x0 - t && p[0] <= x1 + t);
+        f.sort_by(|a, b| {
+            self.nodes[self.face_nodes(*a)[1]][0].total_cmp(&self.nodes[self.face_nodes(*b)[1]][0])
+        });
+        f
+    }
+
+    /// Boundary faces on the line x = `x` with y in `[y0, y1]`, ordered by y.
+    pub fn faces_on_x(&self, x: f64, y0: f64, y1: f64) -> Vec<Face> {
+        let t = self.tolerance();
+        let mut f = self.faces_where(|p| (p[0] - x).abs() <= t && p[1] >= y0 - t && p[1] <= y1 + t);
+        f.sort_by(|a, b| {
+            self.nodes[self.face_nodes(*a)[1]][1].total_cmp(&self.nodes[self.face_nodes(*b)[1]][1])
+        });
+        f
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn graded_spacing_refines_towards_the_point() {
+        let s = Spacing::graded(0.0, 100.0, 40, &[50.0], 10.0).unwrap();
+        let c = s.coords();
+        assert!(
+            c.iter().any(|x| (x - 50.0).abs() < 1e-12),
+            "50 is a boundary"
+        );
+        let i = c.iter().position(|x| (x - 50.0).abs() < 1e-12).unwrap();
+        let (near, far) = (c[i] - c[i - 1], c[1] - c[0]);
+        assert!((far / near - 10.0).abs() < 1e-9, "ratio {}", far / near);
+        assert_eq!(s.len(), 40);
+    }
+
+    #[test]
+    fn stacked_meshes_share_contact_nodes() {
+        let x = Spacing::graded(0.0, 100.0, 20, &[50.0], 4.0).unwrap();
+        let (lower, upper) = Mesh::stacked(
+            ElementKind::Q8,
+            &x,
+            &Spacing::uniform(0.0, 50.0, 5).unwrap(),
+            (0.0, 50.0),
+            &Spacing::uniform(50.0, 100.0, 5).unwrap(),
+        )
+        .unwrap();
+        let a: Vec<_> = lower
+            .nodes_on_y(50.0, 0.0, 50.0)
+            .iter()
+            .map(|&n| lower.nodes()[n][0])
+            .collect();
+        let b: Vec<_> = upper
+            .nodes_on_y(50.0, 0.0, 50.0)
+            .iter()
+            .map(|&n| upper.nodes()[n][0])
+            .collect();
+        assert_eq!(a, b);
+        assert_eq!(upper.faces_on_y(50.0, 0.0, 50.0).len(), 10);
+    }
+
+    #[test]
+    fn rejects_inverted_elements_and_bad_spacings() {
+        let err = Mesh::rectangle(
+            ElementKind::Q9,
+            &Spacing::uniform(0.0, 1.0, 1).unwrap(),
+            &Spacing::uniform(0.0, 1.0, 1).unwrap(),
+        )
+        .unwrap()
+        .map(|p| [-p[0], p[1]])
+        .unwrap_err();
+        assert!(err.to_string().contains("Jacobian"), "{err}");
+        assert!(Spacing::from_coords(vec![0.0, 1.0, 1.0])
+            .unwrap_err()
+            .to_string()
+            .contains("coords[2]"));
+        assert!(Spacing::uniform(0.0, 1.0, 4)
+            .unwrap()
+            .restrict(0.0, 0.3)
+            .is_err());
+    }
+}

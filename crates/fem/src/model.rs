@@ -1,0 +1,238 @@
+//! A finite-element model: mesh, material, analysis type, supports and loads.
+
+use std::collections::BTreeMap;
+
+use contopt_core::{Error, Result};
+
+use crate::element::{lagrange2, GAUSS3};
+use crate::{Analysis, Face, Material, Mesh};
+
+/// A displacement component: x (= r in axisymmetry) or y (= z).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Component {
+    /// x, or the radial component r.
+    X = 0,
+    /// y, or the axial component z.
+    Y = 1,
+}
+
+/// Geometry of one point of a face, from the face's three nodes and the 1-D quadratic
+/// interpolation along it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FacePoint {
+    /// Coordinates.
+    pub x: [f64; 2],
+    /// Unit outward normal (faces run counter-clockwise around their element).
+    pub normal: [f64; 2],
+    /// Length of the tangent |dx/ds|.
+    pub jacobian: f64,
+    /// 1-D shape functions of the (start, middle, end) nodes.
+    pub shape: [f64; 3],
+}
+
+/// Linear-elastic finite-element model of one body.
+#[derive(Clone, Debug)]
+pub struct FeModel {
+    pub(crate) mesh: Mesh,
+    pub(crate) material: Material,
+    pub(crate) analysis: Analysis,
+    /// Prescribed displacement of (node, component).
+    pub(crate) prescribed: BTreeMap<(usize, Component), f64>,
+    /// Given nodal forces (already integrated face loads included), length 2·nodes.
+    pub(crate) forces: Vec<f64>,
+}
+
+impl FeModel {
+    /// A model without supports or loads. In axisymmetry the radial displacement of nodes on
+    /// the axis (r = 0) is held, and nodes at r < 0 are rejected.
+    pub fn new(mesh: Mesh, material: Material, analysis: Analysis) -> Result<Self> {
+        analysis.validate()?;
+        let mut model = Self {
+            forces: vec![0.0; 2 * mesh.nodes().len()],
+            mesh,
+            material,
+            analysis,
+            prescribed: BTreeMap::new(),
+        };
+        if analysis == Analysis::Axisymmetric {
+            let scale = model
+                .mesh
+                .nodes()
+                .iter()
+                .fold(0.0f64, |m, p| m.max(p[0].abs()));
+            let tol = 1e-9 * scale;
+            if let Some(i) = model.mesh.nodes().iter().position(|p| p[0] < -tol) {
+                return Err(Error::invalid(
+                    format!("mesh.nodes[{i}].r"),
+                    model.mesh.nodes()[i][0],
+                    "axisymmetric meshes need r >= 0",
+                ));
+            }
+            let axis = model.mesh.nodes_where(|p| p[0].abs() <= tol);
+            model.fix(&axis, Component::X)?;
+        }
+        Ok(model)
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// The analysis type.
+    pub fn analysis(&self) -> Analysis {
+        self.analysis
+    }
+
+    fn check_nodes(&self, nodes: &[usize], what: &str) -> Result<()> {
+        if nodes.is_empty() {
+            return Err(Error::invalid(what, "[]", "selects no node"));
+        }
+        if let Some(&n) = nodes.iter().find(|&&n| n >= self.mesh.nodes().len()) {
+            return Err(Error::invalid(
+                what,
+                n,
+                format!("no such node (mesh has {})", self.mesh.nodes().len()),
+            ));
+        }
+        Ok(())
+    }
+
+    fn check_faces(&self, faces: &[Face], what: &str) -> Result<()> {
+        if faces.is_empty() {
+            return Err(Error::invalid(what, "[]", "selects no face"));
+        }
+        if let Some(f) = faces
+            .iter()
+            .find(|f| f.element >= self.mesh.elements().len() || f.local >= 4)
+        {
+            return Err(Error::invalid(what, format!("{f:?}"), "no such face"));
+        }
+        Ok(())
+    }
+
+    /// Holds `component` of `nodes` at zero.
+    pub fn fix(&mut self, nodes: &[usize], component: Component) -> Result<&mut Self> {
+        self.prescribe(nodes, component, 0.0)
+    }
+
+    /// Prescribes `component` of `nodes` to `value` [mm].
+    pub fn prescribe(
+        &mut self,
+        nodes: &[usize],
+        component: Component,
+        value: f64,
+    ) -> Result<&mut Self> {
+        self.check_nodes(nodes, "support.nodes")?;
+        if !value.is_finite() {
+            return Err(Error::invalid("support.value", value, "must be finite"));
+        }
+        for &n in nodes {
+            self.prescribed.insert((n, component), value);
+        }
+        Ok(self)
+    }
+
+    /// A uniform pressure `p` [MPa] on `faces`, positive when it pushes into the body.
+    pub fn pressure(&mut self, faces: &[Face], p: f64) -> Result<&mut Self> {
+        self.check_faces(faces, "pressure.faces")?;
+        if !p.is_finite() {
+            return Err(Error::invalid("pressure.value", p, "must be finite"));
+        }
+        self.face_load(faces, |fp| [-p * fp.normal[0], -p * fp.normal[1]]);
+        Ok(self)
+    }
+
+    /// A uniform traction `t` = (t_x, t_y) [MPa] on `faces`.
+    pub fn traction(&mut self, faces: &[Face], t: [f64; 2]) -> Result<&mut Self> {
+        self.traction_with(faces, |_| t)
+    }
+
+    /// A traction that varies along the faces: `t(x)` [MPa] at the point x.
+    pub fn traction_with(
+        &mut self,
+        faces: &[Face],
+        t: impl Fn([f64; 2]) -> [f64; 2],
+    ) -> Result<&mut Self> {
+        self.check_faces(faces, "traction.faces")?;
+        if let Some(bad) = faces
+            .iter()
+            .flat_map(|&f| GAUSS3.map(|(s, _)| self.face_point(f, s).x))
+            .map(&t)
+            .find(|v| !(v[0].is_finite() && v[1].is_finite()))
+        {
+            return Err(Error::invalid(
+                "traction.value",
+                format!("{bad:?}"),
+                "must be finite",
+            ));
+        }
+        self.face_load(faces, |fp| t(fp.x));
+        Ok(self)
+    }
+
+    /// A force `f` = (f_x, f_y) [N] at `node` (in axisymmetry: the force of the whole ring).
+    pub fn nodal_force(&mut self, node: usize, f: [f64; 2]) -> Result<&mut Self> {
+        self.check_nodes(&[node], "force.node")?;
+        if !(f[0].is_finite() && f[1].is_finite()) {
+            return Err(Error::invalid(
+                "force.value",
+                format!("{f:?}"),
+                "must be finite",
+            ));
+        }
+        self.forces[2 * node] += f[0];
+        self.forces[2 * node + 1] += f[1];
+        Ok(self)
+    }
+
+    /// Adds the consistent nodal forces ∫ N t dS of a traction field to the load vector.
+    fn face_load(&mut self, faces: &[Face], traction: impl Fn(&FacePoint) -> [f64; 2]) {
+        for &f in faces {
+            let nodes = self.mesh.face_nodes(f);
+            for &(s, w) in &GAUSS3 {
+                let fp = self.face_point(f, s);
+                let t = traction(&fp);
+                let ds = w * fp.jacobian * self.analysis.measure(fp.x[0]);
+                for (k, &n) in nodes.iter().enumerate() {
+                    self.forces[2 * n] += fp.shape[k] * t[0] * ds;
+                    self.forces[2 * n + 1] += fp.shape[k] * t[1] * ds;
+                }
+            }
+        }
+    }
+
+    /// Position, normal and shape functions at parameter `s` ∈ [−1, 1] along a face.
+    pub(crate) fn face_point(&self, f: Face, s: f64) -> FacePoint {
+        let nodes = self.mesh.face_nodes(f);
+        let mut fp = FacePoint {
+            x: [0.0; 2],
+            normal: [0.0; 2],
+            jacobian: 0.0,
+            shape: [0.0; 3],
+        };
+        let mut t = [0.0; 2];
+        for (k, &node) in [-1.0, 0.0, 1.0].iter().enumerate() {
+            let (l, dl) = lagrange2(node, s);
+            let p = self.mesh.nodes()[nodes[k]];
+            fp.shape[k] = l;
+            for c in 0..2 {
+                fp.x[c] += l * p[c];
+                t[c] += dl * p[c];
+            }
+        }
+        fp.jacobian = t[0].hypot(t[1]);
+        fp.normal = [t[1] / fp.jacobian, -t[0] / fp.jacobian];
+        fp
+    }
+
+    /// Total given load vector (length 2·nodes), for resultants and rigid-mode loads.
+    pub fn forces(&self) -> &[f64] {
+        &self.forces
+    }
+}

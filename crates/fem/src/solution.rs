@@ -1,0 +1,133 @@
+//! Solving a supported model, stresses at Gauss points, and error norms.
+
+use contopt_core::{Error, Result};
+
+use crate::element::GAUSS3;
+use crate::system::{point_b, strain_rows, System};
+use crate::{Analysis, FeModel};
+
+/// Stress at one point [MPa]. In axisymmetry x = r, y = z and `zz` is the hoop stress σ_θ;
+/// in plane strain `zz` is the out-of-plane stress ν(σ_xx + σ_yy); in plane stress it is 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stress {
+    /// Where the stress was evaluated.
+    pub x: [f64; 2],
+    /// σ_xx (σ_r).
+    pub xx: f64,
+    /// σ_yy (σ_z).
+    pub yy: f64,
+    /// τ_xy (τ_rz).
+    pub xy: f64,
+    /// σ_zz (σ_θ in axisymmetry).
+    pub zz: f64,
+}
+
+/// Nodal displacements of a solved model.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// (u_x, u_y) of node i at entries 2i, 2i + 1.
+    pub displacement: Vec<f64>,
+}
+
+impl Solution {
+    /// Displacement (u_x, u_y) of `node`.
+    pub fn at(&self, node: usize) -> [f64; 2] {
+        [self.displacement[2 * node], self.displacement[2 * node + 1]]
+    }
+}
+
+impl FeModel {
+    /// Assembles, factorises and solves. The supports must hold every rigid-body mode;
+    /// a floating body belongs in an [`crate::FeBody`], whose contact carries the modes.
+    pub fn solve(&self) -> Result<Solution> {
+        let system = System::new(self, "model", &[])?;
+        if !system.modes.is_empty() {
+            let names: Vec<&str> = system.modes.iter().map(|m| m.name.as_str()).collect();
+            return Err(Error::invalid(
+                "supports",
+                names.join(", "),
+                "rigid-body modes are left free; add supports",
+            ));
+        }
+        Ok(Solution {
+            displacement: system.solve(self, None),
+        })
+    }
+
+    /// Stresses at the 3 × 3 Gauss points of every element, element by element.
+    pub fn stresses(&self, solution: &Solution) -> Result<Vec<Stress>> {
+        let d = self.analysis.elasticity(&self.material);
+        let ns = self.analysis.n_strain();
+        let mut out = Vec::with_capacity(9 * self.mesh.elements().len());
+        for (e, conn) in self.mesh.elements().iter().enumerate() {
+            for &(xi, _) in &GAUSS3 {
+                for &(eta, _) in &GAUSS3 {
+                    let b = point_b(self, e, xi, eta, 1.0)?;
+                    let mut strain = [0.0; 4];
+                    for (a, &node) in conn.iter().enumerate() {
+                        let rows = strain_rows(self.analysis, &b, a);
+                        let u = solution.at(node);
+                        for k in 0..ns {
+                            strain[k] += rows[k][0] * u[0] + rows[k][1] * u[1];
+                        }
+                    }
+                    let s: Vec<f64> = (0..ns)
+                        .map(|i| (0..ns).map(|k| d[i][k] * strain[k]).sum())
+                        .collect();
+                    let nu = self.material.nu();
+                    let stress = match self.analysis {
+                        Analysis::Axisymmetric => Stress {
+                            x: b.x,
+                            xx: s[0],
+                            yy: s[1],
+                            zz: s[2],
+                            xy: s[3],
+                        },
+                        Analysis::PlaneStress { .. } => Stress {
+                            x: b.x,
+                            xx: s[0],
+                            yy: s[1],
+                            xy: s[2],
+                            zz: 0.0,
+                        },
+                        Analysis::PlaneStrain { .. } => Stress {
+                            x: b.x,
+                            xx: s[0],
+                            yy: s[1],
+                            xy: s[2],
+                            zz: nu * (s[0] + s[1]),
+                        },
+                    };
+                    out.push(stress);
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// L2 norm of the displacement error against a reference field,
+    /// (∫_V |u_h − u|² dV)^½, by 3 × 3 Gauss quadrature on every element.
+    pub fn l2_error(
+        &self,
+        solution: &Solution,
+        exact: impl Fn([f64; 2]) -> [f64; 2],
+    ) -> Result<f64> {
+        let mut sum = 0.0;
+        for (e, conn) in self.mesh.elements().iter().enumerate() {
+            for &(xi, wx) in &GAUSS3 {
+                for &(eta, wy) in &GAUSS3 {
+                    let b = point_b(self, e, xi, eta, wx * wy)?;
+                    let mut uh = [0.0; 2];
+                    for (a, &node) in conn.iter().enumerate() {
+                        let u = solution.at(node);
+                        uh[0] += b.n[a] * u[0];
+                        uh[1] += b.n[a] * u[1];
+                    }
+                    let ue = exact(b.x);
+                    sum += ((uh[0] - ue[0]).powi(2) + (uh[1] - ue[1]).powi(2)) * b.dv;
+                }
+            }
+        }
+        Ok(sum.sqrt())
+    }
+}

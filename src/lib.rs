@@ -1,0 +1,30 @@
+//! # contopt
+//!
+//! Elastic contact analysis and contact-pressure optimisation after I. Páczelt,
+//! *Some new developments in contact pressure optimization* (1994).
+//!
+//! This facade re-exports the workspace's crates:
+//! - [`core`]: the [`ElasticBody`] trait, the contact [`Interface`], the [`Error`] type;
+//! - [`fem`]: quadratic isoparametric finite-element bodies (axisymmetric, plane stress,
+//!   plane strain) and the structured mesh generator.
+//!
+//! ```
+//! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
+//!
+//! // A 10 × 10 mm plane-stress plate, 1 mm thick, pulled by 100 MPa.
+//! let s = Spacing::uniform(0.0, 10.0, 2)?;
+//! let mesh = Mesh::rectangle(ElementKind::Q8, &s, &s)?;
+//! let mut model = FeModel::new(mesh, Material::new(2e5, 0.3)?, Analysis::PlaneStress { thickness: 1.0 })?;
+//! let left = model.mesh().nodes_on_x(0.0, 0.0, 10.0);
+//! let corner = model.mesh().nodes_on_y(0.0, 0.0, 0.0);
+//! let right = model.mesh().faces_on_x(10.0, 0.0, 10.0);
+//! model.fix(&left, Component::X)?.fix(&corner, Component::Y)?.traction(&right, [100.0, 0.0])?;
+//! let u = model.solve()?;
+//! let tip = model.mesh().nodes_on_x(10.0, 0.0, 10.0)[0];
+//! assert!((u.at(tip)[0] - 100.0 * 10.0 / 2e5).abs() < 1e-12); // σ L / E
+//! # Ok::<(), contopt::Error>(())
+//! ```
+
+pub use contopt_core as core;
+pub use contopt_core::{ElasticBody, Error, Geometry, Interface, Region, Result, RigidMode};
+pub use contopt_fem as fem;
