@@ -24,9 +24,9 @@ impl PointRow {
             dofs: [0; 6],
             coef: [0.0; 6],
         };
-        for k in 0..3 {
+        for (k, &node) in nodes.iter().enumerate() {
             for c in 0..2 {
-                row.dofs[2 * k + c] = 2 * nodes[k] + c;
+                row.dofs[2 * k + c] = 2 * node + c;
                 row.coef[2 * k + c] = fp.shape[k] * fp.normal[c];
             }
         }
@@ -34,7 +34,7 @@ impl PointRow {
     }
 
     /// Displacement into the body, −n·u, from global nodal displacements.
-    fn into_body(&self, u: &[f64]) -> f64 {
+    fn normal_into(&self, u: &[f64]) -> f64 {
         -self
             .dofs
             .iter()
@@ -121,13 +121,13 @@ impl FeBody {
         let influence = &l * &tail * l.transpose();
 
         let u = system.solve(&model, None);
-        let load_displacement = rows.iter().map(|r| r.into_body(&u)).collect();
+        let load_displacement = rows.iter().map(|r| r.normal_into(&u)).collect();
         let rigid_modes = system
             .modes
             .iter()
             .map(|m| RigidMode {
                 name: m.name.clone(),
-                interface_displacement: rows.iter().map(|r| r.into_body(&m.values)).collect(),
+                interface_displacement: rows.iter().map(|r| r.normal_into(&m.values)).collect(),
                 load: m.values.iter().zip(&model.forces).map(|(a, b)| a * b).sum(),
             })
             .collect();
@@ -179,6 +179,12 @@ impl FeBody {
             }
         }
         Ok(u)
+    }
+
+    /// Normal displacement into the body at the interface points of a nodal displacement
+    /// field (e.g. from [`FeBody::displacement`]).
+    pub fn interface_displacement(&self, u: &[f64]) -> Vec<f64> {
+        self.rows.iter().map(|r| r.normal_into(u)).collect()
     }
 
     /// Number of free unknowns of the stiffness system.

@@ -59,8 +59,7 @@ impl ElementKind {
         let mut s = Shape::default();
         match self {
             ElementKind::Q8 => {
-                for i in 0..8 {
-                    let [xi_i, eta_i] = NATURAL[i];
+                for (i, &[xi_i, eta_i]) in NATURAL.iter().enumerate().take(8) {
                     let (n, dxi, deta) = if i < 4 {
                         let (a, b) = (1.0 + xi * xi_i, 1.0 + eta * eta_i);
                         let c = xi * xi_i + eta * eta_i - 1.0;
@@ -90,8 +89,7 @@ impl ElementKind {
                 }
             }
             ElementKind::Q9 => {
-                for i in 0..9 {
-                    let [xi_i, eta_i] = NATURAL[i];
+                for (i, &[xi_i, eta_i]) in NATURAL.iter().enumerate() {
                     let (lx, dlx) = lagrange2(xi_i, xi);
                     let (ly, dly) = lagrange2(eta_i, eta);
                     s.n[i] = lx * ly;

@@ -131,6 +131,21 @@ impl Spacing {
         Self::from_coords(coords)
     }
 
+    /// This spacing followed by `next`, which must start where this one ends.
+    pub fn then(&self, next: &Spacing) -> Result<Self> {
+        let end = *self.coords.last().unwrap();
+        if (next.coords[0] - end).abs() > 1e-12 * end.abs().max(1.0) {
+            return Err(Error::invalid(
+                "spacing.then.start",
+                next.coords[0],
+                format!("must equal the end {end}"),
+            ));
+        }
+        let mut coords = self.coords.clone();
+        coords.extend_from_slice(&next.coords[1..]);
+        Self::from_coords(coords)
+    }
+
     /// Element boundaries.
     pub fn coords(&self) -> &[f64] {
         &self.coords

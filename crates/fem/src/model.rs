@@ -68,8 +68,9 @@ impl FeModel {
                     "axisymmetric meshes need r >= 0",
                 ));
             }
-            let axis = model.mesh.nodes_where(|p| p[0].abs() <= tol);
-            model.fix(&axis, Component::X)?;
+            for n in model.mesh.nodes_where(|p| p[0].abs() <= tol) {
+                model.prescribed.insert((n, Component::X), 0.0);
+            }
         }
         Ok(model)
     }
