@@ -1,5 +1,7 @@
 //! A finite-element body condensed to its contact face.
 
+use std::time::{Duration, Instant};
+
 use contopt_core::{ElasticBody, Error, Interface, Result, RigidMode};
 use faer::Mat;
 
@@ -44,6 +46,25 @@ impl PointRow {
     }
 }
 
+/// Sizes and wall-clock times of building an [`FeBody`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BuildStats {
+    /// Free unknowns of the stiffness system.
+    pub unknowns: usize,
+    /// Unknowns on the contact face (ordered last).
+    pub face_unknowns: usize,
+    /// Nonzeros of the Cholesky factor L.
+    pub factor_nnz: usize,
+    /// Element integration and sparse assembly.
+    pub assembly: Duration,
+    /// Ordering, symbolic and numeric Cholesky factorisation.
+    pub factorisation: Duration,
+    /// The influence matrix A = L K⁻¹ Lᵀ from the factor's trailing block.
+    pub condensation: Duration,
+    /// The solve for the displacement under the given loads.
+    pub load_solve: Duration,
+}
+
 /// A finite-element body whose contact zone Ω is a set of boundary faces.
 ///
 /// Construction assembles K, factorises it once with the face unknowns ordered last,
@@ -60,6 +81,7 @@ pub struct FeBody {
     influence: Mat<f64>,
     load_displacement: Vec<f64>,
     rigid_modes: Vec<RigidMode>,
+    stats: BuildStats,
 }
 
 impl FeBody {
@@ -89,6 +111,7 @@ impl FeBody {
         face_nodes.sort_unstable();
         face_nodes.dedup();
         let system = System::new(&model, &name, &face_nodes)?;
+        let condensation_start = Instant::now();
 
         let (mut points, mut weights, mut normals, mut rows) = (vec![], vec![], vec![], vec![]);
         for &f in contact {
@@ -119,8 +142,11 @@ impl FeBody {
             }
         }
         let influence = &l * &tail * l.transpose();
+        let condensation = condensation_start.elapsed();
 
+        let solve_start = Instant::now();
         let u = system.solve(&model, None);
+        let load_solve = solve_start.elapsed();
         let load_displacement = rows.iter().map(|r| r.normal_into(&u)).collect();
         let rigid_modes = system
             .modes
@@ -131,6 +157,15 @@ impl FeBody {
                 load: m.values.iter().zip(&model.forces).map(|(a, b)| a * b).sum(),
             })
             .collect();
+        let stats = BuildStats {
+            unknowns: system.n_free,
+            face_unknowns: system.n_tail,
+            factor_nnz: system.factor.factor_nnz(),
+            assembly: system.assembly_time,
+            factorisation: system.factorisation_time,
+            condensation,
+            load_solve,
+        };
         Ok(Self {
             name,
             model,
@@ -140,6 +175,7 @@ impl FeBody {
             influence,
             load_displacement,
             rigid_modes,
+            stats,
         })
     }
 
@@ -187,14 +223,9 @@ impl FeBody {
         self.rows.iter().map(|r| r.normal_into(u)).collect()
     }
 
-    /// Number of free unknowns of the stiffness system.
-    pub fn n_unknowns(&self) -> usize {
-        self.system.n_free
-    }
-
-    /// Nonzeros of the Cholesky factor.
-    pub fn factor_nnz(&self) -> usize {
-        self.system.factor.factor_nnz()
+    /// Sizes and timings of the build.
+    pub fn stats(&self) -> &BuildStats {
+        &self.stats
     }
 }
 

@@ -20,7 +20,7 @@ mod solution;
 mod system;
 
 pub use analysis::Analysis;
-pub use body::FeBody;
+pub use body::{BuildStats, FeBody};
 pub use element::ElementKind;
 pub use material::Material;
 pub use mesh::{Face, Mesh, Spacing};

@@ -1,5 +1,7 @@
 //! The assembled and factorised stiffness system of one model.
 
+use std::time::{Duration, Instant};
+
 use contopt_core::{Error, Result};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use faer::Mat;
@@ -37,6 +39,8 @@ pub(crate) struct System {
     /// K_fp u_p: the effect of prescribed displacements on the free equations.
     pub prescribed_load: Vec<f64>,
     pub factor: Factor,
+    pub assembly_time: Duration,
+    pub factorisation_time: Duration,
 }
 
 /// Gradient operator at a point of an element: shape functions, their x/y derivatives,
@@ -86,8 +90,12 @@ impl System {
             .enumerate()
             .filter(|(g, d)| on_tail[g / 2] && matches!(d, Dof::Free(_)))
             .count();
+        let start = Instant::now();
         let (stiffness, prescribed_load) = assemble(model, &dofs, n_free)?;
+        let assembly_time = start.elapsed();
+        let start = Instant::now();
         let factor = Factor::new(stiffness.as_ref(), n_tail, name)?;
+        let factorisation_time = start.elapsed();
         Ok(Self {
             dofs,
             n_free,
@@ -95,6 +103,8 @@ impl System {
             modes,
             prescribed_load,
             factor,
+            assembly_time,
+            factorisation_time,
         })
     }
 
