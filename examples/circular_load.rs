@@ -1,0 +1,191 @@
+//! A uniform pressure p on r < a of a large axisymmetric block, against the elastic
+//! half-space (Timoshenko & Goodier §138): the surface deflection profile relative to the
+//! centre, w(0) − w(r), in a CSV and an SVG plot under `results/circular_load/`.
+//!
+//! `cargo run --release --example circular_load`
+
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+use std::fs;
+
+use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
+
+const E: f64 = 2.0e5;
+const NU: f64 = 0.3;
+const P: f64 = 100.0;
+const A: f64 = 10.0;
+
+/// Complete elliptic integrals K(k) and E(k) (modulus k) by the arithmetic-geometric mean.
+fn elliptic(k: f64) -> (f64, f64) {
+    if k >= 1.0 {
+        return (f64::INFINITY, 1.0); // the load edge: K diverges, E(1) = 1
+    }
+    let (mut a, mut b, mut c) = (1.0, (1.0 - k * k).sqrt(), k);
+    let (mut sum, mut pow) = (0.5 * c * c, 0.5);
+    while c.abs() > 1e-16 {
+        let an = 0.5 * (a + b);
+        c = 0.5 * (a - b);
+        b = (a * b).sqrt();
+        a = an;
+        pow *= 2.0;
+        sum += pow * c * c;
+    }
+    let kk = PI / (2.0 * a);
+    (kk, kk * (1.0 - sum))
+}
+
+/// Half-space surface deflection under p on r < a.
+fn half_space(r: f64) -> f64 {
+    let c = 4.0 * (1.0 - NU * NU) * P / (PI * E);
+    if r <= A {
+        c * A * elliptic(r / A).1
+    } else {
+        let (k, e) = elliptic(A / r);
+        c * r * (e - (1.0 - A * A / (r * r)) * k)
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let size = 30.0 * A;
+    let r = Spacing::uniform(0.0, A, 12)?.then(&Spacing::geometric(A, size, 30, 60.0)?)?;
+    let z = Spacing::geometric(-size, 0.0, 32, 1.0 / 80.0)?;
+    let mut model = FeModel::new(
+        Mesh::rectangle(ElementKind::Q8, &r, &z)?,
+        Material::new(E, NU)?,
+        Analysis::Axisymmetric,
+    )?;
+    let bottom = model.mesh().nodes_on_y(-size, 0.0, size);
+    let load = model.mesh().faces_on_y(0.0, 0.0, A);
+    model
+        .fix(&bottom, Component::X)?
+        .fix(&bottom, Component::Y)?
+        .pressure(&load, P)?;
+    let t = std::time::Instant::now();
+    let solution = model.solve()?;
+    let elapsed = t.elapsed();
+
+    let mut surface: Vec<(f64, f64)> = model
+        .mesh()
+        .nodes_on_y(0.0, 0.0, 3.0 * A)
+        .into_iter()
+        .map(|n| (model.mesh().nodes()[n][0], -solution.at(n)[1]))
+        .collect();
+    surface.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let w0 = surface[0].1;
+    let mut csv = String::from("r_mm,fe_w0_minus_w_um,half_space_w0_minus_w_um\n");
+    let (mut fe_curve, mut exact_curve) = (vec![], vec![]);
+    for &(r, w) in &surface {
+        let (fe, exact) = (1e3 * (w0 - w), 1e3 * (half_space(0.0) - half_space(r)));
+        writeln!(csv, "{r:.6},{fe:.6},{exact:.6}")?;
+        fe_curve.push((r, fe));
+        exact_curve.push((r, exact));
+    }
+    let at_edge = |c: &[(f64, f64)]| c.iter().find(|p| (p.0 - A).abs() < 1e-9).unwrap().1;
+    let (fe_edge, exact_edge) = (at_edge(&fe_curve), at_edge(&exact_curve));
+    let dir = "results/circular_load";
+    fs::create_dir_all(dir)?;
+    fs::write(format!("{dir}/surface.csv"), csv)?;
+    fs::write(
+        format!("{dir}/surface.svg"),
+        line_plot(
+            "Surface under p on r < a: w(0) − w(r)",
+            "r [mm]",
+            "µm",
+            &[("finite elements", &fe_curve), ("half-space", &exact_curve)],
+        ),
+    )?;
+    let summary = format!(
+        "uniform pressure {P} MPa on r < {A} mm of a {size} x {size} mm axisymmetric block (E = {E} MPa, nu = {NU})\n\
+         {} unknowns, solved in {:.1} ms\n\
+         w(0) - w(a): finite elements {fe_edge:.4} um, half-space {exact_edge:.4} um ({:+.2} %)\n\
+         wrote {dir}/surface.csv and {dir}/surface.svg\n",
+        2 * model.mesh().nodes().len(),
+        elapsed.as_secs_f64() * 1e3,
+        100.0 * (fe_edge / exact_edge - 1.0)
+    );
+    fs::write(format!("{dir}/summary.txt"), &summary)?;
+    print!("{summary}");
+    Ok(())
+}
+
+/// Text made safe for XML.
+fn escape(t: &str) -> String {
+    t.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// A minimal SVG line chart.
+fn line_plot(title: &str, xlabel: &str, ylabel: &str, series: &[(&str, &[(f64, f64)])]) -> String {
+    let (title, xlabel, ylabel) = (escape(title), escape(xlabel), escape(ylabel));
+    let (w, h, m) = (640.0, 400.0, 60.0);
+    let pts = series.iter().flat_map(|s| s.1.iter());
+    let (x0, x1) = pts
+        .clone()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let (y0, y1) = pts.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+        (a.min(p.1), b.max(p.1))
+    });
+    let sx = |x: f64| m + (x - x0) / (x1 - x0) * (w - 2.0 * m);
+    let sy = |y: f64| h - m - (y - y0) / (y1 - y0) * (h - 2.0 * m);
+    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">{title}</text>",
+        w / 2.0
+    );
+    let _ = writeln!(s, "<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/><line x1=\"{m}\" y1=\"{m}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>", h - m, w - m, h - m, h - m);
+    for i in 0..=5 {
+        let (x, y) = (
+            x0 + (x1 - x0) * i as f64 / 5.0,
+            y0 + (y1 - y0) * i as f64 / 5.0,
+        );
+        let _ = writeln!(
+            s,
+            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{x:.3}</text>",
+            sx(x),
+            h - m + 16.0
+        );
+        let _ = writeln!(
+            s,
+            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{y:.3}</text>",
+            m - 6.0,
+            sy(y) + 4.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{xlabel}</text>",
+        w / 2.0,
+        h - 18.0
+    );
+    let _ = writeln!(s, "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{ylabel}</text>", h / 2.0, h / 2.0);
+    for (k, (name, data)) in series.iter().enumerate() {
+        let colour = ["#d62728", "#1f77b4", "#2ca02c"][k % 3];
+        let dash = if k == 0 {
+            ""
+        } else {
+            " stroke-dasharray=\"6 4\""
+        };
+        let path: Vec<String> = data
+            .iter()
+            .map(|p| format!("{:.2},{:.2}", sx(p.0), sy(p.1)))
+            .collect();
+        let _ = writeln!(
+            s,
+            "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\"{dash} points=\"{}\"/>",
+            path.join(" ")
+        );
+        let _ = writeln!(
+            s,
+            "<text x=\"{}\" y=\"{}\" fill=\"{colour}\">{}</text>",
+            m + 12.0,
+            m + 16.0 * k as f64,
+            escape(name)
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}
