@@ -6,7 +6,9 @@
 //! This facade re-exports the workspace's crates:
 //! - [`core`]: the [`ElasticBody`] trait, the contact [`Interface`], the [`Error`] type;
 //! - [`fem`]: quadratic isoparametric finite-element bodies (axisymmetric, plane stress,
-//!   plane strain) and the structured mesh generator.
+//!   plane strain) and the structured mesh generator;
+//! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies and the
+//!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian.
 //!
 //! ```
 //! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
@@ -25,6 +27,10 @@
 //! # Ok::<(), contopt::Error>(())
 //! ```
 
+pub use contopt_contact as contact;
 pub use contopt_core as core;
-pub use contopt_core::{ElasticBody, Error, Geometry, Interface, Region, Result, RigidMode};
+pub use contopt_core::{
+    ContactState, ElasticBody, Error, Geometry, Interface, Region, Residuals, Result, RigidBody,
+    RigidMode,
+};
 pub use contopt_fem as fem;

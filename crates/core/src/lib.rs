@@ -7,7 +7,11 @@
 mod body;
 mod error;
 mod interface;
+mod rigid;
+mod state;
 
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
 pub use interface::{Geometry, Interface, Region};
+pub use rigid::RigidBody;
+pub use state::{ContactState, Residuals};

@@ -1,0 +1,321 @@
+//! The contact interface problem that two bodies define (§2.1).
+
+use contopt_core::{ContactState, ElasticBody, Error, Interface, Residuals, Result};
+use faer::Mat;
+
+/// Frictionless normal contact of two bodies, condensed to their common interface points.
+///
+/// With W = diag(wᵢ) the point weights, A = A¹ + A² the summed influence matrices of the
+/// bodies (displacement into the body per unit force, [`ElasticBody::influence_matrix`]) and
+/// g = h + f¹ + f² the initial gap plus the displacements under the given loads, the gap after
+/// deformation is (2.7)
+///
+/// d = g + A W p + R λ,
+///
+/// where the columns of R are the interface displacements of the free rigid modes and λ their
+/// amplitudes. Equilibrium of each free mode (2.10) reads Rᵀ W p = −q. In the paper's notation
+/// (2.12)–(2.14): H = W A W, t = −W g, G_R = W R, and its q is our −q.
+#[derive(Clone, Debug)]
+pub struct InterfaceProblem {
+    interface: Interface,
+    influence: Mat<f64>,
+    initial_gap: Vec<f64>,
+    load_gap: Vec<f64>,
+    rigid: Mat<f64>,
+    load: Vec<f64>,
+    mode_names: Vec<String>,
+}
+
+impl InterfaceProblem {
+    /// The problem of `body1` and `body2` touching over their common points with initial
+    /// gap `initial_gap` [mm] (h of eq. 2.1, one value per point). The two interfaces must
+    /// list the same points, with the same weights and opposite normals; the first mismatch is
+    /// reported.
+    pub fn new(
+        body1: &dyn ElasticBody,
+        body2: &dyn ElasticBody,
+        initial_gap: &[f64],
+    ) -> Result<Self> {
+        let (s1, s2) = (body1.interface(), body2.interface());
+        if s1.len() != s2.len() {
+            return Err(Error::InterfaceMismatch {
+                index: s1.len().min(s2.len()),
+                detail: format!(
+                    "`{}` has {} points, `{}` has {}",
+                    body1.name(),
+                    s1.len(),
+                    body2.name(),
+                    s2.len()
+                ),
+            });
+        }
+        let scale = s1
+            .points
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, c| m.max(c.abs()))
+            .max(1.0);
+        for i in 0..s1.len() {
+            let (a, b) = (s1.points[i], s2.points[i]);
+            let dist = (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
+            if dist > 1e-9 * scale {
+                return Err(Error::InterfaceMismatch {
+                    index: i,
+                    detail: format!(
+                        "point {a:?} of `{}` against {b:?} of `{}`",
+                        body1.name(),
+                        body2.name()
+                    ),
+                });
+            }
+            let (wa, wb) = (s1.weights[i], s2.weights[i]);
+            if (wa - wb).abs() > 1e-9 * wa.abs().max(wb.abs()) {
+                return Err(Error::InterfaceMismatch {
+                    index: i,
+                    detail: format!(
+                        "weight {wa} of `{}` against {wb} of `{}`",
+                        body1.name(),
+                        body2.name()
+                    ),
+                });
+            }
+            let (na, nb) = (s1.normals[i], s2.normals[i]);
+            if (0..3).map(|c| (na[c] + nb[c]).abs()).fold(0.0, f64::max) > 1e-6 {
+                return Err(Error::InterfaceMismatch {
+                    index: i,
+                    detail: format!("normals {na:?} and {nb:?} are not opposite"),
+                });
+            }
+        }
+        let n = s1.len();
+        if initial_gap.len() != n {
+            return Err(Error::invalid(
+                "initial_gap",
+                initial_gap.len(),
+                format!("one value per interface point ({n})"),
+            ));
+        }
+        if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
+            return Err(Error::invalid(
+                format!("initial_gap[{i}]"),
+                initial_gap[i],
+                "must be finite",
+            ));
+        }
+        let influence = body1.influence_matrix() + body2.influence_matrix();
+        let f1 = body1.load_displacement()?;
+        let f2 = body2.load_displacement()?;
+        let load_gap = (0..n).map(|i| f1[i] + f2[i]).collect();
+        let modes: Vec<(String, &[f64], f64)> = [body1, body2]
+            .iter()
+            .flat_map(|b| {
+                b.rigid_modes().iter().map(move |m| {
+                    (
+                        format!("{} of `{}`", m.name, b.name()),
+                        &m.interface_displacement[..],
+                        m.load,
+                    )
+                })
+            })
+            .collect();
+        let mut kept = vec![];
+        for (name, r, q) in modes {
+            let span = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let total = r
+                .iter()
+                .zip(&s1.weights)
+                .map(|(v, w)| (v * w).abs())
+                .sum::<f64>();
+            if span < 1e-12 {
+                // A mode that does not move the interface normally cannot be loaded.
+                if q.abs() > 1e-9 * total.max(1.0) {
+                    return Err(Error::invalid(format!("load on {name}"), q, "cannot be equilibrated by normal contact: the mode does not move the interface"));
+                }
+                continue;
+            }
+            let all_pos = r.iter().all(|v| *v >= -1e-12 * span);
+            let all_neg = r.iter().all(|v| *v <= 1e-12 * span);
+            if (all_pos && q > 0.0) || (all_neg && q < 0.0) {
+                return Err(Error::invalid(
+                    format!("load on {name}"),
+                    q,
+                    "pulls the bodies apart: compressive contact cannot carry it",
+                ));
+            }
+            if q == 0.0 && (all_pos || all_neg) {
+                return Err(Error::invalid(
+                    format!("load on {name}"),
+                    q,
+                    "is zero: the floating body is not pressed into contact",
+                ));
+            }
+            kept.push((name, r.to_vec(), q));
+        }
+        let m = kept.len();
+        let rigid = Mat::from_fn(n, m, |i, k| kept[k].1[i]);
+        // Two modes that move the interface alike leave λ undetermined.
+        if m > 1 {
+            let gram = Mat::from_fn(m, m, |a, b| {
+                (0..n)
+                    .map(|i| rigid[(i, a)] * rigid[(i, b)] * s1.weights[i])
+                    .sum::<f64>()
+            });
+            let independent = faer::linalg::solvers::Llt::new(gram.as_ref(), faer::Side::Lower)
+                .is_ok_and(|l| (0..m).all(|k| l.L()[(k, k)].powi(2) > 1e-10 * gram[(k, k)]));
+            if !independent {
+                let names: Vec<&str> = kept.iter().map(|k| k.0.as_str()).collect();
+                return Err(Error::invalid(
+                    "rigid modes",
+                    names.join(", "),
+                    "move the interface alike: support one of the bodies",
+                ));
+            }
+        }
+        Ok(Self {
+            interface: s1.clone(),
+            influence,
+            initial_gap: initial_gap.to_vec(),
+            load_gap,
+            mode_names: kept.iter().map(|k| k.0.clone()).collect(),
+            load: kept.into_iter().map(|k| k.2).collect(),
+            rigid,
+        })
+    }
+
+    /// The same problem with another initial gap h (the optimisation changes it).
+    pub fn with_initial_gap(&self, initial_gap: &[f64]) -> Result<Self> {
+        if initial_gap.len() != self.len() {
+            return Err(Error::invalid(
+                "initial_gap",
+                initial_gap.len(),
+                format!("one value per interface point ({})", self.len()),
+            ));
+        }
+        if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
+            return Err(Error::invalid(
+                format!("initial_gap[{i}]"),
+                initial_gap[i],
+                "must be finite",
+            ));
+        }
+        Ok(Self {
+            initial_gap: initial_gap.to_vec(),
+            ..self.clone()
+        })
+    }
+
+    /// Number of interface points.
+    pub fn len(&self) -> usize {
+        self.interface.len()
+    }
+
+    /// Never true for a constructed problem.
+    pub fn is_empty(&self) -> bool {
+        self.interface.is_empty()
+    }
+
+    /// The interface points (of the first body, whose normal n¹ is the reference).
+    pub fn interface(&self) -> &Interface {
+        &self.interface
+    }
+
+    /// Point weights wᵢ [mm²].
+    pub fn weights(&self) -> &[f64] {
+        &self.interface.weights
+    }
+
+    /// Summed influence matrix A = A¹ + A² [mm/N].
+    pub fn influence(&self) -> &Mat<f64> {
+        &self.influence
+    }
+
+    /// Initial gap h [mm].
+    pub fn initial_gap(&self) -> &[f64] {
+        &self.initial_gap
+    }
+
+    /// g = h + f¹ + f²: the gap before any contact pressure, rigid modes held [mm].
+    pub fn free_gap(&self) -> Vec<f64> {
+        self.initial_gap
+            .iter()
+            .zip(&self.load_gap)
+            .map(|(h, f)| h + f)
+            .collect()
+    }
+
+    /// Interface displacements of the free rigid modes, R (n × m).
+    pub fn rigid(&self) -> &Mat<f64> {
+        &self.rigid
+    }
+
+    /// Load resultant q of each free rigid mode [N].
+    pub fn load(&self) -> &[f64] {
+        &self.load
+    }
+
+    /// Names of the free rigid modes.
+    pub fn mode_names(&self) -> &[String] {
+        &self.mode_names
+    }
+
+    /// Gap after deformation d = g + A W p + R λ, eq. (2.7).
+    pub fn gap(&self, pressure: &[f64], rigid: &[f64]) -> Vec<f64> {
+        let n = self.len();
+        let w = self.weights();
+        let force: Vec<f64> = (0..n).map(|j| w[j] * pressure[j]).collect();
+        let g = self.free_gap();
+        (0..n)
+            .map(|i| {
+                let elastic: f64 = (0..n).map(|j| self.influence[(i, j)] * force[j]).sum();
+                let motion: f64 = (0..rigid.len())
+                    .map(|k| self.rigid[(i, k)] * rigid[k])
+                    .sum();
+                g[i] + elastic + motion
+            })
+            .collect()
+    }
+
+    /// Residuals of a pressure p with its gap d.
+    pub fn residuals(&self, pressure: &[f64], gap: &[f64]) -> Residuals {
+        let w = self.weights();
+        let equilibrium = (0..self.load.len())
+            .map(|k| {
+                ((0..self.len())
+                    .map(|i| w[i] * pressure[i] * self.rigid[(i, k)])
+                    .sum::<f64>()
+                    + self.load[k])
+                    .abs()
+            })
+            .fold(0.0, f64::max);
+        Residuals {
+            equilibrium,
+            penetration: gap.iter().fold(0.0, |m, &d| m.max(-d)),
+            complementarity: pressure
+                .iter()
+                .zip(gap)
+                .fold(0.0, |m, (p, d)| m.max((p * d).abs())),
+        }
+    }
+
+    /// Assembles a [`ContactState`] from a solution, with its gap and residuals.
+    pub fn state(
+        &self,
+        pressure: Vec<f64>,
+        rigid: Vec<f64>,
+        active: Vec<bool>,
+        counts: [usize; 3],
+    ) -> ContactState {
+        let gap = self.gap(&pressure, &rigid);
+        let residuals = self.residuals(&pressure, &gap);
+        ContactState {
+            pressure,
+            gap,
+            rigid,
+            active,
+            iterations: counts[0],
+            iterp: counts[1],
+            iterd: counts[2],
+            residuals,
+        }
+    }
+}

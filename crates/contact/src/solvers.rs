@@ -1,0 +1,122 @@
+//! The contact solvers behind [`ContactSolver`].
+
+use contopt_core::{ContactState, Error, Result};
+
+use crate::{kalker, InterfaceProblem};
+
+/// A method that solves the interface problem: p ≥ 0, d ≥ 0, pᵀd = 0 and equilibrium (2.15).
+pub trait ContactSolver {
+    /// Name for messages and reports.
+    fn name(&self) -> &str;
+    /// Solves `problem`; an error says how far the method got when it does not converge.
+    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState>;
+}
+
+fn check_penalty(c: f64) -> Result<()> {
+    if c.is_finite() && c > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "solver.c",
+            c,
+            "the penalty parameter must be positive and finite [MPa/mm]",
+        ))
+    }
+}
+
+/// The penalty method (§2.2, eq. 2.18 without the multiplier): contact points carry
+/// p = c·(penetration), so the gap closes only to O(1/c). Solved in its dual form on the
+/// condensed interface, (H + W/c) p = …, which stays well conditioned as c grows.
+#[derive(Clone, Copy, Debug)]
+pub struct Penalty {
+    /// Penalty parameter c [MPa/mm] (the paper uses c = E·10⁴).
+    pub c: f64,
+}
+
+impl ContactSolver for Penalty {
+    fn name(&self) -> &str {
+        "penalty"
+    }
+
+    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        check_penalty(self.c)?;
+        kalker::penalty(problem, self.c)
+    }
+}
+
+/// The augmented Lagrangian technique (§2.2, eqs. 2.18–2.20): Uzawa updates
+/// p ← ⟨p − c d⟩, each solved by Kalker's active-set iteration whose changes of the contact set
+/// are counted as `iterp` (negative pressure) and `iterd` (penetration). Converges to the
+/// solution of the QP (2.14) for any c > 0; a small c costs more Uzawa steps.
+#[derive(Clone, Copy, Debug)]
+pub struct AugmentedLagrangian {
+    /// Penalty parameter c [MPa/mm].
+    pub c: f64,
+    /// Stop when no pressure changes by more than `tolerance`·p_max in a step.
+    pub tolerance: f64,
+    /// Largest number of Uzawa steps.
+    pub max_steps: usize,
+}
+
+impl AugmentedLagrangian {
+    /// Penalty parameter `c`, tolerance 10⁻¹⁰, at most 2000 steps.
+    pub fn new(c: f64) -> Self {
+        Self {
+            c,
+            tolerance: 1e-10,
+            max_steps: 2000,
+        }
+    }
+}
+
+impl ContactSolver for AugmentedLagrangian {
+    fn name(&self) -> &str {
+        "augmented Lagrangian"
+    }
+
+    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        check_penalty(self.c)?;
+        if !(self.tolerance > 0.0) {
+            return Err(Error::invalid(
+                "solver.tolerance",
+                self.tolerance,
+                "must be positive",
+            ));
+        }
+        kalker::uzawa(problem, self.c, self.tolerance, self.max_steps, None)
+    }
+}
+
+/// A dedicated solver for the QP (2.14): Kalker's active-set iteration with direct dense
+/// solves on the contact set, wrapped in a few proximal (Uzawa) steps with a penalty chosen
+/// from the problem, c = 10⁶ / maxᵢ(Aᵢᵢ wᵢ). The proximal term keeps the solves regular
+/// when the influence matrix is only semi-definite (three Gauss points per quadratic face
+/// outnumber the face's displacement unknowns), and selects the pressure of least Σ wᵢ pᵢ²,
+/// the limit of the penalty method.
+#[derive(Clone, Copy, Debug)]
+pub struct ActiveSet {
+    /// Relative pressure tolerance.
+    pub tolerance: f64,
+}
+
+impl Default for ActiveSet {
+    fn default() -> Self {
+        Self { tolerance: 1e-12 }
+    }
+}
+
+impl ContactSolver for ActiveSet {
+    fn name(&self) -> &str {
+        "active set"
+    }
+
+    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        kalker::uzawa(
+            problem,
+            kalker::stiff_penalty(problem)?,
+            self.tolerance,
+            100,
+            None,
+        )
+    }
+}

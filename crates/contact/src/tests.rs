@@ -1,0 +1,186 @@
+//! Small problems with exact solutions, on a body defined by its matrices (a user body).
+
+use contopt_core::{ElasticBody, Geometry, Interface, RigidBody, RigidMode};
+use faer::Mat;
+
+use crate::{ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp};
+
+/// A body given by its influence matrix, load displacement and rigid modes.
+struct MatrixBody {
+    interface: Interface,
+    a: Mat<f64>,
+    f: Vec<f64>,
+    modes: Vec<RigidMode>,
+}
+
+impl ElasticBody for MatrixBody {
+    fn name(&self) -> &str {
+        "matrix body"
+    }
+    fn interface(&self) -> &Interface {
+        &self.interface
+    }
+    fn apply_influence(&self, force: &[f64], out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = (0..force.len()).map(|j| self.a[(i, j)] * force[j]).sum();
+        }
+    }
+    fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
+        Ok(self.f.clone())
+    }
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &self.modes
+    }
+}
+
+fn line(n: usize) -> Interface {
+    let points = (0..n).map(|i| [i as f64, 0.0, 0.0]).collect();
+    Interface::new(
+        Geometry::Plane { thickness: 1.0 },
+        points,
+        vec![1.0; n],
+        vec![[0.0, 1.0, 0.0]; n],
+    )
+    .unwrap()
+}
+
+fn body(a: Mat<f64>, modes: Vec<RigidMode>) -> MatrixBody {
+    let n = a.nrows();
+    MatrixBody {
+        interface: line(n),
+        a,
+        f: vec![0.0; n],
+        modes,
+    }
+}
+
+fn solvers() -> Vec<Box<dyn ContactSolver>> {
+    vec![
+        Box::new(Qp::default()),
+        Box::new(ActiveSet::default()),
+        Box::new(AugmentedLagrangian::new(1e3)),
+    ]
+}
+
+fn assert_close(got: &[f64], want: &[f64], tol: f64, what: &str) {
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!((g - w).abs() <= tol, "{what}[{i}]: {g} vs {w}");
+    }
+}
+
+/// Two points, no rigid mode, interference −1 µm at point 0: point 0 closes with
+/// p₀ = 1e-3 / 2e-3 = 0.5, point 1 stays open with d₁ = 0.5e-3 + 1e-3·0.5 = 1e-3.
+#[test]
+fn two_points_one_in_contact() {
+    let a = Mat::from_fn(2, 2, |i, j| if i == j { 2e-3 } else { 1e-3 });
+    let b = body(a, vec![]);
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let problem = InterfaceProblem::new(&b, &rigid, &[-1e-3, 0.5e-3]).unwrap();
+    for s in solvers() {
+        let st = s.solve(&problem).unwrap();
+        assert_close(&st.pressure, &[0.5, 0.0], 1e-10, s.name());
+        assert_close(&st.gap, &[0.0, 1e-3], 1e-13, s.name());
+        assert_eq!(st.active, vec![true, false], "{}", s.name());
+    }
+    // The penalty closes the gap only to p/c: p₀ = 1e-3 / (2e-3 + 1/c).
+    for c in [1e2, 1e4, 1e8] {
+        let st = Penalty { c }.solve(&problem).unwrap();
+        let exact = 1e-3 / (2e-3 + 1.0 / c);
+        assert!((st.pressure[0] - exact).abs() < 1e-12 * exact, "c = {c}");
+        assert!((st.gap[0] + exact / c).abs() < 1e-15, "penetration p/c");
+    }
+}
+
+/// Three points on a floating body (one axial mode, load 3 N), diagonal compliance 1e-3 and
+/// gaps (0, 1, 5) µm: points 0 and 1 carry p = (2, 1), point 2 stays open by 3 µm, λ = −2 µm.
+#[test]
+fn three_points_with_a_rigid_mode() {
+    let a = Mat::from_fn(3, 3, |i, j| if i == j { 1e-3 } else { 0.0 });
+    let mode = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; 3],
+        load: -3.0,
+    };
+    let b = body(a, vec![mode]);
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let problem = InterfaceProblem::new(&b, &rigid, &[0.0, 1e-3, 5e-3]).unwrap();
+    for s in solvers() {
+        let st = s.solve(&problem).unwrap();
+        assert_close(&st.pressure, &[2.0, 1.0, 0.0], 1e-9, s.name());
+        assert_close(&st.gap, &[0.0, 0.0, 3e-3], 1e-12, s.name());
+        assert_close(&st.rigid, &[-2e-3], 1e-12, s.name());
+        assert!(
+            st.residuals.equilibrium < 1e-9,
+            "{}: {:?}",
+            s.name(),
+            st.residuals
+        );
+    }
+}
+
+/// The augmented Lagrangian reaches the same solution from a small and a large c, and
+/// counts its changes of the contact set: starting with every point in contact, the open
+/// point has tension on the first solve (one `iterp`).
+#[test]
+fn augmented_lagrangian_counts_set_changes() {
+    let a = Mat::from_fn(3, 3, |i, j| if i == j { 1e-3 } else { 0.2e-3 });
+    let mode = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; 3],
+        load: -3.0,
+    };
+    let b = body(a, vec![mode]);
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let problem = InterfaceProblem::new(&b, &rigid, &[0.0, 1e-3, 5e-3]).unwrap();
+    let reference = Qp::default().solve(&problem).unwrap();
+    for c in [1e3, 1e5, 1e9] {
+        let st = AugmentedLagrangian::new(c).solve(&problem).unwrap();
+        assert_close(&st.pressure, &reference.pressure, 1e-8, &format!("c = {c}"));
+        assert_eq!(st.iterp, 1, "c = {c}");
+        assert!(st.iterations >= 1);
+    }
+    // Too small a c for this compliance (ρ = 1/c ≫ A w): each step gains only 1 %; the
+    // error says how far it got.
+    let err = AugmentedLagrangian {
+        c: 10.0,
+        tolerance: 1e-10,
+        max_steps: 50,
+    }
+    .solve(&problem)
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("did not converge in 50") && err.contains("penetration"),
+        "{err}"
+    );
+}
+
+#[test]
+fn mismatched_interfaces_and_impossible_loads_are_named() {
+    let a = Mat::from_fn(2, 2, |i, j| if i == j { 1e-3 } else { 0.0 });
+    let b = body(a.clone(), vec![]);
+    let mut other = body(a.clone(), vec![]);
+    other.interface.points[1][0] = 1.5;
+    other.interface.normals = vec![[0.0, -1.0, 0.0]; 2];
+    let err = InterfaceProblem::new(&b, &other, &[0.0; 2])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("point 1"), "{err}");
+    // A load that pulls the floating body away from contact.
+    let pull = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; 2],
+        load: 5.0,
+    };
+    let b = body(a, vec![pull]);
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let err = InterfaceProblem::new(&b, &rigid, &[0.0; 2])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("pulls the bodies apart"), "{err}");
+    assert!(Penalty { c: -1.0 }
+        .solve(
+            &InterfaceProblem::new(&body(Mat::identity(2, 2), vec![]), &rigid, &[0.0; 2]).unwrap()
+        )
+        .is_err());
+}

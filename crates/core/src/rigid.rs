@@ -1,0 +1,103 @@
+use faer::Mat;
+
+use crate::{ElasticBody, Error, Interface, Result, RigidMode};
+
+/// A rigid body facing another body's contact surface: no compliance, and either held in
+/// place or free to translate along one axis under a given force (a punch, an indenter).
+///
+/// Its interface mirrors the partner's: the same points and weights, opposite normals. Its
+/// shape enters the contact problem through the initial gap h.
+#[derive(Clone, Debug)]
+pub struct RigidBody {
+    name: String,
+    interface: Interface,
+    modes: Vec<RigidMode>,
+}
+
+impl RigidBody {
+    fn mirror(partner: &Interface) -> Interface {
+        let mut interface = partner.clone();
+        for n in &mut interface.normals {
+            *n = n.map(|c| -c);
+        }
+        interface
+    }
+
+    /// A rigid body held in place (its approach is prescribed through the initial gap).
+    pub fn fixed(name: impl Into<String>, partner: &Interface) -> Self {
+        Self {
+            name: name.into(),
+            interface: Self::mirror(partner),
+            modes: vec![],
+        }
+    }
+
+    /// A rigid body free to translate along the unit vector `axis` that points away from
+    /// the partner, pressed towards it by `force` [N] > 0. In axisymmetry only the axial
+    /// translation (0, 1, 0) is a rigid mode.
+    pub fn pressed(
+        name: impl Into<String>,
+        partner: &Interface,
+        axis: [f64; 3],
+        force: f64,
+    ) -> Result<Self> {
+        let len = axis.iter().map(|c| c * c).sum::<f64>().sqrt();
+        if (len - 1.0).abs() > 1e-9 {
+            return Err(Error::invalid(
+                "rigid.axis",
+                format!("{axis:?}"),
+                "must be a unit vector",
+            ));
+        }
+        if !(force.is_finite() && force > 0.0) {
+            return Err(Error::invalid(
+                "rigid.force",
+                force,
+                "must be positive: the body is pressed into contact",
+            ));
+        }
+        // Moving away from the partner along `axis` moves each point into this body by
+        // axis · n_partner.
+        let interface_displacement = partner
+            .normals
+            .iter()
+            .map(|n| (0..3).map(|c| axis[c] * n[c]).sum())
+            .collect();
+        let mode = RigidMode {
+            name: "translation".into(),
+            interface_displacement,
+            load: -force,
+        };
+        Ok(Self {
+            name: name.into(),
+            interface: Self::mirror(partner),
+            modes: vec![mode],
+        })
+    }
+}
+
+impl ElasticBody for RigidBody {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn interface(&self) -> &Interface {
+        &self.interface
+    }
+
+    fn apply_influence(&self, _force: &[f64], displacement: &mut [f64]) {
+        displacement.fill(0.0);
+    }
+
+    fn influence_matrix(&self) -> Mat<f64> {
+        Mat::zeros(self.interface.len(), self.interface.len())
+    }
+
+    fn load_displacement(&self) -> Result<Vec<f64>> {
+        Ok(vec![0.0; self.interface.len()])
+    }
+
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &self.modes
+    }
+}
