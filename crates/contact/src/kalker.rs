@@ -11,6 +11,10 @@ use crate::InterfaceProblem;
 struct Inner {
     pressure: Vec<f64>,
     rigid: Vec<f64>,
+    /// Gap d of the solution.
+    gap: Vec<f64>,
+    /// Round-off level of the gap: 10⁻¹³ of its largest terms.
+    gap_floor: f64,
     iterp: usize,
     iterd: usize,
 }
@@ -118,9 +122,16 @@ fn solve_inner(
                 for p in pressure.iter_mut() {
                     *p = p.max(0.0);
                 }
+                // d = g + A W p + R λ, with the elastic term balancing the others on C.
+                let motion = (0..n)
+                    .map(|i| (0..m).map(|c| r[(i, c)] * rigid[c]).sum::<f64>().abs())
+                    .fold(0.0f64, f64::max);
+                let gap_floor = 1e-13 * (gap_scale + motion);
                 return Ok(Inner {
                     pressure,
                     rigid,
+                    gap: d,
+                    gap_floor,
                     iterp,
                     iterd,
                 });
@@ -154,20 +165,18 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState
 }
 
 /// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
-/// from `start` (p = 0 with every point in contact when `None`), until the pressure changes
-/// by less than `tolerance`·p_max.
+/// from p = 0 and the contact set `start` (every point when `None`), until the pressure
+/// changes by less than `tolerance`·p_max.
 pub(crate) fn uzawa(
     problem: &InterfaceProblem,
     c: f64,
     tolerance: f64,
     max_steps: usize,
-    start: Option<&[f64]>,
+    start: Option<&[bool]>,
 ) -> Result<ContactState> {
     let n = problem.len();
-    let (mut shift, mut active) = match start {
-        Some(p) => (p.to_vec(), p.iter().map(|&v| v > 0.0).collect()),
-        None => (vec![0.0; n], vec![true; n]),
-    };
+    let mut shift = vec![0.0; n];
+    let mut active = start.map_or_else(|| vec![true; n], <[bool]>::to_vec);
     let (mut iterp, mut iterd) = (0, 0);
     let mut change = f64::INFINITY;
     let mut rigid = vec![0.0; problem.load().len()];
@@ -183,7 +192,14 @@ pub(crate) fn uzawa(
             .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()));
         shift = inner.pressure;
         rigid = inner.rigid;
-        if change <= tolerance * p_max.max(f64::MIN_POSITIVE) {
+        // Converged when the pressure settles, or when the gap on the contact set is at
+        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
+        // directions that do not move the interface.
+        let open_on_contact = (0..n)
+            .filter(|&i| active[i])
+            .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()));
+        if change <= tolerance * p_max.max(f64::MIN_POSITIVE) || open_on_contact <= inner.gap_floor
+        {
             return Ok(problem.state(shift, rigid, active, [step, iterp, iterd]));
         }
     }

@@ -37,38 +37,9 @@ impl InterfaceProblem {
         initial_gap: &[f64],
     ) -> Result<Self> {
         let (s1, s2) = (body1.interface(), body2.interface());
-        if s1.len() != s2.len() {
-            return Err(Error::InterfaceMismatch {
-                index: s1.len().min(s2.len()),
-                detail: format!(
-                    "`{}` has {} points, `{}` has {}",
-                    body1.name(),
-                    s1.len(),
-                    body2.name(),
-                    s2.len()
-                ),
-            });
-        }
-        let scale = s1
-            .points
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, c| m.max(c.abs()))
-            .max(1.0);
-        for i in 0..s1.len() {
-            let (a, b) = (s1.points[i], s2.points[i]);
-            let dist = (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
-            if dist > 1e-9 * scale {
-                return Err(Error::InterfaceMismatch {
-                    index: i,
-                    detail: format!(
-                        "point {a:?} of `{}` against {b:?} of `{}`",
-                        body1.name(),
-                        body2.name()
-                    ),
-                });
-            }
-            let (wa, wb) = (s1.weights[i], s2.weights[i]);
+        let pair = pair_points(s1, s2, body1.name(), body2.name())?;
+        for (i, &j) in pair.iter().enumerate() {
+            let (wa, wb) = (s1.weights[i], s2.weights[j]);
             if (wa - wb).abs() > 1e-9 * wa.abs().max(wb.abs()) {
                 return Err(Error::InterfaceMismatch {
                     index: i,
@@ -79,7 +50,7 @@ impl InterfaceProblem {
                     ),
                 });
             }
-            let (na, nb) = (s1.normals[i], s2.normals[i]);
+            let (na, nb) = (s1.normals[i], s2.normals[j]);
             if (0..3).map(|c| (na[c] + nb[c]).abs()).fold(0.0, f64::max) > 1e-6 {
                 return Err(Error::InterfaceMismatch {
                     index: i,
@@ -102,19 +73,19 @@ impl InterfaceProblem {
                 "must be finite",
             ));
         }
-        let influence = body1.influence_matrix() + body2.influence_matrix();
+        let a2 = body2.influence_matrix();
+        let influence =
+            body1.influence_matrix() + Mat::from_fn(n, n, |i, j| a2[(pair[i], pair[j])]);
         let f1 = body1.load_displacement()?;
         let f2 = body2.load_displacement()?;
-        let load_gap = (0..n).map(|i| f1[i] + f2[i]).collect();
-        let modes: Vec<(String, &[f64], f64)> = [body1, body2]
+        let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
+        let identity: Vec<usize> = (0..n).collect();
+        let modes: Vec<(String, Vec<f64>, f64)> = [(body1, &identity), (body2, &pair)]
             .iter()
-            .flat_map(|b| {
+            .flat_map(|(b, order)| {
                 b.rigid_modes().iter().map(move |m| {
-                    (
-                        format!("{} of `{}`", m.name, b.name()),
-                        &m.interface_displacement[..],
-                        m.load,
-                    )
+                    let r = order.iter().map(|&j| m.interface_displacement[j]).collect();
+                    (format!("{} of `{}`", m.name, b.name()), r, m.load)
                 })
             })
             .collect();
@@ -149,7 +120,7 @@ impl InterfaceProblem {
                     "is zero: the floating body is not pressed into contact",
                 ));
             }
-            kept.push((name, r.to_vec(), q));
+            kept.push((name, r, q));
         }
         let m = kept.len();
         let rigid = Mat::from_fn(n, m, |i, k| kept[k].1[i]);
@@ -318,4 +289,50 @@ impl InterfaceProblem {
             residuals,
         }
     }
+}
+
+/// For each point of `s1`, the index of the point of `s2` at the same place: the identity
+/// when both list their points alike, else found by sorting on coordinates rounded to a
+/// tolerance of 10⁻⁹ of the interface's size.
+fn pair_points(s1: &Interface, s2: &Interface, name1: &str, name2: &str) -> Result<Vec<usize>> {
+    let n = s1.len();
+    if s2.len() != n {
+        return Err(Error::InterfaceMismatch {
+            index: n.min(s2.len()),
+            detail: format!("`{name1}` has {n} points, `{name2}` has {}", s2.len()),
+        });
+    }
+    let scale = s1
+        .points
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, c| m.max(c.abs()))
+        .max(1.0);
+    let tol = 1e-9 * scale;
+    let close =
+        |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt() <= tol;
+    if (0..n).all(|i| close(s1.points[i], s2.points[i])) {
+        return Ok((0..n).collect());
+    }
+    let key = |p: [f64; 3]| p.map(|c| (c / (1e3 * tol)).round() as i64);
+    let sorted = |s: &Interface| {
+        let mut idx: Vec<usize> = (0..n).collect();
+        idx.sort_by_key(|&i| key(s.points[i]));
+        idx
+    };
+    let (o1, o2) = (sorted(s1), sorted(s2));
+    let mut pair = vec![0; n];
+    for (&i, &j) in o1.iter().zip(&o2) {
+        pair[i] = j;
+    }
+    if let Some(i) = (0..n).find(|&i| !close(s1.points[i], s2.points[pair[i]])) {
+        return Err(Error::InterfaceMismatch {
+            index: i,
+            detail: format!(
+                "point {:?} of `{name1}` has no partner in `{name2}` (nearest in order: {:?})",
+                s1.points[i], s2.points[pair[i]]
+            ),
+        });
+    }
+    Ok(pair)
 }

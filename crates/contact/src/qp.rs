@@ -12,9 +12,13 @@ use crate::{kalker, ContactSolver, InterfaceProblem};
 /// G_R = W R, by clarabel. The reference solver: exact to its tolerance, but its cost grows
 /// like n³ with a dense H (about 2 s at 1000 points).
 ///
-/// With a semi-definite H (three Gauss points per quadratic finite-element face) the QP's
-/// minimisers share d and λ but not p; clarabel returns the one at the centre of the optimal
-/// set, the other solvers the one of least Σ wᵢ pᵢ².
+/// With a semi-definite H (three Gauss points per quadratic finite-element face outnumber the
+/// face's displacement unknowns) the QP's minimisers share d and λ but not p. An interior
+/// point alone returns the centre of that set, whose pressure oscillates from point to point.
+/// So the answer is polished: clarabel's contact set and λ are kept, and the pressure is
+/// re-solved on that set by proximal active-set steps from p = 0, which give the minimiser of
+/// least Σ wᵢ pᵢ² (the limit of the penalty method, and the pressure the other solvers
+/// return) exactly, instead of to the interior point's tolerance.
 #[derive(Clone, Copy, Debug)]
 pub struct Qp {
     /// Feasibility and duality-gap tolerance (clarabel's tol_feas, tol_gap_abs, tol_gap_rel).
@@ -114,22 +118,26 @@ impl ContactSolver for Qp {
                 })
             }
         }
-        // Polish: the interior point stops short of the optimal vertex by about its tolerance;
-        // proximal active-set steps from its pressure land on it (and keep its choice among
-        // the minimisers when H is only semi-definite).
-        let p_max = sol.x.iter().fold(0.0f64, |a, &b| a.max(b / s));
-        let start: Vec<f64> = sol
-            .x
-            .iter()
-            .map(|x| if x / s > 1e-6 * p_max { x / s } else { 0.0 })
-            .collect();
+        // Polish on clarabel's contact set (see the type's documentation).
+        let p_max = sol.x.iter().fold(0.0f64, |a, &b| a.max(b));
+        let contact: Vec<bool> = sol.x.iter().map(|&x| x > 1e-6 * p_max).collect();
         let mut state = kalker::uzawa(
             problem,
             kalker::stiff_penalty(problem)?,
             1e-13,
             100,
-            Some(&start),
+            Some(&contact),
         )?;
+        // The polish must reproduce clarabel's own rigid-body approach.
+        for (k, (&mine, &theirs)) in state.rigid.iter().zip(&sol.z[..m]).enumerate() {
+            if (mine - theirs).abs() > 1e-6 * theirs.abs().max(1e-12) {
+                return Err(Error::NotConverged {
+                    method: "QP (clarabel)".into(),
+                    iterations: sol.iterations as usize,
+                    detail: format!("polished rigid amplitude {k} = {mine:e} disagrees with the interior point's {theirs:e}"),
+                });
+            }
+        }
         state.iterations = sol.iterations as usize;
         Ok(state)
     }

@@ -16,6 +16,7 @@ mod factor;
 mod material;
 mod mesh;
 mod model;
+pub mod paper;
 mod solution;
 mod system;
 

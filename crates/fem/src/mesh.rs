@@ -82,6 +82,48 @@ impl Spacing {
         Self::from_coords(coords)
     }
 
+    /// `n` elements on [a, b] growing geometrically from a first element of size `first`
+    /// (which must be at most (b − a)/n): the outward continuation of a finely meshed zone.
+    pub fn geometric_first(a: f64, b: f64, n: usize, first: f64) -> Result<Self> {
+        if n == 0 {
+            return Err(Error::invalid(
+                "spacing.elements",
+                n,
+                "at least one element",
+            ));
+        }
+        let len = b - a;
+        if !(first > 0.0 && first * n as f64 <= len * (1.0 + 1e-12)) {
+            return Err(Error::invalid(
+                "spacing.first",
+                first,
+                format!("must lie in (0, {}]", len / n as f64),
+            ));
+        }
+        // First size of a progression with factor q: len (q − 1)/(qⁿ − 1), decreasing in q.
+        let first_of = |q: f64| {
+            if (q - 1.0).abs() < 1e-12 {
+                len / n as f64
+            } else {
+                len * (q - 1.0) / (q.powi(n as i32) - 1.0)
+            }
+        };
+        let (mut lo, mut hi) = (1.0, 2.0);
+        while first_of(hi) > first {
+            hi *= 2.0;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if first_of(mid) > first {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        let q = 0.5 * (lo + hi);
+        Self::geometric(a, b, n, q.powi(n as i32 - 1))
+    }
+
     /// About `n` elements on [a, b], refined towards each of `points` (inside [a, b]) so that
     /// elements far from them are `ratio` times larger than those next to them. The points are
     /// element boundaries: the punch edge gets nodes on both of its sides.
@@ -462,6 +504,15 @@ mod tests {
         let (near, far) = (c[i] - c[i - 1], c[1] - c[0]);
         assert!((far / near - 10.0).abs() < 1e-9, "ratio {}", far / near);
         assert_eq!(s.len(), 40);
+    }
+
+    #[test]
+    fn geometric_first_starts_at_the_given_size() {
+        let s = Spacing::geometric_first(10.0, 200.0, 40, 0.5).unwrap();
+        let c = s.coords();
+        assert!((c[1] - c[0] - 0.5).abs() < 1e-9, "{}", c[1] - c[0]);
+        assert_eq!((c[0], c[40]), (10.0, 200.0));
+        assert!(Spacing::geometric_first(0.0, 1.0, 4, 0.3).is_err());
     }
 
     #[test]

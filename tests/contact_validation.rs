@@ -1,0 +1,184 @@
+//! Contact solvers on finite-element bodies against closed forms (Boussinesq/Sneddon flat
+//! punch, Hertz), against each other, and over a sweep of the penalty parameter.
+
+use std::f64::consts::PI;
+
+use contopt::contact::{
+    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
+};
+use contopt::fem::{Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Spacing};
+use contopt::{ContactState, ElasticBody, RigidBody};
+
+const E: f64 = 2.0e5;
+const NU: f64 = 0.3;
+
+/// An axisymmetric block of radius and depth `size`, clamped at the bottom, with `nz`
+/// uniform contact faces on r < `zone` and 1 % of `zone` high elements at the surface.
+fn block(zone: f64, nz: usize, size: f64) -> FeBody {
+    let top = zone / nz as f64;
+    // Outside the contact zone the elements grow geometrically from the contact element size.
+    let outer = Spacing::geometric_first(zone, size, 40, top).unwrap();
+    let r = Spacing::uniform(0.0, zone, nz)
+        .unwrap()
+        .then(&outer)
+        .unwrap();
+    let z = Spacing::uniform(-2.0 * zone, 0.0, 2 * nz.min(40)).unwrap();
+    let z = Spacing::geometric(-size, -2.0 * zone, 24, (top / (size / 24.0)).min(1.0))
+        .unwrap()
+        .then(&z)
+        .unwrap();
+    let mut m = FeModel::new(
+        Mesh::rectangle(ElementKind::Q8, &r, &z).unwrap(),
+        Material::new(E, NU).unwrap(),
+        Analysis::Axisymmetric,
+    )
+    .unwrap();
+    let bottom = m.mesh().nodes_on_y(-size, 0.0, size);
+    m.fix(&bottom, Component::X)
+        .unwrap()
+        .fix(&bottom, Component::Y)
+        .unwrap();
+    let contact = m.mesh().faces_on_y(0.0, 0.0, zone);
+    FeBody::new("block", m, &contact).unwrap()
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// A rigid flat punch of radius a pressed by F into a large block: away from the edge the
+/// pressure is Sneddon's F / (2πa√(a² − r²)), and the approach tends to the half-space value
+/// F(1 − ν²)/(2aE) as the block grows (its clamped bottom makes it stiffer).
+#[test]
+fn flat_punch_matches_sneddon() {
+    let (a, f) = (10.0, 1e4);
+    let half_space = f * (1.0 - NU * NU) / (2.0 * a * E);
+    let mut ratios = vec![];
+    for size in [20.0 * a, 40.0 * a] {
+        let b = block(a, 40, size);
+        let punch = RigidBody::pressed("punch", b.interface(), [0.0, 1.0, 0.0], f).unwrap();
+        let problem = InterfaceProblem::new(&b, &punch, &vec![0.0; b.interface().len()]).unwrap();
+        let st = ActiveSet::default().solve(&problem).unwrap();
+        let mut worst: f64 = 0.0;
+        for (i, x) in b.interface().points.iter().enumerate() {
+            if x[0] < 0.8 * a {
+                let exact = f / (2.0 * PI * a * (a * a - x[0] * x[0]).sqrt());
+                worst = worst.max((st.pressure[i] / exact - 1.0).abs());
+            }
+        }
+        assert!(
+            worst < 0.02,
+            "size {size}: pressure off Sneddon's by {worst:.4} for r < 0.8a"
+        );
+        assert!((b.interface().resultant(&st.pressure) - f).abs() < 1e-9 * f);
+        ratios.push(-st.rigid[0] / half_space);
+    }
+    // Measured: 0.956 (20a) and 0.972 (40a): within 5 % and closing in on the half-space.
+    assert!(
+        ratios[0] > 0.94 && ratios[0] < ratios[1] && ratios[1] < 1.0,
+        "approach / half-space: {ratios:?}"
+    );
+}
+
+/// Hertz: a rigid sphere of radius R = 100 mm pressed into the block with the force that
+/// gives a = 1 mm. p₀ and a are fitted from p² = p₀²(1 − r²/a²) on r < 0.8a.
+fn hertz() -> (FeBody, InterfaceProblem, f64) {
+    let rs = 100.0;
+    let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * rs);
+    let b = block(1.5, 45, 30.0);
+    let h: Vec<f64> = b
+        .interface()
+        .points
+        .iter()
+        .map(|x| x[0] * x[0] / (2.0 * rs))
+        .collect();
+    let sphere = RigidBody::pressed("sphere", b.interface(), [0.0, 1.0, 0.0], force).unwrap();
+    let problem = InterfaceProblem::new(&b, &sphere, &h).unwrap();
+    (b, problem, force)
+}
+
+fn fit_hertz(b: &FeBody, st: &ContactState) -> (f64, f64) {
+    let (mut sx, mut sy, mut sxx, mut sxy, mut k) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (i, x) in b.interface().points.iter().enumerate() {
+        if x[0] < 0.8 {
+            let (r2, y) = (x[0] * x[0], st.pressure[i].powi(2));
+            sx += r2;
+            sy += y;
+            sxx += r2 * r2;
+            sxy += r2 * y;
+            k += 1.0;
+        }
+    }
+    let slope = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+    let intercept = (sy - slope * sx) / k;
+    (intercept.sqrt(), (-intercept / slope).sqrt())
+}
+
+#[test]
+fn hertz_sphere_and_solver_agreement() {
+    let (b, problem, force) = hertz();
+    let p0 = 3.0 * force / (2.0 * PI);
+    let reference = Qp::default().solve(&problem).unwrap();
+    // Tolerances: the active set and the QP end on the same contact set by different paths;
+    // the augmented Lagrangian to the 1e-6; the penalty within its O(1/c) error.
+    let solvers: [(&dyn ContactSolver, f64); 4] = [
+        (&Qp::default(), 0.0),
+        (&ActiveSet::default(), 1e-9),
+        (&AugmentedLagrangian::new(E * 1e4), 1e-6),
+        (&Penalty { c: E * 1e6 }, 1e-4),
+    ];
+    for (solver, tol) in solvers {
+        let st = solver.solve(&problem).unwrap();
+        let (p0_fe, a_fe) = fit_hertz(&b, &st);
+        assert!(
+            (p0_fe / p0 - 1.0).abs() < 0.01 && (a_fe - 1.0).abs() < 0.01,
+            "{}: p0 {p0_fe} (Hertz {p0}), a {a_fe} (Hertz 1)",
+            solver.name()
+        );
+        assert!(st.residuals.equilibrium < 1e-6 * force);
+        let dp = max_diff(&st.pressure, &reference.pressure) / reference.p_max();
+        assert!(
+            dp <= tol,
+            "{}: pressure differs from the QP by {dp:e} of p_max",
+            solver.name()
+        );
+        assert_eq!(st.active, reference.active, "{}", solver.name());
+    }
+}
+
+/// The penalty parameter sweep c = E·10ᵏ, k = 0…12 (the paper's claim: the augmented
+/// Lagrangian needs only a relatively small c). Prints the table (k, errors, steps).
+#[test]
+fn penalty_parameter_sweep() {
+    let (_, problem, _) = hertz();
+    let reference = Qp::default().solve(&problem).unwrap();
+    let rel = |st: &ContactState| max_diff(&st.pressure, &reference.pressure) / reference.p_max();
+    eprintln!(
+        "{:>3} {:>12} {:>6} {:>6} {:>6} {:>12} {:>14}",
+        "k", "AL error", "steps", "iterp", "iterd", "penalty error", "penetration mm"
+    );
+    let mut penalty_errors = vec![];
+    for k in 0..=12 {
+        let c = E * 10f64.powi(k);
+        let al = AugmentedLagrangian::new(c).solve(&problem).unwrap();
+        let pen = Penalty { c }.solve(&problem).unwrap();
+        eprintln!(
+            "{k:>3} {:>12.3e} {:>6} {:>6} {:>6} {:>12.3e} {:>14.3e}",
+            rel(&al),
+            al.iterations,
+            al.iterp,
+            al.iterd,
+            rel(&pen),
+            pen.residuals.penetration
+        );
+        assert!(
+            rel(&al) < 1e-6,
+            "k = {k}: augmented Lagrangian off by {:e}",
+            rel(&al)
+        );
+        penalty_errors.push(rel(&pen));
+    }
+}
