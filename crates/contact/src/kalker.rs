@@ -7,10 +7,84 @@ use faer::{Mat, Side};
 
 use crate::InterfaceProblem;
 
-/// Solution of one subproblem on its final active set.
-struct Inner {
+/// A pressure and rigid-mode amplitudes: an iterate, or the reference a solve starts from.
+#[derive(Clone, Debug)]
+struct Iterate {
     pressure: Vec<f64>,
     rigid: Vec<f64>,
+}
+
+impl Iterate {
+    fn zero(n: usize, m: usize) -> Self {
+        Self {
+            pressure: vec![0.0; n],
+            rigid: vec![0.0; m],
+        }
+    }
+}
+
+/// The contact-set matrix M = W_C A_CC W_C + ρ W_C, factorised.
+enum ContactMatrix {
+    Cholesky(Llt<f64>),
+    /// With T = W^½ A W^½ = U Λ Uᵀ on the contact set, M⁺ = W^-½ U (Λ + ρ)⁺ Uᵀ W^-½, where
+    /// eigenvalues below 10⁻⁹·max Λ count as exactly zero: no correction is made along the
+    /// directions that do not move the interface, so c·(round-off) never enters.
+    Spectral {
+        u: Mat<f64>,
+        inverse: Vec<f64>,
+        root_w: Vec<f64>,
+    },
+}
+
+impl ContactMatrix {
+    fn new(a: &Mat<f64>, w: &[f64], idx: &[usize], rho: f64, spectral: bool) -> Option<Self> {
+        let k = idx.len();
+        if !spectral {
+            let m = Mat::from_fn(k, k, |x, y| {
+                let (i, j) = (idx[x], idx[y]);
+                w[i] * a[(i, j)] * w[j] + if x == y { rho * w[i] } else { 0.0 }
+            });
+            return Llt::new(m.as_ref(), Side::Lower)
+                .ok()
+                .map(ContactMatrix::Cholesky);
+        }
+        let root_w: Vec<f64> = idx.iter().map(|&i| w[i].sqrt()).collect();
+        let t = Mat::from_fn(k, k, |x, y| root_w[x] * a[(idx[x], idx[y])] * root_w[y]);
+        let eig = t.self_adjoint_eigen(Side::Lower).ok()?;
+        let values: Vec<f64> = (0..k).map(|x| eig.S()[x]).collect();
+        let top = values.iter().fold(0.0f64, |m, v| m.max(*v));
+        let inverse = values
+            .iter()
+            .map(|&l| if l > 1e-9 * top { 1.0 / (l + rho) } else { 0.0 })
+            .collect();
+        Some(ContactMatrix::Spectral {
+            u: eig.U().to_owned(),
+            inverse,
+            root_w,
+        })
+    }
+
+    fn solve(&self, b: &Mat<f64>) -> Mat<f64> {
+        match self {
+            ContactMatrix::Cholesky(llt) => llt.solve(b),
+            ContactMatrix::Spectral { u, inverse, root_w } => {
+                let scaled = Mat::from_fn(b.nrows(), b.ncols(), |i, j| b[(i, j)] / root_w[i]);
+                let mut coef = u.transpose() * &scaled;
+                for (i, inv) in inverse.iter().enumerate() {
+                    for j in 0..coef.ncols() {
+                        coef[(i, j)] *= inv;
+                    }
+                }
+                let x = u * &coef;
+                Mat::from_fn(x.nrows(), x.ncols(), |i, j| x[(i, j)] / root_w[i])
+            }
+        }
+    }
+}
+
+/// Solution of one subproblem on its final active set.
+struct Inner {
+    solution: Iterate,
     /// Gap d of the solution.
     gap: Vec<f64>,
     /// Round-off level of the gap: 10⁻¹³ of its largest terms.
@@ -19,203 +93,167 @@ struct Inner {
     iterd: usize,
 }
 
-/// Solves the proximal subproblem
+/// The proximal subproblem
 ///
 /// min ½ pᵀ (H + ρW) p + pᵀ W (g − ρ p̂)  over  p ≥ 0,  Rᵀ W p = −q,
 ///
 /// whose solution is p = ⟨p̂ − c d⟩ with c = 1/ρ: eq. (2.19) with the gap d of the new
 /// state, i.e. one augmented-Lagrangian step (2.18)–(2.20); with p̂ = 0 it is the penalty
-/// method. Kalker's iteration: solve with the points of `active` in contact
-/// (d + ρ(p − p̂) = 0 there, p = 0 elsewhere); drop the points whose pressure came out negative
-/// (one `iterp`), else add the points that penetrate (one `iterd`); repeat until neither occurs.
-fn solve_inner(
-    problem: &InterfaceProblem,
+/// method.
+struct Subproblem<'a> {
+    problem: &'a InterfaceProblem,
     rho: f64,
-    shift: &[f64],
-    active: &mut [bool],
-) -> Result<Inner> {
-    let n = problem.len();
-    let m = problem.load().len();
-    let (w, a, r, q) = (
-        problem.weights(),
-        problem.influence(),
-        problem.rigid(),
-        problem.load(),
-    );
-    let g = problem.free_gap();
-    let gap_scale = g.iter().fold(0.0f64, |s, v| s.max(v.abs())).max(1e-300);
-    let (mut iterp, mut iterd) = (0, 0);
-    let max_changes = 4 * n + 20;
-    loop {
-        if !active.iter().any(|&c| c) && m > 0 {
-            // A floating body needs at least one contact point to be held.
-            let closest = (0..n).min_by(|&i, &j| g[i].total_cmp(&g[j])).unwrap_or(0);
-            active[closest] = true;
-        }
-        let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
-        let k = idx.len();
-        let mut pressure = vec![0.0; n];
-        let mut rigid = vec![0.0; m];
-        if k > 0 {
-            let mat = Mat::from_fn(k, k, |a_, b_| {
-                let (i, j) = (idx[a_], idx[b_]);
-                w[i] * a[(i, j)] * w[j] + if a_ == b_ { rho * w[i] } else { 0.0 }
-            });
-            let llt = Llt::new(mat.as_ref(), Side::Lower).map_err(|_| Error::NotConverged {
-                method: "Kalker active set".into(),
-                iterations: iterp + iterd,
-                detail: format!(
-                    "the influence matrix is singular on the {k} contact points (penalty term rho = {rho:e}); \
-                     use a finite penalty parameter or the augmented Lagrangian"
-                ),
-            })?;
-            let b = Mat::from_fn(k, 1, |a_, _| {
-                let i = idx[a_];
-                w[i] * (-g[i] + rho * shift[i])
-            });
-            let y = llt.solve(&b);
-            let mut p_c = y.clone();
-            if m > 0 {
-                let bm = Mat::from_fn(k, m, |a_, c| w[idx[a_]] * r[(idx[a_], c)]);
-                let z = llt.solve(&bm);
-                let s = bm.transpose() * &z;
-                let rhs = Mat::from_fn(m, 1, |c, _| {
-                    (0..k).map(|a_| bm[(a_, c)] * y[(a_, 0)]).sum::<f64>() + q[c]
+    shift: &'a [f64],
+    /// Solve spectrally (for ρ below the stiff level; see [`ContactMatrix`]).
+    spectral: bool,
+}
+
+impl Subproblem<'_> {
+    /// Kalker's iteration: solve with the points of `active` in contact (d + ρ(p − p̂) = 0
+    /// there, p = 0 elsewhere); drop the points whose pressure came out negative (one `iterp`),
+    /// else add the points that penetrate (one `iterd`); repeat until neither occurs.
+    ///
+    /// Each solve is in residual form: the correction to `reference` (restricted to the
+    /// contact set) is driven by the reference's own residual −W(d + ρ(p − p̂)). Round-off in
+    /// the data along the directions that do not move the interface (a semi-definite H) is
+    /// amplified by c; in this form it multiplies the reference's residual instead of the whole
+    /// gap, so a reference close to the answer keeps large c accurate.
+    fn solve(&self, reference: &Iterate, active: &mut [bool]) -> Result<Inner> {
+        let problem = self.problem;
+        let (rho, shift) = (self.rho, self.shift);
+        let n = problem.len();
+        let m = problem.load().len();
+        let (w, a, r, q) = (
+            problem.weights(),
+            problem.influence(),
+            problem.rigid(),
+            problem.load(),
+        );
+        let g = problem.free_gap();
+        let gap_scale = g.iter().fold(0.0f64, |s, v| s.max(v.abs())).max(1e-300);
+        let (mut iterp, mut iterd) = (0, 0);
+        let max_changes = 4 * n + 20;
+        loop {
+            if !active.iter().any(|&c| c) && m > 0 {
+                // A floating body needs at least one contact point to be held.
+                let closest = (0..n).min_by(|&i, &j| g[i].total_cmp(&g[j])).unwrap_or(0);
+                active[closest] = true;
+            }
+            let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
+            let k = idx.len();
+            let mut solution = Iterate {
+                pressure: vec![0.0; n],
+                rigid: reference.rigid.clone(),
+            };
+            for &i in &idx {
+                solution.pressure[i] = reference.pressure[i];
+            }
+            if k > 0 {
+                let not_converged = |detail: String| Error::NotConverged {
+                    method: "Kalker active set".into(),
+                    iterations: iterp + iterd,
+                    detail,
+                };
+                let llt = ContactMatrix::new(a, w, &idx, rho, self.spectral).ok_or_else(|| {
+                    not_converged(format!(
+                        "the influence matrix is singular on the {k} contact points (penalty term rho = {rho:e}); \
+                         use a finite penalty parameter or the augmented Lagrangian"
+                    ))
+                })?;
+                let d_ref = problem.gap(&solution.pressure, &solution.rigid);
+                let b = Mat::from_fn(k, 1, |a_, _| {
+                    let i = idx[a_];
+                    -w[i] * (d_ref[i] + rho * (solution.pressure[i] - shift[i]))
                 });
-                let lambda = Llt::new(s.as_ref(), Side::Lower)
-                    .map_err(|_| Error::NotConverged {
-                        method: "Kalker active set".into(),
-                        iterations: iterp + iterd,
-                        detail: format!(
-                            "the {k} contact points do not hold the rigid modes {:?}",
-                            problem.mode_names()
-                        ),
-                    })?
-                    .solve(&rhs);
-                p_c = &y - &z * &lambda;
-                for (c, l) in rigid.iter_mut().enumerate() {
-                    *l = lambda[(c, 0)];
+                let y = llt.solve(&b);
+                let mut delta = y.clone();
+                if m > 0 {
+                    let bm = Mat::from_fn(k, m, |a_, c| w[idx[a_]] * r[(idx[a_], c)]);
+                    let z = llt.solve(&bm);
+                    let s = bm.transpose() * &z;
+                    // Equilibrium of the correction: Rᵀ W δ = −q − Rᵀ W p_ref.
+                    let rhs = Mat::from_fn(m, 1, |c, _| {
+                        let held: f64 = (0..k)
+                            .map(|a_| bm[(a_, c)] * solution.pressure[idx[a_]])
+                            .sum();
+                        (0..k).map(|a_| bm[(a_, c)] * y[(a_, 0)]).sum::<f64>() + q[c] + held
+                    });
+                    let lambda = Llt::new(s.as_ref(), Side::Lower)
+                        .map_err(|_| {
+                            not_converged(format!(
+                                "the {k} contact points do not hold the rigid modes {:?}",
+                                problem.mode_names()
+                            ))
+                        })?
+                        .solve(&rhs);
+                    delta = &y - &z * &lambda;
+                    for (c, l) in solution.rigid.iter_mut().enumerate() {
+                        *l += lambda[(c, 0)];
+                    }
+                }
+                for (a_, &i) in idx.iter().enumerate() {
+                    solution.pressure[i] += delta[(a_, 0)];
                 }
             }
-            for (a_, &i) in idx.iter().enumerate() {
-                pressure[i] = p_c[(a_, 0)];
-            }
-        }
-        let p_scale = pressure.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-        let negative: Vec<usize> = idx
-            .iter()
-            .copied()
-            .filter(|&i| pressure[i] < -1e-12 * p_scale)
-            .collect();
-        if !negative.is_empty() {
-            for i in negative {
-                active[i] = false;
-            }
-            iterp += 1;
-        } else {
-            let d = problem.gap(&pressure, &rigid);
-            let tol = 1e-11 * gap_scale.max(d.iter().fold(0.0f64, |s, v| s.max(v.abs())));
-            let penetrating: Vec<usize> = (0..n)
-                .filter(|&i| !active[i] && d[i] - rho * shift[i] < -tol)
+            let p = &solution.pressure;
+            let p_scale = p.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            let negative: Vec<usize> = idx
+                .iter()
+                .copied()
+                .filter(|&i| p[i] < -1e-12 * p_scale)
                 .collect();
-            if penetrating.is_empty() {
-                for p in pressure.iter_mut() {
-                    *p = p.max(0.0);
+            if !negative.is_empty() {
+                for i in negative {
+                    active[i] = false;
                 }
-                // d = g + A W p + R λ, with the elastic term balancing the others on C.
-                let motion = (0..n)
-                    .map(|i| (0..m).map(|c| r[(i, c)] * rigid[c]).sum::<f64>().abs())
-                    .fold(0.0f64, f64::max);
-                let gap_floor = 1e-13 * (gap_scale + motion);
-                return Ok(Inner {
-                    pressure,
-                    rigid,
-                    gap: d,
-                    gap_floor,
-                    iterp,
-                    iterd,
+                iterp += 1;
+            } else {
+                let d = problem.gap(p, &solution.rigid);
+                let tol = 1e-11 * gap_scale.max(d.iter().fold(0.0f64, |s, v| s.max(v.abs())));
+                let penetrating: Vec<usize> = (0..n)
+                    .filter(|&i| !active[i] && d[i] - rho * shift[i] < -tol)
+                    .collect();
+                if penetrating.is_empty() {
+                    for v in solution.pressure.iter_mut() {
+                        *v = v.max(0.0);
+                    }
+                    // d = g + A W p + R λ, with the elastic term balancing the others on C.
+                    let motion = (0..n)
+                        .map(|i| {
+                            (0..m)
+                                .map(|c| r[(i, c)] * solution.rigid[c])
+                                .sum::<f64>()
+                                .abs()
+                        })
+                        .fold(0.0f64, f64::max);
+                    let gap_floor = 1e-13 * (gap_scale + motion);
+                    return Ok(Inner {
+                        solution,
+                        gap: d,
+                        gap_floor,
+                        iterp,
+                        iterd,
+                    });
+                }
+                for i in penetrating {
+                    active[i] = true;
+                }
+                iterd += 1;
+            }
+            if iterp + iterd > max_changes {
+                return Err(Error::NotConverged {
+                    method: "Kalker active set".into(),
+                    iterations: iterp + iterd,
+                    detail: format!("the contact set kept changing ({iterp} for negative pressure, {iterd} for penetration)"),
                 });
             }
-            for i in penetrating {
-                active[i] = true;
-            }
-            iterd += 1;
-        }
-        if iterp + iterd > max_changes {
-            return Err(Error::NotConverged {
-                method: "Kalker active set".into(),
-                iterations: iterp + iterd,
-                detail: format!("the contact set kept changing ({iterp} for negative pressure, {iterd} for penetration)"),
-            });
         }
     }
 }
 
-/// The penalty method: one subproblem with ρ = 1/c and p̂ = 0, so p = c⟨−d⟩.
-pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState> {
-    let n = problem.len();
-    let mut active = vec![true; n];
-    let inner = solve_inner(problem, 1.0 / c, &vec![0.0; n], &mut active)?;
-    Ok(problem.state(
-        inner.pressure,
-        inner.rigid,
-        active,
-        [1, inner.iterp, inner.iterd],
-    ))
-}
-
-/// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
-/// from p = 0 and the contact set `start` (every point when `None`), until the pressure
-/// changes by less than `tolerance`·p_max.
-pub(crate) fn uzawa(
-    problem: &InterfaceProblem,
-    c: f64,
-    tolerance: f64,
-    max_steps: usize,
-    start: Option<&[bool]>,
-) -> Result<ContactState> {
-    let n = problem.len();
-    let mut shift = vec![0.0; n];
-    let mut active = start.map_or_else(|| vec![true; n], <[bool]>::to_vec);
-    let (mut iterp, mut iterd) = (0, 0);
-    let mut change = f64::INFINITY;
-    let mut rigid = vec![0.0; problem.load().len()];
-    for step in 1..=max_steps {
-        let inner = solve_inner(problem, 1.0 / c, &shift, &mut active)?;
-        iterp += inner.iterp;
-        iterd += inner.iterd;
-        let p_max = inner.pressure.iter().fold(0.0f64, |s, v| s.max(*v));
-        change = inner
-            .pressure
-            .iter()
-            .zip(&shift)
-            .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()));
-        shift = inner.pressure;
-        rigid = inner.rigid;
-        // Converged when the pressure settles, or when the gap on the contact set is at
-        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
-        // directions that do not move the interface.
-        let open_on_contact = (0..n)
-            .filter(|&i| active[i])
-            .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()));
-        if change <= tolerance * p_max.max(f64::MIN_POSITIVE) || open_on_contact <= inner.gap_floor
-        {
-            return Ok(problem.state(shift, rigid, active, [step, iterp, iterd]));
-        }
-    }
-    let state = problem.state(shift, rigid, active, [max_steps, iterp, iterd]);
-    Err(Error::NotConverged {
-        method: "augmented Lagrangian (Uzawa)".into(),
-        iterations: max_steps,
-        detail: format!(
-            "last pressure change {change:.3e} MPa, p_max {:.6} MPa, penetration {:.3e} mm; raise the penalty parameter c = {c:e} or the step limit",
-            state.p_max(),
-            state.residuals.penetration
-        ),
-    })
-}
-
-/// A penalty parameter that makes each proximal step nearly exact: c = 10⁶ / maxᵢ(Aᵢᵢ wᵢ).
+/// The largest penalty parameter at which a subproblem is solved from scratch:
+/// c_stiff = 10⁶ / maxᵢ(Aᵢᵢ wᵢ), where the proximal term is 10⁻⁶ of the stiffest compliance.
+/// Larger parameters start from a c_stiff solution (see [`Subproblem::solve`]).
 pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
     let a = problem.influence();
     let scale = (0..problem.len())
@@ -229,4 +267,125 @@ pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
         ));
     }
     Ok(1e6 / scale)
+}
+
+/// A starting iterate for a subproblem with penalty `c`: zero, or for c above c_stiff the
+/// penalty solution at c_stiff (whose small gap keeps the large-c solve accurate).
+fn start(
+    problem: &InterfaceProblem,
+    c: f64,
+    active: &mut [bool],
+    counts: &mut [usize; 2],
+) -> Result<Iterate> {
+    let (n, m) = (problem.len(), problem.load().len());
+    let c_stiff = stiff_penalty(problem)?;
+    if c <= c_stiff {
+        return Ok(Iterate::zero(n, m));
+    }
+    let zeros = vec![0.0; n];
+    let pre = Subproblem {
+        problem,
+        rho: 1.0 / c_stiff,
+        shift: &zeros,
+        spectral: false,
+    }
+    .solve(&Iterate::zero(n, m), active)?;
+    counts[0] += pre.iterp;
+    counts[1] += pre.iterd;
+    Ok(pre.solution)
+}
+
+/// The penalty method: one subproblem with ρ = 1/c and p̂ = 0, so p = c⟨−d⟩.
+pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState> {
+    let n = problem.len();
+    let mut active = vec![true; n];
+    let mut counts = [0, 0];
+    let reference = start(problem, c, &mut active, &mut counts)?;
+    let zeros = vec![0.0; n];
+    let inner = Subproblem {
+        problem,
+        rho: 1.0 / c,
+        shift: &zeros,
+        spectral: c > stiff_penalty(problem)?,
+    }
+    .solve(&reference, &mut active)?;
+    let s = inner.solution;
+    Ok(problem.state(
+        s.pressure,
+        s.rigid,
+        active,
+        [1, counts[0] + inner.iterp, counts[1] + inner.iterd],
+    ))
+}
+
+/// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
+/// from p = 0 and the contact set `start_set` (every point when `None`), until the pressure
+/// changes by less than `tolerance`·p_max or the gap on the contact set is at round-off.
+pub(crate) fn uzawa(
+    problem: &InterfaceProblem,
+    c: f64,
+    tolerance: f64,
+    max_steps: usize,
+    start_set: Option<&[bool]>,
+) -> Result<ContactState> {
+    let n = problem.len();
+    let mut active = start_set.map_or_else(|| vec![true; n], <[bool]>::to_vec);
+    let mut counts = [0, 0];
+    let mut current = start(problem, c, &mut active, &mut counts)?;
+    let spectral = c > stiff_penalty(problem)?;
+    let mut change = f64::INFINITY;
+    for step in 1..=max_steps {
+        let shift = current.pressure.clone();
+        let inner = Subproblem {
+            problem,
+            rho: 1.0 / c,
+            shift: &shift,
+            spectral,
+        }
+        .solve(&current, &mut active)?;
+        counts[0] += inner.iterp;
+        counts[1] += inner.iterd;
+        let p_max = inner
+            .solution
+            .pressure
+            .iter()
+            .fold(0.0f64, |s, v| s.max(*v));
+        change = inner
+            .solution
+            .pressure
+            .iter()
+            .zip(&shift)
+            .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()));
+        current = inner.solution;
+        // Converged when the pressure settles, or when the gap on the contact set is at
+        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
+        // directions that do not move the interface.
+        let open_on_contact = (0..n)
+            .filter(|&i| active[i])
+            .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()));
+        if change <= tolerance * p_max.max(f64::MIN_POSITIVE) || open_on_contact <= inner.gap_floor
+        {
+            return Ok(problem.state(
+                current.pressure,
+                current.rigid,
+                active,
+                [step, counts[0], counts[1]],
+            ));
+        }
+    }
+    let state = problem.state(
+        current.pressure,
+        current.rigid,
+        active,
+        [max_steps, counts[0], counts[1]],
+    );
+    Err(Error::NotConverged {
+        method: "augmented Lagrangian (Uzawa)".into(),
+        iterations: max_steps,
+        detail: format!(
+            "last pressure change {change:.3e} MPa, p_max {:.6} MPa, penetration {:.3e} mm; raise the penalty parameter c = {c:e} or the step limit",
+            state.p_max(),
+            state.residuals.penetration
+        ),
+    })
 }

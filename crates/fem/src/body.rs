@@ -68,8 +68,16 @@ pub struct BuildStats {
 /// A finite-element body whose contact zone Ω is a set of boundary faces.
 ///
 /// Construction assembles K, factorises it once with the face unknowns ordered last,
-/// condenses it to the face (the influence matrix A = L K⁻¹ Lᵀ at the three Gauss points of
-/// every contact face, §2.2) and solves once for the displacement under the given loads.
+/// condenses it to the face (the influence matrix A = L K⁻¹ Lᵀ at the Gauss points of every
+/// contact face, §2.2) and solves once for the displacement under the given loads.
+///
+/// Contact is checked at the three Gauss points of every contact face, as in the paper. They
+/// outnumber the face's normal displacement unknowns (3 per face against 2 per face plus
+/// one), so A is only semi-definite: gaps and rigid motions are unique, Gauss-point pressures
+/// are not. The solvers of `contopt-contact` return the pressure of least Σ wᵢpᵢ², the limit
+/// of the penalty method, which is the paper's C⁰ pressure field (eq. 2.9) sampled at the
+/// points. (Two points per face would make A definite but let the pressure checkerboard from
+/// point to point under a flat punch: the classical inf-sup failure.)
 /// Free rigid-body modes are detected from the supports, removed by holding one unknown each,
 /// and reported through [`ElasticBody::rigid_modes`].
 pub struct FeBody {
