@@ -208,3 +208,51 @@ fn penalty_parameter_sweep() {
     }
     assert!(penalty[12] < 1e-8, "no breakdown at large c: {penalty:?}");
 }
+
+/// The penalty method condensed to the interface and on the full joint finite-element system
+/// (2.22) give the same pressure and gap, axisymmetric and in plane stress.
+#[test]
+fn condensed_penalty_matches_the_full_system() {
+    for analysis in [
+        Analysis::Axisymmetric,
+        Analysis::PlaneStress { thickness: 10.0 },
+    ] {
+        let mesh = PaperMesh {
+            contact_elements: 9,
+            layers: 9,
+            ..PaperMesh::default()
+        };
+        let (base, punch) = paper::bodies(analysis, PunchLoad::Pressure(100.0), &mesh).unwrap();
+        // A crowned punch, h = 0.1 mm (r/R)², so the contact set shrinks and the joint
+        // system is refactorised as it changes.
+        let gap: Vec<f64> = base
+            .interface()
+            .points
+            .iter()
+            .map(|x| 0.1 * (x[0] / paper::PUNCH_RADIUS).powi(2))
+            .collect();
+        let c = paper::E * 1e4;
+        let condensed = Penalty { c }
+            .solve(&InterfaceProblem::new(&base, &punch, &gap).unwrap())
+            .unwrap();
+        let full = contopt::fem::coupled::penalty_full(&base, &punch, &gap, c).unwrap();
+        assert!(
+            full.iterations > 1 && full.active.iter().any(|a| !a),
+            "{analysis:?}: the contact set must change"
+        );
+        let dp = max_diff(&full.pressure, &condensed.pressure) / condensed.p_max();
+        let dd = max_diff(&full.gap, &condensed.gap);
+        eprintln!(
+            "{analysis:?}: dp {dp:e}, dd {dd:e} mm, lambda {:?} vs {:?}, solves {}",
+            full.rigid, condensed.rigid, full.iterations
+        );
+        assert!(
+            dp < 1e-6,
+            "{analysis:?}: pressures differ by {dp:e} of p_max"
+        );
+        assert!(dd < 1e-9, "{analysis:?}: gaps differ by {dd:e} mm");
+        assert_eq!(full.active, condensed.active);
+        assert!((full.rigid[0] - condensed.rigid[0]).abs() < 1e-9 * condensed.rigid[0].abs());
+        assert!(full.residuals.equilibrium < 1e-6 * 100.0 * paper::PUNCH_RADIUS.powi(2));
+    }
+}

@@ -37,7 +37,7 @@ impl InterfaceProblem {
         initial_gap: &[f64],
     ) -> Result<Self> {
         let (s1, s2) = (body1.interface(), body2.interface());
-        let pair = pair_points(s1, s2, body1.name(), body2.name())?;
+        let pair = s1.partners(s2, body1.name(), body2.name())?;
         for (i, &j) in pair.iter().enumerate() {
             let (wa, wb) = (s1.weights[i], s2.weights[j]);
             if (wa - wb).abs() > 1e-9 * wa.abs().max(wb.abs()) {
@@ -289,50 +289,4 @@ impl InterfaceProblem {
             residuals,
         }
     }
-}
-
-/// For each point of `s1`, the index of the point of `s2` at the same place: the identity
-/// when both list their points alike, else found by sorting on coordinates rounded to a
-/// tolerance of 10⁻⁹ of the interface's size.
-fn pair_points(s1: &Interface, s2: &Interface, name1: &str, name2: &str) -> Result<Vec<usize>> {
-    let n = s1.len();
-    if s2.len() != n {
-        return Err(Error::InterfaceMismatch {
-            index: n.min(s2.len()),
-            detail: format!("`{name1}` has {n} points, `{name2}` has {}", s2.len()),
-        });
-    }
-    let scale = s1
-        .points
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, c| m.max(c.abs()))
-        .max(1.0);
-    let tol = 1e-9 * scale;
-    let close =
-        |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt() <= tol;
-    if (0..n).all(|i| close(s1.points[i], s2.points[i])) {
-        return Ok((0..n).collect());
-    }
-    let key = |p: [f64; 3]| p.map(|c| (c / (1e3 * tol)).round() as i64);
-    let sorted = |s: &Interface| {
-        let mut idx: Vec<usize> = (0..n).collect();
-        idx.sort_by_key(|&i| key(s.points[i]));
-        idx
-    };
-    let (o1, o2) = (sorted(s1), sorted(s2));
-    let mut pair = vec![0; n];
-    for (&i, &j) in o1.iter().zip(&o2) {
-        pair[i] = j;
-    }
-    if let Some(i) = (0..n).find(|&i| !close(s1.points[i], s2.points[pair[i]])) {
-        return Err(Error::InterfaceMismatch {
-            index: i,
-            detail: format!(
-                "point {:?} of `{name1}` has no partner in `{name2}` (nearest in order: {:?})",
-                s1.points[i], s2.points[pair[i]]
-            ),
-        });
-    }
-    Ok(pair)
 }

@@ -98,6 +98,57 @@ impl Interface {
         })
     }
 
+    /// For each point of `self`, the index of the point of `other` at the same place (within
+    /// 10⁻⁹ of the interface's size): the identity when both list their points alike, else
+    /// found by sorting on rounded coordinates. `name`/`other_name` label the error, which
+    /// names the first point without a partner.
+    pub fn partners(&self, other: &Interface, name: &str, other_name: &str) -> Result<Vec<usize>> {
+        let n = self.len();
+        if other.len() != n {
+            return Err(Error::InterfaceMismatch {
+                index: n.min(other.len()),
+                detail: format!(
+                    "`{name}` has {n} points, `{other_name}` has {}",
+                    other.len()
+                ),
+            });
+        }
+        let scale = self
+            .points
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, c| m.max(c.abs()))
+            .max(1.0);
+        let tol = 1e-9 * scale;
+        let close = |a: [f64; 3], b: [f64; 3]| {
+            (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt() <= tol
+        };
+        if (0..n).all(|i| close(self.points[i], other.points[i])) {
+            return Ok((0..n).collect());
+        }
+        let key = |p: [f64; 3]| p.map(|c| (c / (1e3 * tol)).round() as i64);
+        let sorted = |s: &Interface| {
+            let mut idx: Vec<usize> = (0..n).collect();
+            idx.sort_by_key(|&i| key(s.points[i]));
+            idx
+        };
+        let mut pair = vec![0; n];
+        for (&i, &j) in sorted(self).iter().zip(&sorted(other)) {
+            pair[i] = j;
+        }
+        if let Some(i) = (0..n).find(|&i| !close(self.points[i], other.points[pair[i]])) {
+            return Err(Error::InterfaceMismatch {
+                index: i,
+                detail: format!(
+                    "point {:?} of `{name}` has no partner in `{other_name}` (nearest in order: {:?})",
+                    self.points[i],
+                    other.points[pair[i]]
+                ),
+            });
+        }
+        Ok(pair)
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.points.len()

@@ -14,9 +14,9 @@ use crate::{Face, FeModel};
 /// point is −Σ_k `coef[k]`·u(`dofs[k]`) over the face nodes' global DOFs (the row of L in
 /// H = L K⁻¹ Lᵀ, eq. 2.22).
 #[derive(Clone, Debug)]
-struct PointRow {
-    dofs: [usize; 6],
-    coef: [f64; 6],
+pub(crate) struct PointRow {
+    pub dofs: [usize; 6],
+    pub coef: [f64; 6],
 }
 
 impl PointRow {
@@ -82,10 +82,10 @@ pub struct BuildStats {
 /// and reported through [`ElasticBody::rigid_modes`].
 pub struct FeBody {
     name: String,
-    model: FeModel,
-    system: System,
+    pub(crate) model: FeModel,
+    pub(crate) system: System,
     interface: Interface,
-    rows: Vec<PointRow>,
+    pub(crate) rows: Vec<PointRow>,
     influence: Mat<f64>,
     load_displacement: Vec<f64>,
     rigid_modes: Vec<RigidMode>,

@@ -69,13 +69,26 @@ impl Factor {
             body: body.into(),
             detail: format!("symbolic analysis failed: {e:?}"),
         })?;
-        let mut values = vec![0.0; symbolic.len_val()];
+        let values = vec![0.0; symbolic.len_val()];
+        let mut factor = Self {
+            symbolic,
+            values,
+            n_tail,
+        };
+        factor.refactor(a, body)?;
+        Ok(factor)
+    }
+
+    /// Numeric refactorisation of a matrix with the pattern of the first, reusing the
+    /// symbolic analysis (ordering, elimination tree, supernodes).
+    pub fn refactor(&mut self, a: SparseColMatRef<'_, usize, f64>, body: &str) -> Result<()> {
         let mut mem = MemBuffer::new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+            self.symbolic
+                .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
         );
-        symbolic
+        self.symbolic
             .factorize_numeric_llt(
-                &mut values,
+                &mut self.values,
                 a,
                 Side::Upper,
                 Default::default(),
@@ -87,11 +100,7 @@ impl Factor {
                 body: body.into(),
                 detail: format!("{e:?}; check that the supports leave no mechanism"),
             })?;
-        Ok(Self {
-            symbolic,
-            values,
-            n_tail,
-        })
+        Ok(())
     }
 
     /// Number of nonzeros of L.

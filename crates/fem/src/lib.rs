@@ -11,6 +11,7 @@
 
 mod analysis;
 mod body;
+pub mod coupled;
 pub mod element;
 mod factor;
 mod material;

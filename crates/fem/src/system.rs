@@ -53,8 +53,17 @@ pub(crate) struct PointB {
     pub dv: f64,
 }
 
-impl System {
-    pub fn new(model: &FeModel, name: &str, tail_nodes: &[usize]) -> Result<Self> {
+/// Status of every global DOF, with the free unknowns numbered: interior first, then those
+/// of `tail_nodes`; with `pin`, one unknown per free rigid mode is held (see [`pins`]).
+pub(crate) struct Numbering {
+    pub dofs: Vec<Dof>,
+    pub n_free: usize,
+    pub n_tail: usize,
+    pub modes: Vec<Mode>,
+}
+
+impl Numbering {
+    pub fn new(model: &FeModel, tail_nodes: &[usize], pin: bool) -> Result<Self> {
         let n_nodes = model.mesh.nodes().len();
         let mut dofs = vec![Dof::Free(usize::MAX); 2 * n_nodes];
         for (&(node, c), &v) in &model.prescribed {
@@ -65,10 +74,11 @@ impl System {
             on_tail[n] = true;
         }
         let modes = free_rigid_modes(model, &dofs);
-        for d in pins(&modes, &dofs, &on_tail) {
-            dofs[d] = Dof::Pinned;
+        if pin {
+            for d in pins(&modes, &dofs, &on_tail) {
+                dofs[d] = Dof::Pinned;
+            }
         }
-        // Interior unknowns first, then the face unknowns.
         let mut n_free = 0;
         for tail in [false, true] {
             for (g, d) in dofs.iter_mut().enumerate() {
@@ -90,18 +100,36 @@ impl System {
             .enumerate()
             .filter(|(g, d)| on_tail[g / 2] && matches!(d, Dof::Free(_)))
             .count();
+        Ok(Self {
+            dofs,
+            n_free,
+            n_tail,
+            modes,
+        })
+    }
+}
+
+impl System {
+    pub fn new(model: &FeModel, name: &str, tail_nodes: &[usize]) -> Result<Self> {
+        let Numbering {
+            dofs,
+            n_free,
+            n_tail,
+            modes,
+        } = Numbering::new(model, tail_nodes, true)?;
         let start = Instant::now();
-        let (stiffness, prescribed_load) = assemble(model, &dofs, n_free)?;
+        let stiffness = assemble(model, &dofs, 0)?;
+        let matrix = stiffness.matrix(n_free)?;
         let assembly_time = start.elapsed();
         let start = Instant::now();
-        let factor = Factor::new(stiffness.as_ref(), n_tail, name)?;
+        let factor = Factor::new(matrix.as_ref(), n_tail, name)?;
         let factorisation_time = start.elapsed();
         Ok(Self {
             dofs,
             n_free,
             n_tail,
             modes,
-            prescribed_load,
+            prescribed_load: stiffness.prescribed_load,
             factor,
             assembly_time,
             factorisation_time,
@@ -216,19 +244,37 @@ fn element_stiffness(
     Ok(())
 }
 
-/// Assembles the upper triangle of the free-unknown stiffness matrix and K_fp u_p.
-fn assemble(
-    model: &FeModel,
-    dofs: &[Dof],
-    n_free: usize,
-) -> Result<(SparseColMat<usize, f64>, Vec<f64>)> {
+/// The upper triangle of a stiffness matrix as (row, column) pairs and values (duplicates
+/// summed when the matrix is built), with K_fp u_p, the effect of prescribed displacements.
+pub(crate) struct Triplets {
+    pub idx: Vec<Pair<usize, usize>>,
+    pub val: Vec<f64>,
+    pub prescribed_load: Vec<f64>,
+}
+
+impl Triplets {
+    /// The n × n sparse matrix (upper triangle).
+    pub fn matrix(&self, n: usize) -> Result<SparseColMat<usize, f64>> {
+        let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(n, n, &self.idx)
+            .map_err(|e| Error::Mesh(format!("sparse pattern: {e:?}")))?;
+        SparseColMat::new_from_argsort(pattern, &order, &self.val)
+            .map_err(|e| Error::Mesh(format!("sparse values: {e:?}")))
+    }
+}
+
+/// Assembles the element stiffnesses over the free unknowns of `dofs`, numbered from
+/// `offset`.
+pub(crate) fn assemble(model: &FeModel, dofs: &[Dof], offset: usize) -> Result<Triplets> {
     let d = model.analysis.elasticity(&model.material);
     let nn = model.mesh.kind().n_nodes();
     let n_el = model.mesh.elements().len();
     let per = (2 * nn) * (2 * nn + 1) / 2;
-    let mut idx = Vec::with_capacity(n_el * per);
-    let mut val = Vec::with_capacity(n_el * per);
-    let mut prescribed_load = vec![0.0; n_free];
+    let n_free = dofs.iter().filter(|d| matches!(d, Dof::Free(_))).count();
+    let mut t = Triplets {
+        idx: Vec::with_capacity(n_el * per),
+        val: Vec::with_capacity(n_el * per),
+        prescribed_load: vec![0.0; n_free],
+    };
     let mut ke = [[0.0; 2 * MAX_NODES]; 2 * MAX_NODES];
     for (e, conn) in model.mesh.elements().iter().enumerate() {
         element_stiffness(model, e, &d, &mut ke)?;
@@ -238,20 +284,16 @@ fn assemble(
             for ka in 0..2 * nn {
                 match dofs[g(ka)] {
                     Dof::Free(i) if i <= j => {
-                        idx.push(Pair::new(i, j));
-                        val.push(ke[ka][kb]);
+                        t.idx.push(Pair::new(offset + i, offset + j));
+                        t.val.push(ke[ka][kb]);
                     }
-                    Dof::Prescribed(v) if v != 0.0 => prescribed_load[j] += ke[kb][ka] * v,
+                    Dof::Prescribed(v) if v != 0.0 => t.prescribed_load[j] += ke[kb][ka] * v,
                     _ => {}
                 }
             }
         }
     }
-    let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(n_free, n_free, &idx)
-        .map_err(|e| Error::Mesh(format!("sparse pattern: {e:?}")))?;
-    let k = SparseColMat::new_from_argsort(pattern, &order, &val)
-        .map_err(|e| Error::Mesh(format!("sparse values: {e:?}")))?;
-    Ok((k, prescribed_load))
+    Ok(t)
 }
 
 /// Candidate rigid-body modes of the analysis, over all global DOFs: the axial translation
