@@ -26,9 +26,11 @@ impl Iterate {
 /// The contact-set matrix M = W_C A_CC W_C + ρ W_C, factorised.
 enum ContactMatrix {
     Cholesky(Llt<f64>),
-    /// With T = W^½ A W^½ = U Λ Uᵀ on the contact set, M⁺ = W^-½ U (Λ + ρ)⁺ Uᵀ W^-½, where
-    /// eigenvalues below 10⁻⁹·max Λ count as exactly zero: no correction is made along the
-    /// directions that do not move the interface, so c·(round-off) never enters.
+    /// With T = W^½ A W^½ = U Λ Uᵀ on the contact set, M⁺ = W^-½ U (Λ + ρ)⁺ Uᵀ W^-½, where an
+    /// eigenvector u counts as null when its eigenvalue is below 10⁻⁹ of its own diagonal
+    /// scale Σᵢ uᵢ² Tᵢᵢ (scale-invariant: points of small weight near an axis are not null):
+    /// no correction is made along the directions that do not move the interface, so
+    /// c·(round-off) never enters.
     Spectral {
         u: Mat<f64>,
         inverse: Vec<f64>,
@@ -51,11 +53,17 @@ impl ContactMatrix {
         let root_w: Vec<f64> = idx.iter().map(|&i| w[i].sqrt()).collect();
         let t = Mat::from_fn(k, k, |x, y| root_w[x] * a[(idx[x], idx[y])] * root_w[y]);
         let eig = t.self_adjoint_eigen(Side::Lower).ok()?;
-        let values: Vec<f64> = (0..k).map(|x| eig.S()[x]).collect();
-        let top = values.iter().fold(0.0f64, |m, v| m.max(*v));
-        let inverse = values
-            .iter()
-            .map(|&l| if l > 1e-9 * top { 1.0 / (l + rho) } else { 0.0 })
+        let u = eig.U();
+        let inverse = (0..k)
+            .map(|x| {
+                let l = eig.S()[x];
+                let scale: f64 = (0..k).map(|i| u[(i, x)] * u[(i, x)] * t[(i, i)]).sum();
+                if l > 1e-9 * scale {
+                    1.0 / (l + rho)
+                } else {
+                    0.0
+                }
+            })
             .collect();
         Some(ContactMatrix::Spectral {
             u: eig.U().to_owned(),
@@ -319,17 +327,18 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState
 }
 
 /// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
-/// from p = 0 and the contact set `start_set` (every point when `None`), until the pressure
-/// changes by less than `tolerance`·p_max or the gap on the contact set is at round-off.
+/// from p = 0 with every point in contact, until the pressure changes by less than
+/// `tolerance`·p_max or the gap on the contact set is at round-off; with `accelerate`, until
+/// a step leaves the contact set unchanged, when the iteration's limit is solved for directly.
 pub(crate) fn uzawa(
     problem: &InterfaceProblem,
     c: f64,
     tolerance: f64,
     max_steps: usize,
-    start_set: Option<&[bool]>,
+    accelerate: bool,
 ) -> Result<ContactState> {
     let n = problem.len();
-    let mut active = start_set.map_or_else(|| vec![true; n], <[bool]>::to_vec);
+    let mut active = vec![true; n];
     let mut counts = [0, 0];
     let mut current = start(problem, c, &mut active, &mut counts)?;
     let spectral = c > stiff_penalty(problem)?;
@@ -357,6 +366,27 @@ pub(crate) fn uzawa(
             .zip(&shift)
             .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()));
         current = inner.solution;
+        if accelerate && inner.iterp + inner.iterd == 0 {
+            // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
+            // and its fixed point is the exact solve on this set from the current iterate
+            // (which keeps the iterate's components along directions that do not move the
+            // interface, as the iteration would).
+            let zeros = vec![0.0; n];
+            let jump = Subproblem {
+                problem,
+                rho: 0.0,
+                shift: &zeros,
+                spectral: true,
+            }
+            .solve(&current, &mut active)?;
+            let s = jump.solution;
+            return Ok(problem.state(
+                s.pressure,
+                s.rigid,
+                active,
+                [step, counts[0] + jump.iterp, counts[1] + jump.iterd],
+            ));
+        }
         // Converged when the pressure settles, or when the gap on the contact set is at
         // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
         // directions that do not move the interface.
@@ -388,4 +418,48 @@ pub(crate) fn uzawa(
             state.residuals.penetration
         ),
     })
+}
+
+/// The QP (2.14) itself: Kalker's iteration with ρ = 0, solving on each contact set with the
+/// pseudo-inverse (eigenvalues below 10⁻⁹ of the largest count as null), which gives the
+/// pressure of least Σ wᵢpᵢ² exactly, whatever the conditioning of H. Without `start_set`,
+/// one penalty solve at c_stiff (by Cholesky) first finds the contact set and a reference
+/// pressure, so that the spectral solves are few.
+pub(crate) fn exact(
+    problem: &InterfaceProblem,
+    start_set: Option<&[bool]>,
+) -> Result<ContactState> {
+    let (n, m) = (problem.len(), problem.load().len());
+    let zeros = vec![0.0; n];
+    let mut counts = [0, 0];
+    let (mut active, reference) = match start_set {
+        Some(set) => (set.to_vec(), Iterate::zero(n, m)),
+        None => {
+            let mut active = vec![true; n];
+            let rho = 1.0 / stiff_penalty(problem)?;
+            let pre = Subproblem {
+                problem,
+                rho,
+                shift: &zeros,
+                spectral: false,
+            }
+            .solve(&Iterate::zero(n, m), &mut active)?;
+            counts = [pre.iterp, pre.iterd];
+            (active, pre.solution)
+        }
+    };
+    let inner = Subproblem {
+        problem,
+        rho: 0.0,
+        shift: &zeros,
+        spectral: true,
+    }
+    .solve(&reference, &mut active)?;
+    let s = inner.solution;
+    Ok(problem.state(
+        s.pressure,
+        s.rigid,
+        active,
+        [1, counts[0] + inner.iterp, counts[1] + inner.iterd],
+    ))
 }

@@ -121,13 +121,7 @@ impl ContactSolver for Qp {
         // Polish on clarabel's contact set (see the type's documentation).
         let p_max = sol.x.iter().fold(0.0f64, |a, &b| a.max(b));
         let contact: Vec<bool> = sol.x.iter().map(|&x| x > 1e-6 * p_max).collect();
-        let mut state = kalker::uzawa(
-            problem,
-            kalker::stiff_penalty(problem)?,
-            1e-13,
-            100,
-            Some(&contact),
-        )?;
+        let mut state = kalker::exact(problem, Some(&contact))?;
         // The polish must reproduce clarabel's own rigid-body approach.
         for (k, (&mine, &theirs)) in state.rigid.iter().zip(&sol.z[..m]).enumerate() {
             if (mine - theirs).abs() > 1e-6 * theirs.abs().max(1e-12) {

@@ -57,7 +57,7 @@ fn body(a: Mat<f64>, modes: Vec<RigidMode>) -> MatrixBody {
 fn solvers() -> Vec<Box<dyn ContactSolver>> {
     vec![
         Box::new(Qp::default()),
-        Box::new(ActiveSet::default()),
+        Box::new(ActiveSet),
         Box::new(AugmentedLagrangian::new(1e3)),
     ]
 }
@@ -145,6 +145,7 @@ fn augmented_lagrangian_counts_set_changes() {
         c: 10.0,
         tolerance: 1e-10,
         max_steps: 50,
+        accelerate: false,
     }
     .solve(&problem)
     .unwrap_err()

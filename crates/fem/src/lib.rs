@@ -10,6 +10,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod analysis;
+pub mod block;
 mod body;
 pub mod coupled;
 pub mod element;

@@ -1,0 +1,101 @@
+//! Every contact solver on interfaces of about 50, 200 and 1000 points: a rigid sphere
+//! (Hertz) pressed into the half-space stand-in block, contact radius 1 mm inside a 1.5 mm
+//! candidate zone, so a third of the points stay open. Reports time (criterion) and, against
+//! the QP reference (printed table), the error of the pressure, of the gap and of the
+//! indenter's approach. With three Gauss points per quadratic face the QP's minimisers share
+//! d and λ but not p at elements partly in contact, so the pressure column there measures
+//! which minimiser a method returns rather than its accuracy.
+//!
+//! `cargo bench --bench contact`
+
+use std::time::{Duration, Instant};
+
+use contopt::contact::{
+    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
+};
+use contopt::fem::block::half_space_block;
+use contopt::fem::{FeBody, Material};
+use contopt::{ElasticBody, RigidBody};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
+
+const E: f64 = 2.0e5;
+const NU: f64 = 0.3;
+
+/// The Hertz problem with `faces` contact faces (3 points each).
+fn hertz(faces: usize) -> InterfaceProblem {
+    let (model, contact) =
+        half_space_block(1.5, faces, 30.0, Material::new(E, NU).unwrap()).unwrap();
+    let block = FeBody::new("block", model, &contact).unwrap();
+    let radius = 100.0;
+    let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * radius);
+    let gap: Vec<f64> = block
+        .interface()
+        .points
+        .iter()
+        .map(|x| x[0] * x[0] / (2.0 * radius))
+        .collect();
+    let sphere = RigidBody::pressed("sphere", block.interface(), [0.0, 1.0, 0.0], force).unwrap();
+    InterfaceProblem::new(&block, &sphere, &gap).unwrap()
+}
+
+fn solvers() -> Vec<Box<dyn ContactSolver>> {
+    vec![
+        Box::new(Qp::default()),
+        Box::new(ActiveSet),
+        Box::new(AugmentedLagrangian::new(E * 1e4)),
+        Box::new(Penalty { c: E * 1e4 }),
+    ]
+}
+
+fn bench(c: &mut Criterion) {
+    let sizes = [17, 67, 333];
+    let problems: Vec<InterfaceProblem> = sizes.iter().map(|&f| hertz(f)).collect();
+    println!(
+        "{:>6} {:>22} {:>10} {:>10} {:>10} {:>10} {:>6} {:>6} {:>6}",
+        "points", "solver", "time ms", "p error", "d error", "λ error", "iters", "iterp", "iterd"
+    );
+    for problem in &problems {
+        let reference = Qp::default().solve(problem).unwrap();
+        for solver in solvers() {
+            let t = Instant::now();
+            let st = solver.solve(problem).unwrap();
+            let ms = t.elapsed().as_secs_f64() * 1e3;
+            let diff = |a: &[f64], b: &[f64]| {
+                a.iter()
+                    .zip(b)
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max)
+            };
+            // Pressure relative to p_max; gap relative to the approach; approach relative.
+            let dp = diff(&st.pressure, &reference.pressure) / reference.p_max();
+            let dd = diff(&st.gap, &reference.gap) / reference.rigid[0].abs();
+            let dl = (st.rigid[0] / reference.rigid[0] - 1.0).abs();
+            println!(
+                "{:>6} {:>22} {ms:>10.2} {dp:>10.1e} {dd:>10.1e} {dl:>10.1e} {:>6} {:>6} {:>6}",
+                problem.len(),
+                solver.name(),
+                st.iterations,
+                st.iterp,
+                st.iterd
+            );
+        }
+    }
+    let mut group = c.benchmark_group("contact");
+    group
+        .sample_size(10)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300));
+    for problem in &problems {
+        for solver in solvers() {
+            group.bench_with_input(
+                BenchmarkId::new(solver.name().replace(' ', "_"), problem.len()),
+                problem,
+                |b, p| b.iter(|| solver.solve(p).unwrap()),
+            );
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
