@@ -259,6 +259,42 @@ impl Subproblem<'_> {
     }
 }
 
+/// The contact state of a subproblem's solution, after `steps` outer steps, with the set
+/// changes counted before it.
+fn finish(
+    problem: &InterfaceProblem,
+    inner: Inner,
+    active: Vec<bool>,
+    steps: usize,
+    counts: [usize; 2],
+) -> ContactState {
+    let s = inner.solution;
+    problem.state(
+        s.pressure,
+        s.rigid,
+        active,
+        [steps, counts[0] + inner.iterp, counts[1] + inner.iterd],
+    )
+}
+
+/// The QP (2.14) on the contact set `active` (updated by Kalker's iteration), from
+/// `reference`: ρ = 0 with the pseudo-inverse, so nothing changes along the directions that
+/// do not move the interface.
+fn solve_exact(
+    problem: &InterfaceProblem,
+    reference: &Iterate,
+    active: &mut [bool],
+) -> Result<Inner> {
+    let zeros = vec![0.0; problem.len()];
+    Subproblem {
+        problem,
+        rho: 0.0,
+        shift: &zeros,
+        spectral: true,
+    }
+    .solve(reference, active)
+}
+
 /// The largest penalty parameter at which a subproblem is solved from scratch:
 /// c_stiff = 10⁶ / maxᵢ(Aᵢᵢ wᵢ), where the proximal term is 10⁻⁶ of the stiffest compliance.
 /// Larger parameters start from a c_stiff solution (see [`Subproblem::solve`]).
@@ -317,13 +353,7 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState
         spectral: c > stiff_penalty(problem)?,
     }
     .solve(&reference, &mut active)?;
-    let s = inner.solution;
-    Ok(problem.state(
-        s.pressure,
-        s.rigid,
-        active,
-        [1, counts[0] + inner.iterp, counts[1] + inner.iterd],
-    ))
+    Ok(finish(problem, inner, active, 1, counts))
 }
 
 /// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
@@ -371,21 +401,8 @@ pub(crate) fn uzawa(
             // and its fixed point is the exact solve on this set from the current iterate
             // (which keeps the iterate's components along directions that do not move the
             // interface, as the iteration would).
-            let zeros = vec![0.0; n];
-            let jump = Subproblem {
-                problem,
-                rho: 0.0,
-                shift: &zeros,
-                spectral: true,
-            }
-            .solve(&current, &mut active)?;
-            let s = jump.solution;
-            return Ok(problem.state(
-                s.pressure,
-                s.rigid,
-                active,
-                [step, counts[0] + jump.iterp, counts[1] + jump.iterd],
-            ));
+            let jump = solve_exact(problem, &current, &mut active)?;
+            return Ok(finish(problem, jump, active, step, counts));
         }
         // Converged when the pressure settles, or when the gap on the contact set is at
         // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
@@ -448,18 +465,6 @@ pub(crate) fn exact(
             (active, pre.solution)
         }
     };
-    let inner = Subproblem {
-        problem,
-        rho: 0.0,
-        shift: &zeros,
-        spectral: true,
-    }
-    .solve(&reference, &mut active)?;
-    let s = inner.solution;
-    Ok(problem.state(
-        s.pressure,
-        s.rigid,
-        active,
-        [1, counts[0] + inner.iterp, counts[1] + inner.iterd],
-    ))
+    let inner = solve_exact(problem, &reference, &mut active)?;
+    Ok(finish(problem, inner, active, 1, counts))
 }

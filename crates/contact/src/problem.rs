@@ -258,14 +258,7 @@ impl InterfaceProblem {
                     .abs()
             })
             .fold(0.0, f64::max);
-        Residuals {
-            equilibrium,
-            penetration: gap.iter().fold(0.0, |m, &d| m.max(-d)),
-            complementarity: pressure
-                .iter()
-                .zip(gap)
-                .fold(0.0, |m, (p, d)| m.max((p * d).abs())),
-        }
+        Residuals::new(equilibrium, pressure, gap)
     }
 
     /// Assembles a [`ContactState`] from a solution, with its gap and residuals.

@@ -11,6 +11,20 @@ pub struct Residuals {
     pub complementarity: f64,
 }
 
+impl Residuals {
+    /// Residuals of pressure `p` with gap `d`, given the largest equilibrium error.
+    pub fn new(equilibrium: f64, pressure: &[f64], gap: &[f64]) -> Self {
+        Self {
+            equilibrium,
+            penetration: gap.iter().fold(0.0, |m, &d| m.max(-d)),
+            complementarity: pressure
+                .iter()
+                .zip(gap)
+                .fold(0.0, |m, (p, d)| m.max((p * d).abs())),
+        }
+    }
+}
+
 /// The solution of a normal contact problem at the interface points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ContactState {

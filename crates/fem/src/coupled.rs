@@ -238,12 +238,5 @@ fn residuals(bodies: [&FeBody; 2], pair: &[usize], pressure: &[f64], gap: &[f64]
             equilibrium = equilibrium.max((work + mode.load).abs());
         }
     }
-    Residuals {
-        equilibrium,
-        penetration: gap.iter().fold(0.0, |m, &d| m.max(-d)),
-        complementarity: pressure
-            .iter()
-            .zip(gap)
-            .fold(0.0, |m, (p, d)| m.max((p * d).abs())),
-    }
+    Residuals::new(equilibrium, pressure, gap)
 }
