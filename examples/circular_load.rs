@@ -9,38 +9,20 @@ use std::fmt::Write as _;
 use std::fs;
 
 use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
+use contopt::greens::elliptic;
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
 const P: f64 = 100.0;
 const A: f64 = 10.0;
 
-/// Complete elliptic integrals K(k) and E(k) (modulus k) by the arithmetic-geometric mean.
-fn elliptic(k: f64) -> (f64, f64) {
-    if k >= 1.0 {
-        return (f64::INFINITY, 1.0); // the load edge: K diverges, E(1) = 1
-    }
-    let (mut a, mut b, mut c) = (1.0, (1.0 - k * k).sqrt(), k);
-    let (mut sum, mut pow) = (0.5 * c * c, 0.5);
-    while c.abs() > 1e-16 {
-        let an = 0.5 * (a + b);
-        c = 0.5 * (a - b);
-        b = (a * b).sqrt();
-        a = an;
-        pow *= 2.0;
-        sum += pow * c * c;
-    }
-    let kk = PI / (2.0 * a);
-    (kk, kk * (1.0 - sum))
-}
-
 /// Half-space surface deflection under p on r < a.
 fn half_space(r: f64) -> f64 {
     let c = 4.0 * (1.0 - NU * NU) * P / (PI * E);
     if r <= A {
-        c * A * elliptic(r / A).1
+        c * A * elliptic::complete(r / A).1
     } else {
-        let (k, e) = elliptic(A / r);
+        let (k, e) = elliptic::complete(A / r);
         c * r * (e - (1.0 - A * A / (r * r)) * k)
     }
 }

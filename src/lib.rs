@@ -7,6 +7,8 @@
 //! - [`core`]: the [`ElasticBody`] trait, the contact [`Interface`], the [`Error`] type;
 //! - [`fem`]: quadratic isoparametric finite-element bodies (axisymmetric, plane stress,
 //!   plane strain) and the structured mesh generator;
+//! - [`greens`]: bodies from closed-form Green's functions: the axisymmetric half-space and
+//!   the half-plane;
 //! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies and the
 //!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian.
 //!
@@ -30,7 +32,8 @@
 pub use contopt_contact as contact;
 pub use contopt_core as core;
 pub use contopt_core::{
-    ContactState, ElasticBody, Error, Geometry, Interface, Region, Residuals, Result, RigidBody,
-    RigidMode,
+    ContactState, ElasticBody, Error, Geometry, Interface, Material, Region, Residuals, Result,
+    RigidBody, RigidMode,
 };
 pub use contopt_fem as fem;
+pub use contopt_greens as greens;

@@ -7,11 +7,13 @@
 mod body;
 mod error;
 mod interface;
+mod material;
 mod rigid;
 mod state;
 
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
 pub use interface::{Geometry, Interface, Region};
+pub use material::Material;
 pub use rigid::RigidBody;
 pub use state::{ContactState, Residuals};

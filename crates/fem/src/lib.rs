@@ -15,7 +15,6 @@ mod body;
 pub mod coupled;
 pub mod element;
 mod factor;
-mod material;
 mod mesh;
 mod model;
 pub mod paper;
@@ -24,8 +23,8 @@ mod system;
 
 pub use analysis::Analysis;
 pub use body::{BuildStats, FeBody};
+pub use contopt_core::Material;
 pub use element::ElementKind;
-pub use material::Material;
 pub use mesh::{Face, Mesh, Spacing};
 pub use model::{Component, FeModel};
 pub use solution::{Solution, Stress};

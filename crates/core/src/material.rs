@@ -1,5 +1,6 @@
-use contopt_core::{Error, Result};
 use serde::{Deserialize, Serialize};
+
+use crate::{Error, Result};
 
 /// Isotropic linear-elastic material, validated on construction.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,0 +1,41 @@
+//! Elastic bodies given by closed-form Green's functions (§2.1 of Páczelt 1994): the
+//! influence matrix comes from the surface displacement of a uniformly loaded region, with no
+//! mesh below the surface.
+//!
+//! - [`AxisymmetricHalfSpace`]: rings on the surface of a half-space, each an annulus loaded
+//!   uniformly (Boussinesq; complete elliptic integrals);
+//! - [`HalfPlane`]: strips on the edge of a half-plane in plane strain or plane stress
+//!   (Flamant).
+
+// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod axisymmetric;
+pub mod elliptic;
+mod half_plane;
+
+pub use axisymmetric::AxisymmetricHalfSpace;
+pub use half_plane::{HalfPlane, PlaneState};
+
+use contopt_core::{Error, Result};
+
+/// Checks that region edges are finite and strictly increasing, at least two.
+fn check_edges(edges: &[f64], field: &str) -> Result<()> {
+    if edges.len() < 2 {
+        return Err(Error::invalid(
+            field,
+            edges.len(),
+            "at least two edges (one region)",
+        ));
+    }
+    if let Some(i) = (1..edges.len())
+        .find(|&i| !(edges[i] > edges[i - 1]) || !edges[i].is_finite() || !edges[0].is_finite())
+    {
+        return Err(Error::invalid(
+            format!("{field}[{i}]"),
+            edges[i],
+            format!("must be finite and exceed {}", edges[i - 1]),
+        ));
+    }
+    Ok(())
+}

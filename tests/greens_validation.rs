@@ -1,0 +1,196 @@
+//! Green's-function bodies in contact against closed forms: Hertz and the flat punch on the
+//! axisymmetric half-space; the Hertz cylinder and the Flamant strip on the half-plane.
+
+use std::f64::consts::PI;
+
+use contopt::contact::{ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Qp};
+use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
+use contopt::{ElasticBody, Material, RigidBody};
+
+const E: f64 = 2.0e5;
+const NU: f64 = 0.3;
+
+fn steel() -> Material {
+    Material::new(E, NU).unwrap()
+}
+
+/// Strip edges on [−a, a] clustered at both ends: x = −a cos(πk/n).
+fn chebyshev(a: f64, n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|k| -a * (PI * k as f64 / n as f64).cos())
+        .collect()
+}
+
+fn uniform(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
+}
+
+/// A rigid sphere (R = 100 mm) on the half-space with the force that gives a = 1 mm:
+/// p₀ and the approach a²/R within 0.1 % (measured 0.002 %), the contact radius within the
+/// ring width, every solver alike.
+#[test]
+fn hertz_sphere_on_half_space() {
+    let (radius, estar) = (100.0, E / (1.0 - NU * NU));
+    let force = 4.0 * estar / (3.0 * radius);
+    let body = AxisymmetricHalfSpace::new("half-space", steel(), &uniform(0.0, 1.5, 150)).unwrap();
+    let gap: Vec<f64> = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| x[0] * x[0] / (2.0 * radius))
+        .collect();
+    let sphere = RigidBody::pressed("sphere", body.interface(), [0.0, 1.0, 0.0], force).unwrap();
+    let problem = InterfaceProblem::new(&body, &sphere, &gap).unwrap();
+    let p0 = 3.0 * force / (2.0 * PI);
+    for solver in [
+        &Qp::default() as &dyn ContactSolver,
+        &ActiveSet,
+        &AugmentedLagrangian::new(E * 1e4),
+    ] {
+        let st = solver.solve(&problem).unwrap();
+        assert!(
+            (st.pressure[0] / p0 - 1.0).abs() < 1e-3,
+            "{}: p0 {} vs {p0}",
+            solver.name(),
+            st.pressure[0]
+        );
+        // Contact radius: between the last loaded ring and the first open one.
+        let last = (0..st.pressure.len())
+            .rev()
+            .find(|&i| st.pressure[i] > 0.0)
+            .unwrap();
+        let a = body.interface().points[last][0];
+        assert!((a - 1.0).abs() < 0.015, "{}: a = {a}", solver.name());
+        // Approach of a rigid sphere: δ = a²/R.
+        assert!(
+            (-st.rigid[0] / (1.0 / radius) - 1.0).abs() < 1e-3,
+            "{}: approach {}",
+            solver.name(),
+            -st.rigid[0]
+        );
+    }
+}
+
+/// A rigid flat punch of radius a pressed by F: approach F/(2aE*) and centre pressure
+/// F/(2πa²) (Boussinesq), within 0.5 % (measured 0.12 % and 0.23 %).
+#[test]
+fn flat_punch_on_half_space() {
+    let (a, force) = (10.0, 1e4);
+    let body = AxisymmetricHalfSpace::new("half-space", steel(), &uniform(0.0, a, 100)).unwrap();
+    let punch = RigidBody::pressed("punch", body.interface(), [0.0, 1.0, 0.0], force).unwrap();
+    let problem = InterfaceProblem::new(&body, &punch, &vec![0.0; 100]).unwrap();
+    let st = ActiveSet.solve(&problem).unwrap();
+    let approach = force * (1.0 - NU * NU) / (2.0 * a * E);
+    assert!(
+        (-st.rigid[0] / approach - 1.0).abs() < 5e-3,
+        "approach {} vs {approach}",
+        -st.rigid[0]
+    );
+    let centre = force / (2.0 * PI * a * a);
+    assert!(
+        (st.pressure[0] / centre - 1.0).abs() < 5e-3,
+        "centre {} vs {centre}",
+        st.pressure[0]
+    );
+}
+
+/// A rigid cylinder (R = 100 mm) on a plane-strain half-plane, force P per unit thickness:
+/// p₀ = 2P/(πa) within 0.1 % (measured 0.001 %) and a = √(4PR/(πE*)) within 1.5 %.
+#[test]
+fn hertz_cylinder_on_half_plane() {
+    let (radius, estar, thickness) = (100.0, E / (1.0 - NU * NU), 1.0);
+    let per_length = 1000.0;
+    let a = (4.0 * per_length * radius / (PI * estar)).sqrt();
+    let body = HalfPlane::new(
+        "half-plane",
+        steel(),
+        PlaneState::Strain,
+        thickness,
+        &uniform(-1.5 * a, 1.5 * a, 300),
+        100.0,
+    )
+    .unwrap();
+    let gap: Vec<f64> = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| x[0] * x[0] / (2.0 * radius))
+        .collect();
+    let cylinder = RigidBody::pressed(
+        "cylinder",
+        body.interface(),
+        [0.0, 1.0, 0.0],
+        per_length * thickness,
+    )
+    .unwrap();
+    let problem = InterfaceProblem::new(&body, &cylinder, &gap).unwrap();
+    let st = ActiveSet.solve(&problem).unwrap();
+    let p0 = 2.0 * per_length / (PI * a);
+    assert!(
+        (st.p_max() / p0 - 1.0).abs() < 1e-3,
+        "p0 {} vs {p0}",
+        st.p_max()
+    );
+    let loaded: Vec<f64> = body
+        .interface()
+        .points
+        .iter()
+        .zip(&st.pressure)
+        .filter(|(_, p)| **p > 0.0)
+        .map(|(x, _)| x[0])
+        .collect();
+    let half_width = 0.5 * (loaded.last().unwrap() - loaded[0]);
+    assert!(
+        (half_width / a - 1.0).abs() < 0.015,
+        "a = {half_width}, Hertz {a}"
+    );
+}
+
+/// Uniform pressure p on the strip |x| < a of a plane-stress half-plane, on strips of unequal
+/// widths: the strip averages of the closed form to 1e-10, and the edge deflecting 4pa ln2/(πE)
+/// less than the centre, whatever the datum.
+#[test]
+fn flamant_strip_deflection() {
+    let (a, p) = (5.0, 100.0);
+    for datum in [10.0, 1000.0] {
+        let body = HalfPlane::new(
+            "half-plane",
+            steel(),
+            PlaneState::Stress,
+            2.0,
+            &chebyshev(a, 200),
+            datum,
+        )
+        .unwrap();
+        let force: Vec<f64> = body.interface().weights.iter().map(|w| w * p).collect();
+        let mut u = vec![0.0; 200];
+        body.apply_influence(&force, &mut u);
+        // Exact: the closed-form deflection 2p/(πE)[−t ln|t| at x + a, + t ln|t| at x − a]
+        // averaged over each strip (the body's influence is strip-averaged), with
+        // ∫ t ln|t| dt = t² ln|t|/2 − t²/4.
+        let g = |t: f64| {
+            if t == 0.0 {
+                0.0
+            } else {
+                0.5 * t * t * t.abs().ln() - 0.25 * t * t
+            }
+        };
+        let mean = |c: f64, d: f64| {
+            2.0 * p / (PI * E) * (-(g(d + a) - g(c + a)) + (g(d - a) - g(c - a))) / (d - c)
+        };
+        let edges = chebyshev(a, 200);
+        let measured = u[100] - u[199];
+        let exact = mean(edges[100], edges[101]) - mean(edges[199], edges[200]);
+        assert!(
+            (measured / exact - 1.0).abs() < 1e-10,
+            "datum {datum}: {measured} vs {exact}"
+        );
+        // The continuum limit 4pa ln2/(πE) at the edge itself: the outermost strip's average
+        // lies (h/2)·ln h short of it (1.3 % here).
+        let limit = 4.0 * p * a * 2f64.ln() / (PI * E);
+        assert!(
+            measured < limit && (measured / limit - 1.0).abs() < 0.02,
+            "{measured} vs {limit}"
+        );
+    }
+}
