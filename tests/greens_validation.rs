@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 
 use contopt::contact::{ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Qp};
-use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
+use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
 use contopt::{ElasticBody, Material, RigidBody};
 
 const E: f64 = 2.0e5;
@@ -193,4 +193,84 @@ fn flamant_strip_deflection() {
             "{measured} vs {limit}"
         );
     }
+}
+
+/// A rigid sphere on the half-space grid (40 × 40 cells over ±1.5a): p₀ and the contact
+/// radius (from the contact area) within 1 %, and the approach a²/R. Dense: the grid's
+/// fast path (FFT) is for larger grids.
+#[test]
+fn hertz_sphere_on_half_space_grid() {
+    let (radius, estar) = (100.0, E / (1.0 - NU * NU));
+    let force = 4.0 * estar / (3.0 * radius); // a = 1 mm
+    let n = 40;
+    let dx = 3.0 / n as f64;
+    let origin = -1.5 + 0.5 * dx;
+    let body = HalfSpace::grid("half-space", steel(), n, n, dx, dx, [origin, origin]).unwrap();
+    let gap: Vec<f64> = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| (x[0] * x[0] + x[1] * x[1]) / (2.0 * radius))
+        .collect();
+    let sphere = RigidBody::pressed("sphere", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
+    let problem = InterfaceProblem::new(&body, &sphere, &gap).unwrap();
+    let p0 = 3.0 * force / (2.0 * PI);
+    for solver in [
+        &ActiveSet as &dyn ContactSolver,
+        &AugmentedLagrangian::new(E * 1e4),
+    ] {
+        let st = solver.solve(&problem).unwrap();
+        let contact_area = st.pressure.iter().filter(|&&p| p > 0.0).count() as f64 * dx * dx;
+        let a = (contact_area / PI).sqrt();
+        eprintln!(
+            "{}: p0 {:+.3} %, a {:+.3} %, approach {:+.3} %",
+            solver.name(),
+            100.0 * (st.p_max() / p0 - 1.0),
+            100.0 * (a - 1.0),
+            100.0 * (-st.rigid[0] * radius - 1.0)
+        );
+        assert!(
+            (st.p_max() / p0 - 1.0).abs() < 0.01,
+            "{}: p0 {} vs {p0}",
+            solver.name(),
+            st.p_max()
+        );
+        assert!((a - 1.0).abs() < 0.02, "{}: a = {a}", solver.name());
+        assert!(
+            (-st.rigid[0] * radius - 1.0).abs() < 0.01,
+            "{}: approach {}",
+            solver.name(),
+            -st.rigid[0]
+        );
+    }
+}
+
+/// Uniform pressure on a circle of the grid: the centre deflection 2(1 − ν²)pa/E.
+#[test]
+fn uniform_circle_on_half_space_grid() {
+    let (a, p, n) = (1.0, 100.0, 60);
+    let dx = 2.4 * a / n as f64;
+    let origin = -1.2 * a + 0.5 * dx;
+    let body = HalfSpace::grid("half-space", steel(), n, n, dx, dx, [origin, origin]).unwrap();
+    let force: Vec<f64> = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| {
+            if x[0].hypot(x[1]) < a {
+                p * dx * dx
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut w = vec![0.0; n * n];
+    body.apply_influence(&force, &mut w);
+    let centre = (n / 2) * n + n / 2; // a cell next to the centre (dx/2 off in x and y)
+    let exact = 2.0 * (1.0 - NU * NU) * p * a / E;
+    assert!(
+        (w[centre] / exact - 1.0).abs() < 5e-3,
+        "{} vs {exact}",
+        w[centre]
+    );
 }

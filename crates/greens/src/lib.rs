@@ -4,6 +4,7 @@
 //!
 //! - [`AxisymmetricHalfSpace`]: rings on the surface of a half-space, each an annulus loaded
 //!   uniformly (Boussinesq; complete elliptic integrals);
+//! - [`HalfSpace`]: a regular grid of rectangular cells on the surface of a half-space (Love);
 //! - [`HalfPlane`]: strips on the edge of a half-plane in plane strain or plane stress
 //!   (Flamant).
 
@@ -13,9 +14,11 @@
 mod axisymmetric;
 pub mod elliptic;
 mod half_plane;
+mod half_space;
 
 pub use axisymmetric::AxisymmetricHalfSpace;
 pub use half_plane::{HalfPlane, PlaneState};
+pub use half_space::HalfSpace;
 
 use contopt_core::{Error, Result};
 

@@ -1,0 +1,150 @@
+use std::f64::consts::PI;
+
+use contopt_core::{ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode};
+use faer::Mat;
+
+/// An elastic half-space z ≤ 0 whose surface is divided into a regular grid of
+/// `nx` × `ny` rectangular cells of size `dx` × `dy`; the contact points are the cell
+/// centres, each cell a rectangle of uniform pressure.
+///
+/// Love's solution for a uniformly loaded rectangle (Johnson, *Contact Mechanics*, eq. 3.25)
+/// gives the deflection at any point; the grid is translation-invariant, so the influence
+/// coefficients form one kernel K(Δi, Δj), computed once (O(nx·ny) memory), and the
+/// collocated matrix is symmetric because each cell is symmetric about its centre.
+#[derive(Clone, Debug)]
+pub struct HalfSpace {
+    name: String,
+    interface: Interface,
+    nx: usize,
+    ny: usize,
+    /// K[(|Δi|, |Δj|)]: deflection at a cell centre per unit force on a cell |Δi|, |Δj| away.
+    kernel: Mat<f64>,
+}
+
+/// Deflection at (x, y) under unit pressure on the rectangle |x| < a, |y| < b, divided by
+/// (1 − ν²)/(πE) (Love 1929).
+fn love(x: f64, y: f64, a: f64, b: f64) -> f64 {
+    // t ln((s + √(s² + t²)) / (s' + √(s'² + t²))) for the four corners.
+    let term = |t: f64, s1: f64, s2: f64| {
+        if t == 0.0 {
+            0.0
+        } else {
+            t * ((s1 + s1.hypot(t)) / (s2 + s2.hypot(t))).ln()
+        }
+    };
+    term(x + a, y + b, y - b)
+        + term(y + b, x + a, x - a)
+        + term(x - a, y - b, y + b)
+        + term(y - b, x - a, x + a)
+}
+
+impl HalfSpace {
+    /// A half-space of `material` under an `nx` × `ny` grid of `dx` × `dy` [mm] cells whose
+    /// first centre is at `origin` (x, y) [mm]; points are listed x fastest.
+    pub fn grid(
+        name: impl Into<String>,
+        material: Material,
+        nx: usize,
+        ny: usize,
+        dx: f64,
+        dy: f64,
+        origin: [f64; 2],
+    ) -> Result<Self> {
+        if nx == 0 || ny == 0 {
+            return Err(Error::invalid(
+                "half_space.cells",
+                format!("{nx} x {ny}"),
+                "at least one cell each way",
+            ));
+        }
+        for (field, v) in [("half_space.dx", dx), ("half_space.dy", dy)] {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(Error::invalid(field, v, "must be positive and finite"));
+            }
+        }
+        let n = nx * ny;
+        let points = (0..n)
+            .map(|k| {
+                [
+                    origin[0] + (k % nx) as f64 * dx,
+                    origin[1] + (k / nx) as f64 * dy,
+                    0.0,
+                ]
+            })
+            .collect();
+        let interface = Interface::new(
+            Geometry::Surface,
+            points,
+            vec![dx * dy; n],
+            vec![[0.0, 0.0, 1.0]; n],
+        )?;
+        let scale = (1.0 - material.nu().powi(2)) / (PI * material.e()) / (dx * dy);
+        let kernel = Mat::from_fn(nx, ny, |i, j| {
+            scale * love(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy)
+        });
+        Ok(Self {
+            name: name.into(),
+            interface,
+            nx,
+            ny,
+            kernel,
+        })
+    }
+
+    fn coefficient(&self, k: usize, l: usize) -> f64 {
+        let (ik, jk, il, jl) = (k % self.nx, k / self.nx, l % self.nx, l / self.nx);
+        self.kernel[(ik.abs_diff(il), jk.abs_diff(jl))]
+    }
+
+    /// Number of cells (nx, ny).
+    pub fn cells(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+}
+
+impl ElasticBody for HalfSpace {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn interface(&self) -> &Interface {
+        &self.interface
+    }
+
+    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+        let n = force.len();
+        for (k, d) in displacement.iter_mut().enumerate() {
+            *d = (0..n).map(|l| self.coefficient(k, l) * force[l]).sum();
+        }
+    }
+
+    fn influence_matrix(&self) -> Mat<f64> {
+        let n = self.interface.len();
+        Mat::from_fn(n, n, |k, l| self.coefficient(k, l))
+    }
+
+    fn load_displacement(&self) -> Result<Vec<f64>> {
+        Ok(vec![0.0; self.interface.len()])
+    }
+
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &[]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Love's formula at the centre of a square 2a × 2a: (1 − ν²)pa/(πE) · 4 ln(1 + √2)·2
+    /// = 8 ln(1 + √2) a (Johnson 3.26: w₀ = 2.24 p a (1 − ν²)/E for the square of side 2a).
+    #[test]
+    fn square_centre_deflection() {
+        let w = love(0.0, 0.0, 1.0, 1.0) / PI;
+        assert!((w - 8.0 * (1.0 + 2f64.sqrt()).ln() / PI).abs() < 1e-14);
+        assert!((w - 2.24).abs() < 5e-3, "{w}");
+        // Far away it is a point force 4ab/(πr) · (1 − ν²)/E·π.
+        let far = love(1000.0, 0.0, 1.0, 1.0);
+        assert!((far / (4.0 / 1000.0) - 1.0).abs() < 1e-5, "{far}");
+    }
+}
