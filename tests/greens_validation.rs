@@ -3,7 +3,9 @@
 
 use std::f64::consts::PI;
 
-use contopt::contact::{ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Qp};
+use contopt::contact::{
+    ActiveSet, AugmentedLagrangian, ContactSolver, Indentation, InterfaceProblem, PolonskyKeer, Qp,
+};
 use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
 use contopt::{ElasticBody, Material, RigidBody};
 
@@ -272,5 +274,121 @@ fn uniform_circle_on_half_space_grid() {
         (w[centre] / exact - 1.0).abs() < 5e-3,
         "{} vs {exact}",
         w[centre]
+    );
+}
+
+/// The peers' Hertz case (shared/peers/halfspace): E = 210 GPa, ν = 0.3, a 4 mm square on an
+/// n × n grid with the axis on a cell centre, R = 100 mm, F = 4a³E*/(3R) for a = 1 mm.
+fn peer_grid(n: usize) -> (HalfSpace, Vec<f64>, f64) {
+    let (e, h) = (210e3, 4.0 / n as f64);
+    let origin = -((n / 2) as f64) * h;
+    let body = HalfSpace::grid(
+        "half-space",
+        Material::new(e, NU).unwrap(),
+        n,
+        n,
+        h,
+        h,
+        [origin, origin],
+    )
+    .unwrap();
+    let gap = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| (x[0] * x[0] + x[1] * x[1]) / 200.0)
+        .collect();
+    (body, gap, e / (1.0 - NU * NU))
+}
+
+/// Polonsky–Keer on the FFT operator against the dense active set on the same 32 × 32 grid.
+#[test]
+fn polonsky_keer_matches_the_dense_solution() {
+    let (body, gap, estar) = peer_grid(32);
+    let force = 4.0 * estar / 300.0;
+    let pk = PolonskyKeer::default()
+        .solve(&body, &gap, Indentation::Force(force))
+        .unwrap();
+    let sphere = RigidBody::pressed("sphere", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
+    let dense = ActiveSet
+        .solve(&InterfaceProblem::new(&body, &sphere, &gap).unwrap())
+        .unwrap();
+    let dp = pk
+        .pressure
+        .iter()
+        .zip(&dense.pressure)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+        / dense.p_max();
+    assert!(dp < 1e-8, "pressure differs by {dp:e} of p_max");
+    assert!(
+        (pk.rigid[0] / dense.rigid[0] - 1.0).abs() < 1e-9,
+        "approach {} vs {}",
+        pk.rigid[0],
+        dense.rigid[0]
+    );
+    assert_eq!(pk.active, dense.active);
+}
+
+/// Hertz at 256² by Polonsky–Keer: p₀ and the contact radius within 1 %, under load control
+/// and, with the Hertz approach a²/R prescribed, under displacement control.
+#[test]
+fn hertz_on_a_256_grid() {
+    let (body, gap, estar) = peer_grid(256);
+    let force = 4.0 * estar / 300.0;
+    let p0 = 3.0 * force / (2.0 * PI);
+    let h = 4.0 / 256.0;
+    for indentation in [Indentation::Force(force), Indentation::Approach(0.01)] {
+        let st = PolonskyKeer::default()
+            .solve(&body, &gap, indentation)
+            .unwrap();
+        let a = (st.active.iter().filter(|&&c| c).count() as f64 * h * h / PI).sqrt();
+        let carried = body.interface().resultant(&st.pressure);
+        eprintln!(
+            "{indentation:?}: p0 {:+.3} %, a {:+.3} %, force {:+.3} %, {} steps",
+            100.0 * (st.p_max() / p0 - 1.0),
+            100.0 * (a - 1.0),
+            100.0 * (carried / force - 1.0),
+            st.iterations
+        );
+        assert!(
+            (st.p_max() / p0 - 1.0).abs() < 0.01,
+            "{indentation:?}: p0 {} vs {p0}",
+            st.p_max()
+        );
+        assert!((a - 1.0).abs() < 0.01, "{indentation:?}: a = {a}");
+        assert!(
+            (carried / force - 1.0).abs() < 0.01,
+            "{indentation:?}: force {carried} vs {force}"
+        );
+    }
+}
+
+/// The peers' flat punch: a = 1 mm, F = 1000 N, the surface outside recessed by 1 mm; centre
+/// pressure F/(2πa²) and approach F/(2aE*) within 2 % on a 128² grid (the staircase edge).
+#[test]
+fn flat_punch_on_a_grid() {
+    let (body, _, estar) = peer_grid(128);
+    let gap: Vec<f64> = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| if x[0].hypot(x[1]) <= 1.0 { 0.0 } else { 1.0 })
+        .collect();
+    let st = PolonskyKeer::default()
+        .solve(&body, &gap, Indentation::Force(1000.0))
+        .unwrap();
+    let centre = (64 * 128) + 64;
+    let p_centre = 1000.0 / (2.0 * PI);
+    assert!(
+        (st.pressure[centre] / p_centre - 1.0).abs() < 0.02,
+        "centre {} vs {p_centre}",
+        st.pressure[centre]
+    );
+    let approach = 1000.0 / (2.0 * estar);
+    assert!(
+        (-st.rigid[0] / approach - 1.0).abs() < 0.02,
+        "approach {} vs {approach}",
+        -st.rigid[0]
     );
 }

@@ -13,6 +13,7 @@
 
 mod axisymmetric;
 pub mod elliptic;
+mod fft;
 mod half_plane;
 mod half_space;
 

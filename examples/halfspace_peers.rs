@@ -1,0 +1,120 @@
+//! Our half-space solver on the peers' cases (shared/peers/halfspace): Hertz and the flat
+//! punch on an N × N grid of a 4 mm square, E = 210 GPa, ν = 0.3, load control, one thread.
+//! Prints one JSON row per run with the peers' fields, so the tables can be joined.
+//!
+//! `cargo run --release --example halfspace_peers -- 256 512`
+
+use std::f64::consts::PI;
+use std::time::Instant;
+
+use contopt::contact::{Indentation, PolonskyKeer};
+use contopt::greens::HalfSpace;
+use contopt::{ElasticBody, Material};
+
+const E: f64 = 210e3;
+const NU: f64 = 0.3;
+const L: f64 = 4.0;
+
+/// Peak resident memory of this process so far [MiB] (Linux), or NaN.
+fn max_rss_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(f64::NAN, |kib| kib / 1024.0)
+}
+
+fn run(case: &str, n: usize) -> String {
+    let estar = E / (1.0 - NU * NU);
+    let h = L / n as f64;
+    let origin = -((n / 2) as f64) * h;
+    let t = Instant::now();
+    let body = HalfSpace::grid(
+        "half-space",
+        Material::new(E, NU).unwrap(),
+        n,
+        n,
+        h,
+        h,
+        [origin, origin],
+    )
+    .unwrap();
+    let setup = t.elapsed().as_secs_f64();
+    let (gap, force, p_ref, approach_ref): (Vec<f64>, f64, f64, f64) = match case {
+        "hertz" => {
+            let force = 4.0 * estar / (3.0 * 100.0);
+            let gap = body
+                .interface()
+                .points
+                .iter()
+                .map(|x| (x[0] * x[0] + x[1] * x[1]) / 200.0)
+                .collect();
+            (
+                gap,
+                force,
+                (6.0 * force * estar * estar / (PI.powi(3) * 1e4)).cbrt(),
+                0.01,
+            )
+        }
+        _ => {
+            let gap = body
+                .interface()
+                .points
+                .iter()
+                .map(|x| if x[0].hypot(x[1]) <= 1.0 { 0.0 } else { 1.0 })
+                .collect();
+            (gap, 1000.0, 1000.0 / (2.0 * PI), 1000.0 / (2.0 * estar))
+        }
+    };
+    let solver = PolonskyKeer {
+        tolerance: 1e-10,
+        ..PolonskyKeer::default()
+    };
+    let t = Instant::now();
+    let state = solver
+        .solve(&body, &gap, Indentation::Force(force))
+        .unwrap();
+    let seconds = t.elapsed().as_secs_f64();
+    let p = if case == "hertz" {
+        state.p_max()
+    } else {
+        state.pressure[(n / 2) * n + n / 2]
+    };
+    let contact = state.active.iter().filter(|&&c| c).count() as f64 * h * h;
+    let carried = body.interface().resultant(&state.pressure);
+    format!(
+        "{{\"tool\": \"contopt\", \"version\": \"{}\", \"case\": \"{case}\", \"bc\": \"free (non-periodic)\", \"N\": {n}, \"threads\": 1, \
+         \"seconds\": {seconds:.6}, \"setup_s\": {setup:.6}, \"iterations\": {}, \"converged\": true, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
+         \"h_mm\": {h}, \"rel_err_force\": {:e}, \"rel_err_approach\": {:e}, \"p0_ref\": {p_ref}, \"p_max\": {}, \"rel_err_p0\": {:e}, \
+         \"rel_err_contact_radius\": {:e}, \"rel_err_contact_area\": {:e}, \"status\": \"ok\"}}",
+        env!("CARGO_PKG_VERSION"),
+        state.iterations,
+        max_rss_mib(),
+        carried / force - 1.0,
+        -state.rigid[0] / approach_ref - 1.0,
+        state.p_max(),
+        p / p_ref - 1.0,
+        (contact / PI).sqrt() - 1.0,
+        contact / PI - 1.0,
+    )
+}
+
+fn main() {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![64, 128, 256, 512]
+    } else {
+        sizes
+    };
+    let rows: Vec<String> = ["hertz", "punch"]
+        .iter()
+        .flat_map(|case| sizes.iter().map(move |&n| run(case, n)))
+        .collect();
+    println!("{{\"rows\": [\n{}\n]}}", rows.join(",\n"));
+}
