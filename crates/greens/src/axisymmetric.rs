@@ -1,6 +1,6 @@
 use std::f64::consts::PI;
 
-use contopt_core::{ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode};
+use contopt_core::{Error, Geometry, Interface, Material, Result};
 use faer::Mat;
 
 use crate::{check_edges, elliptic};
@@ -17,9 +17,7 @@ use crate::{check_edges, elliptic};
 /// the solvers need, misses the flat punch's centre pressure by 3 %.)
 #[derive(Clone, Debug)]
 pub struct AxisymmetricHalfSpace {
-    name: String,
-    interface: Interface,
-    influence: Mat<f64>,
+    surface: crate::DenseSurface,
 }
 
 /// 8-point Gauss–Legendre abscissae and weights on [−1, 1].
@@ -94,45 +92,21 @@ impl AxisymmetricHalfSpace {
         // Symmetric up to quadrature error; keep it exactly so.
         let influence = Mat::from_fn(n, n, |i, j| 0.5 * (averaged[(i, j)] + averaged[(j, i)]));
         Ok(Self {
-            name: name.into(),
-            interface,
-            influence,
+            surface: crate::DenseSurface {
+                name: name.into(),
+                interface,
+                influence,
+            },
         })
     }
 }
 
-impl ElasticBody for AxisymmetricHalfSpace {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn interface(&self) -> &Interface {
-        &self.interface
-    }
-
-    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let n = force.len();
-        for (i, d) in displacement.iter_mut().enumerate() {
-            *d = (0..n).map(|j| self.influence[(i, j)] * force[j]).sum();
-        }
-    }
-
-    fn influence_matrix(&self) -> Mat<f64> {
-        self.influence.clone()
-    }
-
-    fn load_displacement(&self) -> Result<Vec<f64>> {
-        Ok(vec![0.0; self.interface.len()])
-    }
-
-    fn rigid_modes(&self) -> &[RigidMode] {
-        &[]
-    }
-}
+crate::surface_body!(AxisymmetricHalfSpace);
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use contopt_core::ElasticBody;
 
     /// Uniform pressure on a disc: the centre and edge deflections of the closed form.
     #[test]

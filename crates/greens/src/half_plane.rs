@@ -1,6 +1,6 @@
 use std::f64::consts::PI;
 
-use contopt_core::{ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode};
+use contopt_core::{Error, Geometry, Interface, Material, Result};
 use faer::Mat;
 
 use crate::check_edges;
@@ -27,9 +27,7 @@ pub enum PlaneState {
 /// Galerkin form, symmetric for any strip widths.
 #[derive(Clone, Debug)]
 pub struct HalfPlane {
-    name: String,
-    interface: Interface,
-    influence: Mat<f64>,
+    surface: crate::DenseSurface,
 }
 
 impl HalfPlane {
@@ -94,38 +92,13 @@ impl HalfPlane {
         // Symmetric up to round-off; keep it exactly so.
         let influence = Mat::from_fn(n, n, |i, j| 0.5 * (averaged[(i, j)] + averaged[(j, i)]));
         Ok(Self {
-            name: name.into(),
-            interface,
-            influence,
+            surface: crate::DenseSurface {
+                name: name.into(),
+                interface,
+                influence,
+            },
         })
     }
 }
 
-impl ElasticBody for HalfPlane {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn interface(&self) -> &Interface {
-        &self.interface
-    }
-
-    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let n = force.len();
-        for (i, d) in displacement.iter_mut().enumerate() {
-            *d = (0..n).map(|j| self.influence[(i, j)] * force[j]).sum();
-        }
-    }
-
-    fn influence_matrix(&self) -> Mat<f64> {
-        self.influence.clone()
-    }
-
-    fn load_displacement(&self) -> Result<Vec<f64>> {
-        Ok(vec![0.0; self.interface.len()])
-    }
-
-    fn rigid_modes(&self) -> &[RigidMode] {
-        &[]
-    }
-}
+crate::surface_body!(HalfPlane);

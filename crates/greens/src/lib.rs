@@ -43,3 +43,47 @@ fn check_edges(edges: &[f64], field: &str) -> Result<()> {
     }
     Ok(())
 }
+
+/// A surface body given by its dense, symmetric influence matrix, with no given loads and no
+/// rigid modes: what the ring and strip bodies share.
+#[derive(Clone, Debug)]
+struct DenseSurface {
+    name: String,
+    interface: contopt_core::Interface,
+    influence: faer::Mat<f64>,
+}
+
+/// Implements `ElasticBody` for a type with a `surface: DenseSurface` field.
+macro_rules! surface_body {
+    ($body:ty) => {
+        impl contopt_core::ElasticBody for $body {
+            fn name(&self) -> &str {
+                &self.surface.name
+            }
+
+            fn interface(&self) -> &contopt_core::Interface {
+                &self.surface.interface
+            }
+
+            fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+                let a = &self.surface.influence;
+                for (i, d) in displacement.iter_mut().enumerate() {
+                    *d = (0..force.len()).map(|j| a[(i, j)] * force[j]).sum();
+                }
+            }
+
+            fn influence_matrix(&self) -> faer::Mat<f64> {
+                self.surface.influence.clone()
+            }
+
+            fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
+                Ok(vec![0.0; self.surface.interface.len()])
+            }
+
+            fn rigid_modes(&self) -> &[contopt_core::RigidMode] {
+                &[]
+            }
+        }
+    };
+}
+pub(crate) use surface_body;
