@@ -7,9 +7,9 @@ use contopt_core::{ContactState, ElasticBody, Error, Residuals, Result};
 /// What drives the indenter into the body.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Indentation {
-    /// A total force [N] > 0 (load control): the approach is found.
+    /// A total force \[N\] > 0 (load control): the approach is found.
     Force(f64),
-    /// An approach [mm] (displacement control): the force is found.
+    /// An approach \[mm\] (displacement control): the force is found.
     Approach(f64),
 }
 
@@ -36,7 +36,7 @@ impl Default for PolonskyKeer {
 }
 
 impl PolonskyKeer {
-    /// Presses a rigid indenter, whose shape is the initial gap `gap` [mm] at the body's
+    /// Presses a rigid indenter, whose shape is the initial gap `gap` \[mm\] at the body's
     /// points, into `body` as `indentation` says. The state's `rigid` holds the indenter's
     /// motion into itself (minus the approach), as for [`crate::InterfaceProblem`].
     pub fn solve(

@@ -28,7 +28,7 @@ pub struct InterfaceProblem {
 
 impl InterfaceProblem {
     /// The problem of `body1` and `body2` touching over their common points with initial
-    /// gap `initial_gap` [mm] (h of eq. 2.1, one value per point). The two interfaces must
+    /// gap `initial_gap` \[mm\] (h of eq. 2.1, one value per point). The two interfaces must
     /// list the same points, with the same weights and opposite normals; the first mismatch is
     /// reported.
     pub fn new(
@@ -190,22 +190,22 @@ impl InterfaceProblem {
         &self.interface
     }
 
-    /// Point weights wᵢ [mm²].
+    /// Point weights wᵢ \[mm²\].
     pub fn weights(&self) -> &[f64] {
         &self.interface.weights
     }
 
-    /// Summed influence matrix A = A¹ + A² [mm/N].
+    /// Summed influence matrix A = A¹ + A² \[mm/N\].
     pub fn influence(&self) -> &Mat<f64> {
         &self.influence
     }
 
-    /// Initial gap h [mm].
+    /// Initial gap h \[mm\].
     pub fn initial_gap(&self) -> &[f64] {
         &self.initial_gap
     }
 
-    /// g = h + f¹ + f²: the gap before any contact pressure, rigid modes held [mm].
+    /// g = h + f¹ + f²: the gap before any contact pressure, rigid modes held \[mm\].
     pub fn free_gap(&self) -> Vec<f64> {
         self.initial_gap
             .iter()
@@ -219,7 +219,7 @@ impl InterfaceProblem {
         &self.rigid
     }
 
-    /// Load resultant q of each free rigid mode [N].
+    /// Load resultant q of each free rigid mode \[N\].
     pub fn load(&self) -> &[f64] {
         &self.load
     }

@@ -29,7 +29,7 @@ fn check_penalty(c: f64) -> Result<()> {
 /// condensed interface, (H + W/c) p = …, which stays well conditioned as c grows.
 #[derive(Clone, Copy, Debug)]
 pub struct Penalty {
-    /// Penalty parameter c [MPa/mm] (the paper uses c = E·10⁴).
+    /// Penalty parameter c \[MPa/mm\] (the paper uses c = E·10⁴).
     pub c: f64,
 }
 
@@ -50,7 +50,7 @@ impl ContactSolver for Penalty {
 /// solution of the QP (2.14) for any c > 0; a small c costs more Uzawa steps.
 #[derive(Clone, Copy, Debug)]
 pub struct AugmentedLagrangian {
-    /// Penalty parameter c [MPa/mm].
+    /// Penalty parameter c \[MPa/mm\].
     pub c: f64,
     /// Stop when no pressure changes by more than `tolerance`·p_max in a step.
     pub tolerance: f64,

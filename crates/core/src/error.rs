@@ -1,6 +1,6 @@
 use thiserror::Error;
 
-/// Result with the workspace's [`Error`].
+/// Result with the workspace's [`Error`](enum@Error).
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// Everything that can go wrong in contopt.

@@ -9,7 +9,7 @@ pub enum Geometry {
     Axisymmetric,
     /// Plane stress or plane strain: points are (x, y); weights carry the thickness.
     Plane {
-        /// Out-of-plane thickness b [mm].
+        /// Out-of-plane thickness b \[mm\].
         thickness: f64,
     },
     /// A surface in 3-D (half-space grids): points are (x₁, x₂, x₃); weights are areas.
@@ -39,7 +39,7 @@ pub struct Interface {
     pub geometry: Geometry,
     /// Coordinates of the points.
     pub points: Vec<[f64; 3]>,
-    /// Surface measure w_i attributed to each point [mm²]: the quadrature weight times
+    /// Surface measure w_i attributed to each point \[mm²\]: the quadrature weight times
     /// the Jacobian and 2πr (axisymmetric) or b (plane), so that ∫_Ω p dS ≈ Σ w_i p_i.
     pub weights: Vec<f64>,
     /// Unit outward normal of this body at each point.
@@ -159,12 +159,12 @@ impl Interface {
         self.points.is_empty()
     }
 
-    /// Total surface measure Σ w_i [mm²].
+    /// Total surface measure Σ w_i \[mm²\].
     pub fn area(&self) -> f64 {
         self.weights.iter().sum()
     }
 
-    /// Resultant normal force Σ w_i p_i of a pressure at the points [N].
+    /// Resultant normal force Σ w_i p_i of a pressure at the points \[N\].
     pub fn resultant(&self, pressure: &[f64]) -> f64 {
         self.weights.iter().zip(pressure).map(|(w, p)| w * p).sum()
     }

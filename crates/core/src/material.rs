@@ -10,7 +10,7 @@ pub struct Material {
 }
 
 impl Material {
-    /// Young's modulus `e` [MPa] > 0 and Poisson's ratio −1 < `nu` < 0.5.
+    /// Young's modulus `e` \[MPa\] > 0 and Poisson's ratio −1 < `nu` < 0.5.
     ///
     /// ν = 0.5 (incompressible) is rejected: the displacement formulation locks there and
     /// plane-strain and axisymmetric elasticity matrices are singular.
@@ -32,7 +32,7 @@ impl Material {
         Ok(Self { e, nu })
     }
 
-    /// Young's modulus E [MPa].
+    /// Young's modulus E \[MPa\].
     pub fn e(&self) -> f64 {
         self.e
     }

@@ -33,7 +33,7 @@ impl RigidBody {
     }
 
     /// A rigid body free to translate along the unit vector `axis` that points away from
-    /// the partner, pressed towards it by `force` [N] > 0. In axisymmetry only the axial
+    /// the partner, pressed towards it by `force` \[N\] > 0. In axisymmetry only the axial
     /// translation (0, 1, 0) is a rigid mode.
     pub fn pressed(
         name: impl Into<String>,

@@ -3,11 +3,11 @@ use serde::{Deserialize, Serialize};
 /// How well a contact solution satisfies the conditions (2.15).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Residuals {
-    /// Largest equilibrium error of a rigid mode, |Σ wᵢ pᵢ Rᵢₖ + qₖ| [N], eq. (2.10).
+    /// Largest equilibrium error of a rigid mode, |Σ wᵢ pᵢ Rᵢₖ + qₖ| \[N\], eq. (2.10).
     pub equilibrium: f64,
-    /// Largest penetration max(0, −dᵢ) [mm].
+    /// Largest penetration max(0, −dᵢ) \[mm\].
     pub penetration: f64,
-    /// Largest |pᵢ dᵢ| [MPa·mm].
+    /// Largest |pᵢ dᵢ| \[MPa·mm\].
     pub complementarity: f64,
 }
 
@@ -28,9 +28,9 @@ impl Residuals {
 /// The solution of a normal contact problem at the interface points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ContactState {
-    /// Contact pressure pᵢ ≥ 0 [MPa].
+    /// Contact pressure pᵢ ≥ 0 \[MPa\].
     pub pressure: Vec<f64>,
-    /// Gap after deformation dᵢ ≥ 0 [mm], eq. (2.7).
+    /// Gap after deformation dᵢ ≥ 0 \[mm\], eq. (2.7).
     pub gap: Vec<f64>,
     /// Rigid-mode amplitudes λ (the rigid-body approach, eq. 2.6), one per free mode.
     pub rigid: Vec<f64>,
@@ -48,7 +48,7 @@ pub struct ContactState {
 }
 
 impl ContactState {
-    /// Largest contact pressure p_max [MPa].
+    /// Largest contact pressure p_max \[MPa\].
     pub fn p_max(&self) -> f64 {
         self.pressure.iter().fold(0.0, |m, &p| m.max(p))
     }

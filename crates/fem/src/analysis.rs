@@ -9,14 +9,14 @@ pub enum Analysis {
     /// Axisymmetric about the y axis: coordinates (r, z) = (x, y), strains (ε_r, ε_z, ε_θ, γ_rz),
     /// volume element 2πr dA.
     Axisymmetric,
-    /// Plane stress (σ_zz = 0) with thickness b [mm].
+    /// Plane stress (σ_zz = 0) with thickness b \[mm\].
     PlaneStress {
-        /// Thickness b [mm].
+        /// Thickness b \[mm\].
         thickness: f64,
     },
-    /// Plane strain (ε_zz = 0), with an out-of-plane length [mm] (1 for per-unit-length results).
+    /// Plane strain (ε_zz = 0), with an out-of-plane length \[mm\] (1 for per-unit-length results).
     PlaneStrain {
-        /// Out-of-plane length [mm].
+        /// Out-of-plane length \[mm\].
         thickness: f64,
     },
 }

@@ -193,7 +193,7 @@ impl FeBody {
     }
 
     /// Nodal displacements (u_x, u_y per node) under the given loads, compressive normal
-    /// forces `force` at the interface points [N] and rigid-mode amplitudes `rigid`
+    /// forces `force` at the interface points \[N\] and rigid-mode amplitudes `rigid`
     /// (one per [`ElasticBody::rigid_modes`]).
     pub fn displacement(&self, force: &[f64], rigid: &[f64]) -> Result<Vec<f64>> {
         if force.len() != self.rows.len() {

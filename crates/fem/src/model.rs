@@ -122,7 +122,7 @@ impl FeModel {
         self.prescribe(nodes, component, 0.0)
     }
 
-    /// Prescribes `component` of `nodes` to `value` [mm].
+    /// Prescribes `component` of `nodes` to `value` \[mm\].
     pub fn prescribe(
         &mut self,
         nodes: &[usize],
@@ -139,7 +139,7 @@ impl FeModel {
         Ok(self)
     }
 
-    /// A uniform pressure `p` [MPa] on `faces`, positive when it pushes into the body.
+    /// A uniform pressure `p` \[MPa\] on `faces`, positive when it pushes into the body.
     pub fn pressure(&mut self, faces: &[Face], p: f64) -> Result<&mut Self> {
         self.check_faces(faces, "pressure.faces")?;
         if !p.is_finite() {
@@ -149,12 +149,12 @@ impl FeModel {
         Ok(self)
     }
 
-    /// A uniform traction `t` = (t_x, t_y) [MPa] on `faces`.
+    /// A uniform traction `t` = (t_x, t_y) \[MPa\] on `faces`.
     pub fn traction(&mut self, faces: &[Face], t: [f64; 2]) -> Result<&mut Self> {
         self.traction_with(faces, |_| t)
     }
 
-    /// A traction that varies along the faces: `t(x)` [MPa] at the point x.
+    /// A traction that varies along the faces: `t(x)` \[MPa\] at the point x.
     pub fn traction_with(
         &mut self,
         faces: &[Face],
@@ -177,7 +177,7 @@ impl FeModel {
         Ok(self)
     }
 
-    /// A force `f` = (f_x, f_y) [N] at `node` (in axisymmetry: the force of the whole ring).
+    /// A force `f` = (f_x, f_y) \[N\] at `node` (in axisymmetry: the force of the whole ring).
     pub fn nodal_force(&mut self, node: usize, f: [f64; 2]) -> Result<&mut Self> {
         self.check_nodes(&[node], "force.node")?;
         if !(f[0].is_finite() && f[1].is_finite()) {

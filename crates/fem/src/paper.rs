@@ -7,13 +7,13 @@ use contopt_core::Result;
 
 use crate::{Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Spacing};
 
-/// Punch radius R = L₂ [mm].
+/// Punch radius R = L₂ \[mm\].
 pub const PUNCH_RADIUS: f64 = 50.0;
-/// Height of each body [mm].
+/// Height of each body \[mm\].
 pub const HEIGHT: f64 = 50.0;
-/// Base radius (or plane half-width) [mm].
+/// Base radius (or plane half-width) \[mm\].
 pub const BASE_RADIUS: f64 = 100.0;
-/// Young's modulus [MPa].
+/// Young's modulus \[MPa\].
 pub const E: f64 = 2.0e5;
 /// Poisson's ratio.
 pub const NU: f64 = 0.3;
@@ -21,9 +21,9 @@ pub const NU: f64 = 0.3;
 /// How the punch is driven from its top face.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PunchLoad {
-    /// A uniform pressure [MPa] (Tables 1 and 3: 100 MPa); the punch floats on the base.
+    /// A uniform pressure \[MPa\] (Tables 1 and 3: 100 MPa); the punch floats on the base.
     Pressure(f64),
-    /// A prescribed axial displacement of the top face [mm], radial motion free
+    /// A prescribed axial displacement of the top face \[mm\], radial motion free
     /// (Table 2: −0.05 mm).
     Displacement(f64),
 }
@@ -58,7 +58,7 @@ impl Default for PaperMesh {
 }
 
 impl PaperMesh {
-    /// Size of the contact elements next to the punch edge [mm].
+    /// Size of the contact elements next to the punch edge \[mm\].
     pub fn edge_size(&self) -> Result<f64> {
         let s = self.radial_contact()?;
         let c = s.coords();

@@ -6,7 +6,7 @@ use crate::element::GAUSS3;
 use crate::system::{point_b, strain_rows, System};
 use crate::{Analysis, FeModel};
 
-/// Stress at one point [MPa]. In axisymmetry x = r, y = z and `zz` is the hoop stress σ_θ;
+/// Stress at one point \[MPa\]. In axisymmetry x = r, y = z and `zz` is the hoop stress σ_θ;
 /// in plane strain `zz` is the out-of-plane stress ν(σ_xx + σ_yy); in plane stress it is 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stress {

@@ -46,7 +46,7 @@ fn disc(r: f64, a: f64) -> f64 {
 }
 
 impl AxisymmetricHalfSpace {
-    /// A half-space of `material` with contact rings between the radii `edges` [mm]
+    /// A half-space of `material` with contact rings between the radii `edges` \[mm\]
     /// (increasing, from 0 or more). The surface is at z = 0 with outward normal +z.
     pub fn new(name: impl Into<String>, material: Material, edges: &[f64]) -> Result<Self> {
         check_edges(edges, "half_space.edges")?;

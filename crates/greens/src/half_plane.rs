@@ -20,7 +20,7 @@ pub enum PlaneState {
 /// Flamant: a uniform pressure p on [a, b] moves the edge by
 /// u(x) = 2p/(πE') [(b − a)(ln d₀ + 1) − (x − a) ln|x − a| + (x − b) ln|x − b|]
 /// into the body. In two dimensions displacements are fixed only up to a constant; the datum
-/// d₀ [mm] is the distance at which a point load's deflection vanishes (a length of the order
+/// d₀ \[mm\] is the distance at which a point load's deflection vanishes (a length of the order
 /// of the body's depth). Differences of displacement, and so contact pressures under a
 /// floating punch, do not depend on it. The influence coefficient Aᵢⱼ is u averaged over strip
 /// i (in closed form, with ∫ t ln|t| dt = t² ln|t|/2 − t²/4) per unit force on strip j: the
@@ -31,8 +31,8 @@ pub struct HalfPlane {
 }
 
 impl HalfPlane {
-    /// A half-plane of `material` and `thickness` [mm] in `state`, with contact strips between
-    /// `edges` [mm], deflections measured from the datum `datum` [mm] > 0.
+    /// A half-plane of `material` and `thickness` \[mm\] in `state`, with contact strips between
+    /// `edges` \[mm\], deflections measured from the datum `datum` \[mm\] > 0.
     pub fn new(
         name: impl Into<String>,
         material: Material,

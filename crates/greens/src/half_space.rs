@@ -45,8 +45,8 @@ fn love(x: f64, y: f64, a: f64, b: f64) -> f64 {
 }
 
 impl HalfSpace {
-    /// A half-space of `material` under an `nx` × `ny` grid of `dx` × `dy` [mm] cells whose
-    /// first centre is at `origin` (x, y) [mm]; points are listed x fastest.
+    /// A half-space of `material` under an `nx` × `ny` grid of `dx` × `dy` \[mm\] cells whose
+    /// first centre is at `origin` (x, y) \[mm\]; points are listed x fastest.
     pub fn grid(
         name: impl Into<String>,
         material: Material,
