@@ -100,7 +100,7 @@ impl Interface {
 
     /// For each point of `self`, the index of the point of `other` at the same place (within
     /// 10⁻⁹ of the interface's size): the identity when both list their points alike, else
-    /// found by sorting on rounded coordinates. `name`/`other_name` label the error, which
+    /// found through a spatial hash of `other`'s points. `name`/`other_name` label the error, which
     /// names the first point without a partner.
     pub fn partners(&self, other: &Interface, name: &str, other_name: &str) -> Result<Vec<usize>> {
         let n = self.len();
@@ -126,25 +126,40 @@ impl Interface {
         if (0..n).all(|i| close(self.points[i], other.points[i])) {
             return Ok((0..n).collect());
         }
-        let key = |p: [f64; 3]| p.map(|c| (c / (1e3 * tol)).round() as i64);
-        let sorted = |s: &Interface| {
-            let mut idx: Vec<usize> = (0..n).collect();
-            idx.sort_by_key(|&i| key(s.points[i]));
-            idx
-        };
-        let mut pair = vec![0; n];
-        for (&i, &j) in sorted(self).iter().zip(&sorted(other)) {
-            pair[i] = j;
+        // Hash `other`'s points into cells of side 4·tol and look for each point's partner
+        // in its own and the neighbouring cells: a match is never split by a cell boundary.
+        let cell = 4.0 * tol;
+        let key = |p: [f64; 3]| p.map(|c| (c / cell).floor() as i64);
+        let mut cells: std::collections::HashMap<[i64; 3], Vec<usize>> =
+            std::collections::HashMap::new();
+        for (j, &p) in other.points.iter().enumerate() {
+            cells.entry(key(p)).or_default().push(j);
         }
-        if let Some(i) = (0..n).find(|&i| !close(self.points[i], other.points[pair[i]])) {
-            return Err(Error::InterfaceMismatch {
-                index: i,
-                detail: format!(
-                    "point {:?} of `{name}` has no partner in `{other_name}` (nearest in order: {:?})",
-                    self.points[i],
-                    other.points[pair[i]]
-                ),
-            });
+        let mut taken = vec![false; n];
+        let mut pair = vec![0; n];
+        for (i, &p) in self.points.iter().enumerate() {
+            let k = key(p);
+            let found = (-1..=1)
+                .flat_map(|a| {
+                    (-1..=1)
+                        .flat_map(move |b| (-1..=1).map(move |c| [k[0] + a, k[1] + b, k[2] + c]))
+                })
+                .filter_map(|neighbour| cells.get(&neighbour))
+                .flatten()
+                .copied()
+                .find(|&j| !taken[j] && close(p, other.points[j]));
+            match found {
+                Some(j) => {
+                    taken[j] = true;
+                    pair[i] = j;
+                }
+                None => {
+                    return Err(Error::InterfaceMismatch {
+                        index: i,
+                        detail: format!("point {p:?} of `{name}` has no partner in `{other_name}`"),
+                    })
+                }
+            }
         }
         Ok(pair)
     }
@@ -185,6 +200,32 @@ mod tests {
         let err = Interface::new(Geometry::Surface, p, vec![1.0; 2], vec![[0.0, 2.0, 0.0]; 2])
             .unwrap_err();
         assert!(err.to_string().contains("normals[0]"), "{err}");
+    }
+
+    #[test]
+    fn partners_pair_points_listed_differently() {
+        let make = |xs: &[f64]| {
+            let points = xs.iter().map(|&x| [x, 0.0, 0.0]).collect();
+            Interface::new(
+                Geometry::Surface,
+                points,
+                vec![1.0; xs.len()],
+                vec![[0.0, 0.0, 1.0]; xs.len()],
+            )
+            .unwrap()
+        };
+        // Points straddling the hash's cell boundaries by round-off still pair.
+        let tol = 1e-9 * 3.0;
+        let a = make(&[0.0, 1.0, 2.0, 3.0, 4.0 * tol]);
+        let b = make(&[3.0, 2.0 + 1e-13, 4.0 * tol - 1e-13, 0.0, 1.0]);
+        assert_eq!(a.partners(&b, "a", "b").unwrap(), vec![3, 4, 1, 0, 2]);
+        let c = make(&[3.0, 2.0, 0.5, 0.0, 1.0]);
+        let err = a.partners(&c, "a", "c").unwrap_err().to_string();
+        // a's last point (at 4·tol) has none: 0.0 went to a's first point.
+        assert!(
+            err.contains("at point 4") && err.contains("of `a` has no partner in `c`"),
+            "{err}"
+        );
     }
 
     #[test]
