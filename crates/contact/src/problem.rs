@@ -28,9 +28,9 @@ pub struct InterfaceProblem {
 
 impl InterfaceProblem {
     /// The problem of `body1` and `body2` touching over their common points with initial
-    /// gap `initial_gap` \[mm\] (h of eq. 2.1, one value per point). The two interfaces must
-    /// list the same points, with the same weights and opposite normals; the first mismatch is
-    /// reported.
+    /// gap `initial_gap` \[mm\] (h of eq. 2.1, one value per point of `body1`). The two
+    /// interfaces must hold the same points (in any order: they are paired by position), with
+    /// the same weights and opposite normals; the first mismatch is reported.
     pub fn new(
         body1: &dyn ElasticBody,
         body2: &dyn ElasticBody,
