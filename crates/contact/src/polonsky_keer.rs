@@ -47,20 +47,7 @@ impl PolonskyKeer {
     ) -> Result<ContactState> {
         let w = &body.interface().weights;
         let n = w.len();
-        if gap.len() != n {
-            return Err(Error::invalid(
-                "initial_gap",
-                gap.len(),
-                format!("one value per interface point ({n})"),
-            ));
-        }
-        if let Some(i) = gap.iter().position(|h| !h.is_finite()) {
-            return Err(Error::invalid(
-                format!("initial_gap[{i}]"),
-                gap[i],
-                "must be finite",
-            ));
-        }
+        crate::problem::check_gap(gap, n)?;
         let area: f64 = w.iter().sum();
         let (force, approach) = match indentation {
             Indentation::Force(f) if f.is_finite() && f > 0.0 => (Some(f), 0.0),

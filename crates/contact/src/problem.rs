@@ -59,20 +59,7 @@ impl InterfaceProblem {
             }
         }
         let n = s1.len();
-        if initial_gap.len() != n {
-            return Err(Error::invalid(
-                "initial_gap",
-                initial_gap.len(),
-                format!("one value per interface point ({n})"),
-            ));
-        }
-        if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
-            return Err(Error::invalid(
-                format!("initial_gap[{i}]"),
-                initial_gap[i],
-                "must be finite",
-            ));
-        }
+        check_gap(initial_gap, n)?;
         let a2 = body2.influence_matrix();
         let influence =
             body1.influence_matrix() + Mat::from_fn(n, n, |i, j| a2[(pair[i], pair[j])]);
@@ -155,20 +142,7 @@ impl InterfaceProblem {
 
     /// The same problem with another initial gap h (the optimisation changes it).
     pub fn with_initial_gap(&self, initial_gap: &[f64]) -> Result<Self> {
-        if initial_gap.len() != self.len() {
-            return Err(Error::invalid(
-                "initial_gap",
-                initial_gap.len(),
-                format!("one value per interface point ({})", self.len()),
-            ));
-        }
-        if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
-            return Err(Error::invalid(
-                format!("initial_gap[{i}]"),
-                initial_gap[i],
-                "must be finite",
-            ));
-        }
+        check_gap(initial_gap, self.len())?;
         Ok(Self {
             initial_gap: initial_gap.to_vec(),
             ..self.clone()
@@ -282,4 +256,23 @@ impl InterfaceProblem {
             residuals,
         }
     }
+}
+
+/// Checks an initial gap: one finite value per interface point.
+pub(crate) fn check_gap(initial_gap: &[f64], n: usize) -> Result<()> {
+    if initial_gap.len() != n {
+        return Err(Error::invalid(
+            "initial_gap",
+            initial_gap.len(),
+            format!("one value per interface point ({n})"),
+        ));
+    }
+    if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
+        return Err(Error::invalid(
+            format!("initial_gap[{i}]"),
+            initial_gap[i],
+            "must be finite",
+        ));
+    }
+    Ok(())
 }

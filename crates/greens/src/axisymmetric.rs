@@ -89,14 +89,8 @@ impl AxisymmetricHalfSpace {
                 / w[i];
             scale * mean / w[j]
         });
-        // Symmetric up to quadrature error; keep it exactly so.
-        let influence = Mat::from_fn(n, n, |i, j| 0.5 * (averaged[(i, j)] + averaged[(j, i)]));
         Ok(Self {
-            surface: crate::DenseSurface {
-                name: name.into(),
-                interface,
-                influence,
-            },
+            surface: crate::DenseSurface::symmetric(name.into(), interface, &averaged),
         })
     }
 }

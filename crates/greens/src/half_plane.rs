@@ -89,14 +89,8 @@ impl HalfPlane {
         let averaged = Mat::from_fn(n, n, |i, j| {
             strip_mean(edges[i], edges[i + 1], edges[j], edges[j + 1]) / interface.weights[j]
         });
-        // Symmetric up to round-off; keep it exactly so.
-        let influence = Mat::from_fn(n, n, |i, j| 0.5 * (averaged[(i, j)] + averaged[(j, i)]));
         Ok(Self {
-            surface: crate::DenseSurface {
-                name: name.into(),
-                interface,
-                influence,
-            },
+            surface: crate::DenseSurface::symmetric(name.into(), interface, &averaged),
         })
     }
 }

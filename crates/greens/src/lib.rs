@@ -53,6 +53,25 @@ struct DenseSurface {
     influence: faer::Mat<f64>,
 }
 
+impl DenseSurface {
+    /// The body with the symmetric part of `influence`, which the Galerkin forms produce up
+    /// to quadrature or round-off error (the solvers need it exactly symmetric).
+    fn symmetric(
+        name: String,
+        interface: contopt_core::Interface,
+        influence: &faer::Mat<f64>,
+    ) -> Self {
+        let n = influence.nrows();
+        let influence =
+            faer::Mat::from_fn(n, n, |i, j| 0.5 * (influence[(i, j)] + influence[(j, i)]));
+        Self {
+            name,
+            interface,
+            influence,
+        }
+    }
+}
+
 /// Implements `ElasticBody` for a type with a `surface: DenseSurface` field.
 macro_rules! surface_body {
     ($body:ty) => {
