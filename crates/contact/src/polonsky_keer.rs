@@ -15,7 +15,10 @@ pub enum Indentation {
 
 /// Polonsky–Keer: conjugate gradients on the pressure restricted to the contact set, with
 /// the set updated every step (points that leave get p = 0, penetrating points re-enter and
-/// the conjugation restarts), and for load control the pressure rescaled to the force.
+/// the conjugation restarts), and for load control the pressure rescaled to the force. When
+/// the body offers an approximate inverse ([`ElasticBody::precondition`]; a half-space grid
+/// uses its kernel's circulant inverse) the residual is preconditioned with it and the
+/// directions conjugated by Polak–Ribière.
 /// Inner products and means are weighted by the point weights, so unequal cells are allowed.
 /// Each step costs two operator products: O(N log N) on an FFT half-space grid.
 #[derive(Clone, Copy, Debug)]
@@ -87,7 +90,8 @@ impl PolonskyKeer {
                 .collect(),
         };
         let (mut u, mut g, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let (mut g_old, mut conjugate) = (1.0, false);
+        let (mut masked, mut z, mut g_previous) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (mut gz_old, mut conjugate) = (1.0, false);
         let mut shift = -approach;
         let mut change = f64::INFINITY;
         for step in 1..=self.max_steps {
@@ -102,12 +106,37 @@ impl PolonskyKeer {
             for v in g.iter_mut() {
                 *v += shift;
             }
-            let g_norm = dot(&g, &g, &contact);
-            let beta = if conjugate { g_norm / g_old } else { 0.0 };
+            // Search direction: the residual on the contact set, preconditioned when the body
+            // offers an approximate inverse (forces per point turned into pressures, with the
+            // mean removed under load control so the force is kept), conjugated by
+            // Polak–Ribière and restarted when points re-enter.
             for i in 0..n {
-                t[i] = if contact[i] { g[i] + beta * t[i] } else { 0.0 };
+                masked[i] = if contact[i] { g[i] } else { 0.0 };
             }
-            g_old = g_norm;
+            if body.precondition(&masked, &mut z) {
+                for i in 0..n {
+                    z[i] = if contact[i] { z[i] / w[i] } else { 0.0 };
+                }
+                if force.is_some() {
+                    let z_mean = mean(&z, &contact);
+                    for i in (0..n).filter(|&i| contact[i]) {
+                        z[i] -= z_mean;
+                    }
+                }
+            } else {
+                z.copy_from_slice(&masked);
+            }
+            let gz = dot(&g, &z, &contact);
+            let beta = if conjugate {
+                ((gz - dot(&g_previous, &z, &contact)) / gz_old).max(0.0)
+            } else {
+                0.0
+            };
+            for i in 0..n {
+                t[i] = if contact[i] { z[i] + beta * t[i] } else { 0.0 };
+            }
+            gz_old = gz;
+            g_previous.copy_from_slice(&g);
             apply(&t, &mut r);
             if force.is_some() {
                 let r_mean = mean(&r, &contact);

@@ -64,6 +64,14 @@ pub trait ElasticBody {
         a
     }
 
+    /// An approximate inverse of the influence operator, for preconditioning iterative
+    /// solvers: writes to `force` forces that roughly produce `displacement`, and returns
+    /// `true`; bodies without one return `false` (the default) and leave `force` alone.
+    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        let _ = (displacement, force);
+        false
+    }
+
     /// Normal displacement into the body at the interface points under the given loads alone
     /// (no contact force): f^α of eq. (2.5).
     fn load_displacement(&self) -> Result<Vec<f64>>;

@@ -22,6 +22,9 @@ pub(crate) struct Convolution {
     py: usize,
     /// Spectrum of the padded kernel, column-major: [i·py + j] for x-frequency i.
     spectrum: Vec<Complex<f64>>,
+    /// Its reciprocal: the circulant approximation of the inverse operator (the padded
+    /// spectrum of a positive kernel such as Love's is positive).
+    inverse: Vec<Complex<f64>>,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
     forward_y: Arc<dyn Fft<f64>>,
@@ -73,6 +76,7 @@ impl Convolution {
             ny,
             py,
             spectrum: vec![],
+            inverse: vec![],
             r2c,
             c2r,
             forward_y,
@@ -100,6 +104,16 @@ impl Convolution {
         conv.forward(&mut work, &padded, px, py);
         let spectrum = work.columns.clone();
         drop(work);
+        conv.inverse = spectrum
+            .iter()
+            .map(|s| {
+                if s.re > 0.0 {
+                    Complex::new(1.0 / s.re, 0.0)
+                } else {
+                    Complex::new(0.0, 0.0)
+                }
+            })
+            .collect();
         conv.spectrum = spectrum;
         conv
     }
@@ -128,6 +142,15 @@ impl Convolution {
 
     /// output = kernel ∗ input on the nx × ny grid (x fastest).
     pub fn apply(&self, input: &[f64], output: &mut [f64]) {
+        self.convolve(&self.spectrum, input, output);
+    }
+
+    /// The circulant approximate inverse: output = kernel⁻¹ ∗ input, for preconditioning.
+    pub fn apply_inverse(&self, input: &[f64], output: &mut [f64]) {
+        self.convolve(&self.inverse, input, output);
+    }
+
+    fn convolve(&self, spectrum: &[Complex<f64>], input: &[f64], output: &mut [f64]) {
         let (nx, ny, px, py) = (self.nx, self.ny, 2 * self.nx, self.py);
         let cx = px / 2 + 1;
         let mut work = self
@@ -135,7 +158,7 @@ impl Convolution {
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
         self.forward(&mut work, input, nx, ny);
-        for (c, s) in work.columns.iter_mut().zip(&self.spectrum) {
+        for (c, s) in work.columns.iter_mut().zip(spectrum) {
             *c *= s;
         }
         let Work {

@@ -123,6 +123,11 @@ impl ElasticBody for HalfSpace {
         self.convolution.apply(force, displacement);
     }
 
+    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        self.convolution.apply_inverse(displacement, force);
+        true
+    }
+
     fn influence_matrix(&self) -> Mat<f64> {
         let n = self.interface.len();
         Mat::from_fn(n, n, |k, l| self.coefficient(k, l))
