@@ -392,3 +392,40 @@ fn flat_punch_on_a_grid() {
         -st.rigid[0]
     );
 }
+
+/// A load heavy enough (a = 1.6 mm) that the region Polonsky–Keer starts on is too small:
+/// points outside it would penetrate, the region grows, and the answer is the whole grid's,
+/// the dense active set's on the same 32 × 32 grid.
+#[test]
+fn polonsky_keer_grows_its_region() {
+    let (body, gap, estar) = peer_grid(32);
+    let force = 4.0 * 1.6f64.powi(3) * estar / 300.0;
+    let pk = PolonskyKeer::default()
+        .solve(&body, &gap, Indentation::Force(force))
+        .unwrap();
+    let sphere = RigidBody::pressed("sphere", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
+    let dense = ActiveSet
+        .solve(&InterfaceProblem::new(&body, &sphere, &gap).unwrap())
+        .unwrap();
+    let reach = body
+        .interface()
+        .points
+        .iter()
+        .zip(&pk.pressure)
+        .filter(|(_, p)| **p > 0.0)
+        .map(|(x, _)| x[0].hypot(x[1]))
+        .fold(0.0, f64::max);
+    assert!(
+        reach > 2f64.sqrt(),
+        "the contact ({reach} mm) leaves the first region (1.41 mm)"
+    );
+    let dp = pk
+        .pressure
+        .iter()
+        .zip(&dense.pressure)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+        / dense.p_max();
+    assert!(dp < 1e-8, "pressure differs by {dp:e} of p_max");
+    assert_eq!(pk.active, dense.active);
+}

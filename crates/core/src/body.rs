@@ -72,6 +72,15 @@ pub trait ElasticBody {
         false
     }
 
+    /// A body over a subset of this body's points that contains every point marked in `keep`
+    /// and whose influence product is cheaper (a grid's bounding box), with the indices of its
+    /// points among this body's; `None` (the default) when the body offers none. Iterative
+    /// solvers use it to work where contact can occur, and check the answer on the whole body.
+    fn restrict(&self, keep: &[bool]) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
+        let _ = keep;
+        None
+    }
+
     /// Normal displacement into the body at the interface points under the given loads alone
     /// (no contact force): f^α of eq. (2.5).
     fn load_displacement(&self) -> Result<Vec<f64>>;

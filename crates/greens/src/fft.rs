@@ -20,11 +20,12 @@ pub(crate) struct Convolution {
     nx: usize,
     ny: usize,
     py: usize,
-    /// Spectrum of the padded kernel, column-major: [i·py + j] for x-frequency i.
-    spectrum: Vec<Complex<f64>>,
+    /// Spectrum of the padded kernel, column-major: [i·py + j] for x-frequency i; real,
+    /// because the kernel is even.
+    spectrum: Vec<f64>,
     /// Its reciprocal: the circulant approximation of the inverse operator (the padded
     /// spectrum of a positive kernel such as Love's is positive).
-    inverse: Vec<Complex<f64>>,
+    inverse: Vec<f64>,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
     forward_y: Arc<dyn Fft<f64>>,
@@ -102,17 +103,11 @@ impl Convolution {
             .collect();
         let mut work = conv.work.lock().expect("fresh lock");
         conv.forward(&mut work, &padded, px, py);
-        let spectrum = work.columns.clone();
+        let spectrum: Vec<f64> = work.columns.iter().map(|c| c.re).collect();
         drop(work);
         conv.inverse = spectrum
             .iter()
-            .map(|s| {
-                if s.re > 0.0 {
-                    Complex::new(1.0 / s.re, 0.0)
-                } else {
-                    Complex::new(0.0, 0.0)
-                }
-            })
+            .map(|&s| if s > 0.0 { 1.0 / s } else { 0.0 })
             .collect();
         conv.spectrum = spectrum;
         conv
@@ -150,7 +145,7 @@ impl Convolution {
         self.convolve(&self.inverse, input, output);
     }
 
-    fn convolve(&self, spectrum: &[Complex<f64>], input: &[f64], output: &mut [f64]) {
+    fn convolve(&self, spectrum: &[f64], input: &[f64], output: &mut [f64]) {
         let (nx, ny, px, py) = (self.nx, self.ny, 2 * self.nx, self.py);
         let cx = px / 2 + 1;
         let mut work = self

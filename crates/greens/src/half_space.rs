@@ -27,6 +27,20 @@ pub struct HalfSpace {
     convolution: Arc<Convolution>,
 }
 
+/// The smallest length ≥ `n` (at most `max`) whose prime factors are 2, 3, 5 and 7, for
+/// which FFTs are fast.
+fn smooth_at_least(n: usize, max: usize) -> usize {
+    let smooth = |mut m: usize| {
+        for f in [2, 3, 5, 7] {
+            while m % f == 0 {
+                m /= f;
+            }
+        }
+        m == 1
+    };
+    (n.min(max)..=max).find(|&m| smooth(m)).unwrap_or(max)
+}
+
 /// Deflection at (x, y) under unit pressure on the rectangle |x| < a, |y| < b, divided by
 /// (1 − ν²)/(πE) (Love 1929).
 fn love(x: f64, y: f64, a: f64, b: f64) -> f64 {
@@ -99,6 +113,35 @@ impl HalfSpace {
         })
     }
 
+    /// The sub-grid of `cx` × `cy` cells starting at cell (`i0`, `j0`): the same kernel, a
+    /// smaller FFT.
+    fn sub_grid(&self, i0: usize, j0: usize, cx: usize, cy: usize) -> Result<(Self, Vec<usize>)> {
+        let index: Vec<usize> = (0..cx * cy)
+            .map(|k| (j0 + k / cx) * self.nx + i0 + k % cx)
+            .collect();
+        let points = index.iter().map(|&k| self.interface.points[k]).collect();
+        let weights = index.iter().map(|&k| self.interface.weights[k]).collect();
+        let interface = Interface::new(
+            Geometry::Surface,
+            points,
+            weights,
+            vec![[0.0, 0.0, 1.0]; cx * cy],
+        )?;
+        let kernel = Mat::from_fn(cx, cy, |i, j| self.kernel[(i, j)]);
+        let convolution = Arc::new(Convolution::new(cx, cy, |i, j| kernel[(i, j)]));
+        Ok((
+            Self {
+                name: self.name.clone(),
+                interface,
+                nx: cx,
+                ny: cy,
+                kernel,
+                convolution,
+            },
+            index,
+        ))
+    }
+
     fn coefficient(&self, k: usize, l: usize) -> f64 {
         let (ik, jk, il, jl) = (k % self.nx, k / self.nx, l % self.nx, l / self.nx);
         self.kernel[(ik.abs_diff(il), jk.abs_diff(jl))]
@@ -121,6 +164,34 @@ impl ElasticBody for HalfSpace {
 
     fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
         self.convolution.apply(force, displacement);
+    }
+
+    /// The bounding box of the kept cells, two cells wider each way; `None` when that box
+    /// would hold more than three quarters of the grid (too little to gain).
+    fn restrict(&self, keep: &[bool]) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
+        let kept = (0..keep.len()).filter(|&k| keep[k]);
+        let (mut lo, mut hi) = ([usize::MAX; 2], [0usize; 2]);
+        for k in kept {
+            let (i, j) = (k % self.nx, k / self.nx);
+            lo = [lo[0].min(i), lo[1].min(j)];
+            hi = [hi[0].max(i), hi[1].max(j)];
+        }
+        if lo[0] == usize::MAX {
+            return None;
+        }
+        // Two cells of margin, then sides rounded up to FFT-friendly lengths, the box shifted
+        // to stay on the grid.
+        let side = |lo: usize, hi: usize, n: usize| {
+            let len = smooth_at_least(hi - lo + 5, n);
+            let start = lo.saturating_sub(2).min(n - len);
+            (start, len)
+        };
+        let ((i0, cx), (j0, cy)) = (side(lo[0], hi[0], self.nx), side(lo[1], hi[1], self.ny));
+        if 4 * cx * cy > 3 * self.nx * self.ny {
+            return None;
+        }
+        let (sub, index) = self.sub_grid(i0, j0, cx, cy).ok()?;
+        Some((Box::new(sub), index))
     }
 
     fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
