@@ -110,7 +110,7 @@ impl PolonskyKeer {
         Ok(state)
     }
 
-    /// The iteration on the whole body.
+    /// The iteration on the whole body (`gap` already checked by [`PolonskyKeer::solve`]).
     fn solve_whole(
         &self,
         body: &dyn ElasticBody,
@@ -119,7 +119,6 @@ impl PolonskyKeer {
     ) -> Result<ContactState> {
         let w = &body.interface().weights;
         let n = w.len();
-        crate::problem::check_gap(gap, n)?;
         let area: f64 = w.iter().sum();
         let (force, approach) = match indentation {
             Indentation::Force(f) if f.is_finite() && f > 0.0 => (Some(f), 0.0),
