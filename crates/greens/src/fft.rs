@@ -1,6 +1,7 @@
-//! Zero-padded FFT convolution with a translation-invariant, even kernel on an nx × ny grid:
-//! the influence product of a half-space grid in O(N log N) time and O(N) memory (N = nx·ny),
-//! exact (not periodic) because the grid is padded to 2nx × 2ny.
+//! FFT convolution with a translation-invariant, even kernel on an nx × ny grid: the influence
+//! product of a half-space grid in O(N log N) time and O(N) memory (N = nx·ny). A free
+//! (non-periodic) grid is padded to 2nx × 2ny so the circular product is the exact linear
+//! one; a periodic grid is transformed as it is.
 
 use std::sync::{Arc, Mutex};
 
@@ -9,23 +10,27 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
 /// Buffers reused by every product (the hot loop of iterative solvers allocates nothing).
+/// Only the ny rows of the field are held in the x-transformed form, not the py rows of the
+/// padded grid: each column is padded, transformed, multiplied and transformed back on its
+/// own, which halves the largest buffer of a free grid.
 struct Work {
     row: Vec<f64>,
-    row_spectrum: Vec<Complex<f64>>,
-    columns: Vec<Complex<f64>>,
+    /// The x-spectra of the ny rows, row after row: [j·cx + i].
+    rows: Vec<Complex<f64>>,
+    column: Vec<Complex<f64>>,
     scratch: Vec<Complex<f64>>,
 }
 
 pub(crate) struct Convolution {
     nx: usize,
     ny: usize,
+    /// Transformed lengths: 2nx × 2ny (free) or nx × ny (periodic).
+    px: usize,
     py: usize,
-    /// Spectrum of the padded kernel, column-major: [i·py + j] for x-frequency i; real,
-    /// because the kernel is even.
+    /// Spectrum of the (padded) kernel, column-major: [i·py + j] for x-frequency i; real,
+    /// because the kernel is even. Its reciprocal, where positive, is the circulant
+    /// approximation of the inverse operator used for preconditioning.
     spectrum: Vec<f64>,
-    /// Its reciprocal: the circulant approximation of the inverse operator (the padded
-    /// spectrum of a positive kernel such as Love's is positive).
-    inverse: Vec<f64>,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
     forward_y: Arc<dyn Fft<f64>>,
@@ -37,19 +42,15 @@ impl std::fmt::Debug for Convolution {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "Convolution {{ {} x {} padded to {} x {} }}",
-            self.nx,
-            self.ny,
-            2 * self.nx,
-            self.py
+            "Convolution {{ {} x {} transformed as {} x {} }}",
+            self.nx, self.ny, self.px, self.py
         )
     }
 }
 
 impl Convolution {
-    /// The convolution with `kernel(|Δi|, |Δj|)` (|Δi| < nx, |Δj| < ny).
-    pub fn new(nx: usize, ny: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
-        let (px, py) = (2 * nx, 2 * ny);
+    /// Plans the transforms of a `px` × `py` grid holding an `nx` × `ny` field.
+    fn plan(nx: usize, ny: usize, px: usize, py: usize) -> Self {
         let mut real = RealFftPlanner::<f64>::new();
         let mut complex = FftPlanner::<f64>::new();
         let r2c = real.plan_fft_forward(px);
@@ -68,22 +69,29 @@ impl Convolution {
         .unwrap_or(0);
         let work = Work {
             row: vec![0.0; px],
-            row_spectrum: vec![Complex::new(0.0, 0.0); cx],
-            columns: vec![Complex::new(0.0, 0.0); cx * py],
+            rows: vec![Complex::new(0.0, 0.0); cx * ny],
+            column: vec![Complex::new(0.0, 0.0); py],
             scratch: vec![Complex::new(0.0, 0.0); scratch_len],
         };
-        let mut conv = Self {
+        Self {
             nx,
             ny,
+            px,
             py,
             spectrum: vec![],
-            inverse: vec![],
             r2c,
             c2r,
             forward_y,
             inverse_y,
             work: Mutex::new(work),
-        };
+        }
+    }
+
+    /// The exact (linear, non-periodic) convolution with `kernel(|Δi|, |Δj|)` (|Δi| < nx,
+    /// |Δj| < ny), by zero padding to 2nx × 2ny.
+    pub fn free(nx: usize, ny: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
+        let (px, py) = (2 * nx, 2 * ny);
+        let mut conv = Self::plan(nx, ny, px, py);
         // Distance along an axis on the padded (circular) grid; the middle entry is never used.
         let distance = |i: usize, n: usize| {
             if i < n {
@@ -94,85 +102,116 @@ impl Convolution {
                 None
             }
         };
-        let padded: Vec<f64> = (0..py)
-            .flat_map(|j| (0..px).map(move |i| (i, j)))
-            .map(|(i, j)| match (distance(i, nx), distance(j, ny)) {
-                (Some(a), Some(b)) => kernel(a, b),
-                _ => 0.0,
-            })
-            .collect();
+        // The padded kernel fills all py rows: transform it whole, once.
+        let cx = px / 2 + 1;
+        let mut spectra = vec![Complex::new(0.0, 0.0); cx * py];
         let mut work = conv.work.lock().expect("fresh lock");
-        conv.forward(&mut work, &padded, px, py);
-        let spectrum: Vec<f64> = work.columns.iter().map(|c| c.re).collect();
+        let Work {
+            row,
+            column,
+            scratch,
+            ..
+        } = &mut *work;
+        for j in 0..py {
+            for (i, v) in row.iter_mut().enumerate() {
+                *v = match (distance(i, nx), distance(j, ny)) {
+                    (Some(a), Some(b)) => kernel(a, b),
+                    _ => 0.0,
+                };
+            }
+            conv.r2c
+                .process_with_scratch(row, &mut spectra[j * cx..(j + 1) * cx], scratch)
+                .expect("buffer lengths match the plan");
+        }
+        let mut spectrum = vec![0.0; cx * py];
+        for i in 0..cx {
+            for (j, c) in column.iter_mut().enumerate() {
+                *c = spectra[j * cx + i];
+            }
+            conv.forward_y.process_with_scratch(column, scratch);
+            for (s, c) in spectrum[i * py..(i + 1) * py].iter_mut().zip(column.iter()) {
+                *s = c.re;
+            }
+        }
         drop(work);
-        conv.inverse = spectrum
-            .iter()
-            .map(|&s| if s > 0.0 { 1.0 / s } else { 0.0 })
-            .collect();
         conv.spectrum = spectrum;
         conv
     }
 
-    /// Transforms a real field of `width` × `rows` (x fastest, zero beyond) into
-    /// `work.columns`.
-    fn forward(&self, work: &mut Work, field: &[f64], width: usize, rows: usize) {
-        let (px, py) = (2 * self.nx, self.py);
-        let cx = px / 2 + 1;
-        for c in work.columns.iter_mut() {
-            *c = Complex::new(0.0, 0.0);
-        }
-        for j in 0..rows {
-            work.row[..width].copy_from_slice(&field[j * width..(j + 1) * width]);
-            work.row[width..].fill(0.0);
-            self.r2c
-                .process_with_scratch(&mut work.row, &mut work.row_spectrum, &mut work.scratch)
-                .expect("buffer lengths match the plan");
-            for i in 0..cx {
-                work.columns[i * py + j] = work.row_spectrum[i];
+    /// The periodic (circular) convolution on the nx × ny grid whose spectrum at the signed
+    /// frequency indices (i, j) is `spectrum(i, j)` (even in each index).
+    pub fn periodic(nx: usize, ny: usize, spectrum: impl Fn(isize, isize) -> f64) -> Self {
+        let mut conv = Self::plan(nx, ny, nx, ny);
+        let signed = |k: usize, n: usize| {
+            if 2 * k <= n {
+                k as isize
+            } else {
+                k as isize - n as isize
             }
-        }
-        self.forward_y
-            .process_with_scratch(&mut work.columns, &mut work.scratch);
+        };
+        let cx = nx / 2 + 1;
+        conv.spectrum = (0..cx)
+            .flat_map(|i| (0..ny).map(move |j| (i, j)))
+            .map(|(i, j)| spectrum(signed(i, nx), signed(j, ny)))
+            .collect();
+        conv
     }
 
     /// output = kernel ∗ input on the nx × ny grid (x fastest).
     pub fn apply(&self, input: &[f64], output: &mut [f64]) {
-        self.convolve(&self.spectrum, input, output);
+        self.convolve(|s| s, input, output);
     }
 
-    /// The circulant approximate inverse: output = kernel⁻¹ ∗ input, for preconditioning.
+    /// The circulant approximate inverse: output = kernel⁻¹ ∗ input, for preconditioning
+    /// (modes the kernel does not resist, such as the mean of a periodic grid, are dropped).
     pub fn apply_inverse(&self, input: &[f64], output: &mut [f64]) {
-        self.convolve(&self.inverse, input, output);
+        self.convolve(|s| if s > 0.0 { 1.0 / s } else { 0.0 }, input, output);
     }
 
-    fn convolve(&self, spectrum: &[f64], input: &[f64], output: &mut [f64]) {
-        let (nx, ny, px, py) = (self.nx, self.ny, 2 * self.nx, self.py);
+    fn convolve(&self, multiplier: impl Fn(f64) -> f64, input: &[f64], output: &mut [f64]) {
+        let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
         let cx = px / 2 + 1;
         let mut work = self
             .work
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
-        self.forward(&mut work, input, nx, ny);
-        for (c, s) in work.columns.iter_mut().zip(spectrum) {
-            *c *= s;
-        }
         let Work {
             row,
-            row_spectrum,
-            columns,
+            rows,
+            column,
             scratch,
         } = &mut *work;
-        self.inverse_y.process_with_scratch(columns, scratch);
-        let scale = 1.0 / (px * py) as f64;
-        for j in 0..ny {
-            for i in 0..cx {
-                row_spectrum[i] = columns[i * py + j];
+        for (j, spectrum) in rows.chunks_exact_mut(cx).enumerate() {
+            row[..nx].copy_from_slice(&input[j * nx..(j + 1) * nx]);
+            row[nx..].fill(0.0);
+            self.r2c
+                .process_with_scratch(row, spectrum, scratch)
+                .expect("buffer lengths match the plan");
+        }
+        for (i, kernel) in self.spectrum.chunks_exact(py).enumerate() {
+            for j in 0..ny {
+                column[j] = rows[j * cx + i];
             }
-            // The input of a real inverse transform has real end points.
-            row_spectrum[0].im = 0.0;
-            row_spectrum[cx - 1].im = 0.0;
+            column[ny..].fill(Complex::new(0.0, 0.0));
+            self.forward_y.process_with_scratch(column, scratch);
+            for (c, &s) in column.iter_mut().zip(kernel) {
+                *c *= multiplier(s);
+            }
+            self.inverse_y.process_with_scratch(column, scratch);
+            for j in 0..ny {
+                rows[j * cx + i] = column[j];
+            }
+        }
+        let scale = 1.0 / (px * py) as f64;
+        for (j, spectrum) in rows.chunks_exact_mut(cx).enumerate() {
+            // The input of a real inverse transform has real end points (the last one only
+            // when the length is even).
+            spectrum[0].im = 0.0;
+            if px % 2 == 0 {
+                spectrum[cx - 1].im = 0.0;
+            }
             self.c2r
-                .process_with_scratch(row_spectrum, row, scratch)
+                .process_with_scratch(spectrum, row, scratch)
                 .expect("buffer lengths match the plan");
             for i in 0..nx {
                 output[j * nx + i] = row[i] * scale;

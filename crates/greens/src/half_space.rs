@@ -16,13 +16,20 @@ use crate::fft::Convolution;
 /// collocated matrix is symmetric because each cell is symmetric about its centre.
 /// [`ElasticBody::apply_influence`] is a zero-padded FFT convolution with that kernel,
 /// O(N log N) for N cells; the dense matrix is built only when asked for.
+///
+/// [`HalfSpace::periodic`] repeats the grid in both directions instead (rough surfaces, a
+/// representative patch of a larger contact): the product is the circular convolution with
+/// the spectral kernel 2/(E*·|q|), no padding, and a uniform pressure moves the surface by an
+/// undetermined constant, which the approach absorbs.
 #[derive(Clone, Debug)]
 pub struct HalfSpace {
     name: String,
     interface: Interface,
     nx: usize,
     ny: usize,
-    /// K[(|Δi|, |Δj|)]: deflection at a cell centre per unit force on a cell |Δi|, |Δj| away.
+    periodic: bool,
+    /// K[(Δi, Δj)]: deflection at a cell centre per unit force on a cell Δi, Δj away; the
+    /// index is |Δ| on a free grid and Δ mod n on a periodic one.
     kernel: Mat<f64>,
     convolution: Arc<Convolution>,
 }
@@ -70,6 +77,74 @@ impl HalfSpace {
         dy: f64,
         origin: [f64; 2],
     ) -> Result<Self> {
+        let interface = Self::cells_interface(nx, ny, dx, dy, origin)?;
+        let scale = (1.0 - material.nu().powi(2)) / (PI * material.e()) / (dx * dy);
+        let kernel = Mat::from_fn(nx, ny, |i, j| {
+            scale * love(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy)
+        });
+        let convolution = Arc::new(Convolution::free(nx, ny, |i, j| kernel[(i, j)]));
+        Ok(Self {
+            name: name.into(),
+            interface,
+            nx,
+            ny,
+            periodic: false,
+            kernel,
+            convolution,
+        })
+    }
+
+    /// A half-space whose surface repeats the `nx` × `ny` grid of `dx` × `dy` \[mm\] cells in
+    /// both directions (period nx·dx × ny·dy), first centre at `origin`: the influence is the
+    /// spectral kernel û(q) = 2/(E*·|q|)·p̂(q), E* = E/(1 − ν²), on the grid's frequencies, with
+    /// the mean (q = 0) left out. Exact for band-limited pressures (a sinusoid gives its
+    /// Westergaard deflection to round-off); it cannot be restricted, since a part of a
+    /// periodic surface is not periodic.
+    pub fn periodic(
+        name: impl Into<String>,
+        material: Material,
+        nx: usize,
+        ny: usize,
+        dx: f64,
+        dy: f64,
+        origin: [f64; 2],
+    ) -> Result<Self> {
+        let interface = Self::cells_interface(nx, ny, dx, dy, origin)?;
+        let estar = material.e() / (1.0 - material.nu().powi(2));
+        let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+        let convolution = Arc::new(Convolution::periodic(nx, ny, |i, j| {
+            let q = 2.0 * PI * ((i as f64 / lx).powi(2) + (j as f64 / ly).powi(2)).sqrt();
+            if q > 0.0 {
+                2.0 / (estar * q * dx * dy)
+            } else {
+                0.0
+            }
+        }));
+        // The kernel in space, for the dense matrix: the response to a unit force on cell 0.
+        let mut impulse = vec![0.0; nx * ny];
+        impulse[0] = 1.0;
+        let mut response = vec![0.0; nx * ny];
+        convolution.apply(&impulse, &mut response);
+        let kernel = Mat::from_fn(nx, ny, |i, j| response[j * nx + i]);
+        Ok(Self {
+            name: name.into(),
+            interface,
+            nx,
+            ny,
+            periodic: true,
+            kernel,
+            convolution,
+        })
+    }
+
+    /// The checked cell-centre interface of a grid, x fastest.
+    fn cells_interface(
+        nx: usize,
+        ny: usize,
+        dx: f64,
+        dy: f64,
+        origin: [f64; 2],
+    ) -> Result<Interface> {
         if nx == 0 || ny == 0 {
             return Err(Error::invalid(
                 "half_space.cells",
@@ -92,25 +167,12 @@ impl HalfSpace {
                 ]
             })
             .collect();
-        let interface = Interface::new(
+        Interface::new(
             Geometry::Surface,
             points,
             vec![dx * dy; n],
             vec![[0.0, 0.0, 1.0]; n],
-        )?;
-        let scale = (1.0 - material.nu().powi(2)) / (PI * material.e()) / (dx * dy);
-        let kernel = Mat::from_fn(nx, ny, |i, j| {
-            scale * love(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy)
-        });
-        let convolution = Arc::new(Convolution::new(nx, ny, |i, j| kernel[(i, j)]));
-        Ok(Self {
-            name: name.into(),
-            interface,
-            nx,
-            ny,
-            kernel,
-            convolution,
-        })
+        )
     }
 
     /// The sub-grid of `cx` × `cy` cells starting at cell (`i0`, `j0`): the same kernel, a
@@ -128,13 +190,14 @@ impl HalfSpace {
             vec![[0.0, 0.0, 1.0]; cx * cy],
         )?;
         let kernel = Mat::from_fn(cx, cy, |i, j| self.kernel[(i, j)]);
-        let convolution = Arc::new(Convolution::new(cx, cy, |i, j| kernel[(i, j)]));
+        let convolution = Arc::new(Convolution::free(cx, cy, |i, j| kernel[(i, j)]));
         Ok((
             Self {
                 name: self.name.clone(),
                 interface,
                 nx: cx,
                 ny: cy,
+                periodic: false,
                 kernel,
                 convolution,
             },
@@ -144,7 +207,11 @@ impl HalfSpace {
 
     fn coefficient(&self, k: usize, l: usize) -> f64 {
         let (ik, jk, il, jl) = (k % self.nx, k / self.nx, l % self.nx, l / self.nx);
-        self.kernel[(ik.abs_diff(il), jk.abs_diff(jl))]
+        if self.periodic {
+            self.kernel[((ik + self.nx - il) % self.nx, (jk + self.ny - jl) % self.ny)]
+        } else {
+            self.kernel[(ik.abs_diff(il), jk.abs_diff(jl))]
+        }
     }
 
     /// Number of cells (nx, ny).
@@ -167,8 +234,12 @@ impl ElasticBody for HalfSpace {
     }
 
     /// The bounding box of the kept cells, two cells wider each way; `None` when that box
-    /// would hold more than three quarters of the grid (too little to gain).
+    /// would hold more than three quarters of the grid (too little to gain), and always on a
+    /// periodic grid.
     fn restrict(&self, keep: &[bool]) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
+        if self.periodic {
+            return None;
+        }
         let kept = (0..keep.len()).filter(|&k| keep[k]);
         let (mut lo, mut hi) = ([usize::MAX; 2], [0usize; 2]);
         for k in kept {
@@ -217,33 +288,59 @@ impl ElasticBody for HalfSpace {
 mod tests {
     use super::*;
 
-    /// The FFT product agrees with the dense matrix on an irregular grid.
+    /// The FFT product agrees with the dense matrix on an irregular grid, free and periodic.
     #[test]
     fn fft_product_matches_dense() {
-        let body = HalfSpace::grid(
-            "hs",
-            Material::new(2e5, 0.3).unwrap(),
-            23,
-            17,
-            0.1,
-            0.15,
-            [0.0, 0.0],
-        )
-        .unwrap();
-        let n = 23 * 17;
-        let force: Vec<f64> = (0..n)
-            .map(|k| ((k * 37 % 101) as f64 - 40.0).sin() + 1.5)
+        let steel = Material::new(2e5, 0.3).unwrap();
+        let (nx, ny) = (23, 17);
+        for body in [
+            HalfSpace::grid("hs", steel, nx, ny, 0.1, 0.15, [0.0, 0.0]).unwrap(),
+            HalfSpace::periodic("hs", steel, nx, ny, 0.1, 0.15, [0.0, 0.0]).unwrap(),
+        ] {
+            let n = nx * ny;
+            let force: Vec<f64> = (0..n)
+                .map(|k| ((k * 37 % 101) as f64 - 40.0).sin() + 1.5)
+                .collect();
+            let mut fast = vec![0.0; n];
+            body.apply_influence(&force, &mut fast);
+            let dense = body.influence_matrix();
+            let scale = fast.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for k in 0..n {
+                let exact: f64 = (0..n).map(|l| dense[(k, l)] * force[l]).sum();
+                assert!(
+                    (fast[k] - exact).abs() < 1e-10 * scale,
+                    "periodic {}, cell {k}: {} vs {exact}",
+                    body.periodic,
+                    fast[k]
+                );
+            }
+        }
+    }
+
+    /// On a periodic grid a pressure cos(q·x) deflects the surface by 2/(E*q)·cos(q·x), the
+    /// half-space's exact response to a sinusoid, to round-off; a uniform pressure does not
+    /// move it.
+    #[test]
+    fn periodic_sinusoid_deflection() {
+        let steel = Material::new(2e5, 0.3).unwrap();
+        let estar = 2e5 / (1.0 - 0.09);
+        let (nx, ny, dx, dy) = (30, 12, 0.05, 0.2);
+        let body = HalfSpace::periodic("hs", steel, nx, ny, dx, dy, [0.0, 0.0]).unwrap();
+        let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+        let (qx, qy) = (2.0 * PI * 3.0 / lx, 2.0 * PI * 2.0 / ly);
+        let q = qx.hypot(qy);
+        let pts = &body.interface().points;
+        let force: Vec<f64> = pts
+            .iter()
+            .map(|x| (7.0 + (qx * x[0] + qy * x[1]).cos()) * dx * dy)
             .collect();
-        let mut fast = vec![0.0; n];
-        body.apply_influence(&force, &mut fast);
-        let dense = body.influence_matrix();
-        let scale = fast.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for k in 0..n {
-            let exact: f64 = (0..n).map(|l| dense[(k, l)] * force[l]).sum();
+        let mut u = vec![0.0; nx * ny];
+        body.apply_influence(&force, &mut u);
+        for (x, u) in pts.iter().zip(&u) {
+            let exact = 2.0 / (estar * q) * (qx * x[0] + qy * x[1]).cos();
             assert!(
-                (fast[k] - exact).abs() < 1e-10 * scale,
-                "cell {k}: {} vs {exact}",
-                fast[k]
+                (u - exact).abs() < 1e-12 * 2.0 / (estar * q),
+                "{u} vs {exact}"
             );
         }
     }
