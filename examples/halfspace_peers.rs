@@ -1,8 +1,9 @@
 //! Our half-space solver on the peers' cases (shared/peers/halfspace): Hertz and the flat
 //! punch on an N × N grid of a 4 mm square, E = 210 GPa, ν = 0.3, load control, one thread.
-//! Prints one JSON row per run with the peers' fields, so the tables can be joined.
+//! Prints one JSON row per run with the peers' fields, so the tables can be joined; each run
+//! is a fresh process. Sizes and, optionally, the cases (`hertz`, `punch`) are arguments:
 //!
-//! `cargo run --release --example halfspace_peers -- 256 512`
+//! `cargo run --release --example halfspace_peers -- 256 512 hertz`
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -103,18 +104,45 @@ fn run(case: &str, n: usize) -> String {
 }
 
 fn main() {
-    let sizes: Vec<usize> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    // One run in this process: `--one <case> <N>` (what the driver below spawns).
+    if let [flag, case, n] = args.as_slice() {
+        if flag == "--one" {
+            println!("{}", run(case, n.parse().expect("N is a number")));
+            return;
+        }
+    }
+    // Each run in a fresh process, as the peers' harness does, so the peak memory is that
+    // run's own.
+    let sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
     let sizes = if sizes.is_empty() {
         vec![64, 128, 256, 512]
     } else {
         sizes
     };
-    let rows: Vec<String> = ["hertz", "punch"]
-        .iter()
-        .flat_map(|case| sizes.iter().map(move |&n| run(case, n)))
+    let cases: Vec<&str> = ["hertz", "punch"]
+        .into_iter()
+        .filter(|c| args.iter().all(|a| a.parse::<usize>().is_ok()) || args.iter().any(|a| a == c))
         .collect();
+    let exe = std::env::current_exe().expect("the example's own path");
+    let mut rows = Vec::new();
+    for case in cases {
+        for &n in &sizes {
+            let out = std::process::Command::new(&exe)
+                .args(["--one", case, &n.to_string()])
+                .output()
+                .expect("the example can run itself");
+            let row = String::from_utf8_lossy(&out.stdout).trim().to_string();
+            eprintln!(
+                "{case} N = {n}: {}",
+                if out.status.success() {
+                    "done"
+                } else {
+                    "failed"
+                }
+            );
+            rows.push(row);
+        }
+    }
     println!("{{\"rows\": [\n{}\n]}}", rows.join(",\n"));
 }

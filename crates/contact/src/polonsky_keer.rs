@@ -66,27 +66,37 @@ impl PolonskyKeer {
         while let Some((part, index)) = body.restrict(&keep) {
             let part_gap: Vec<f64> = index.iter().map(|&k| gap[k]).collect();
             let state = self.solve_whole(part.as_ref(), &part_gap, indentation)?;
+            drop((part, part_gap));
             steps += state.iterations;
+            // The part's answer on the whole body: forces, then (in place) the gaps.
             let w = &body.interface().weights;
             let mut pressure = vec![0.0; n];
-            let mut inside = vec![false; n];
             for (a, &k) in index.iter().enumerate() {
                 pressure[k] = state.pressure[a];
+            }
+            let shift = state.rigid[0];
+            drop(state);
+            let force: Vec<f64> = pressure.iter().zip(w).map(|(p, w)| p * w).collect();
+            let carried: f64 = force.iter().sum();
+            let mut d = vec![0.0; n];
+            body.apply_influence(&force, &mut d);
+            drop(force);
+            let mut scale = 0.0f64;
+            for (d, h) in d.iter_mut().zip(gap) {
+                scale = scale.max(h.abs() + d.abs());
+                *d += h + shift;
+            }
+            let mut inside = vec![false; n];
+            for &k in &index {
                 inside[k] = true;
             }
-            let force: Vec<f64> = pressure.iter().zip(w).map(|(p, w)| p * w).collect();
-            let mut u = vec![0.0; n];
-            body.apply_influence(&force, &mut u);
-            let shift = state.rigid[0];
-            let d: Vec<f64> = (0..n).map(|k| gap[k] + u[k] + shift).collect();
-            let scale = (0..n).fold(0.0f64, |m, k| m.max(gap[k].abs() + u[k].abs()));
             let penetrating: Vec<usize> = (0..n)
                 .filter(|&k| !inside[k] && d[k] < -1e-12 * scale)
                 .collect();
             if penetrating.is_empty() {
                 let active = pressure.iter().map(|&p| p > 0.0).collect();
                 let equilibrium = match indentation {
-                    Indentation::Force(f) => (force.iter().sum::<f64>() - f).abs(),
+                    Indentation::Force(f) => (carried - f).abs(),
                     Indentation::Approach(_) => 0.0,
                 };
                 let residuals = Residuals::new(equilibrium, &pressure, &d);
