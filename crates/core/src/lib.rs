@@ -6,6 +6,7 @@
 
 mod body;
 mod error;
+mod gap_shape;
 mod interface;
 mod material;
 mod rigid;
@@ -13,6 +14,7 @@ mod state;
 
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
+pub use gap_shape::GapShape;
 pub use interface::{Geometry, Interface, Region};
 pub use material::Material;
 pub use rigid::RigidBody;

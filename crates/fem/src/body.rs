@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use contopt_core::{ElasticBody, Error, Interface, Result, RigidMode};
+use contopt_core::{ElasticBody, Error, GapShape, Interface, Result, RigidMode};
 use faer::Mat;
 
 use crate::element::GAUSS3;
@@ -89,6 +89,7 @@ pub struct FeBody {
     influence: Mat<f64>,
     load_displacement: Vec<f64>,
     rigid_modes: Vec<RigidMode>,
+    gap_shape: GapShape,
     stats: BuildStats,
 }
 
@@ -122,16 +123,40 @@ impl FeBody {
         let condensation_start = Instant::now();
 
         let (mut points, mut weights, mut normals, mut rows) = (vec![], vec![], vec![], vec![]);
+        let mut shape_rows = vec![];
         for &f in contact {
+            let nodes = model.mesh.face_nodes(f);
             for &(s, w) in &GAUSS3 {
                 let fp = model.face_point(f, s);
                 points.push([fp.x[0], fp.x[1], 0.0]);
                 weights.push(w * fp.jacobian * model.analysis.measure(fp.x[0]));
                 normals.push([fp.normal[0], fp.normal[1], 0.0]);
                 rows.push(PointRow::new(&model, f, &fp));
+                shape_rows.push(
+                    (0..3)
+                        .map(|k| {
+                            (
+                                face_nodes
+                                    .binary_search(&nodes[k])
+                                    .expect("a contact face node"),
+                                fp.shape[k],
+                            )
+                        })
+                        .collect(),
+                );
             }
         }
         let interface = Interface::new(model.analysis.geometry(), points, weights, normals)?;
+        let gap_shape = GapShape::new(
+            face_nodes
+                .iter()
+                .map(|&k| {
+                    let x = model.mesh.nodes()[k];
+                    [x[0], x[1], 0.0]
+                })
+                .collect(),
+            shape_rows,
+        )?;
 
         // A = L K⁻¹ Lᵀ from the face block of K⁻¹.
         let tail = system.factor.tail_inverse();
@@ -183,8 +208,17 @@ impl FeBody {
             influence,
             load_displacement,
             rigid_modes,
+            gap_shape,
             stats,
         })
+    }
+
+    /// The change of initial gap described by its values at the contact face's nodes and the
+    /// faces' quadratic shape functions (Δh = L(x)Δh, §4): the map Q from the nodes to the
+    /// Gauss points. Displacements are interpolated the same way, so a gap change that closes
+    /// a displacement field exactly at the points exists.
+    pub fn gap_shape(&self) -> &GapShape {
+        &self.gap_shape
     }
 
     /// The model.
