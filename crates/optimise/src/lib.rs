@@ -1,0 +1,221 @@
+//! Control of the contact pressure and optimisation of the initial gap (§3 of Páczelt 1994):
+//! find the change of initial gap Δh ≥ 0 that minimises p_max subject to p(x) ≤ v(x)·p_max.
+//!
+//! One [`Optimisation`] serves every interface problem, whatever its region: the points of Ω_v
+//! (d = 0 and χ = v·p_max − p = 0 prescribed), of Ω_nv (d ≥ 0 and χ ≥ 0 only) and outside Ω_opt
+//! are tags ([`Region`]), and the gap change reaches the points through the map Q of a
+//! [`GapShape`] (eq. 3.3: Δh_nv = f(Δh)). It solves
+//! - by the iteration of §3.2, steps 1–7, with a contact solver inside
+//!   ([`Optimisation::iterate`]), under a given load (p_max from equilibrium, the case of
+//!   eq. 4.1 and Tables 1 and 3) or a given displacement (p_max from the contact pressure,
+//!   Table 2), stopping on TOLH (4.2);
+//! - or as the restricted linear programme (3.5) ([`Optimisation::linear_programme`]).
+
+// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod controller;
+mod iteration;
+mod lp;
+
+pub use controller::{Constant, Controller, Product, Profile};
+pub use iteration::{Iteration, Mode};
+
+use contopt_contact::InterfaceProblem;
+use contopt_core::{Error, GapShape, Region, Result};
+
+/// The result of an optimisation.
+#[derive(Clone, Debug)]
+pub struct Optimum {
+    /// The least largest pressure p_max \[MPa\].
+    pub p_max: f64,
+    /// Gap change at the design nodes of the [`GapShape`], Δh ≥ 0, zero at the reference
+    /// node \[mm\].
+    pub dh: Vec<f64>,
+    /// Gap change at the interface points, QΔh \[mm\].
+    pub gap_change: Vec<f64>,
+    /// The pressure at the interface points \[MPa\]: v·p_max on Ω_v.
+    pub pressure: Vec<f64>,
+    /// Gap after deformation at the interface points \[mm\].
+    pub gap: Vec<f64>,
+    /// Rigid-mode amplitudes λ.
+    pub rigid: Vec<f64>,
+    /// The rows of the iteration of §3.2 (Table 2's columns); one row for the LP, its number
+    /// of restrictions in `k`.
+    pub iterations: Vec<Iteration>,
+}
+
+impl Optimum {
+    /// The largest gap change Δh_max \[mm\].
+    pub fn dh_max(&self) -> f64 {
+        self.dh.iter().fold(0.0, |m: f64, v| m.max(*v))
+    }
+}
+
+/// The data of an optimisation: the interface problem, the gap map Q, the controller's values
+/// and the regions.
+pub struct Optimisation<'a> {
+    problem: &'a InterfaceProblem,
+    shape: &'a GapShape,
+    /// v(xᵢ) at every point (used on Ω_opt).
+    v: Vec<f64>,
+    regions: Vec<Region>,
+    /// The design node N of §3.2 step 6 where the gap does not change.
+    reference: usize,
+}
+
+impl<'a> Optimisation<'a> {
+    /// The optimisation of `problem` with gap changes described by `shape` and pressures
+    /// controlled by `controller`. The regions are the problem interface's tags; when no point
+    /// is tagged Ω_v or Ω_nv, the whole interface is Ω_v (the one-dimensional case of §3.2).
+    /// The reference node N, where the gap does not change, is the design node nearest the
+    /// origin (the axis or the plane of symmetry); see [`Optimisation::with_reference`].
+    pub fn new(
+        problem: &'a InterfaceProblem,
+        shape: &'a GapShape,
+        controller: &dyn Controller,
+    ) -> Result<Self> {
+        let iface = problem.interface();
+        if shape.len() != iface.len() {
+            return Err(Error::invalid(
+                "gap_shape",
+                format!("{} rows", shape.len()),
+                format!("one row per interface point ({})", iface.len()),
+            ));
+        }
+        let v: Vec<f64> = iface.points.iter().map(|&x| controller.value(x)).collect();
+        let mut regions = iface.regions.clone();
+        if regions.iter().all(|r| *r == Region::Contact) {
+            regions.fill(Region::OmegaV);
+        }
+        let nearest = (0..shape.nodes().len())
+            .min_by(|&a, &b| {
+                let r = |k: usize| shape.nodes()[k].iter().map(|c| c * c).sum::<f64>();
+                r(a).total_cmp(&r(b))
+            })
+            .unwrap_or(0);
+        let opt = Self {
+            problem,
+            shape,
+            v,
+            regions,
+            reference: nearest,
+        };
+        opt.check()?;
+        Ok(opt)
+    }
+
+    /// Sets the regions explicitly, one per interface point.
+    pub fn with_regions(mut self, regions: Vec<Region>) -> Result<Self> {
+        if regions.len() != self.v.len() {
+            return Err(Error::invalid(
+                "regions",
+                regions.len(),
+                format!("one per interface point ({})", self.v.len()),
+            ));
+        }
+        self.regions = regions;
+        self.check()?;
+        Ok(self)
+    }
+
+    /// Sets the reference node N (an index of the gap shape's nodes) where Δh = 0.
+    pub fn with_reference(mut self, node: usize) -> Result<Self> {
+        if node >= self.shape.nodes().len() {
+            return Err(Error::invalid(
+                "reference",
+                node,
+                format!("a design node below {}", self.shape.nodes().len()),
+            ));
+        }
+        self.reference = node;
+        self.check()?;
+        Ok(self)
+    }
+
+    /// The controller's values, the regions and the design nodes are consistent.
+    fn check(&self) -> Result<()> {
+        let pts = &self.problem.interface().points;
+        for (i, &v) in self.v.iter().enumerate() {
+            if self.regions[i] != Region::Contact && !(0.0..=1.0).contains(&v) {
+                return Err(Error::invalid(
+                    format!("controller at point {i} {:?}", pts[i]),
+                    v,
+                    "must lie in [0, 1]",
+                ));
+            }
+        }
+        let omega_v = self.omega_v();
+        if omega_v.is_empty() {
+            return Err(Error::invalid(
+                "regions",
+                "no Ω_v point",
+                "Ω_v must not be empty",
+            ));
+        }
+        if omega_v.iter().all(|&i| self.v[i] == 0.0) {
+            return Err(Error::invalid(
+                "controller",
+                0.0,
+                "vanishes on all of Ω_v: no pressure is allowed",
+            ));
+        }
+        for i in 0..self.v.len() {
+            let sum: f64 = self.shape.row(i).iter().map(|(_, w)| w).sum();
+            if (sum - 1.0).abs() > 1e-9 {
+                return Err(Error::invalid(
+                    format!("gap_shape.rows[{i}]"),
+                    sum,
+                    "the weights of a row must sum to 1 (a uniform Δh is a uniform gap change)",
+                ));
+            }
+        }
+        let mut tied = vec![false; self.shape.nodes().len()];
+        for &i in &omega_v {
+            for &(k, w) in self.shape.row(i) {
+                tied[k] |= w != 0.0;
+            }
+        }
+        if let Some(k) = tied.iter().position(|t| !t) {
+            return Err(Error::invalid(
+                format!("gap_shape.nodes[{k}]"),
+                format!("{:?}", self.shape.nodes()[k]),
+                "is not tied to any Ω_v point, so its gap change is undetermined",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Points of Ω_v.
+    fn omega_v(&self) -> Vec<usize> {
+        (0..self.v.len())
+            .filter(|&i| self.regions[i] == Region::OmegaV)
+            .collect()
+    }
+
+    /// The design nodes other than the reference.
+    pub(crate) fn free_nodes(&self) -> Vec<usize> {
+        (0..self.shape.nodes().len())
+            .filter(|&k| k != self.reference)
+            .collect()
+    }
+
+    /// Fails when Δh is negative beyond round-off at some node: the reference node is not
+    /// where the gap change is least, and (3.5) requires Δh ≥ 0.
+    fn check_sign(&self, dh: &[f64]) -> Result<()> {
+        let top = dh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if let Some(k) = dh.iter().position(|&v| v < -1e-6 * top) {
+            return Err(Error::invalid(
+                "reference",
+                format!("{:?}", self.shape.nodes()[self.reference]),
+                format!(
+                    "the gap change is negative ({:.4e} mm) at node {k} {:?}: take as reference \
+                     the node where it is least",
+                    dh[k],
+                    self.shape.nodes()[k]
+                ),
+            ));
+        }
+        Ok(())
+    }
+}

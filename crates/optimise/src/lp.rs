@@ -1,0 +1,202 @@
+//! The restricted linear programme (3.5) by clarabel.
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+};
+use contopt_core::{Error, Region, Result};
+
+use crate::{Iteration, Optimisation, Optimum};
+
+/// A constraint row: its (column, coefficient) entries and its right-hand side.
+type Row = (Vec<(usize, f64)>, f64);
+
+impl Optimisation<'_> {
+    /// The linear programme (3.5): minimise p_max over p, Δh and λ subject to equilibrium
+    /// Rᵀ W p = −q, p ≥ 0, χ = v·p_max − p ≥ 0 on Ω_opt (= 0 on Ω_v),
+    /// d = g + A W p + R λ + QΔh ≥ 0 (= 0 on Ω_v), Δh ≥ 0 and Δh = 0 at the reference node.
+    ///
+    /// The complementarity pᵀd = 0 is kept by restriction: the programme is solved without
+    /// it, every point outside Ω_v that carries pressure with an open gap is then restricted
+    /// to d = 0, and the programme re-solved, until none is left (at most one pass per point).
+    /// Without a floating body the displacement is given, and N fixes the shape: Δh = 0 there.
+    pub fn linear_programme(&self) -> Result<Optimum> {
+        let problem = self.problem;
+        let n = problem.len();
+        let (w, a, rigid, q) = (
+            problem.weights(),
+            problem.influence(),
+            problem.rigid(),
+            problem.load(),
+        );
+        let r = q.len();
+        let g = problem.free_gap();
+        let free = self.free_nodes();
+        let nf = free.len();
+        // Units: P for pressures, G = P·max(A W 1) for gaps, so the columns are of order one.
+        let compliance = (0..n)
+            .map(|i| (0..n).map(|j| a[(i, j)] * w[j]).sum::<f64>().abs())
+            .fold(0.0, f64::max);
+        let area: f64 = w.iter().sum();
+        let unit_p = if r > 0 {
+            q.iter().map(|x| x.abs()).fold(0.0, f64::max) / area
+        } else {
+            g.iter().map(|x| x.abs()).fold(0.0, f64::max) / compliance
+        };
+        if !(unit_p > 0.0 && unit_p.is_finite()) {
+            return Err(Error::invalid(
+                "loads",
+                unit_p,
+                "neither a load nor an overlap presses the bodies together",
+            ));
+        }
+        let unit_g = unit_p * compliance;
+        let rigid_scale = (0..r)
+            .map(|m| (0..n).map(|i| rigid[(i, m)].abs()).fold(0.0, f64::max))
+            .collect::<Vec<_>>();
+        // Variables: p (n) | p_max | Δh on the free nodes (nf) | λ (r).
+        let (ip, ih, il) = (n + 1, n + 1, n + 1 + nf);
+        let nvar = il + r;
+        let mut column_of = vec![usize::MAX; self.shape.nodes().len()];
+        for (c, &k) in free.iter().enumerate() {
+            column_of[k] = ih + c;
+        }
+        let omega_v = |i: usize| self.regions[i] == Region::OmegaV;
+        let in_opt = |i: usize| self.regions[i] != Region::Contact;
+        let mut restricted: Vec<bool> = (0..n).map(omega_v).collect();
+        let mut passes = 0;
+        loop {
+            passes += 1;
+            // Rows as (coefficients, b); zero-cone rows first, then non-negative ones:
+            // zero: a·x = b; non-negative: b − a·x ≥ 0.
+            let (mut zero, mut nonneg): (Vec<Row>, Vec<Row>) = (vec![], vec![]);
+            for m in 0..r {
+                let row = (0..n)
+                    .map(|i| (i, rigid[(i, m)] * w[i] / (area * rigid_scale[m])))
+                    .collect();
+                zero.push((row, -q[m] / (unit_p * area * rigid_scale[m])));
+            }
+            for i in 0..n {
+                // d_i / G = g_i/G + Σ A_ij w_j P/G p̃_j + Σ R_im λ_m/G + Σ Q_ik Δh̃_k.
+                let mut row: Vec<(usize, f64)> = (0..n)
+                    .map(|j| (j, a[(i, j)] * w[j] * unit_p / unit_g))
+                    .collect();
+                for m in 0..r {
+                    row.push((il + m, rigid[(i, m)] / rigid_scale[m]));
+                }
+                for &(k, wt) in self.shape.row(i) {
+                    if column_of[k] != usize::MAX {
+                        row.push((column_of[k], wt));
+                    }
+                }
+                let c = g[i] / unit_g;
+                if restricted[i] {
+                    zero.push((row, -c));
+                } else {
+                    let negated = row.into_iter().map(|(j, v)| (j, -v)).collect();
+                    nonneg.push((negated, c));
+                }
+                if omega_v(i) {
+                    zero.push((vec![(i, 1.0), (ip - 1, -self.v[i])], 0.0));
+                } else if in_opt(i) {
+                    nonneg.push((vec![(i, 1.0), (ip - 1, -self.v[i])], 0.0));
+                }
+                nonneg.push((vec![(i, -1.0)], 0.0));
+            }
+            for c in 0..nf {
+                nonneg.push((vec![(ih + c, -1.0)], 0.0));
+            }
+            let (nz, nn) = (zero.len(), nonneg.len());
+            let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
+            for (row_index, (row, rhs)) in zero.into_iter().chain(nonneg).enumerate() {
+                for (j, v) in row {
+                    ii.push(row_index);
+                    jj.push(j);
+                    vv.push(v);
+                }
+                b.push(rhs);
+            }
+            let cons = CscMatrix::new_from_triplets(nz + nn, nvar, ii, jj, vv);
+            let hess = CscMatrix::zeros((nvar, nvar));
+            let mut objective = vec![0.0; nvar];
+            objective[ip - 1] = 1.0;
+            let cones = [
+                SupportedConeT::ZeroConeT(nz),
+                SupportedConeT::NonnegativeConeT(nn),
+            ];
+            let settings = DefaultSettingsBuilder::default()
+                .verbose(false)
+                .tol_feas(1e-10)
+                .tol_gap_abs(1e-10)
+                .tol_gap_rel(1e-10)
+                .max_iter(200)
+                .build()
+                .map_err(|e| Error::invalid("linear programme", format!("{e:?}"), "settings"))?;
+            let mut solver = DefaultSolver::new(&hess, &objective, &cons, &b, &cones, settings)
+                .map_err(|e| {
+                    Error::invalid("linear programme", format!("{e:?}"), "clarabel rejected it")
+                })?;
+            solver.solve();
+            let sol = &solver.solution;
+            match sol.status {
+                SolverStatus::Solved | SolverStatus::AlmostSolved => {}
+                SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+                    return Err(Error::invalid(
+                        "optimisation",
+                        "(3.5)",
+                        "is infeasible: no Δh ≥ 0 closes Ω_v under v·p_max with these loads",
+                    ))
+                }
+                status => {
+                    return Err(Error::NotConverged {
+                        method: "linear programme (3.5)".into(),
+                        iterations: sol.iterations as usize,
+                        detail: format!(
+                            "status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
+                            sol.r_prim, sol.r_dual
+                        ),
+                    })
+                }
+            }
+            let pressure: Vec<f64> = sol.x[..n].iter().map(|p| p.max(0.0) * unit_p).collect();
+            let p_max = sol.x[ip - 1] * unit_p;
+            let mut dh = vec![0.0; self.shape.nodes().len()];
+            for (c, &k) in free.iter().enumerate() {
+                dh[k] = sol.x[ih + c].max(0.0) * unit_g;
+            }
+            let lambda: Vec<f64> = (0..r)
+                .map(|m| sol.x[il + m] * unit_g / rigid_scale[m])
+                .collect();
+            let gap_change = self.shape.apply(&dh);
+            let mut gap = problem.gap(&pressure, &lambda);
+            for (d, c) in gap.iter_mut().zip(&gap_change) {
+                *d += c;
+            }
+            // Restrict the points that carry pressure across an open gap.
+            let open: Vec<usize> = (0..n)
+                .filter(|&i| !restricted[i] && pressure[i] > 1e-8 * p_max && gap[i] > 1e-8 * unit_g)
+                .collect();
+            if open.is_empty() {
+                return Ok(Optimum {
+                    p_max,
+                    iterations: vec![Iteration {
+                        k: passes,
+                        p_max,
+                        dh_max: dh.iter().fold(0.0, |m: f64, v| m.max(*v)),
+                        tolh: 0.0,
+                        iterp: sol.iterations as usize,
+                        iterd: 0,
+                    }],
+                    dh,
+                    gap_change,
+                    pressure,
+                    gap,
+                    rigid: lambda,
+                });
+            }
+            for i in open {
+                restricted[i] = true;
+            }
+        }
+    }
+}
