@@ -10,7 +10,9 @@
 //! - [`greens`]: bodies from closed-form Green's functions: the axisymmetric half-space and
 //!   the half-plane;
 //! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies and the
-//!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian.
+//!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian;
+//! - [`optimise`]: pressure [`Controller`](optimise::Controller)s and the
+//!   [`Optimisation`](optimise::Optimisation) of the initial gap (§3).
 //!
 //! ```
 //! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
@@ -32,8 +34,11 @@
 pub use contopt_contact as contact;
 pub use contopt_core as core;
 pub use contopt_core::{
-    ContactState, ElasticBody, Error, Geometry, Interface, Material, Region, Residuals, Result,
-    RigidBody, RigidMode,
+    ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Region, Residuals,
+    Result, RigidBody, RigidMode,
 };
 pub use contopt_fem as fem;
 pub use contopt_greens as greens;
+pub use contopt_optimise as optimise;
+pub mod paper;
+pub mod plot;
