@@ -54,8 +54,8 @@ impl Optimisation<'_> {
         let rigid_scale = (0..r)
             .map(|m| (0..n).map(|i| rigid[(i, m)].abs()).fold(0.0, f64::max))
             .collect::<Vec<_>>();
-        // Variables: p (n) | p_max | Δh on the free nodes (nf) | λ (r).
-        let (ip, ih, il) = (n + 1, n + 1, n + 1 + nf);
+        // Variables: p (n) | p_max (at i_max) | Δh on the free nodes (nf, from ih) | λ (r, from il).
+        let (i_max, ih, il) = (n, n + 1, n + 1 + nf);
         let nvar = il + r;
         let mut column_of = vec![usize::MAX; self.shape.nodes().len()];
         for (c, &k) in free.iter().enumerate() {
@@ -97,9 +97,9 @@ impl Optimisation<'_> {
                     nonneg.push((negated, c));
                 }
                 if omega_v(i) {
-                    zero.push((vec![(i, 1.0), (ip - 1, -self.v[i])], 0.0));
+                    zero.push((vec![(i, 1.0), (i_max, -self.v[i])], 0.0));
                 } else if in_opt(i) {
-                    nonneg.push((vec![(i, 1.0), (ip - 1, -self.v[i])], 0.0));
+                    nonneg.push((vec![(i, 1.0), (i_max, -self.v[i])], 0.0));
                 }
                 nonneg.push((vec![(i, -1.0)], 0.0));
             }
@@ -119,7 +119,7 @@ impl Optimisation<'_> {
             let cons = CscMatrix::new_from_triplets(nz + nn, nvar, ii, jj, vv);
             let hess = CscMatrix::zeros((nvar, nvar));
             let mut objective = vec![0.0; nvar];
-            objective[ip - 1] = 1.0;
+            objective[i_max] = 1.0;
             let cones = [
                 SupportedConeT::ZeroConeT(nz),
                 SupportedConeT::NonnegativeConeT(nn),
@@ -159,7 +159,7 @@ impl Optimisation<'_> {
                 }
             }
             let pressure: Vec<f64> = sol.x[..n].iter().map(|p| p.max(0.0) * unit_p).collect();
-            let p_max = sol.x[ip - 1] * unit_p;
+            let p_max = sol.x[i_max] * unit_p;
             let mut dh = vec![0.0; self.shape.nodes().len()];
             for (c, &k) in free.iter().enumerate() {
                 dh[k] = sol.x[ih + c].max(0.0) * unit_g;
