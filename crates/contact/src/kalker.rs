@@ -97,8 +97,18 @@ struct Inner {
     gap: Vec<f64>,
     /// Round-off level of the gap: 10⁻¹³ of its largest terms.
     gap_floor: f64,
+    /// Solves, each followed by the sign check of p (the paper's `iterp`).
     iterp: usize,
+    /// Penetration checks: the solves whose pressure had no negative value (the paper's
+    /// `iterd`).
     iterd: usize,
+}
+
+impl Inner {
+    /// The contact set it started from was already the answer.
+    fn unchanged(&self) -> bool {
+        self.iterp == 1
+    }
 }
 
 /// The proximal subproblem
@@ -118,8 +128,9 @@ struct Subproblem<'a> {
 
 impl Subproblem<'_> {
     /// Kalker's iteration: solve with the points of `active` in contact (d + ρ(p − p̂) = 0
-    /// there, p = 0 elsewhere); drop the points whose pressure came out negative (one `iterp`),
-    /// else add the points that penetrate (one `iterd`); repeat until neither occurs.
+    /// there, p = 0 elsewhere; one `iterp`); drop the points whose pressure came out negative,
+    /// else check the gap (one `iterd`) and add the points that penetrate; repeat until neither
+    /// occurs. Changes follow [`PivotRule`], so the iteration cannot cycle.
     ///
     /// Each solve is in residual form: the correction to `reference` (restricted to the
     /// contact set) is driven by the reference's own residual −W(d + ρ(p − p̂)). Round-off in
@@ -140,7 +151,8 @@ impl Subproblem<'_> {
         let g = problem.free_gap();
         let gap_scale = g.iter().fold(0.0f64, |s, v| s.max(v.abs())).max(1e-300);
         let (mut iterp, mut iterd) = (0, 0);
-        let max_changes = 4 * n + 20;
+        let max_solves = 4 * n + 20;
+        let mut pivot = PivotRule::new();
         loop {
             if !active.iter().any(|&c| c) && m > 0 {
                 // A floating body needs at least one contact point to be held.
@@ -159,7 +171,7 @@ impl Subproblem<'_> {
             if k > 0 {
                 let not_converged = |detail: String| Error::NotConverged {
                     method: "Kalker active set".into(),
-                    iterations: iterp + iterd,
+                    iterations: iterp,
                     detail,
                 };
                 let llt = ContactMatrix::new(a, w, &idx, rho, self.spectral).ok_or_else(|| {
@@ -210,50 +222,118 @@ impl Subproblem<'_> {
                 .copied()
                 .filter(|&i| p[i] < -1e-12 * p_scale)
                 .collect();
-            if !negative.is_empty() {
-                for i in negative {
-                    active[i] = false;
-                }
-                iterp += 1;
-            } else {
-                let d = problem.gap(p, &solution.rigid);
-                let tol = 1e-11 * gap_scale.max(d.iter().fold(0.0f64, |s, v| s.max(v.abs())));
-                let penetrating: Vec<usize> = (0..n)
-                    .filter(|&i| !active[i] && d[i] - rho * shift[i] < -tol)
-                    .collect();
-                if penetrating.is_empty() {
-                    for v in solution.pressure.iter_mut() {
-                        *v = v.max(0.0);
-                    }
-                    // d = g + A W p + R λ, with the elastic term balancing the others on C.
-                    let motion = (0..n)
-                        .map(|i| {
-                            (0..m)
-                                .map(|c| r[(i, c)] * solution.rigid[c])
-                                .sum::<f64>()
-                                .abs()
-                        })
-                        .fold(0.0f64, f64::max);
-                    let gap_floor = 1e-13 * (gap_scale + motion);
-                    return Ok(Inner {
-                        solution,
-                        gap: d,
-                        gap_floor,
-                        iterp,
-                        iterd,
-                    });
-                }
-                for i in penetrating {
-                    active[i] = true;
-                }
+            let d = problem.gap(p, &solution.rigid);
+            let tol = 1e-11 * gap_scale.max(d.iter().fold(0.0f64, |s, v| s.max(v.abs())));
+            let penetrating: Vec<usize> = (0..n)
+                .filter(|&i| !active[i] && d[i] - rho * shift[i] < -tol)
+                .collect();
+            iterp += 1;
+            if negative.is_empty() {
                 iterd += 1;
             }
-            if iterp + iterd > max_changes {
+            if negative.is_empty() && penetrating.is_empty() {
+                for v in solution.pressure.iter_mut() {
+                    *v = v.max(0.0);
+                }
+                // d = g + A W p + R λ, with the elastic term balancing the others on C.
+                let motion = (0..n)
+                    .map(|i| {
+                        (0..m)
+                            .map(|c| r[(i, c)] * solution.rigid[c])
+                            .sum::<f64>()
+                            .abs()
+                    })
+                    .fold(0.0f64, f64::max);
+                let gap_floor = 1e-13 * (gap_scale + motion);
+                return Ok(Inner {
+                    solution,
+                    gap: d,
+                    gap_floor,
+                    iterp,
+                    iterd,
+                });
+            }
+            match pivot.next(&negative, &penetrating) {
+                Pivot::Drop(points) => points.into_iter().for_each(|i| active[i] = false),
+                Pivot::Add(points) => points.into_iter().for_each(|i| active[i] = true),
+            }
+            if iterp >= max_solves {
                 return Err(Error::NotConverged {
                     method: "Kalker active set".into(),
-                    iterations: iterp + iterd,
-                    detail: format!("the contact set kept changing ({iterp} for negative pressure, {iterd} for penetration)"),
+                    iterations: iterp,
+                    detail: format!(
+                        "the contact set kept changing: {} points had negative pressure and {} penetrated \
+                         at the last of {iterp} solves",
+                        negative.len(),
+                        penetrating.len()
+                    ),
                 });
+            }
+        }
+    }
+}
+
+/// A change of the contact set.
+#[derive(Debug, PartialEq)]
+enum Pivot {
+    /// Points that leave the set (their pressure came out negative).
+    Drop(Vec<usize>),
+    /// Points that join it (they penetrate).
+    Add(Vec<usize>),
+}
+
+/// The choice of the next contact set, after Júdice and Pires' safeguard for block principal
+/// pivoting: Kalker's block changes (every negative-pressure point leaves, else every
+/// penetrating point joins) while the number of infeasible points keeps reaching new lows, with
+/// a few passes of grace; otherwise one point at a time, the lowest-numbered infeasible one
+/// (Murty's rule, finite for the positive-definite matrix of a subproblem). Block changes alone
+/// can cycle when the matrix is nearly singular on the set, as it is for three Gauss points per
+/// quadratic face, where many points have p ≈ d ≈ 0 (an optimised gap).
+struct PivotRule {
+    /// Fewest infeasible points seen so far.
+    best: usize,
+    /// Block passes left without a new low.
+    grace: usize,
+}
+
+impl PivotRule {
+    /// Block passes allowed without a new low in the number of infeasible points.
+    const GRACE: usize = 3;
+
+    fn new() -> Self {
+        Self {
+            best: usize::MAX,
+            grace: Self::GRACE,
+        }
+    }
+
+    /// The change for `negative` points in the set and `penetrating` points outside it (not
+    /// both empty).
+    fn next(&mut self, negative: &[usize], penetrating: &[usize]) -> Pivot {
+        let infeasible = negative.len() + penetrating.len();
+        let block = if infeasible < self.best {
+            self.best = infeasible;
+            self.grace = Self::GRACE;
+            true
+        } else if self.grace > 0 {
+            self.grace -= 1;
+            true
+        } else {
+            false
+        };
+        if block {
+            if negative.is_empty() {
+                Pivot::Add(penetrating.to_vec())
+            } else {
+                Pivot::Drop(negative.to_vec())
+            }
+        } else {
+            let first = |s: &[usize]| s.iter().copied().min().unwrap_or(usize::MAX);
+            let (drop, add) = (first(negative), first(penetrating));
+            if drop < add {
+                Pivot::Drop(vec![drop])
+            } else {
+                Pivot::Add(vec![add])
             }
         }
     }
@@ -395,8 +475,9 @@ pub(crate) fn uzawa(
             .iter()
             .zip(&shift)
             .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()));
+        let unchanged = inner.unchanged();
         current = inner.solution;
-        if accelerate && inner.iterp + inner.iterd == 0 {
+        if accelerate && unchanged {
             // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
             // and its fixed point is the exact solve on this set from the current iterate
             // (which keeps the iterate's components along directions that do not move the
@@ -467,4 +548,24 @@ pub(crate) fn exact(
     };
     let inner = solve_exact(problem, &reference, &mut active)?;
     Ok(finish(problem, inner, active, 1, counts))
+}
+
+#[cfg(test)]
+mod pivot_tests {
+    use super::{Pivot, PivotRule};
+
+    /// Block changes while the number of infeasible points reaches new lows, three more of
+    /// grace, then one point at a time (the lowest index) until a new low.
+    #[test]
+    fn block_changes_fall_back_to_single_points() {
+        let mut rule = PivotRule::new();
+        assert_eq!(rule.next(&[4, 7], &[1]), Pivot::Drop(vec![4, 7]));
+        assert_eq!(rule.next(&[], &[5, 2]), Pivot::Add(vec![5, 2]));
+        for _ in 0..PivotRule::GRACE {
+            assert_eq!(rule.next(&[9], &[3, 8]), Pivot::Drop(vec![9]));
+        }
+        assert_eq!(rule.next(&[9], &[3, 8]), Pivot::Add(vec![3]));
+        assert_eq!(rule.next(&[6, 9], &[8]), Pivot::Drop(vec![6]));
+        assert_eq!(rule.next(&[], &[8]), Pivot::Add(vec![8]));
+    }
 }

@@ -45,8 +45,8 @@ impl ContactSolver for Penalty {
 }
 
 /// The augmented Lagrangian technique (§2.2, eqs. 2.18–2.20): Uzawa updates
-/// p ← ⟨p − c d⟩, each solved by Kalker's active-set iteration whose changes of the contact set
-/// are counted as `iterp` (negative pressure) and `iterd` (penetration). Converges to the
+/// p ← ⟨p − c d⟩, each solved by Kalker's active-set iteration, whose solves are counted as
+/// `iterp` and its penetration checks as `iterd` (the paper's counts). Converges to the
 /// solution of the QP (2.14) for any c > 0; a small c costs more Uzawa steps.
 #[derive(Clone, Copy, Debug)]
 pub struct AugmentedLagrangian {

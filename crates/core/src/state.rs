@@ -39,9 +39,12 @@ pub struct ContactState {
     /// Outer iterations (Uzawa steps for the augmented Lagrangian; interior-point steps for
     /// the QP).
     pub iterations: usize,
-    /// Changes of C because of negative pressure (the paper's `iterp`).
+    /// Kalker's solves on a contact set C, each followed by the sign check of p (the paper's
+    /// `iterp`; 1 when the first set was the answer). `iterp − iterd` solves had negative
+    /// pressure.
     pub iterp: usize,
-    /// Changes of C because of penetration (the paper's `iterd`).
+    /// Kalker's penetration checks: the solves whose pressure was non-negative, after which C
+    /// gains the penetrating points or the iteration stops (the paper's `iterd`).
     pub iterd: usize,
     /// Residuals of the returned solution.
     pub residuals: Residuals,
