@@ -234,3 +234,37 @@ fn condensed_penalty_matches_the_full_system() {
         assert!(full.residuals.equilibrium < 1e-6 * 100.0 * paper::PUNCH_RADIUS.powi(2));
     }
 }
+
+/// Three Gauss points per quadratic face: a pressure outside the span of the face shape
+/// functions at zero nodal force moves nothing (its gap change is at round-off against that of
+/// the uniform pressure), and reading the pressure as a field removes it exactly.
+#[test]
+fn gauss_point_sawtooth_moves_nothing_and_is_recovered() {
+    let (base, punch) = paper::bodies(
+        Analysis::Axisymmetric,
+        PunchLoad::Displacement(-0.05),
+        &PaperMesh::default(),
+    )
+    .unwrap();
+    let n = base.interface().len();
+    let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; n]).unwrap();
+    // A sawtooth of 50 MPa: the part of (0, 0, 1) on every face outside the field's span.
+    let ramp: Vec<f64> = (0..n)
+        .map(|i| if i % 3 == 2 { 50.0 } else { 0.0 })
+        .collect();
+    let smooth = problem.recovered_pressure(&ramp).unwrap();
+    let sawtooth: Vec<f64> = ramp.iter().zip(&smooth).map(|(r, s)| r - s).collect();
+    let amplitude = sawtooth.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(amplitude > 10.0, "{amplitude}");
+    let uniform = vec![100.0; n];
+    let with: Vec<f64> = uniform.iter().zip(&sawtooth).map(|(u, s)| u + s).collect();
+    let (d0, d1) = (problem.gap(&uniform, &[]), problem.gap(&with, &[]));
+    let change = max_diff(&d0, &problem.free_gap());
+    eprintln!(
+        "sawtooth {amplitude:.1} MPa: gap change {:.2e} of the uniform pressure's {change:.3e} mm",
+        max_diff(&d0, &d1) / change
+    );
+    assert!(max_diff(&d0, &d1) < 1e-9 * change);
+    let recovered = problem.recovered_pressure(&with).unwrap();
+    assert!(max_diff(&recovered, &uniform) < 1e-9 * 100.0);
+}

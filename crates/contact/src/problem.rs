@@ -1,7 +1,8 @@
 //! The contact interface problem that two bodies define (§2.1).
 
-use contopt_core::{ContactState, ElasticBody, Error, Interface, Residuals, Result};
-use faer::Mat;
+use contopt_core::{ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result};
+use faer::linalg::solvers::{Llt, Solve};
+use faer::{Mat, Side};
 
 /// Frictionless normal contact of two bodies, condensed to their common interface points.
 ///
@@ -24,6 +25,7 @@ pub struct InterfaceProblem {
     rigid: Mat<f64>,
     load: Vec<f64>,
     mode_names: Vec<String>,
+    pressure_basis: Option<GapShape>,
 }
 
 impl InterfaceProblem {
@@ -129,8 +131,17 @@ impl InterfaceProblem {
                 ));
             }
         }
+        let pressure_basis = match (body1.pressure_basis(), body2.pressure_basis()) {
+            (Some(b), _) => Some(b.clone()),
+            (None, Some(b)) => Some(GapShape::new(
+                b.nodes().to_vec(),
+                pair.iter().map(|&j| b.row(j).to_vec()).collect(),
+            )?),
+            (None, None) => None,
+        };
         Ok(Self {
             interface: s1.clone(),
+            pressure_basis,
             influence,
             initial_gap: initial_gap.to_vec(),
             load_gap,
@@ -218,6 +229,44 @@ impl InterfaceProblem {
                 g[i] + elastic + motion
             })
             .collect()
+    }
+
+    /// The field the point pressures sample (see [`ElasticBody::pressure_basis`]), from the
+    /// first body that has one.
+    pub fn pressure_basis(&self) -> Option<&GapShape> {
+        self.pressure_basis.as_ref()
+    }
+
+    /// The pressure read as a field: the W-weighted least-squares fit p̃ = B (BᵀWB)⁻¹ BᵀW p by
+    /// the [`pressure basis`](Self::pressure_basis), which has the same nodal forces Bᵀ W p
+    /// and so the same displacements, and drops the part of p that moves nothing (a sawtooth of
+    /// Gauss-point values within each quadratic face). `p` itself without a basis.
+    pub fn recovered_pressure(&self, pressure: &[f64]) -> Result<Vec<f64>> {
+        let Some(basis) = &self.pressure_basis else {
+            return Ok(pressure.to_vec());
+        };
+        let w = self.weights();
+        let nb = basis.nodes().len();
+        let (mut gram, mut rhs) = (Mat::<f64>::zeros(nb, nb), Mat::<f64>::zeros(nb, 1));
+        for (i, (&wi, &pi)) in w.iter().zip(pressure).enumerate() {
+            let row = basis.row(i);
+            for &(a, ba) in row {
+                rhs[(a, 0)] += ba * wi * pi;
+                for &(b, bb) in row {
+                    gram[(a, b)] += ba * wi * bb;
+                }
+            }
+        }
+        let nodal = Llt::new(gram.as_ref(), Side::Lower)
+            .map_err(|_| {
+                Error::invalid(
+                    "pressure basis",
+                    nb,
+                    "its nodes are not all reached by the points (BᵀWB is singular)",
+                )
+            })?
+            .solve(&rhs);
+        Ok(basis.apply(&(0..nb).map(|a| nodal[(a, 0)]).collect::<Vec<_>>()))
     }
 
     /// Residuals of a pressure p with its gap d.

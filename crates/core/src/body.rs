@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{Interface, Result};
+use crate::{GapShape, Interface, Result};
 
 /// A rigid-body mode that a body's supports leave free (the floating punch of Table 1 has
 /// one: the axial translation).
@@ -87,4 +87,14 @@ pub trait ElasticBody {
 
     /// The rigid-body modes the supports leave free (empty for a supported body).
     fn rigid_modes(&self) -> &[RigidMode];
+
+    /// The field the point pressures sample, when the points outnumber what the body's
+    /// displacements can tell apart: p = B p̄ with p̄ at the rows' nodes. A finite-element body
+    /// checks three Gauss points per quadratic face against two displacement unknowns per face
+    /// (plus one), so it returns its face nodes and shape functions; pressures that differ by a
+    /// part outside the span of B at equal nodal forces Bᵀ W p then move nothing. `None` (the
+    /// default) when every point pressure moves the body.
+    fn pressure_basis(&self) -> Option<&GapShape> {
+        None
+    }
 }

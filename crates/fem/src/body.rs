@@ -295,6 +295,10 @@ impl ElasticBody for FeBody {
         Ok(self.load_displacement.clone())
     }
 
+    fn pressure_basis(&self) -> Option<&GapShape> {
+        Some(&self.gap_shape)
+    }
+
     fn rigid_modes(&self) -> &[RigidMode] {
         &self.rigid_modes
     }

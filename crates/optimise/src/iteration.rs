@@ -1,6 +1,8 @@
 //! The iteration of §3.2, steps 1–7, with a contact solver inside.
 
 use contopt_contact::ContactSolver;
+#[cfg(doc)]
+use contopt_contact::InterfaceProblem;
 use contopt_core::{Error, Region, Result};
 use faer::linalg::solvers::SolveLstsq;
 use faer::Mat;
@@ -36,7 +38,9 @@ pub struct Iteration {
 
 impl Optimisation<'_> {
     /// The iteration of §3.2: solve the contact problem with the gap h₀ + QΔh⁽ᵏ⁻¹⁾ (step 3),
-    /// take p_max (step 4), prescribe p = v·p_max on Ω_v (step 5), and choose Δh⁽ᵏ⁾ so that the
+    /// take p_max (step 4: under a given displacement, the largest pressure on Ω_opt read as a
+    /// field, [`InterfaceProblem::recovered_pressure`], so that a sawtooth of Gauss-point values
+    /// that moves nothing cannot set it), prescribe p = v·p_max on Ω_v (step 5), and choose Δh⁽ᵏ⁾ so that the
     /// gap closes on Ω_v under that pressure up to a uniform shift, Δh = 0 at the reference
     /// node N: Δh = −(m − m_N) (step 6, through a least-squares fit of Q, exact when Q
     /// interpolates like the displacements); stop
@@ -92,10 +96,13 @@ impl Optimisation<'_> {
             let h: Vec<f64> = h0.iter().zip(&change).map(|(a, b)| a + b).collect();
             let state = solver.solve(&problem.with_initial_gap(&h)?)?;
             let p_max = match mode {
-                Mode::GivenDisplacement => (0..n)
-                    .filter(|&i| in_opt(i))
-                    .map(|i| state.pressure[i])
-                    .fold(0.0, f64::max),
+                Mode::GivenDisplacement => {
+                    let field = problem.recovered_pressure(&state.pressure)?;
+                    (0..n)
+                        .filter(|&i| in_opt(i))
+                        .map(|i| field[i])
+                        .fold(0.0, f64::max)
+                }
                 Mode::GivenLoad => self.equilibrium_p_max(&state.pressure)?,
             };
             // Step 5.
