@@ -4,6 +4,7 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
+use contopt_contact::{ActiveSet, ContactSolver};
 use contopt_core::{Error, Region, Result};
 
 use crate::{Iteration, Optimisation, Optimum};
@@ -11,14 +12,27 @@ use crate::{Iteration, Optimisation, Optimum};
 /// A constraint row: its (column, coefficient) entries and its right-hand side.
 type Row = (Vec<(usize, f64)>, f64);
 
+/// How a point enters a pass of the programme.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Restriction {
+    /// p ≥ 0 and d ≥ 0 (the relaxed first pass).
+    Free,
+    /// In contact: d = 0 (always on Ω_v).
+    Closed,
+    /// Open: p = 0.
+    Open,
+}
+
 impl Optimisation<'_> {
     /// The linear programme (3.5): minimise p_max over p, Δh and λ subject to equilibrium
     /// Rᵀ W p = −q, p ≥ 0, χ = v·p_max − p ≥ 0 on Ω_opt (= 0 on Ω_v),
     /// d = g + A W p + R λ + QΔh ≥ 0 (= 0 on Ω_v), Δh ≥ 0 and Δh = 0 at the reference node.
     ///
     /// The complementarity pᵀd = 0 is kept by restriction: the programme is solved without
-    /// it, every point outside Ω_v that carries pressure with an open gap is then restricted
-    /// to d = 0, and the programme re-solved, until none is left (at most one pass per point).
+    /// it; while some point outside Ω_v carries pressure across an open gap, the contact
+    /// problem is solved on the programme's gap ([`ActiveSet`]) and its contact set restricts
+    /// the next pass, d = 0 on the points in contact and p = 0 on the others, until a pass is
+    /// complementary (on a one-dimensional region, where Ω_v is everything, the first is).
     /// Without a floating body the displacement is given, and N fixes the shape: Δh = 0 there.
     pub fn linear_programme(&self) -> Result<Optimum> {
         let problem = self.problem;
@@ -63,7 +77,16 @@ impl Optimisation<'_> {
         }
         let omega_v = |i: usize| self.regions[i] == Region::OmegaV;
         let in_opt = |i: usize| self.regions[i] != Region::Contact;
-        let mut restricted: Vec<bool> = (0..n).map(omega_v).collect();
+        let mut restricted: Vec<Restriction> = (0..n)
+            .map(|i| {
+                if omega_v(i) {
+                    Restriction::Closed
+                } else {
+                    Restriction::Free
+                }
+            })
+            .collect();
+        let mut tried = vec![restricted.clone()];
         let mut passes = 0;
         loop {
             passes += 1;
@@ -90,11 +113,14 @@ impl Optimisation<'_> {
                     }
                 }
                 let c = g[i] / unit_g;
-                if restricted[i] {
+                if restricted[i] == Restriction::Closed {
                     zero.push((row, -c));
                 } else {
                     let negated = row.into_iter().map(|(j, v)| (j, -v)).collect();
                     nonneg.push((negated, c));
+                }
+                if restricted[i] == Restriction::Open {
+                    zero.push((vec![(i, 1.0)], 0.0));
                 }
                 if omega_v(i) {
                     zero.push((vec![(i, 1.0), (i_max, -self.v[i])], 0.0));
@@ -172,11 +198,10 @@ impl Optimisation<'_> {
             for (d, c) in gap.iter_mut().zip(&gap_change) {
                 *d += c;
             }
-            // Restrict the points that carry pressure across an open gap.
-            let open: Vec<usize> = (0..n)
-                .filter(|&i| !restricted[i] && pressure[i] > 1e-8 * p_max && gap[i] > 1e-8 * unit_g)
-                .collect();
-            if open.is_empty() {
+            let violated = (0..n)
+                .filter(|&i| pressure[i] > 1e-8 * p_max && gap[i] > 1e-8 * unit_g)
+                .count();
+            if violated == 0 {
                 return Ok(Optimum {
                     p_max,
                     iterations: vec![Iteration {
@@ -194,9 +219,34 @@ impl Optimisation<'_> {
                     rigid: lambda,
                 });
             }
-            for i in open {
-                restricted[i] = true;
+            // Restrict the next pass by the contact set of the programme's gap.
+            let h: Vec<f64> = problem
+                .initial_gap()
+                .iter()
+                .zip(&gap_change)
+                .map(|(a, b)| a + b)
+                .collect();
+            let contact = ActiveSet.solve(&problem.with_initial_gap(&h)?)?;
+            for (i, r) in restricted.iter_mut().enumerate() {
+                if !omega_v(i) {
+                    *r = if contact.active[i] && contact.pressure[i] > 0.0 {
+                        Restriction::Closed
+                    } else {
+                        Restriction::Open
+                    };
+                }
             }
+            if tried.contains(&restricted) {
+                return Err(Error::NotConverged {
+                    method: "linear programme (3.5)".into(),
+                    iterations: passes,
+                    detail: format!(
+                        "the contact sets of its passes repeat; {violated} points carry pressure \
+                         across an open gap (p_max {p_max:.6} MPa)"
+                    ),
+                });
+            }
+            tried.push(restricted.clone());
         }
     }
 }
