@@ -60,13 +60,17 @@ impl Default for PaperMesh {
 impl PaperMesh {
     /// Size of the contact elements next to the punch edge \[mm\].
     pub fn edge_size(&self) -> Result<f64> {
-        let s = self.radial_contact()?;
+        self.edge_size_over(PUNCH_RADIUS)
+    }
+
+    fn edge_size_over(&self, radius: f64) -> Result<f64> {
+        let s = self.radial_contact(radius)?;
         let c = s.coords();
         Ok(c[c.len() - 1] - c[c.len() - 2])
     }
 
-    fn radial_contact(&self) -> Result<Spacing> {
-        Spacing::geometric(0.0, PUNCH_RADIUS, self.contact_elements, 1.0 / self.grading)
+    fn radial_contact(&self, radius: f64) -> Result<Spacing> {
+        Spacing::geometric(0.0, radius, self.contact_elements, 1.0 / self.grading)
     }
 }
 
@@ -76,49 +80,105 @@ impl PaperMesh {
 /// (thickness 10 mm, half model) — u_x = 0 on the symmetry line of both bodies and the base's
 /// bottom held vertically only.
 pub fn bodies(analysis: Analysis, load: PunchLoad, mesh: &PaperMesh) -> Result<(FeBody, FeBody)> {
-    let contact = mesh.radial_contact()?;
-    let edge = mesh.edge_size()?;
+    bodies_with(&PunchGeometry::default(), analysis, load, mesh)
+}
+
+/// The dimensions and materials of a punch on a base (Fig. 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PunchGeometry {
+    /// Punch radius (plane: half-width) \[mm\]: the contact zone.
+    pub punch_radius: f64,
+    /// Height of each body \[mm\].
+    pub height: f64,
+    /// Base radius (plane: half-width) \[mm\], larger than the punch's.
+    pub base_radius: f64,
+    /// Material of the punch.
+    pub punch: Material,
+    /// Material of the base.
+    pub base: Material,
+}
+
+impl Default for PunchGeometry {
+    /// The paper's: R = 50 mm, heights 50 mm, base radius 100 mm, both steel.
+    fn default() -> Self {
+        let steel = Material::new(E, NU).expect("the paper's steel is a valid material");
+        Self {
+            punch_radius: PUNCH_RADIUS,
+            height: HEIGHT,
+            base_radius: BASE_RADIUS,
+            punch: steel,
+            base: steel,
+        }
+    }
+}
+
+/// The two bodies of [`bodies`] with other dimensions and materials.
+pub fn bodies_with(
+    geometry: &PunchGeometry,
+    analysis: Analysis,
+    load: PunchLoad,
+    mesh: &PaperMesh,
+) -> Result<(FeBody, FeBody)> {
+    let &PunchGeometry {
+        punch_radius,
+        height,
+        base_radius,
+        ..
+    } = geometry;
+    for (field, value) in [
+        ("punch_radius", punch_radius),
+        ("height", height),
+        ("base_radius - punch_radius", base_radius - punch_radius),
+    ] {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(contopt_core::Error::invalid(
+                format!("geometry.{field}"),
+                value,
+                "must be positive and finite",
+            ));
+        }
+    }
+    let contact = mesh.radial_contact(punch_radius)?;
+    let edge = mesh.edge_size_over(punch_radius)?;
     // Outside the punch the base's elements grow from the edge size: about a quarter as
     // many as a uniform mesh of edge-sized elements would need, between 4 and 40.
-    let width = BASE_RADIUS - PUNCH_RADIUS;
+    let width = base_radius - punch_radius;
     let outer_elements = ((width / (4.0 * edge)).ceil() as usize).clamp(4, 40);
     let first = edge.min(width / outer_elements as f64);
-    let outer = Spacing::geometric_first(PUNCH_RADIUS, BASE_RADIUS, outer_elements, first)?;
+    let outer = Spacing::geometric_first(punch_radius, base_radius, outer_elements, first)?;
     let x = contact.then(&outer)?;
-    let ratio = (HEIGHT / mesh.layers as f64 / edge).max(1.0);
-    let base_y = Spacing::geometric(0.0, HEIGHT, mesh.layers, 1.0 / ratio)?;
-    let punch_y = Spacing::geometric(HEIGHT, 2.0 * HEIGHT, mesh.layers, ratio)?;
-    let (lower, upper) = Mesh::stacked(mesh.kind, &x, &base_y, (0.0, PUNCH_RADIUS), &punch_y)?;
-    let material = Material::new(E, NU)?;
-
-    let mut base = FeModel::new(lower, material, analysis)?;
-    let bottom = base.mesh().nodes_on_y(0.0, 0.0, BASE_RADIUS);
+    let ratio = (height / mesh.layers as f64 / edge).max(1.0);
+    let base_y = Spacing::geometric(0.0, height, mesh.layers, 1.0 / ratio)?;
+    let punch_y = Spacing::geometric(height, 2.0 * height, mesh.layers, ratio)?;
+    let (lower, upper) = Mesh::stacked(mesh.kind, &x, &base_y, (0.0, punch_radius), &punch_y)?;
+    let mut base = FeModel::new(lower, geometry.base, analysis)?;
+    let bottom = base.mesh().nodes_on_y(0.0, 0.0, base_radius);
     base.fix(&bottom, Component::Y)?;
     if analysis == Analysis::Axisymmetric {
         base.fix(&bottom, Component::X)?;
     } else {
-        let axis = base.mesh().nodes_on_x(0.0, 0.0, HEIGHT);
+        let axis = base.mesh().nodes_on_x(0.0, 0.0, height);
         base.fix(&axis, Component::X)?;
     }
-    let base_contact = base.mesh().faces_on_y(HEIGHT, 0.0, PUNCH_RADIUS);
+    let base_contact = base.mesh().faces_on_y(height, 0.0, punch_radius);
 
-    let mut punch = FeModel::new(upper, material, analysis)?;
+    let mut punch = FeModel::new(upper, geometry.punch, analysis)?;
     if analysis != Analysis::Axisymmetric {
-        let axis = punch.mesh().nodes_on_x(0.0, HEIGHT, 2.0 * HEIGHT);
+        let axis = punch.mesh().nodes_on_x(0.0, height, 2.0 * height);
         punch.fix(&axis, Component::X)?;
     }
-    let top = 2.0 * HEIGHT;
+    let top = 2.0 * height;
     match load {
         PunchLoad::Pressure(p) => {
-            let faces = punch.mesh().faces_on_y(top, 0.0, PUNCH_RADIUS);
+            let faces = punch.mesh().faces_on_y(top, 0.0, punch_radius);
             punch.pressure(&faces, p)?;
         }
         PunchLoad::Displacement(w) => {
-            let nodes = punch.mesh().nodes_on_y(top, 0.0, PUNCH_RADIUS);
+            let nodes = punch.mesh().nodes_on_y(top, 0.0, punch_radius);
             punch.prescribe(&nodes, Component::Y, w)?;
         }
     }
-    let punch_contact = punch.mesh().faces_on_y(HEIGHT, 0.0, PUNCH_RADIUS);
+    let punch_contact = punch.mesh().faces_on_y(height, 0.0, punch_radius);
     Ok((
         FeBody::new("base", base, &base_contact)?,
         FeBody::new("punch", punch, &punch_contact)?,
