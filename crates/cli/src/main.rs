@@ -1,0 +1,262 @@
+//! `contopt`: runs scene files (TOML or JSON) and writes their results.
+//!
+//! - `contopt run <scene> [--json] [--out DIR]`: solves every case and writes
+//!   `DIR/<name>/result.json`, `interface.csv`, `p.svg` and `dh.svg`, then prints a table (or,
+//!   with `--json`, the report as one JSON document on stdout);
+//! - `contopt check <scene>`: reads and checks the scene without solving;
+//! - `contopt list`: the bundled scenes, which `run` and `check` also take by name.
+//!
+//! Exit status: 0, or 1 for a bad scene, or 2 when a case did not converge.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+use contopt_scene::{CaseReport, Format, Report, Scene, SceneError};
+
+/// The scenes in `scenes/`, built into the binary.
+const BUNDLED: &[(&str, &str)] = &[
+    (
+        "paper-table1",
+        include_str!("../../../scenes/paper-table1.toml"),
+    ),
+    (
+        "paper-table2",
+        include_str!("../../../scenes/paper-table2.toml"),
+    ),
+    (
+        "paper-table3",
+        include_str!("../../../scenes/paper-table3.toml"),
+    ),
+    ("roller", include_str!("../../../scenes/roller.toml")),
+    ("hertz", include_str!("../../../scenes/hertz.toml")),
+    (
+        "flat-punch",
+        include_str!("../../../scenes/flat-punch.toml"),
+    ),
+    (
+        "punch-on-block",
+        include_str!("../../../scenes/punch-on-block.toml"),
+    ),
+];
+
+#[derive(Parser)]
+#[command(
+    name = "contopt",
+    version,
+    about = "Elastic contact and contact-pressure optimisation (Páczelt 1994)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a scene (a file, or a bundled scene's name) and write its results.
+    Run {
+        /// Scene file (.toml or .json) or bundled name.
+        scene: String,
+        /// Print the report as JSON on stdout (and nothing else there).
+        #[arg(long)]
+        json: bool,
+        /// Folder for the results (a subfolder per scene).
+        #[arg(long, default_value = "results")]
+        out: PathBuf,
+    },
+    /// Read and check a scene without solving.
+    Check {
+        /// Scene file or bundled name.
+        scene: String,
+    },
+    /// List the bundled scenes.
+    List,
+}
+
+fn main() -> ExitCode {
+    match Cli::parse().command {
+        Command::List => {
+            for (name, text) in BUNDLED {
+                let description = Scene::parse(text, Format::Toml, Path::new(name))
+                    .map(|s| s.spec.description)
+                    .unwrap_or_default();
+                println!("{name:<16} {description}");
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Check { scene } => match load(&scene) {
+            Ok(s) => {
+                let cases = s.cases().map(|c| c.len()).unwrap_or(0);
+                println!("{}: ok ({cases} case(s))", s.file.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => fail(&e),
+        },
+        Command::Run { scene, json, out } => match load(&scene).and_then(|s| run(&s, json, &out)) {
+            Ok(true) => ExitCode::SUCCESS,
+            Ok(false) => ExitCode::from(2),
+            Err(e) => fail(&e),
+        },
+    }
+}
+
+fn fail(e: &SceneError) -> ExitCode {
+    eprintln!("error: {e}");
+    ExitCode::from(1)
+}
+
+/// A scene file, or a bundled scene by name.
+fn load(scene: &str) -> Result<Scene, SceneError> {
+    let path = Path::new(scene);
+    if path.exists() {
+        return Scene::load(path);
+    }
+    match BUNDLED.iter().find(|(name, _)| *name == scene) {
+        Some((name, text)) => Scene::parse(
+            text,
+            Format::Toml,
+            &Path::new("scenes").join(format!("{name}.toml")),
+        ),
+        None => Scene::load(path),
+    }
+}
+
+/// Runs every case; true when all converged.
+fn run(scene: &Scene, json: bool, out: &Path) -> Result<bool, SceneError> {
+    let cases = scene.cases()?;
+    let progress = std::io::stderr().is_terminal();
+    let start = Instant::now();
+    let mut reports = vec![];
+    for (k, case) in cases.iter().enumerate() {
+        if progress && start.elapsed().as_secs_f64() > 1.5 {
+            eprint!("\r[{}/{}] {} … ", k + 1, cases.len(), case.label);
+        }
+        reports.push(case.run()?);
+    }
+    if progress && start.elapsed().as_secs_f64() > 1.5 {
+        eprintln!("\rdone in {:.1} s{:20}", start.elapsed().as_secs_f64(), "");
+    }
+    let report = Report {
+        scene: scene.spec.name.clone(),
+        cases: reports,
+    };
+    let dir = out.join(&scene.spec.name);
+    let written = write(&report, &dir);
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("a report serialises")
+        );
+    } else {
+        print!("{}", table(&report));
+        match &written {
+            Ok(()) => println!(
+                "results: {}/{{result.json,interface.csv,p.svg,dh.svg}}",
+                dir.display()
+            ),
+            Err(e) => eprintln!("could not write {}: {e}", dir.display()),
+        }
+    }
+    if let Err(e) = written {
+        if json {
+            eprintln!("could not write {}: {e}", dir.display());
+        }
+    }
+    Ok(report.cases.iter().all(|c| c.converged))
+}
+
+fn table(report: &Report) -> String {
+    use std::fmt::Write;
+    let mut s = format!(
+        "{:<16} {:>12} {:>12} {:>6} {:>10}\n",
+        "case", "p_max MPa", "Δh_max µm", "steps", "time ms"
+    );
+    for c in &report.cases {
+        let number =
+            |v: Option<f64>, digits: usize| v.map_or("-".into(), |v| format!("{v:.digits$}"));
+        let total: f64 = c.timings_ms.values().sum();
+        let _ = writeln!(
+            s,
+            "{:<16} {:>12} {:>12} {:>6} {:>10.0}",
+            c.label,
+            number(c.p_max, 2),
+            number(c.dh_max_um, 3),
+            c.iterations.len(),
+            total
+        );
+        if let Some(e) = &c.error {
+            let _ = writeln!(s, "  not converged: {e}");
+        }
+    }
+    s
+}
+
+/// Writes `result.json`, `interface.csv` and the plots of p and Δh along x (on a grid: along
+/// the points nearest the x axis).
+fn write(report: &Report, dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    std::fs::write(
+        dir.join("result.json"),
+        serde_json::to_string_pretty(report).expect("a report serialises"),
+    )?;
+    let mut csv = String::from("case,x,y,z,p_mpa,d_mm,dh_mm\n");
+    for c in &report.cases {
+        for q in &c.interface {
+            csv += &format!(
+                "\"{}\",{},{},{},{},{},{}\n",
+                c.label, q.x[0], q.x[1], q.x[2], q.p, q.d, q.dh
+            );
+        }
+    }
+    std::fs::write(dir.join("interface.csv"), csv)?;
+    let line =
+        |c: &CaseReport, f: &dyn Fn(&contopt_scene::PointReport) -> f64| -> Vec<(f64, f64)> {
+            let near = c
+                .interface
+                .iter()
+                .map(|q| q.x[1].abs())
+                .fold(f64::INFINITY, f64::min);
+            let mut v: Vec<(f64, f64)> = c
+                .interface
+                .iter()
+                .filter(|q| q.x[1].abs() <= near + 1e-9)
+                .map(|q| (q.x[0], f(q)))
+                .collect();
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v
+        };
+    for (file, title, label, f) in [
+        (
+            "p.svg",
+            "contact pressure",
+            "p [MPa]",
+            &(|q: &contopt_scene::PointReport| q.p) as &dyn Fn(&_) -> f64,
+        ),
+        (
+            "dh.svg",
+            "gap change",
+            "Δh [µm]",
+            &|q: &contopt_scene::PointReport| 1e3 * q.dh,
+        ),
+    ] {
+        let series: Vec<(String, Vec<(f64, f64)>)> = report
+            .cases
+            .iter()
+            .map(|c| (c.label.clone(), line(c, f)))
+            .collect();
+        let refs: Vec<(&str, &[(f64, f64)])> = series
+            .iter()
+            .map(|(l, v)| (l.as_str(), v.as_slice()))
+            .collect();
+        let svg = contopt::plot::line_plot(
+            &format!("{}: {title}", report.scene),
+            "x [mm]",
+            label,
+            &refs,
+        );
+        std::fs::write(dir.join(file), svg)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,164 @@
+//! The `contopt` binary end to end: bundled scenes against closed forms and the paper, a
+//! malformed scene, an impossible value and a load that cannot be equilibrated.
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn contopt() -> Command {
+    Command::cargo_bin("contopt").unwrap()
+}
+
+/// A scratch folder of this test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("contopt-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs a bundled scene with `--json`: stdout is one JSON document and nothing else.
+fn run_json(scene: &str) -> Value {
+    let out = scratch(scene);
+    let output = contopt()
+        .args(["run", scene, "--json", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert!(out.join(scene).join("result.json").exists());
+    assert!(out.join(scene).join("p.svg").exists());
+    report
+}
+
+/// Hertz on the half-space grid by Polonsky–Keer: p₀ = 3F/(2πa²), a = (3FR/4E*)^⅓, to 0.5 %.
+#[test]
+fn hertz_scene_matches_hertz() {
+    let report = run_json("hertz");
+    assert_eq!(report["scene"], "hertz");
+    let case = &report["cases"][0];
+    assert_eq!(case["converged"], true);
+    let (f, r, e_star): (f64, f64, f64) = (1000.0, 10.0, 2e5 / (1.0 - 0.09));
+    let a = (3.0 * f * r / (4.0 * e_star)).powf(1.0 / 3.0);
+    let p0 = 3.0 * f / (2.0 * PI * a * a);
+    let p_max = case["p_max"].as_f64().unwrap();
+    assert!((p_max / p0 - 1.0).abs() < 0.005, "{p_max} vs {p0}");
+    assert!(case["dh_max_um"].is_null());
+    assert_eq!(case["interface"].as_array().unwrap().len(), 64 * 64);
+}
+
+/// Table 1 as a scene: five cases, p_max from equilibrium, Δh_max within 0.5 % of the paper.
+#[test]
+fn paper_table1_scene_matches_the_paper() {
+    let report = run_json("paper-table1");
+    let cases = report["cases"].as_array().unwrap();
+    let paper = [
+        (0.0, 333.2, 93.67),
+        (20.0, 196.9, 64.72),
+        (30.0, 154.3, 48.71),
+        (40.0, 123.2, 32.27),
+        (50.0, 100.0, 10.87),
+    ];
+    assert_eq!(cases.len(), paper.len());
+    for (case, (l1, p_max, dh)) in cases.iter().zip(paper) {
+        assert_eq!(case["params"]["l1_mm"].as_f64(), Some(l1));
+        let ours = case["p_max"].as_f64().unwrap();
+        let ours_dh = case["dh_max_um"].as_f64().unwrap();
+        assert!((ours / p_max - 1.0).abs() < 0.001, "L1 = {l1}: {ours}");
+        assert!((ours_dh / dh - 1.0).abs() < 0.005, "L1 = {l1}: {ours_dh}");
+        let row = &case["iterations"][0];
+        for key in ["k", "p_max", "dh_max_um", "tolh", "iterp", "iterd"] {
+            assert!(row.get(key).is_some(), "{key}");
+        }
+    }
+}
+
+/// Writes a variant of a bundled scene.
+fn variant(name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/paper-table1.toml"),
+    )
+    .unwrap();
+    assert!(text.contains(from), "{from}");
+    let path = scratch(name).join(format!("{name}.toml"));
+    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    path
+}
+
+fn fails_with(args: &[&str], path: &PathBuf, needles: &[&str]) {
+    let output = contopt().args(args).arg(path).output().unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    for needle in needles {
+        assert!(stderr.contains(needle), "`{needle}` not in: {stderr}");
+    }
+}
+
+/// An unknown key: the file, its line and the key.
+#[test]
+fn malformed_scene_names_file_line_and_key() {
+    let path = variant(
+        "malformed",
+        "height_mm = 50.0",
+        "height_mm = 50.0\nheigth_mm = 50.0",
+    );
+    fails_with(
+        &["check"],
+        &path,
+        &["malformed.toml", "heigth_mm` is set at line 9"],
+    );
+    let path = variant("missing", "height_mm = 50.0\n", "");
+    fails_with(&["check"], &path, &["missing.toml", "height_mm"]);
+    let path = variant(
+        "wrong-type",
+        "c_mpa_per_mm = 2.0e9",
+        "c_mpa_per_mm = \"stiff\"",
+    );
+    fails_with(
+        &["run"],
+        &path,
+        &["wrong-type.toml", "`c_mpa_per_mm` is set at line 17"],
+    );
+}
+
+/// ν = 0.5: the file, the line of `nu`, the field and the value.
+#[test]
+fn impossible_value_names_the_line() {
+    let path = variant("incompressible", "nu = 0.3", "nu = 0.5");
+    fails_with(
+        &["check"],
+        &path,
+        &["incompressible.toml:10", "material.nu", "0.5"],
+    );
+}
+
+/// A punch pulled off its base: no compressive contact pressure can hold it.
+#[test]
+fn unequilibrable_load_is_an_error() {
+    let path = variant("pulled", "pressure_mpa = 100.0", "pressure_mpa = -100.0");
+    fails_with(&["run"], &path, &["pulled.toml", "pulls the bodies apart"]);
+}
+
+#[test]
+fn list_names_the_bundled_scenes() {
+    let output = contopt().arg("list").output().unwrap();
+    let text = String::from_utf8(output.stdout).unwrap();
+    for name in [
+        "paper-table1",
+        "paper-table2",
+        "paper-table3",
+        "roller",
+        "hertz",
+        "flat-punch",
+        "punch-on-block",
+    ] {
+        assert!(text.contains(name), "{name}");
+    }
+}

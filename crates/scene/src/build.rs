@@ -1,0 +1,523 @@
+//! From a case's scene to bodies, a solver and an optimisation, and its run.
+
+use std::time::Instant;
+
+use contopt_contact::{
+    ActiveSet, AugmentedLagrangian, ContactSolver, Indentation, InterfaceProblem, Penalty,
+    PolonskyKeer, Qp,
+};
+use contopt_core::{ElasticBody, Error, GapShape, Material, Region, Result, RigidBody};
+use contopt_fem::paper::{self as fe_paper, PaperMesh, PunchGeometry, PunchLoad};
+use contopt_fem::{Analysis, ElementKind, FeBody};
+use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
+use contopt_optimise::{Constant, Controller, Mode, Optimisation, Optimum, Profile};
+
+use crate::report::{CaseReport, IterationRow, PointReport};
+use crate::spec::{
+    AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, ModeSpec, Problem, PunchLoadSpec,
+    RigidLoad, SolverSpec,
+};
+use crate::{Case, SceneError};
+
+/// The initial gap of an open point, beyond a flat punch's rim \[mm\].
+const OPEN: f64 = 1e3;
+
+/// The elastic body, its rigid or elastic partner, and the initial gap.
+struct Bodies {
+    first: Box<dyn ElasticBody>,
+    second: Box<dyn ElasticBody>,
+    gap: Vec<f64>,
+    /// The indenter's drive, for Polonsky–Keer (rigid indenter on a half-space grid).
+    indentation: Option<Indentation>,
+}
+
+fn material(m: &MaterialSpec) -> Result<Material> {
+    Material::new(m.e_mpa, m.nu)
+}
+
+/// The indenter's initial gap at a point at distance `r` from its axis (or `y` from a roller's).
+fn indenter_gap(indenter: &Indenter, r: f64, y: f64) -> Result<f64> {
+    let positive = |name: &str, v: f64| {
+        if v > 0.0 && v.is_finite() {
+            Ok(v)
+        } else {
+            Err(Error::invalid(name, v, "must be positive"))
+        }
+    };
+    Ok(match *indenter {
+        Indenter::Sphere { radius_mm } => {
+            r * r / (2.0 * positive("indenter.radius_mm", radius_mm)?)
+        }
+        Indenter::Cylinder { radius_mm } => {
+            y * y / (2.0 * positive("indenter.radius_mm", radius_mm)?)
+        }
+        Indenter::FlatPunch { radius_mm } => {
+            if r <= positive("indenter.radius_mm", radius_mm)? * (1.0 + 1e-12) {
+                0.0
+            } else {
+                OPEN
+            }
+        }
+    })
+}
+
+/// A rigid indenter on `body`, pressed along `axis` (away from the body) or pushed in.
+fn rigid_on(
+    body: Box<dyn ElasticBody>,
+    axis: [f64; 3],
+    load: RigidLoad,
+    gap: impl Fn([f64; 3]) -> Result<f64>,
+) -> Result<Bodies> {
+    let iface = body.interface();
+    let mut h = iface
+        .points
+        .iter()
+        .map(|&x| gap(x))
+        .collect::<Result<Vec<_>>>()?;
+    let (second, indentation) = match load {
+        RigidLoad::ForceN(f) => (
+            RigidBody::pressed("indenter", iface, axis, f)?,
+            Indentation::Force(f),
+        ),
+        RigidLoad::ApproachMm(a) => {
+            if !(a > 0.0 && a.is_finite()) {
+                return Err(Error::invalid("load.approach_mm", a, "must be positive"));
+            }
+            h.iter_mut().for_each(|v| *v -= a);
+            (
+                RigidBody::fixed("indenter", iface),
+                Indentation::Approach(a),
+            )
+        }
+    };
+    Ok(Bodies {
+        first: body,
+        second: Box::new(second),
+        gap: h,
+        indentation: Some(indentation),
+    })
+}
+
+fn analysis(spec: AnalysisSpec, thickness: Option<f64>) -> Result<Analysis> {
+    Ok(match (spec, thickness) {
+        (AnalysisSpec::Axisymmetric, None) => Analysis::Axisymmetric,
+        (AnalysisSpec::Axisymmetric, Some(t)) => {
+            return Err(Error::invalid(
+                "thickness_mm",
+                t,
+                "an axisymmetric analysis has no thickness",
+            ))
+        }
+        (AnalysisSpec::PlaneStress, None) => {
+            return Err(Error::invalid(
+                "thickness_mm",
+                "missing",
+                "plane stress needs the thickness",
+            ))
+        }
+        (AnalysisSpec::PlaneStress, Some(thickness)) => Analysis::PlaneStress { thickness },
+        (AnalysisSpec::PlaneStrain, t) => Analysis::PlaneStrain {
+            thickness: t.unwrap_or(1.0),
+        },
+    })
+}
+
+fn bodies(problem: &Problem) -> Result<Bodies> {
+    match problem {
+        Problem::PunchOnBase {
+            analysis: a,
+            thickness_mm,
+            punch_radius_mm,
+            height_mm,
+            base_radius_mm,
+            material: m,
+            load,
+            mesh,
+        } => {
+            let steel = material(m)?;
+            let geometry = PunchGeometry {
+                punch_radius: *punch_radius_mm,
+                height: *height_mm,
+                base_radius: *base_radius_mm,
+                punch: steel,
+                base: steel,
+            };
+            let kind = match mesh.element.as_str() {
+                "q8" => ElementKind::Q8,
+                "q9" => ElementKind::Q9,
+                other => {
+                    return Err(Error::invalid(
+                        "mesh.element",
+                        other,
+                        "must be \"q8\" or \"q9\"",
+                    ))
+                }
+            };
+            let paper_mesh = PaperMesh {
+                kind,
+                contact_elements: mesh.elements,
+                grading: mesh.grading,
+                layers: mesh.layers.unwrap_or(mesh.elements),
+            };
+            let load = match *load {
+                PunchLoadSpec::PressureMpa(p) => PunchLoad::Pressure(p),
+                PunchLoadSpec::DisplacementMm(w) => PunchLoad::Displacement(w),
+            };
+            let (base, punch) =
+                fe_paper::bodies_with(&geometry, analysis(*a, *thickness_mm)?, load, &paper_mesh)?;
+            let n = base.interface().len();
+            Ok(Bodies {
+                first: Box::new(base),
+                second: Box::new(punch),
+                gap: vec![0.0; n],
+                indentation: None,
+            })
+        }
+        Problem::RigidOnHalfSpace {
+            material: m,
+            cells,
+            cell_mm,
+            indenter,
+            load,
+        } => {
+            let origin = [
+                -0.5 * (cells[0] as f64 - 1.0) * cell_mm[0],
+                -0.5 * (cells[1] as f64 - 1.0) * cell_mm[1],
+            ];
+            let body = HalfSpace::grid(
+                "half-space",
+                material(m)?,
+                cells[0],
+                cells[1],
+                cell_mm[0],
+                cell_mm[1],
+                origin,
+            )?;
+            rigid_on(Box::new(body), [0.0, 0.0, 1.0], *load, |x| {
+                indenter_gap(indenter, x[0].hypot(x[1]), x[1])
+            })
+        }
+        Problem::RigidOnAxisymmetricHalfSpace {
+            material: m,
+            rings,
+            radius_mm,
+            indenter,
+            load,
+        } => {
+            let edges = clustered(*rings, *radius_mm, "rings", |t| t.sin(), 0.5)?;
+            let body = AxisymmetricHalfSpace::new("half-space", material(m)?, &edges)?;
+            rigid_on(Box::new(body), [0.0, 1.0, 0.0], *load, |x| {
+                no_roller(indenter)?;
+                indenter_gap(indenter, x[0], 0.0)
+            })
+        }
+        Problem::RigidOnHalfPlane {
+            material: m,
+            analysis: a,
+            thickness_mm,
+            strips,
+            half_width_mm,
+            datum_mm,
+            indenter,
+            load,
+        } => {
+            let state = match a {
+                AnalysisSpec::PlaneStress => PlaneState::Stress,
+                AnalysisSpec::PlaneStrain => PlaneState::Strain,
+                AnalysisSpec::Axisymmetric => {
+                    return Err(Error::invalid(
+                        "analysis",
+                        "axisymmetric",
+                        "a half-plane is plane_stress or plane_strain",
+                    ))
+                }
+            };
+            let edges = clustered(*strips, *half_width_mm, "strips", |t| -t.cos(), 1.0)?;
+            let body = HalfPlane::new(
+                "half-plane",
+                material(m)?,
+                state,
+                *thickness_mm,
+                &edges,
+                *datum_mm,
+            )?;
+            rigid_on(Box::new(body), [0.0, 1.0, 0.0], *load, |x| {
+                indenter_gap(indenter, x[0].abs(), x[0])
+            })
+        }
+        Problem::RigidOnBlock {
+            material: m,
+            zone_mm,
+            elements,
+            size_mm,
+            indenter,
+            load,
+        } => {
+            let (model, contact) =
+                contopt_fem::block::half_space_block(*zone_mm, *elements, *size_mm, material(m)?)?;
+            let body = FeBody::new("block", model, &contact)?;
+            rigid_on(Box::new(body), [0.0, 1.0, 0.0], *load, |x| {
+                no_roller(indenter)?;
+                indenter_gap(indenter, x[0], 0.0)
+            })
+        }
+    }
+}
+
+fn no_roller(indenter: &Indenter) -> Result<()> {
+    match indenter {
+        Indenter::Cylinder { .. } => Err(Error::invalid(
+            "indenter.shape",
+            "cylinder",
+            "an axisymmetric body takes a sphere or a flat punch",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// `count` + 1 edges a·f(π k / (2 count) · span), narrowing towards the rim.
+fn clustered(
+    count: usize,
+    size: f64,
+    name: &str,
+    f: impl Fn(f64) -> f64,
+    span: f64,
+) -> Result<Vec<f64>> {
+    if count == 0 {
+        return Err(Error::invalid(name, count, "must be at least 1"));
+    }
+    Ok((0..=count)
+        .map(|k| size * f(std::f64::consts::PI * span * k as f64 / count as f64))
+        .collect())
+}
+
+fn solver(spec: &SolverSpec) -> Result<Box<dyn ContactSolver>> {
+    Ok(match *spec {
+        SolverSpec::Qp => Box::new(Qp::default()),
+        SolverSpec::ActiveSet => Box::new(ActiveSet),
+        SolverSpec::Penalty { c_mpa_per_mm } => Box::new(Penalty { c: c_mpa_per_mm }),
+        SolverSpec::AugmentedLagrangian {
+            c_mpa_per_mm,
+            tolerance,
+            max_steps,
+        } => {
+            let mut al = AugmentedLagrangian::new(c_mpa_per_mm);
+            al.tolerance = tolerance.unwrap_or(al.tolerance);
+            al.max_steps = max_steps.unwrap_or(al.max_steps);
+            Box::new(al)
+        }
+        SolverSpec::PolonskyKeer { .. } => {
+            return Err(Error::invalid(
+                "solver.kind",
+                "polonsky_keer",
+                "solves a rigid indenter on a half-space grid without optimisation only",
+            ))
+        }
+    })
+}
+
+fn controller(spec: &ControllerSpec) -> Result<Box<dyn Controller>> {
+    Ok(match spec {
+        ControllerSpec::Constant { level } => Box::new(Constant::new(*level)?),
+        ControllerSpec::Trapezoid { l1_mm, l2_mm, axis } => {
+            Box::new(Profile::trapezoid(*l1_mm, *l2_mm)?.along(*axis)?)
+        }
+        ControllerSpec::Cubic { l1_mm, l2_mm, axis } => {
+            Box::new(Profile::cubic(*l1_mm, *l2_mm)?.along(*axis)?)
+        }
+        ControllerSpec::Product { a, b } => {
+            let (a, b) = (controller(a)?, controller(b)?);
+            Box::new(move |x: [f64; 3]| a.value(x) * b.value(x))
+        }
+    })
+}
+
+impl Case {
+    /// Checks every value without solving: the bodies are built (a finite-element body is
+    /// factorised), the solver and the controller constructed.
+    pub fn check(&self) -> std::result::Result<(), SceneError> {
+        let spec = &self.spec;
+        bodies(&spec.problem).map_err(|e| self.invalid("problem", e))?;
+        self.check_solver()?;
+        if let Some(opt) = &spec.optimisation {
+            controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
+        }
+        Ok(())
+    }
+
+    fn check_solver(&self) -> std::result::Result<(), SceneError> {
+        let spec = &self.spec;
+        match spec.solver {
+            SolverSpec::PolonskyKeer { .. } => {
+                if !matches!(spec.problem, Problem::RigidOnHalfSpace { .. })
+                    || spec.optimisation.is_some()
+                {
+                    return Err(self.invalid(
+                        "solver",
+                        Error::invalid(
+                            "solver.kind",
+                            "polonsky_keer",
+                            "needs problem.kind = \"rigid_on_half_space\" and no [optimisation]",
+                        ),
+                    ));
+                }
+            }
+            _ => {
+                solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves the case. A solver or an optimisation that does not converge gives a report with
+    /// `converged: false` and the error; bad input is an error.
+    pub fn run(&self) -> std::result::Result<CaseReport, SceneError> {
+        self.check_solver()?;
+        let spec = &self.spec;
+        let mut report = CaseReport::new(&self.label, &self.params);
+        let start = Instant::now();
+        let built = bodies(&spec.problem).map_err(|e| self.invalid("problem", e))?;
+        if let (
+            SolverSpec::PolonskyKeer {
+                tolerance,
+                max_steps,
+            },
+            Some(drive),
+        ) = (spec.solver, built.indentation)
+        {
+            let mut pk = PolonskyKeer::default();
+            pk.tolerance = tolerance.unwrap_or(pk.tolerance);
+            pk.max_steps = max_steps.unwrap_or(pk.max_steps);
+            report.time("build", start);
+            let solved = Instant::now();
+            let outcome = pk.solve(built.first.as_ref(), &built.gap, drive);
+            report.time("solve", solved);
+            return Ok(self.contact_report(report, built.first.as_ref(), &[], outcome));
+        }
+        let problem =
+            InterfaceProblem::new(built.first.as_ref(), built.second.as_ref(), &built.gap)
+                .map_err(|e| self.invalid("problem", e))?;
+        report.time("build", start);
+        let solver = solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
+        let solved = Instant::now();
+        let Some(opt) = &spec.optimisation else {
+            let outcome = solver.solve(&problem);
+            report.time("solve", solved);
+            return Ok(self.contact_report(report, built.first.as_ref(), &[], outcome));
+        };
+        let v =
+            controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
+        let iface = problem.interface();
+        let shape = match (opt.profile_axis, problem.pressure_basis()) {
+            (Some(axis), _) => GapShape::extruded(iface, axis),
+            (None, Some(basis)) => Ok(basis.clone()),
+            (None, None) => Ok(GapShape::pointwise(iface)),
+        }
+        .map_err(|e| self.invalid("optimisation.profile_axis", e))?;
+        let mut optimisation = Optimisation::new(&problem, &shape, v.as_ref())
+            .map_err(|e| self.invalid("optimisation", e))?;
+        if let Some(omega) = opt.omega_v {
+            let regions = iface
+                .points
+                .iter()
+                .map(|x| {
+                    if x[1].abs() <= omega.half_width_mm {
+                        Region::OmegaV
+                    } else {
+                        Region::OmegaNv
+                    }
+                })
+                .collect();
+            optimisation = optimisation
+                .with_regions(regions)
+                .map_err(|e| self.invalid("optimisation.omega_v", e))?;
+        }
+        let outcome = match opt.mode {
+            ModeSpec::GivenLoad => optimisation.iterate(
+                Mode::GivenLoad,
+                solver.as_ref(),
+                opt.tolh_mm2,
+                opt.max_iterations,
+            ),
+            ModeSpec::GivenDisplacement => optimisation.iterate(
+                Mode::GivenDisplacement,
+                solver.as_ref(),
+                opt.tolh_mm2,
+                opt.max_iterations,
+            ),
+            ModeSpec::LinearProgramme => optimisation.linear_programme(),
+        };
+        report.time("optimise", solved);
+        match outcome {
+            Ok(optimum) => Ok(optimum_report(report, &problem, &optimum)),
+            Err(e @ Error::NotConverged { .. }) => {
+                report.error = Some(e.to_string());
+                Ok(report)
+            }
+            Err(e) => Err(self.invalid("optimisation", e)),
+        }
+    }
+
+    fn contact_report(
+        &self,
+        mut report: CaseReport,
+        body: &dyn ElasticBody,
+        dh: &[f64],
+        outcome: Result<contopt_core::ContactState>,
+    ) -> CaseReport {
+        match outcome {
+            Ok(state) => {
+                report.converged = true;
+                report.p_max = Some(state.p_max());
+                report.interface = points(
+                    body.interface().points.as_slice(),
+                    &state.pressure,
+                    &state.gap,
+                    dh,
+                );
+            }
+            Err(e) => report.error = Some(e.to_string()),
+        }
+        report
+    }
+}
+
+fn points(x: &[[f64; 3]], p: &[f64], d: &[f64], dh: &[f64]) -> Vec<PointReport> {
+    (0..x.len())
+        .map(|i| PointReport {
+            x: x[i],
+            p: p[i],
+            d: d[i],
+            dh: dh.get(i).copied().unwrap_or(0.0),
+        })
+        .collect()
+}
+
+fn optimum_report(
+    mut report: CaseReport,
+    problem: &InterfaceProblem,
+    optimum: &Optimum,
+) -> CaseReport {
+    report.converged = true;
+    report.p_max = Some(optimum.p_max);
+    report.dh_max_um = Some(1e3 * optimum.dh_max());
+    report.iterations = optimum
+        .iterations
+        .iter()
+        .map(|r| IterationRow {
+            k: r.k,
+            p_max: r.p_max,
+            dh_max_um: 1e3 * r.dh_max,
+            tolh: r.tolh,
+            iterp: r.iterp,
+            iterd: r.iterd,
+        })
+        .collect();
+    report.interface = points(
+        &problem.interface().points,
+        &optimum.pressure,
+        &optimum.gap,
+        &optimum.gap_change,
+    );
+    report
+}

@@ -1,0 +1,271 @@
+//! Scene files: a contact problem, its solver and optionally the optimisation of its initial
+//! gap, written in TOML or JSON, with a sweep over one parameter (L₁ in the paper's tables).
+//!
+//! [`Scene::load`] reads and checks a file: unknown or missing keys and impossible values are
+//! [`SceneError`]s that name the file, the line and the key. [`Scene::cases`] expands the sweep
+//! and [`Case::run`] solves one case into a [`CaseReport`], the unit of `result.json` (its
+//! schema is in the book's chapter "Scene files and the `contopt` command").
+
+mod build;
+mod report;
+mod spec;
+
+pub use report::{CaseReport, IterationRow, PointReport, Report};
+pub use spec::{
+    AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec, OmegaVSpec, Optimise,
+    Problem, PunchLoadSpec, RigidLoad, SolverSpec, Sweep,
+};
+
+use std::path::{Path, PathBuf};
+
+/// What can go wrong with a scene.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file cannot be read.
+    #[error("{file}: {source}")]
+    Io {
+        /// The file.
+        file: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Syntax, an unknown or missing key, or a value of the wrong type or out of range.
+    #[error("{file}: {message}")]
+    Parse {
+        /// The file.
+        file: PathBuf,
+        /// The parser's message, with line, column and key.
+        message: String,
+    },
+    /// A value the bodies, solver or optimisation reject.
+    #[error("{file}{}: {case}{key}: {source}", line.map_or(String::new(), |l| format!(":{l}")))]
+    Invalid {
+        /// The file.
+        file: PathBuf,
+        /// The line that sets the rejected field, when it can be found.
+        line: Option<usize>,
+        /// The case (sweep label and a space, or empty).
+        case: String,
+        /// The scene key of the offending section.
+        key: String,
+        /// The library's error, which names the field and the value.
+        source: Box<contopt_core::Error>,
+    },
+}
+
+/// The file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// TOML (`.toml`).
+    Toml,
+    /// JSON (`.json`).
+    Json,
+}
+
+/// A scene as written, before the sweep is expanded.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Where it came from (for messages).
+    pub file: PathBuf,
+    /// The typed scene.
+    pub spec: spec::SceneSpec,
+    /// The same as a tree of values, which the sweep edits.
+    tree: serde_json::Value,
+    /// The text, to find the line of a rejected value.
+    text: std::sync::Arc<str>,
+}
+
+/// One case of a scene: the scene with the sweep's value put in.
+#[derive(Clone, Debug)]
+pub struct Case {
+    /// `key = value` of the sweep, or the scene's name.
+    pub label: String,
+    /// The swept parameter and its value (empty without a sweep).
+    pub params: std::collections::BTreeMap<String, f64>,
+    /// The case's scene.
+    pub spec: spec::SceneSpec,
+    file: PathBuf,
+    text: std::sync::Arc<str>,
+}
+
+impl Scene {
+    /// Reads and checks a scene file (TOML, or JSON when the name ends in `.json`).
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            file: path.to_owned(),
+            source,
+        })?;
+        let format = if path.extension().is_some_and(|e| e == "json") {
+            Format::Json
+        } else {
+            Format::Toml
+        };
+        Self::parse(&text, format, path)
+    }
+
+    /// Parses and checks scene text; `file` names it in messages.
+    pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
+        let parse = |message: String| SceneError::Parse {
+            file: file.to_owned(),
+            message: locate_unknown(text, message),
+        };
+        let (spec, tree) = match format {
+            Format::Toml => {
+                let spec: spec::SceneSpec =
+                    toml::from_str(text).map_err(|e| parse(e.to_string()))?;
+                let value: toml::Value = toml::from_str(text).map_err(|e| parse(e.to_string()))?;
+                let tree = serde_json::to_value(value).map_err(|e| parse(e.to_string()))?;
+                (spec, tree)
+            }
+            Format::Json => {
+                let spec: spec::SceneSpec =
+                    serde_json::from_str(text).map_err(|e| parse(e.to_string()))?;
+                let tree = serde_json::from_str(text).map_err(|e| parse(e.to_string()))?;
+                (spec, tree)
+            }
+        };
+        let scene = Self {
+            file: file.to_owned(),
+            spec,
+            tree,
+            text: text.into(),
+        };
+        for case in scene.cases()? {
+            case.check()?;
+        }
+        Ok(scene)
+    }
+
+    /// The cases: one per value of the sweep, or the scene itself.
+    pub fn cases(&self) -> Result<Vec<Case>, SceneError> {
+        let Some(sweep) = &self.spec.sweep else {
+            return Ok(vec![Case {
+                label: self.spec.name.clone(),
+                params: Default::default(),
+                spec: self.spec.clone(),
+                file: self.file.clone(),
+                text: self.text.clone(),
+            }]);
+        };
+        let parse = |message: String| SceneError::Parse {
+            file: self.file.clone(),
+            message,
+        };
+        if sweep.values.is_empty() {
+            return Err(parse("sweep.values: give at least one value".into()));
+        }
+        sweep
+            .values
+            .iter()
+            .map(|&value| {
+                let mut tree = self.tree.clone();
+                let mut node = &mut tree;
+                for part in sweep.key.split('.') {
+                    node = node.get_mut(part).filter(|n| !n.is_null()).ok_or_else(|| {
+                        parse(format!(
+                            "sweep.key `{}`: the scene has no `{part}` there",
+                            sweep.key
+                        ))
+                    })?;
+                }
+                if !node.is_number() {
+                    return Err(parse(format!(
+                        "sweep.key `{}` is not a number in the scene",
+                        sweep.key
+                    )));
+                }
+                *node = serde_json::json!(value);
+                let spec: spec::SceneSpec = serde_json::from_value(tree)
+                    .map_err(|e| parse(format!("sweep value {value} for `{}`: {e}", sweep.key)))?;
+                let name = sweep.key.rsplit('.').next().unwrap_or(&sweep.key);
+                Ok(Case {
+                    label: format!("{name} = {value}"),
+                    params: [(name.to_string(), value)].into_iter().collect(),
+                    spec,
+                    file: self.file.clone(),
+                    text: self.text.clone(),
+                })
+            })
+            .collect()
+    }
+}
+
+impl Case {
+    /// The error of a section of this case.
+    fn invalid(&self, key: &str, source: contopt_core::Error) -> SceneError {
+        let line = match &source {
+            contopt_core::Error::InvalidInput { field, .. } => {
+                line_of(&self.text, field.rsplit('.').next().unwrap_or(field))
+            }
+            _ => None,
+        };
+        SceneError::Invalid {
+            line,
+            file: self.file.clone(),
+            case: if self.params.is_empty() {
+                String::new()
+            } else {
+                format!("[{}] ", self.label)
+            },
+            key: key.to_string(),
+            source: Box::new(source),
+        }
+    }
+}
+
+/// The first line (from 1) that sets a key named `name` or `name_<unit>` (`nu`, `e` → `e_mpa`),
+/// in TOML (`name =`) or JSON (`"name":`).
+fn line_of(text: &str, name: &str) -> Option<usize> {
+    let is_key_char = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    text.lines()
+        .position(|line| {
+            line.match_indices(name).any(|(at, _)| {
+                let before = line[..at].chars().next_back();
+                if before.is_some_and(is_key_char) {
+                    return false;
+                }
+                let mut rest = &line[at + name.len()..];
+                if let Some(unit) = rest.strip_prefix('_') {
+                    rest = unit.trim_start_matches(is_key_char);
+                }
+                let rest = rest.trim_start_matches('"').trim_start();
+                rest.starts_with('=') || rest.starts_with(':')
+            })
+        })
+        .map(|i| i + 1)
+}
+
+/// Adds the line of an unknown key to a parser message that gives only its table's line (a
+/// tagged section such as `[problem]` is read as a whole).
+fn locate_unknown(text: &str, message: String) -> String {
+    let key = message
+        .split("unknown field `")
+        .nth(1)
+        .and_then(|rest| rest.split('`').next());
+    if let Some((k, line)) = key.and_then(|k| line_of(text, k).map(|l| (k, l))) {
+        return format!("{message}\n(`{k}` is set at line {line})");
+    }
+    // `invalid type: string "stiff", expected f64`: find the value's line and key.
+    let value = message.split("invalid type: ").nth(1).and_then(|rest| {
+        let rest = rest.split_once(' ')?.1;
+        let quote = rest.chars().next()?;
+        let end = rest[1..].find(quote)? + 1;
+        Some(if quote == '"' {
+            &rest[..=end]
+        } else {
+            &rest[1..end]
+        })
+    });
+    let found = value.and_then(|v| {
+        text.lines().enumerate().find_map(|(i, line)| {
+            let (key, rest) = line.split_once(['=', ':'])?;
+            rest.trim_start()
+                .starts_with(v)
+                .then(|| (key.trim().trim_matches('"').to_string(), i + 1))
+        })
+    });
+    match found {
+        Some((k, line)) => format!("{message}\n(`{k}` is set at line {line})"),
+        None => message,
+    }
+}

@@ -1,0 +1,89 @@
+//! The results of a scene: the schema of `result.json` and of `contopt run --json`.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+/// All cases of a scene.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Report {
+    /// The scene's name.
+    pub scene: String,
+    /// One per case, in sweep order.
+    pub cases: Vec<CaseReport>,
+}
+
+/// One case.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CaseReport {
+    /// `key = value` of the sweep, or the scene's name.
+    pub label: String,
+    /// The swept parameter and its value.
+    pub params: BTreeMap<String, f64>,
+    /// Largest contact pressure (the optimised p_max) \[MPa\]; null when it did not converge.
+    pub p_max: Option<f64>,
+    /// Largest gap change \[µm\]; null without optimisation.
+    pub dh_max_um: Option<f64>,
+    /// Whether the solver (and the optimisation) converged.
+    pub converged: bool,
+    /// Why not, when it did not.
+    pub error: Option<String>,
+    /// The optimisation's rows (Table 2's columns); empty without optimisation.
+    pub iterations: Vec<IterationRow>,
+    /// The fields at the interface points.
+    pub interface: Vec<PointReport>,
+    /// Wall time of the stages \[ms\]: `build`, then `solve` or `optimise`.
+    pub timings_ms: BTreeMap<String, f64>,
+}
+
+impl CaseReport {
+    pub(crate) fn new(label: &str, params: &BTreeMap<String, f64>) -> Self {
+        Self {
+            label: label.to_string(),
+            params: params.clone(),
+            p_max: None,
+            dh_max_um: None,
+            converged: false,
+            error: None,
+            iterations: vec![],
+            interface: vec![],
+            timings_ms: BTreeMap::new(),
+        }
+    }
+
+    pub(crate) fn time(&mut self, stage: &str, since: Instant) {
+        self.timings_ms
+            .insert(stage.to_string(), 1e3 * since.elapsed().as_secs_f64());
+    }
+}
+
+/// One row of the optimisation.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+pub struct IterationRow {
+    /// Outer iteration k (for the LP: its passes).
+    pub k: usize,
+    /// p_max \[MPa\].
+    pub p_max: f64,
+    /// Δh_max \[µm\].
+    pub dh_max_um: f64,
+    /// TOLH (4.2) \[mm²\].
+    pub tolh: f64,
+    /// Kalker's solves.
+    pub iterp: usize,
+    /// Kalker's penetration checks.
+    pub iterd: usize,
+}
+
+/// The fields at one interface point.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+pub struct PointReport {
+    /// Coordinates \[mm\] (axisymmetric: r, z; grids: x, y).
+    pub x: [f64; 3],
+    /// Contact pressure \[MPa\].
+    pub p: f64,
+    /// Gap after deformation \[mm\].
+    pub d: f64,
+    /// Gap change Δh \[mm\].
+    pub dh: f64,
+}

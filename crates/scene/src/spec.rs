@@ -1,0 +1,344 @@
+//! The scene schema: what a scene file may say. Keys carry their units (`_mm`, `_mpa`, `_n`);
+//! unknown keys are errors.
+
+use serde::{Deserialize, Serialize};
+
+/// A whole scene.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// Short name; names the results folder.
+    pub name: String,
+    /// What the scene shows.
+    #[serde(default)]
+    pub description: String,
+    /// The bodies, their loads and the contact zone.
+    pub problem: Problem,
+    /// The contact solver.
+    pub solver: SolverSpec,
+    /// The optimisation of the initial gap (none: only the contact problem is solved).
+    #[serde(default)]
+    pub optimisation: Option<Optimise>,
+    /// Cases over one numeric key.
+    #[serde(default)]
+    pub sweep: Option<Sweep>,
+}
+
+/// A sweep: the scene is run once per value of `key`, a dotted path to a number in the scene
+/// (`optimisation.controller.l1_mm`).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sweep {
+    /// Dotted path of the swept number.
+    pub key: String,
+    /// Its values.
+    pub values: Vec<f64>,
+}
+
+/// An isotropic linear-elastic material.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus E \[MPa\].
+    pub e_mpa: f64,
+    /// Poisson's ratio ν.
+    pub nu: f64,
+}
+
+/// The two-dimensional or axisymmetric analysis of finite-element bodies.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(rename_all = "snake_case")]
+pub enum AnalysisSpec {
+    /// Axisymmetric about the y axis.
+    Axisymmetric,
+    /// Plane stress; needs `thickness_mm`.
+    PlaneStress,
+    /// Plane strain; `thickness_mm` (default 1) is the out-of-plane length.
+    PlaneStrain,
+}
+
+/// How a punch is driven from its top face.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum PunchLoadSpec {
+    /// A uniform pressure \[MPa\]; the punch floats.
+    PressureMpa(f64),
+    /// A prescribed axial displacement \[mm\] (negative: downwards).
+    DisplacementMm(f64),
+}
+
+/// How a rigid indenter is driven.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum RigidLoad {
+    /// Pressed by a force \[N\]; it floats.
+    ForceN(f64),
+    /// Pushed in by a given approach \[mm\].
+    ApproachMm(f64),
+}
+
+/// The finite-element mesh of a punch on a base.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Quadratic elements across the contact zone.
+    pub elements: usize,
+    /// Elements through each body's height (default: `elements`).
+    #[serde(default)]
+    pub layers: Option<usize>,
+    /// Size ratio innermost / outermost contact element (default 1, uniform).
+    #[serde(default = "one")]
+    pub grading: f64,
+    /// `"q8"` (default) or `"q9"`.
+    #[serde(default = "q8")]
+    pub element: String,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn q8() -> String {
+    "q8".into()
+}
+
+/// The shape of a rigid indenter: its initial gap h(x) to the flat surface.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Indenter {
+    /// A sphere (on a half-plane: a cylinder across the plane), h = r²/(2R).
+    Sphere {
+        /// Radius R \[mm\].
+        radius_mm: f64,
+    },
+    /// A roller along x: h = y²/(2R) on a grid, with the contact strip |x| ≤ length/2.
+    Cylinder {
+        /// Radius R \[mm\].
+        radius_mm: f64,
+    },
+    /// A flat punch of radius (half-width) a: h = 0 for r ≤ a, open beyond.
+    FlatPunch {
+        /// Radius a \[mm\].
+        radius_mm: f64,
+    },
+}
+
+/// The bodies and the contact zone.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Problem {
+    /// Two finite-element bodies: a punch on a base (the paper's Fig. 1), in contact over the
+    /// punch's face with zero initial gap.
+    PunchOnBase {
+        /// The analysis.
+        analysis: AnalysisSpec,
+        /// Thickness (plane stress) or out-of-plane length (plane strain) \[mm\].
+        #[serde(default)]
+        thickness_mm: Option<f64>,
+        /// Punch radius (plane: half-width) \[mm\].
+        punch_radius_mm: f64,
+        /// Height of each body \[mm\].
+        height_mm: f64,
+        /// Base radius (plane: half-width) \[mm\].
+        base_radius_mm: f64,
+        /// Material of both bodies.
+        material: MaterialSpec,
+        /// Load on the punch's top face.
+        load: PunchLoadSpec,
+        /// The mesh.
+        mesh: MeshSpec,
+    },
+    /// A rigid indenter on an elastic half-space: a grid of `cells` cells of `cell_mm`,
+    /// centred on the origin.
+    RigidOnHalfSpace {
+        /// The half-space's material.
+        material: MaterialSpec,
+        /// Cells along x and y.
+        cells: [usize; 2],
+        /// Cell size along x and y \[mm\].
+        cell_mm: [f64; 2],
+        /// The indenter.
+        indenter: Indenter,
+        /// The load.
+        load: RigidLoad,
+    },
+    /// A rigid indenter on an elastic half-space, axisymmetric: `rings` rings out to
+    /// `radius_mm`, narrowing towards the rim (r = a·sin(πk/2n)).
+    RigidOnAxisymmetricHalfSpace {
+        /// The half-space's material.
+        material: MaterialSpec,
+        /// Number of rings.
+        rings: usize,
+        /// Outer radius of the contact zone \[mm\].
+        radius_mm: f64,
+        /// The indenter.
+        indenter: Indenter,
+        /// The load.
+        load: RigidLoad,
+    },
+    /// A rigid indenter on an elastic half-plane: `strips` strips across |x| ≤ half_width,
+    /// narrowing towards the ends.
+    RigidOnHalfPlane {
+        /// The half-plane's material.
+        material: MaterialSpec,
+        /// `"plane_stress"` or `"plane_strain"`.
+        analysis: AnalysisSpec,
+        /// Thickness \[mm\].
+        thickness_mm: f64,
+        /// Number of strips.
+        strips: usize,
+        /// Half-width of the contact zone \[mm\].
+        half_width_mm: f64,
+        /// Depth at which a point load's deflection vanishes \[mm\] (default 100).
+        #[serde(default = "datum")]
+        datum_mm: f64,
+        /// The indenter.
+        indenter: Indenter,
+        /// The load.
+        load: RigidLoad,
+    },
+    /// A rigid indenter on a large axisymmetric finite-element block clamped at its bottom.
+    RigidOnBlock {
+        /// The block's material.
+        material: MaterialSpec,
+        /// Radius of the contact zone \[mm\].
+        zone_mm: f64,
+        /// Elements across the zone.
+        elements: usize,
+        /// Radius and depth of the block \[mm\].
+        size_mm: f64,
+        /// The indenter.
+        indenter: Indenter,
+        /// The load.
+        load: RigidLoad,
+    },
+}
+
+fn datum() -> f64 {
+    100.0
+}
+
+/// The contact solver.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SolverSpec {
+    /// The QP (2.14) by clarabel.
+    Qp,
+    /// Kalker's active set with exact dense solves.
+    ActiveSet,
+    /// The penalty method.
+    Penalty {
+        /// Penalty parameter c \[MPa/mm\].
+        c_mpa_per_mm: f64,
+    },
+    /// The augmented Lagrangian with Uzawa updates.
+    AugmentedLagrangian {
+        /// Penalty parameter c \[MPa/mm\].
+        c_mpa_per_mm: f64,
+        /// Relative pressure change at which Uzawa stops (default 1e-10).
+        #[serde(default)]
+        tolerance: Option<f64>,
+        /// Largest number of Uzawa steps (default 2000).
+        #[serde(default)]
+        max_steps: Option<usize>,
+    },
+    /// Polonsky–Keer's conjugate gradients with FFT products (rigid indenter on a half-space
+    /// grid, no optimisation).
+    PolonskyKeer {
+        /// Relative tolerance (default 1e-12).
+        #[serde(default)]
+        tolerance: Option<f64>,
+        /// Largest number of steps (default 10 000).
+        #[serde(default)]
+        max_steps: Option<usize>,
+    },
+}
+
+/// The optimisation of the initial gap.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Optimise {
+    /// How p_max is found.
+    pub mode: ModeSpec,
+    /// The controller v(x).
+    pub controller: ControllerSpec,
+    /// TOLH criterion (4.2) \[mm²\] (default the paper's 0.5e-6).
+    #[serde(default = "tolh")]
+    pub tolh_mm2: f64,
+    /// Largest number of outer iterations (default 100).
+    #[serde(default = "hundred")]
+    pub max_iterations: usize,
+    /// Ω_v as a strip |y| ≤ half-width (the rest of the zone is Ω_nv); default: all of it.
+    #[serde(default)]
+    pub omega_v: Option<OmegaVSpec>,
+    /// Change the profile along this axis only (0, 1, 2; the roller's eq. 3.3); default: at
+    /// the finite-element face nodes, or at every point.
+    #[serde(default)]
+    pub profile_axis: Option<usize>,
+}
+
+fn tolh() -> f64 {
+    0.5e-6
+}
+
+fn hundred() -> usize {
+    100
+}
+
+/// Ω_v of a two-dimensional zone.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct OmegaVSpec {
+    /// Points with |y| below this are Ω_v \[mm\].
+    pub half_width_mm: f64,
+}
+
+/// The optimisation modes.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ModeSpec {
+    /// The iteration of §3.2 with p_max from the floating body's equilibrium (Tables 1, 3).
+    GivenLoad,
+    /// The iteration of §3.2 with p_max from the contact pressure (Table 2).
+    GivenDisplacement,
+    /// The restricted linear programme (3.5).
+    LinearProgramme,
+}
+
+/// A controller v(x).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ControllerSpec {
+    /// v = level.
+    Constant {
+        /// The level, in (0, 1].
+        level: f64,
+    },
+    /// 1 up to L1, falling linearly to 0 at L2, in the coordinate `axis` (absolute value).
+    Trapezoid {
+        /// L1 \[mm\].
+        l1_mm: f64,
+        /// L2 \[mm\].
+        l2_mm: f64,
+        /// The coordinate (default 0: r or x).
+        #[serde(default)]
+        axis: usize,
+    },
+    /// 1 up to L1, then 1 − 3s² + 2s³ to 0 at L2 (Tables 1–3).
+    Cubic {
+        /// L1 \[mm\].
+        l1_mm: f64,
+        /// L2 \[mm\].
+        l2_mm: f64,
+        /// The coordinate (default 0).
+        #[serde(default)]
+        axis: usize,
+    },
+    /// The product of two controllers, v(x1)·v(x2).
+    Product {
+        /// First factor.
+        a: Box<ControllerSpec>,
+        /// Second factor.
+        b: Box<ControllerSpec>,
+    },
+}
