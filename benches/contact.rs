@@ -22,7 +22,7 @@ const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
 
 /// The Hertz problem with `faces` contact faces (3 points each).
-fn hertz(faces: usize) -> InterfaceProblem {
+fn hertz(faces: usize) -> InterfaceProblem<'static> {
     let (model, contact) =
         half_space_block(1.5, faces, 30.0, Material::new(E, NU).unwrap()).unwrap();
     let block = FeBody::new("block", model, &contact).unwrap();
@@ -35,7 +35,7 @@ fn hertz(faces: usize) -> InterfaceProblem {
         .map(|x| x[0] * x[0] / (2.0 * radius))
         .collect();
     let sphere = RigidBody::pressed("sphere", block.interface(), [0.0, 1.0, 0.0], force).unwrap();
-    InterfaceProblem::new(&block, &sphere, &gap).unwrap()
+    InterfaceProblem::owned(Box::new(block), Box::new(sphere), &gap).unwrap()
 }
 
 fn solvers() -> Vec<Box<dyn ContactSolver>> {

@@ -8,9 +8,9 @@
 use std::f64::consts::PI;
 use std::time::Instant;
 
-use contopt::contact::{Indentation, PolonskyKeer};
+use contopt::contact::{ContactSolver, InterfaceProblem, PolonskyKeer};
 use contopt::greens::HalfSpace;
-use contopt::{ElasticBody, Material};
+use contopt::{ElasticBody, Material, RigidBody};
 
 const E: f64 = 210e3;
 const NU: f64 = 0.3;
@@ -75,8 +75,13 @@ fn run(case: &str, n: usize) -> String {
         ..PolonskyKeer::default()
     };
     let t = Instant::now();
+    let indenter =
+        RigidBody::pressed("indenter", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
+    let problem = InterfaceProblem::new(&body, &indenter, &gap).unwrap();
     let state = solver
-        .solve(&body, &gap, Indentation::Force(force))
+        .solve(&problem)
+        .unwrap()
+        .solved(solver.name())
         .unwrap();
     let seconds = t.elapsed().as_secs_f64();
     let p = if case == "hertz" {

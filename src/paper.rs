@@ -2,7 +2,7 @@
 //! [`fem::paper`](crate::fem::paper): the punch on its base, the C¹ controller of Tables 1 and 3
 //! with L₂ = R = 50 mm, the augmented Lagrangian with c = E·10⁴ as the contact solver.
 
-use crate::contact::{InterfaceProblem, Penalty};
+use crate::contact::{ActiveSet, InterfaceProblem, Penalty};
 use crate::fem::paper::{self, PaperMesh, PunchLoad};
 use crate::fem::{Analysis, FeBody};
 use crate::optimise::{Mode, Optimisation, Optimum, Profile};
@@ -132,19 +132,21 @@ pub fn case(
     method: Method,
 ) -> Result<Case> {
     let (base, punch) = paper::bodies(analysis, load, mesh)?;
-    let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()])?;
-    let controller = Profile::cubic(l1, paper::PUNCH_RADIUS)?;
-    let optimisation = Optimisation::new(&problem, base.gap_shape(), &controller)?;
-    let optimum = match method {
-        Method::Iteration => {
-            let mode = match load {
-                PunchLoad::Pressure(_) => Mode::GivenLoad,
-                PunchLoad::Displacement(_) => Mode::GivenDisplacement,
-            };
-            let solver = Penalty { c: paper::E * 1e4 };
-            optimisation.iterate(mode, &solver, TOLH, 100)?
+    let optimum = {
+        let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()])?;
+        let controller = Profile::cubic(l1, paper::PUNCH_RADIUS)?;
+        let optimisation = Optimisation::new(&problem, base.gap_shape(), &controller)?;
+        match method {
+            Method::Iteration => {
+                let mode = match load {
+                    PunchLoad::Pressure(_) => Mode::GivenLoad,
+                    PunchLoad::Displacement(_) => Mode::GivenDisplacement,
+                };
+                let solver = Penalty { c: paper::E * 1e4 };
+                optimisation.iterate(mode, &solver, TOLH, 100)?
+            }
+            Method::LinearProgramme => optimisation.linear_programme(&ActiveSet)?,
         }
-        Method::LinearProgramme => optimisation.linear_programme()?,
     };
     Ok(Case {
         l1,

@@ -173,7 +173,7 @@ fn constant_pressure_on_a_half_space() {
     let iterated = optimisation
         .iterate(Mode::GivenLoad, &ActiveSet, 1e-20, 10)
         .unwrap();
-    let lp = optimisation.linear_programme().unwrap();
+    let lp = optimisation.linear_programme(&ActiveSet).unwrap();
     for (name, opt) in [("iteration", &iterated), ("LP", &lp)] {
         eprintln!(
             "half-space, {name}: p_max {:.6}, Δh_max {:+.3} % from the closed form",
@@ -220,7 +220,7 @@ fn constant_pressure_on_a_half_plane() {
                 .iterate(Mode::GivenLoad, &ActiveSet, 1e-20, 10)
                 .unwrap(),
         ),
-        ("LP", optimisation.linear_programme().unwrap()),
+        ("LP", optimisation.linear_programme(&ActiveSet).unwrap()),
     ] {
         eprintln!(
             "half-plane, {name}: Δh_max {:+.3} % from the closed form",
@@ -313,7 +313,7 @@ fn crowned_roller_on_a_half_space() {
     let iterated = optimisation
         .iterate(Mode::GivenLoad, &ActiveSet, 1e-12, 100)
         .unwrap();
-    let lp = optimisation.linear_programme().unwrap();
+    let lp = optimisation.linear_programme(&ActiveSet).unwrap();
     for (name, opt) in [("iteration", &iterated), ("LP", &lp)] {
         let over = (0..problem.len())
             .filter(|&i| regions[i] == Region::OmegaNv)

@@ -1,11 +1,15 @@
 //! The Kalker active-set iteration and the Uzawa loop shared by the penalty method, the
 //! augmented Lagrangian and the active-set QP solver.
 
-use contopt_core::{ContactState, Error, Result};
+use contopt_core::{ContactState, Error, Result, Status};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
 use crate::InterfaceProblem;
+
+/// The n × n matrices a Kalker solve holds at once: A, the contact-set matrix, its
+/// eigenvectors and a product.
+pub(crate) const DENSE_COPIES: u64 = 4;
 
 /// A pressure and rigid-mode amplitudes: an iterate, or the reference a solve starts from.
 #[derive(Clone, Debug)]
@@ -102,6 +106,8 @@ struct Inner {
     /// Penetration checks: the solves whose pressure had no negative value (the paper's
     /// `iterd`).
     iterd: usize,
+    /// Why the iteration stopped short, with `solution` its last iterate; `None` when solved.
+    stopped: Option<String>,
 }
 
 impl Inner {
@@ -119,7 +125,7 @@ impl Inner {
 /// state, i.e. one augmented-Lagrangian step (2.18)–(2.20); with p̂ = 0 it is the penalty
 /// method.
 struct Subproblem<'a> {
-    problem: &'a InterfaceProblem,
+    problem: &'a InterfaceProblem<'a>,
     rho: f64,
     shift: &'a [f64],
     /// Solve spectrally (for ρ below the stiff level; see [`ContactMatrix`]).
@@ -144,7 +150,7 @@ impl Subproblem<'_> {
         let m = problem.load().len();
         let (w, a, r, q) = (
             problem.weights(),
-            problem.influence(),
+            problem.dense_influence(DENSE_COPIES)?,
             problem.rigid(),
             problem.load(),
         );
@@ -169,17 +175,23 @@ impl Subproblem<'_> {
                 solution.pressure[i] = reference.pressure[i];
             }
             if k > 0 {
-                let not_converged = |detail: String| Error::NotConverged {
-                    method: "Kalker active set".into(),
-                    iterations: iterp,
-                    detail,
+                let stop = |detail: String, solution: Iterate| {
+                    let gap = problem.gap(&solution.pressure, &solution.rigid);
+                    Ok(Inner {
+                        solution,
+                        gap,
+                        gap_floor: 0.0,
+                        iterp,
+                        iterd,
+                        stopped: Some(detail),
+                    })
                 };
-                let llt = ContactMatrix::new(a, w, &idx, rho, self.spectral).ok_or_else(|| {
-                    not_converged(format!(
+                let Some(llt) = ContactMatrix::new(a, w, &idx, rho, self.spectral) else {
+                    return stop(format!(
                         "the influence matrix is singular on the {k} contact points (penalty term rho = {rho:e}); \
                          use a finite penalty parameter or the augmented Lagrangian"
-                    ))
-                })?;
+                    ), solution);
+                };
                 let d_ref = problem.gap(&solution.pressure, &solution.rigid);
                 let b = Mat::from_fn(k, 1, |a_, _| {
                     let i = idx[a_];
@@ -198,14 +210,16 @@ impl Subproblem<'_> {
                             .sum();
                         (0..k).map(|a_| bm[(a_, c)] * y[(a_, 0)]).sum::<f64>() + q[c] + held
                     });
-                    let lambda = Llt::new(s.as_ref(), Side::Lower)
-                        .map_err(|_| {
-                            not_converged(format!(
+                    let Ok(gram) = Llt::new(s.as_ref(), Side::Lower) else {
+                        return stop(
+                            format!(
                                 "the {k} contact points do not hold the rigid modes {:?}",
                                 problem.mode_names()
-                            ))
-                        })?
-                        .solve(&rhs);
+                            ),
+                            solution,
+                        );
+                    };
+                    let lambda = gram.solve(&rhs);
                     delta = &y - &z * &lambda;
                     for (c, l) in solution.rigid.iter_mut().enumerate() {
                         *l += lambda[(c, 0)];
@@ -251,6 +265,7 @@ impl Subproblem<'_> {
                     gap_floor,
                     iterp,
                     iterd,
+                    stopped: None,
                 });
             }
             match pivot.next(&negative, &penetrating) {
@@ -258,15 +273,18 @@ impl Subproblem<'_> {
                 Pivot::Add(points) => points.into_iter().for_each(|i| active[i] = true),
             }
             if iterp >= max_solves {
-                return Err(Error::NotConverged {
-                    method: "Kalker active set".into(),
-                    iterations: iterp,
-                    detail: format!(
+                return Ok(Inner {
+                    stopped: Some(format!(
                         "the contact set kept changing: {} points had negative pressure and {} penetrated \
                          at the last of {iterp} solves",
                         negative.len(),
                         penetrating.len()
-                    ),
+                    )),
+                    solution,
+                    gap: d,
+                    gap_floor: 0.0,
+                    iterp,
+                    iterd,
                 });
             }
         }
@@ -349,12 +367,16 @@ fn finish(
     counts: [usize; 2],
 ) -> ContactState {
     let s = inner.solution;
-    problem.state(
+    let mut state = problem.state(
         s.pressure,
         s.rigid,
         active,
         [steps, counts[0] + inner.iterp, counts[1] + inner.iterd],
-    )
+    );
+    if let Some(reason) = inner.stopped {
+        state.status = Status::Stopped(format!("Kalker's active set: {reason}"));
+    }
+    state
 }
 
 /// The QP (2.14) on the contact set `active` (updated by Kalker's iteration), from
@@ -379,7 +401,7 @@ fn solve_exact(
 /// c_stiff = 10⁶ / maxᵢ(Aᵢᵢ wᵢ), where the proximal term is 10⁻⁶ of the stiffest compliance.
 /// Larger parameters start from a c_stiff solution (see [`Subproblem::solve`]).
 pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
-    let a = problem.influence();
+    let a = problem.dense_influence(DENSE_COPIES)?;
     let scale = (0..problem.len())
         .map(|i| a[(i, i)] * problem.weights()[i])
         .fold(0.0, f64::max);
@@ -400,11 +422,11 @@ fn start(
     c: f64,
     active: &mut [bool],
     counts: &mut [usize; 2],
-) -> Result<Iterate> {
+) -> Result<std::result::Result<Iterate, Inner>> {
     let (n, m) = (problem.len(), problem.load().len());
     let c_stiff = stiff_penalty(problem)?;
     if c <= c_stiff {
-        return Ok(Iterate::zero(n, m));
+        return Ok(Ok(Iterate::zero(n, m)));
     }
     let zeros = vec![0.0; n];
     let pre = Subproblem {
@@ -414,9 +436,12 @@ fn start(
         spectral: false,
     }
     .solve(&Iterate::zero(n, m), active)?;
+    if pre.stopped.is_some() {
+        return Ok(Err(pre));
+    }
     counts[0] += pre.iterp;
     counts[1] += pre.iterd;
-    Ok(pre.solution)
+    Ok(Ok(pre.solution))
 }
 
 /// The penalty method: one subproblem with ρ = 1/c and p̂ = 0, so p = c⟨−d⟩.
@@ -424,7 +449,10 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState
     let n = problem.len();
     let mut active = vec![true; n];
     let mut counts = [0, 0];
-    let reference = start(problem, c, &mut active, &mut counts)?;
+    let reference = match start(problem, c, &mut active, &mut counts)? {
+        Ok(reference) => reference,
+        Err(stopped) => return Ok(finish(problem, stopped, active, 1, counts)),
+    };
     let zeros = vec![0.0; n];
     let inner = Subproblem {
         problem,
@@ -450,7 +478,10 @@ pub(crate) fn uzawa(
     let n = problem.len();
     let mut active = vec![true; n];
     let mut counts = [0, 0];
-    let mut current = start(problem, c, &mut active, &mut counts)?;
+    let mut current = match start(problem, c, &mut active, &mut counts)? {
+        Ok(reference) => reference,
+        Err(stopped) => return Ok(finish(problem, stopped, active, 0, counts)),
+    };
     let spectral = c > stiff_penalty(problem)?;
     let mut change = f64::INFINITY;
     for step in 1..=max_steps {
@@ -462,6 +493,9 @@ pub(crate) fn uzawa(
             spectral,
         }
         .solve(&current, &mut active)?;
+        if inner.stopped.is_some() {
+            return Ok(finish(problem, inner, active, step, counts));
+        }
         counts[0] += inner.iterp;
         counts[1] += inner.iterd;
         let p_max = inner
@@ -501,21 +535,17 @@ pub(crate) fn uzawa(
             ));
         }
     }
-    let state = problem.state(
+    let mut state = problem.state(
         current.pressure,
         current.rigid,
         active,
         [max_steps, counts[0], counts[1]],
     );
-    Err(Error::NotConverged {
-        method: "augmented Lagrangian (Uzawa)".into(),
-        iterations: max_steps,
-        detail: format!(
-            "last pressure change {change:.3e} MPa, p_max {:.6} MPa, penetration {:.3e} mm; raise the penalty parameter c = {c:e} or the step limit",
-            state.p_max(),
-            state.residuals.penetration
-        ),
-    })
+    state.status = Status::Stopped(format!(
+        "Uzawa's {max_steps} steps: last pressure change {change:.3e} MPa, p_max {:.6} MPa; raise the penalty parameter c = {c:e} or the step limit",
+        state.p_max(),
+    ));
+    Ok(state)
 }
 
 /// The QP (2.14) itself: Kalker's iteration with ρ = 0, solving on each contact set with the
@@ -542,6 +572,9 @@ pub(crate) fn exact(
                 spectral: false,
             }
             .solve(&Iterate::zero(n, m), &mut active)?;
+            if pre.stopped.is_some() {
+                return Ok(finish(problem, pre, active, 1, counts));
+            }
             counts = [pre.iterp, pre.iterd];
             (active, pre.solution)
         }

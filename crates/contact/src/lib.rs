@@ -1,7 +1,7 @@
 //! The contact interface problem of two elastic bodies and the methods that solve it (§2 of
 //! Páczelt 1994): the complementary-energy QP ([`Qp`] by clarabel, [`ActiveSet`]), the
 //! [`Penalty`] method and the [`AugmentedLagrangian`] with Uzawa updates and Kalker's
-//! active-set iteration; and, for large grids applied as operators, [`PolonskyKeer`].
+//! active-set iteration; and, matrix-free for large grids applied as operators, [`PolonskyKeer`].
 
 // Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -14,7 +14,7 @@ mod solvers;
 #[cfg(test)]
 mod tests;
 
-pub use polonsky_keer::{Indentation, PolonskyKeer};
-pub use problem::InterfaceProblem;
+pub use polonsky_keer::PolonskyKeer;
+pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES};
 pub use qp::Qp;
 pub use solvers::{ActiveSet, AugmentedLagrangian, ContactSolver, Penalty};

@@ -1,29 +1,39 @@
-//! The constrained conjugate-gradient method of Polonsky & Keer (Wear 231, 1999) for a rigid
-//! indenter on an elastic body applied as an operator: for large half-space grids whose
-//! influence product is an FFT convolution, never a dense matrix.
+//! The constrained conjugate-gradient method of Polonsky & Keer (Wear 231, 1999) on an
+//! interface problem applied as an operator: for large half-space grids whose influence
+//! product is an FFT convolution, never a dense matrix.
 
-use contopt_core::{ContactState, ElasticBody, Error, Residuals, Result};
+// The iteration walks several parallel per-point arrays at once; index loops read best.
+#![allow(clippy::needless_range_loop)]
 
-/// What drives the indenter into the body.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Indentation {
-    /// A total force \[N\] > 0 (load control): the approach is found.
-    Force(f64),
-    /// An approach \[mm\] (displacement control): the force is found.
-    Approach(f64),
-}
+use contopt_core::{ContactState, Error, Result, Status};
+
+use crate::{ContactSolver, InterfaceProblem};
+
+/// Relative size of a penetration outside the solved part that makes the part grow.
+const PENETRATION: f64 = 1e-12;
 
 /// Polonsky–Keer: conjugate gradients on the pressure restricted to the contact set, with
 /// the set updated every step (points that leave get p = 0, penetrating points re-enter and
-/// the conjugation restarts), and for load control the pressure rescaled to the force. When
-/// the body offers an approximate inverse ([`ElasticBody::precondition`]; a half-space grid
-/// uses its kernel's circulant inverse) the residual is preconditioned with it and the
-/// directions conjugated by Polak–Ribière.
-/// Inner products and means are weighted by the point weights, so unequal cells are allowed.
-/// Each step costs two operator products: O(N log N) on an FFT half-space grid.
+/// the conjugation restarts), and each loaded rigid mode's pressure rescaled to its load.
+///
+/// It solves the QP (2.14) of any [`InterfaceProblem`] through its influence operator: a rigid
+/// indenter or two elastic grids on a half-space, under a given force (a floating body: the
+/// approach is its mode's amplitude) or a given approach (in the initial gap, nothing floats).
+/// The free rigid modes must move disjoint sets of points, each one way (a translation; or one
+/// translation per design column, as the optimiser's load split gives). The directions are
+/// projected, in the W inner product, onto the pressures that leave every mode's load
+/// unchanged: for a translation, the weighted mean on the contact set is removed (eq. 2.10).
+///
+/// When the problem offers an approximate inverse ([`InterfaceProblem::precondition`]: a
+/// half-space grid's circulant kernel inverse) the residual is preconditioned with it and the
+/// directions conjugated by Polak–Ribière. Each step costs two operator products: O(N log N) on
+/// an FFT grid. When the problem can be restricted ([`InterfaceProblem::restrict`]: a grid's
+/// bounding box), the solve runs where contact can occur (where a warm start carries pressure,
+/// or within a quarter of the gap's range of its lowest point) and is checked on the whole
+/// interface with one product; the part grows until no point outside it penetrates.
 #[derive(Clone, Copy, Debug)]
 pub struct PolonskyKeer {
-    /// Stop when Σ wᵢ |Δpᵢ| falls below `tolerance` times the force.
+    /// Stop when Σ wᵢ |Δpᵢ| falls below `tolerance` times the load (or the carried force).
     pub tolerance: f64,
     /// Largest number of steps.
     pub max_steps: usize,
@@ -38,229 +48,185 @@ impl Default for PolonskyKeer {
     }
 }
 
+impl ContactSolver for PolonskyKeer {
+    fn name(&self) -> &str {
+        "Polonsky-Keer"
+    }
+
+    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        self.check()?;
+        self.solve_cropped(problem, None)
+    }
+
+    fn solve_from(&self, problem: &InterfaceProblem, start: &[f64]) -> Result<ContactState> {
+        self.check()?;
+        if start.len() != problem.len() || start.iter().any(|p| !p.is_finite()) {
+            return Err(Error::invalid(
+                "start",
+                format!("{} values", start.len()),
+                format!(
+                    "one finite pressure per interface point ({})",
+                    problem.len()
+                ),
+            ));
+        }
+        self.solve_cropped(problem, Some(start))
+    }
+}
+
 impl PolonskyKeer {
-    /// Presses a rigid indenter, whose shape is the initial gap `gap` \[mm\] at the body's
-    /// points, into `body` as `indentation` says. The state's `rigid` holds the indenter's
-    /// motion into itself (minus the approach), as for [`crate::InterfaceProblem`].
-    ///
-    /// When the body can be restricted ([`ElasticBody::restrict`]: a grid's bounding box), the
-    /// solve runs where contact can occur: first the points within a quarter of the gap's
-    /// range of its lowest point; the answer is then checked on the whole body with one
-    /// product, and the region grows to take in any point that would penetrate, until none
-    /// does. The result is that of the whole body.
-    pub fn solve(
+    fn check(&self) -> Result<()> {
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err(Error::invalid(
+                "solver.tolerance",
+                self.tolerance,
+                "must lie in (0, 1)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Solves on a growing part of the interface when the problem can be restricted.
+    fn solve_cropped(
         &self,
-        body: &dyn ElasticBody,
-        gap: &[f64],
-        indentation: Indentation,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
     ) -> Result<ContactState> {
-        let n = body.interface().len();
-        crate::problem::check_gap(gap, n)?;
-        let (lo, hi) = gap
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
-                (a.min(h), b.max(h))
-            });
-        let mut keep: Vec<bool> = gap.iter().map(|&h| h <= lo + 0.25 * (hi - lo)).collect();
+        let n = problem.len();
+        let g = problem.free_gap();
+        let mut keep: Vec<bool> = match start {
+            Some(p) if p.iter().any(|&v| v > 0.0) => p.iter().map(|&v| v > 0.0).collect(),
+            _ => {
+                let (lo, hi) = g
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
+                        (a.min(h), b.max(h))
+                    });
+                g.iter().map(|&h| h <= lo + 0.25 * (hi - lo)).collect()
+            }
+        };
         let mut steps = 0;
-        while let Some((part, index)) = body.restrict(&keep) {
-            let part_gap: Vec<f64> = index.iter().map(|&k| gap[k]).collect();
-            let state = self.solve_whole(part.as_ref(), &part_gap, indentation)?;
-            drop((part, part_gap));
+        while let Some((part, index)) = problem.restrict(&keep) {
+            let part_start: Option<Vec<f64>> = start.map(|p| index.iter().map(|&k| p[k]).collect());
+            let state = self.solve_whole(&part, part_start.as_deref())?;
             steps += state.iterations;
-            // The part's answer on the whole body: forces, then (in place) the gaps.
-            let w = &body.interface().weights;
             let mut pressure = vec![0.0; n];
             for (a, &k) in index.iter().enumerate() {
                 pressure[k] = state.pressure[a];
             }
-            let shift = state.rigid[0];
-            drop(state);
-            let force: Vec<f64> = pressure.iter().zip(w).map(|(p, w)| p * w).collect();
-            let carried: f64 = force.iter().sum();
-            let mut d = vec![0.0; n];
-            body.apply_influence(&force, &mut d);
-            drop(force);
-            let mut scale = 0.0f64;
-            for (d, h) in d.iter_mut().zip(gap) {
-                scale = scale.max(h.abs() + d.abs());
-                *d += h + shift;
-            }
+            drop(part);
+            let mut groups = Groups::new(problem)?;
+            let (gap, rigid) = groups.final_gap(problem, &pressure);
+            let scale = g
+                .iter()
+                .zip(&gap)
+                .fold(0.0f64, |m, (h, d)| m.max(h.abs() + d.abs()));
             let mut inside = vec![false; n];
             for &k in &index {
                 inside[k] = true;
             }
             let penetrating: Vec<usize> = (0..n)
-                .filter(|&k| !inside[k] && d[k] < -1e-12 * scale)
+                .filter(|&k| !inside[k] && gap[k] < -PENETRATION * scale)
                 .collect();
-            if penetrating.is_empty() {
-                let active = pressure.iter().map(|&p| p > 0.0).collect();
-                let equilibrium = match indentation {
-                    Indentation::Force(f) => (carried - f).abs(),
-                    Indentation::Approach(_) => 0.0,
-                };
-                let residuals = Residuals::new(equilibrium, &pressure, &d);
+            if penetrating.is_empty() || state.status != Status::Solved {
+                let residuals = problem.residuals(&pressure, &gap);
                 return Ok(ContactState {
+                    active: pressure.iter().map(|&p| p > 0.0).collect(),
                     pressure,
-                    gap: d,
-                    rigid: vec![shift],
-                    active,
+                    gap,
+                    rigid,
                     iterations: steps,
                     iterp: 0,
                     iterd: 0,
                     residuals,
+                    status: state.status,
                 });
             }
             for k in index.into_iter().chain(penetrating) {
                 keep[k] = true;
             }
         }
-        let mut state = self.solve_whole(body, gap, indentation)?;
+        let mut state = self.solve_whole(problem, start)?;
         state.iterations += steps;
         Ok(state)
     }
 
-    /// The iteration on the whole body (`gap` already checked by [`PolonskyKeer::solve`]).
+    /// The iteration on the whole problem.
     fn solve_whole(
         &self,
-        body: &dyn ElasticBody,
-        gap: &[f64],
-        indentation: Indentation,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
     ) -> Result<ContactState> {
-        let w = &body.interface().weights;
+        let mut groups = Groups::new(problem)?;
+        let w = problem.weights();
         let n = w.len();
-        let area: f64 = w.iter().sum();
-        let (force, approach) = match indentation {
-            Indentation::Force(f) if f.is_finite() && f > 0.0 => (Some(f), 0.0),
-            Indentation::Approach(a) if a.is_finite() => (None, a),
-            other => {
-                return Err(Error::invalid(
-                    "indentation",
-                    format!("{other:?}"),
-                    "a positive force or a finite approach",
-                ))
-            }
+        let g = problem.free_gap();
+        let mut cg = Buffers::new(n);
+        // κ: a point's displacement under unit pressure on itself, for seeding pressures from
+        // gaps (a uniform pressure would not do: it moves a periodic grid not at all).
+        let kappa = {
+            cg.forces.fill(0.0);
+            cg.forces[0] = w[0];
+            problem.apply_influence_with(&cg.forces, &mut cg.u, &mut cg.spare);
+            cg.u[0]
         };
-        let dot = |a: &[f64], b: &[f64], set: &[bool]| {
-            (0..n)
-                .filter(|&i| set[i])
-                .map(|i| w[i] * a[i] * b[i])
-                .sum::<f64>()
+        if !(kappa > 0.0 && kappa.is_finite()) {
+            return Err(Error::invalid(
+                "influence",
+                kappa,
+                "the bodies have no compliance at the interface (two rigid bodies?)",
+            ));
+        }
+        let mut p = match start {
+            Some(s) => s.iter().map(|v| v.max(0.0)).collect(),
+            None => groups.initial(w, &g, kappa),
         };
-        let mean = |a: &[f64], set: &[bool]| {
-            let total: f64 = (0..n).filter(|&i| set[i]).map(|i| w[i]).sum();
-            if total > 0.0 {
-                (0..n).filter(|&i| set[i]).map(|i| w[i] * a[i]).sum::<f64>() / total
-            } else {
-                0.0
-            }
-        };
-        // Buffers for the whole iteration: the loop allocates nothing.
-        let mut forces = vec![0.0; n];
-        let mut apply = |p: &[f64], out: &mut [f64]| {
-            for ((f, p), w) in forces.iter_mut().zip(p).zip(w) {
-                *f = p * w;
-            }
-            body.apply_influence(&forces, out);
-        };
-        let mut contact = vec![false; n];
+        groups.restore(w, &g, &mut p);
         let mut previous = vec![0.0; n];
-        // Start: uniform pressure (load control) or the overlapped region (approach control).
-        let mut p: Vec<f64> = match force {
-            Some(f) => vec![f / area; n],
-            None => gap
-                .iter()
-                .map(|h| if *h < approach { 1.0 } else { 0.0 })
-                .collect(),
-        };
-        let (mut u, mut g, mut t, mut r) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let (mut masked, mut z, mut g_previous) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let (mut gz_old, mut conjugate) = (1.0, false);
-        let mut shift = -approach;
-        let mut change = f64::INFINITY;
-        for step in 1..=self.max_steps {
-            apply(&p, &mut u);
-            for (c, &v) in contact.iter_mut().zip(&p) {
-                *c = v > 0.0;
+        let (mut gz_old, mut conjugate, mut change) = (1.0, false, f64::INFINITY);
+        let mut stopped = None;
+        let mut steps = 0;
+        while steps < self.max_steps {
+            steps += 1;
+            cg.residual(problem, &mut groups, &g, &p);
+            cg.direction(problem, &mut groups, conjugate, &mut gz_old);
+            // Step length along t: the residual's component over the curvature.
+            for ((f, t), w) in cg.forces.iter_mut().zip(&cg.t).zip(w) {
+                *f = t * w;
             }
-            for i in 0..n {
-                g[i] = gap[i] + u[i];
-            }
-            if force.is_some() {
-                shift = -mean(&g, &contact);
-            }
-            for v in g.iter_mut() {
-                *v += shift;
-            }
-            // Search direction: the residual on the contact set, preconditioned when the body
-            // offers an approximate inverse (forces per point turned into pressures, with the
-            // mean removed under load control so the force is kept), conjugated by
-            // Polak–Ribière and restarted when points re-enter.
-            for i in 0..n {
-                masked[i] = if contact[i] { g[i] } else { 0.0 };
-            }
-            if body.precondition(&masked, &mut z) {
-                for i in 0..n {
-                    z[i] = if contact[i] { z[i] / w[i] } else { 0.0 };
-                }
-                if force.is_some() {
-                    let z_mean = mean(&z, &contact);
-                    for i in (0..n).filter(|&i| contact[i]) {
-                        z[i] -= z_mean;
-                    }
-                }
-            } else {
-                z.copy_from_slice(&masked);
-            }
-            let gz = dot(&g, &z, &contact);
-            let beta = if conjugate {
-                ((gz - dot(&g_previous, &z, &contact)) / gz_old).max(0.0)
-            } else {
+            problem.apply_influence_with(&cg.forces, &mut cg.r, &mut cg.spare);
+            let curvature = cg.dot(w, &cg.r, &cg.t);
+            let along = cg.dot(w, &cg.d, &cg.t);
+            let tau = if along == 0.0 {
                 0.0
-            };
-            for i in 0..n {
-                t[i] = if contact[i] { z[i] + beta * t[i] } else { 0.0 };
-            }
-            gz_old = gz;
-            g_previous.copy_from_slice(&g);
-            apply(&t, &mut r);
-            if force.is_some() {
-                let r_mean = mean(&r, &contact);
-                for v in r.iter_mut() {
-                    *v -= r_mean;
-                }
-            }
-            let curvature = dot(&r, &t, &contact);
-            let tau = if curvature > 0.0 {
-                dot(&g, &t, &contact) / curvature
+            } else if curvature > 0.0 {
+                along / curvature
             } else {
-                0.0
+                stopped = Some(format!(
+                    "the influence operator is not positive on the contact set (curvature {curvature:e})"
+                ));
+                break;
             };
             previous.copy_from_slice(&p);
             for i in 0..n {
-                if contact[i] {
-                    p[i] = (p[i] - tau * t[i]).max(0.0);
+                if cg.contact[i] {
+                    p[i] = (p[i] - tau * cg.t[i]).max(0.0);
                 }
             }
             // Penetrating points outside the contact set re-enter; conjugation restarts.
+            let enter = if tau > 0.0 { tau } else { 1.0 / kappa };
             let mut entered = false;
             for i in 0..n {
-                if p[i] == 0.0 && !contact[i] && g[i] < 0.0 {
-                    p[i] = -tau * g[i];
+                if !cg.contact[i] && groups.may_enter(i) && cg.d[i] < 0.0 {
+                    p[i] = -enter * cg.d[i];
                     entered = true;
                 }
             }
             conjugate = !entered;
-            if let Some(f) = force {
-                let total: f64 = p.iter().zip(w).map(|(p, w)| p * w).sum();
-                if total > 0.0 {
-                    for v in p.iter_mut() {
-                        *v *= f / total;
-                    }
-                }
-            }
-            let scale = force
-                .unwrap_or_else(|| p.iter().zip(w).map(|(p, w)| p * w).sum::<f64>())
+            groups.restore(w, &cg.d, &mut p);
+            let scale = groups
+                .total_load()
+                .max(p.iter().zip(w).map(|(p, w)| p * w).sum::<f64>())
                 .max(f64::MIN_POSITIVE);
             change = p
                 .iter()
@@ -269,36 +235,340 @@ impl PolonskyKeer {
                 .map(|((a, b), w)| w * (a - b).abs())
                 .sum::<f64>()
                 / scale;
-            if change < self.tolerance {
-                apply(&p, &mut u);
-                let active: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
-                if force.is_some() {
-                    let g_final: Vec<f64> = (0..n).map(|i| gap[i] + u[i]).collect();
-                    shift = -mean(&g_final, &active);
-                }
-                let d: Vec<f64> = (0..n).map(|i| gap[i] + u[i] + shift).collect();
-                let carried: f64 = p.iter().zip(w).map(|(p, w)| p * w).sum();
-                let equilibrium = force.map_or(0.0, |f| (carried - f).abs());
-                let residuals = Residuals::new(equilibrium, &p, &d);
-                return Ok(ContactState {
-                    pressure: p,
-                    gap: d,
-                    rigid: vec![shift],
-                    active,
-                    iterations: step,
-                    iterp: 0,
-                    iterd: 0,
-                    residuals,
-                });
+            if !change.is_finite() {
+                p.copy_from_slice(&previous);
+                stopped = Some("a step gave non-finite pressures (overflowing data?)".into());
+                break;
+            }
+            if change < self.tolerance && !entered {
+                break;
             }
         }
-        Err(Error::NotConverged {
-            method: "Polonsky-Keer".into(),
-            iterations: self.max_steps,
-            detail: format!(
-                "relative pressure change {change:.3e} (tolerance {:.1e})",
+        if stopped.is_none() && !(change < self.tolerance) {
+            stopped = Some(format!(
+                "{steps} steps: relative pressure change {change:.3e} (tolerance {:.1e})",
                 self.tolerance
-            ),
+            ));
+        }
+        let (gap, rigid) = groups.final_gap(problem, &p);
+        let residuals = problem.residuals(&p, &gap);
+        Ok(ContactState {
+            active: p.iter().map(|&v| v > 0.0).collect(),
+            pressure: p,
+            gap,
+            rigid,
+            iterations: steps,
+            iterp: 0,
+            iterd: 0,
+            residuals,
+            status: stopped.map_or(Status::Solved, |s| {
+                Status::Stopped(format!("Polonsky-Keer: {s}"))
+            }),
         })
+    }
+}
+
+/// The vectors of the iteration, allocated once per solve.
+struct Buffers {
+    forces: Vec<f64>,
+    u: Vec<f64>,
+    spare: Vec<f64>,
+    /// The gap residual d = g + A W p + R λ.
+    d: Vec<f64>,
+    d_previous: Vec<f64>,
+    masked: Vec<f64>,
+    z: Vec<f64>,
+    /// The search direction.
+    t: Vec<f64>,
+    /// A W t.
+    r: Vec<f64>,
+    contact: Vec<bool>,
+}
+
+impl Buffers {
+    fn new(n: usize) -> Self {
+        let zero = || vec![0.0; n];
+        Self {
+            forces: zero(),
+            u: zero(),
+            spare: zero(),
+            d: zero(),
+            d_previous: zero(),
+            masked: zero(),
+            z: zero(),
+            t: zero(),
+            r: zero(),
+            contact: vec![false; n],
+        }
+    }
+
+    /// Σ over the contact set of wᵢ aᵢ bᵢ.
+    fn dot(&self, w: &[f64], a: &[f64], b: &[f64]) -> f64 {
+        (0..w.len())
+            .filter(|&i| self.contact[i])
+            .map(|i| w[i] * a[i] * b[i])
+            .sum()
+    }
+
+    /// The contact set of `p` and the gap residual d, with the modes' amplitudes fitted on it.
+    fn residual(&mut self, problem: &InterfaceProblem, groups: &mut Groups, g: &[f64], p: &[f64]) {
+        let w = problem.weights();
+        for ((f, p), w) in self.forces.iter_mut().zip(p).zip(w) {
+            *f = p * w;
+        }
+        problem.apply_influence_with(&self.forces, &mut self.u, &mut self.spare);
+        for i in 0..p.len() {
+            self.contact[i] = p[i] > 0.0;
+            self.d[i] = g[i] + self.u[i];
+        }
+        groups.fit(w, &mut self.d, &self.contact);
+    }
+
+    /// The next search direction t: the residual on the contact set, preconditioned when the
+    /// problem offers an approximate inverse (forces turned into pressures), projected so that
+    /// the modes' loads do not change, and conjugated by Polak–Ribière unless restarted.
+    fn direction(
+        &mut self,
+        problem: &InterfaceProblem,
+        groups: &mut Groups,
+        conjugate: bool,
+        gz_old: &mut f64,
+    ) {
+        let w = problem.weights();
+        let n = w.len();
+        for i in 0..n {
+            self.masked[i] = if self.contact[i] { self.d[i] } else { 0.0 };
+        }
+        if problem.precondition(&self.masked, &mut self.z) {
+            for i in 0..n {
+                self.z[i] = if self.contact[i] {
+                    self.z[i] / w[i]
+                } else {
+                    0.0
+                };
+            }
+        } else {
+            self.z.copy_from_slice(&self.masked);
+        }
+        groups.project(w, &mut self.z, &self.contact);
+        let gz = self.dot(w, &self.d, &self.z);
+        let beta = if conjugate && *gz_old != 0.0 {
+            ((gz - self.dot(w, &self.d_previous, &self.z)) / *gz_old).max(0.0)
+        } else {
+            0.0
+        };
+        for i in 0..n {
+            self.t[i] = if self.contact[i] {
+                self.z[i] + beta * self.t[i]
+            } else {
+                0.0
+            };
+        }
+        groups.project(w, &mut self.t, &self.contact);
+        *gz_old = gz;
+        self.d_previous.copy_from_slice(&self.d);
+    }
+}
+
+/// No mode moves the point.
+const NONE: usize = usize::MAX;
+
+/// The free rigid modes in the form the iteration uses: the mode of each point, its rᵢ, and
+/// each mode's target force c = −q = Σ wᵢ rᵢ pᵢ; with per-mode buffers reused every step.
+struct Groups {
+    owner: Vec<usize>,
+    r: Vec<f64>,
+    target: Vec<f64>,
+    num: Vec<f64>,
+    den: Vec<f64>,
+    lambda: Vec<f64>,
+    /// Per mode: the point of least gap (seeding) or the bound at which it touches.
+    extreme: Vec<f64>,
+    seed: Vec<usize>,
+}
+
+impl Groups {
+    fn new(problem: &InterfaceProblem) -> Result<Self> {
+        let n = problem.len();
+        let modes = problem.modes();
+        let (mut owner, mut r) = (vec![NONE; n], vec![0.0; n]);
+        let unsupported = |name: &str, why: &str| {
+            Error::invalid(
+                format!("rigid mode `{name}`"),
+                why,
+                "Polonsky-Keer needs modes that move disjoint sets of points, each one way \
+                 (translations): use a dense solver",
+            )
+        };
+        for (k, mode) in modes.iter().enumerate() {
+            let positive = mode.displacement.iter().all(|&v| v > 0.0);
+            let negative = mode.displacement.iter().all(|&v| v < 0.0);
+            if !(positive || negative) {
+                return Err(unsupported(&mode.name, "moves points both ways"));
+            }
+            if (positive && mode.load > 0.0) || (negative && mode.load < 0.0) {
+                return Err(Error::invalid(
+                    format!("load on {}", mode.name),
+                    mode.load,
+                    "pulls the bodies apart: compressive contact cannot carry it",
+                ));
+            }
+            for (&i, &v) in mode.points.iter().zip(&mode.displacement) {
+                if owner[i] != NONE {
+                    return Err(unsupported(&mode.name, "shares points with another mode"));
+                }
+                owner[i] = k;
+                r[i] = v;
+            }
+        }
+        let m = modes.len();
+        Ok(Self {
+            owner,
+            r,
+            target: modes.iter().map(|m| -m.load).collect(),
+            num: vec![0.0; m],
+            den: vec![0.0; m],
+            lambda: vec![0.0; m],
+            extreme: vec![0.0; m],
+            seed: vec![NONE; m],
+        })
+    }
+
+    fn total_load(&self) -> f64 {
+        self.target.iter().map(|c| c.abs()).sum()
+    }
+
+    /// Whether point i may carry pressure (not on an unloaded mode, which stays open).
+    fn may_enter(&self, i: usize) -> bool {
+        self.owner[i] == NONE || self.target[self.owner[i]] != 0.0
+    }
+
+    /// A first pressure: each loaded mode's load spread uniformly over its points; elsewhere
+    /// the overlap −g over κ.
+    fn initial(&mut self, w: &[f64], g: &[f64], kappa: f64) -> Vec<f64> {
+        self.sums(w, |_| 1.0, |_| true);
+        (0..w.len())
+            .map(|i| match self.owner[i] {
+                NONE => (-g[i]).max(0.0) / kappa,
+                k if self.num[k] != 0.0 => (self.target[k] / self.num[k]).max(0.0),
+                _ => 0.0,
+            })
+            .collect()
+    }
+
+    /// num[k] = Σ wᵢ rᵢ f(i), den[k] = Σ wᵢ rᵢ² over the points of mode k with `member(i)`.
+    fn sums(&mut self, w: &[f64], f: impl Fn(usize) -> f64, member: impl Fn(usize) -> bool) {
+        self.num.fill(0.0);
+        self.den.fill(0.0);
+        for i in 0..w.len() {
+            let k = self.owner[i];
+            if k != NONE && member(i) {
+                self.num[k] += w[i] * self.r[i] * f(i);
+                self.den[k] += w[i] * self.r[i] * self.r[i];
+            }
+        }
+    }
+
+    /// Removes from `v` its W-projection on the modes over the contact set:
+    /// vᵢ −= rᵢ Σ w r v / Σ w r², so that Σ wᵢ rᵢ vᵢ = 0 for every mode.
+    fn project(&mut self, w: &[f64], v: &mut [f64], contact: &[bool]) {
+        if self.target.is_empty() {
+            return;
+        }
+        self.sums(w, |i| v[i], |i| contact[i]);
+        for i in 0..w.len() {
+            let k = self.owner[i];
+            if k != NONE && contact[i] && self.den[k] > 0.0 {
+                v[i] -= self.r[i] * self.num[k] / self.den[k];
+            }
+        }
+    }
+
+    /// Adds to `d` the modes' motion R λ with the amplitudes of [`Groups::amplitudes`].
+    fn fit(&mut self, w: &[f64], d: &mut [f64], contact: &[bool]) {
+        self.amplitudes(w, d, contact);
+        for i in 0..d.len() {
+            let k = self.owner[i];
+            if k != NONE {
+                d[i] += self.r[i] * self.lambda[k];
+            }
+        }
+    }
+
+    /// λ fitted by least squares to close the gap `d` on the contact set
+    /// (λₖ = −Σ w r d / Σ w r²), or, for a mode without contact, the value at which its nearest
+    /// point just touches (d + rλ ≥ 0: λ ≥ −d/r for r > 0, λ ≤ −d/r for r < 0).
+    fn amplitudes(&mut self, w: &[f64], d: &[f64], contact: &[bool]) {
+        self.sums(w, |i| d[i], |i| contact[i]);
+        self.extreme.fill(f64::NAN);
+        for i in 0..d.len() {
+            let k = self.owner[i];
+            if k != NONE && self.den[k] == 0.0 {
+                let bound = -d[i] / self.r[i];
+                let e = self.extreme[k];
+                self.extreme[k] = if e.is_nan() {
+                    bound
+                } else if self.r[i] > 0.0 {
+                    e.max(bound)
+                } else {
+                    e.min(bound)
+                };
+            }
+        }
+        for k in 0..self.target.len() {
+            self.lambda[k] = if self.den[k] > 0.0 {
+                -self.num[k] / self.den[k]
+            } else if self.extreme[k].is_nan() {
+                0.0
+            } else {
+                self.extreme[k]
+            };
+        }
+    }
+
+    /// Scales each loaded mode's pressure to its load; a mode that carries nothing is seeded at
+    /// its point of least gap `d`.
+    fn restore(&mut self, w: &[f64], d: &[f64], p: &mut [f64]) {
+        if self.target.is_empty() {
+            return;
+        }
+        self.sums(w, |i| p[i], |_| true);
+        self.seed.fill(NONE);
+        for i in 0..w.len() {
+            let k = self.owner[i];
+            if k == NONE {
+                continue;
+            }
+            let (carried, c) = (self.num[k], self.target[k]);
+            if c == 0.0 {
+                p[i] = 0.0;
+            } else if carried * c > 0.0 {
+                p[i] *= c / carried;
+            } else if self.seed[k] == NONE || d[i] < d[self.seed[k]] {
+                self.seed[k] = i;
+            }
+        }
+        for k in 0..self.seed.len() {
+            let i = self.seed[k];
+            if i != NONE {
+                p[i] = self.target[k] / (w[i] * self.r[i]);
+            }
+        }
+    }
+
+    /// The gap d = g + A W p + R λ of a final pressure, and λ.
+    fn final_gap(&mut self, problem: &InterfaceProblem, p: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let w = problem.weights();
+        let force: Vec<f64> = p.iter().zip(w).map(|(p, w)| p * w).collect();
+        let mut d = problem.free_gap();
+        let mut u = vec![0.0; p.len()];
+        problem.apply_influence(&force, &mut u);
+        for (d, u) in d.iter_mut().zip(&u) {
+            *d += u;
+        }
+        let contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
+        self.amplitudes(w, &d, &contact);
+        problem.add_rigid_motion(&self.lambda, &mut d);
+        (d, self.lambda.clone())
     }
 }

@@ -1,13 +1,161 @@
-//! The contact interface problem that two bodies define (§2.1).
+//! The contact interface problem that two bodies define (§2.1), held as operators.
+
+use std::rc::Rc;
+use std::sync::{Mutex, OnceLock};
 
 use contopt_core::{ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
+/// The memory the dense matrices of one solve may take unless the caller says otherwise
+/// ([`InterfaceProblem::with_dense_limit`]): 2 GB, a twelfth of the 24 GB machine we plan for,
+/// enough for the dense solvers up to about 8 000 interface points.
+pub const DEFAULT_DENSE_LIMIT_BYTES: u64 = 2_000_000_000;
+
+/// Relative tolerance to which two interfaces must agree in weight.
+const WEIGHT_MATCH: f64 = 1e-9;
+/// Largest component of n¹ + n² for normals that count as opposite.
+const NORMAL_MATCH: f64 = 1e-6;
+
+/// A body the problem borrows from its caller or owns (a restricted part).
+enum Body<'a> {
+    Borrowed(&'a dyn ElasticBody),
+    Owned(Box<dyn ElasticBody + 'a>),
+}
+
+impl Body<'_> {
+    fn get(&self) -> &dyn ElasticBody {
+        match self {
+            Body::Borrowed(b) => *b,
+            Body::Owned(b) => b.as_ref(),
+        }
+    }
+}
+
+/// The summed influence operator A = A¹ + P A² Pᵀ of the two bodies through their point
+/// pairing P, with the buffers its products reuse and the dense matrix once it is asked for.
+struct Operator<'a> {
+    bodies: [Body<'a>; 2],
+    /// `pair[i]`: the index of point i among the second body's points; `None` for the identity.
+    pair: Option<Vec<usize>>,
+    /// The second body's input and output in its own numbering.
+    scratch: Mutex<[Vec<f64>; 2]>,
+    dense: OnceLock<Mat<f64>>,
+    /// Each body's share of the compliance at the first point, (Aᵏ)₀₀ / A₀₀ (a uniform load
+    /// moves a periodic grid not at all), for the preconditioner.
+    shares: OnceLock<[f64; 2]>,
+}
+
+impl Operator<'_> {
+    /// `out = A¹ force` (first body) or `out = P A² Pᵀ force` (second).
+    fn apply_one(&self, body: usize, force: &[f64], out: &mut [f64]) {
+        let b = self.bodies[body].get();
+        match (&self.pair, body) {
+            (None, _) | (_, 0) => b.apply_influence(force, out),
+            (Some(pair), _) => {
+                let mut scratch = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+                let [input, output] = &mut *scratch;
+                for (i, &j) in pair.iter().enumerate() {
+                    input[j] = force[i];
+                }
+                b.apply_influence(input, output);
+                for (i, &j) in pair.iter().enumerate() {
+                    out[i] = output[j];
+                }
+            }
+        }
+    }
+
+    fn apply(&self, force: &[f64], out: &mut [f64], spare: &mut [f64]) {
+        self.apply_one(0, force, out);
+        self.apply_one(1, force, spare);
+        for (o, s) in out.iter_mut().zip(spare.iter()) {
+            *o += s;
+        }
+    }
+
+    fn shares(&self, n: usize) -> [f64; 2] {
+        *self.shares.get_or_init(|| {
+            let (mut unit, mut u) = (vec![0.0; n], vec![0.0; n]);
+            unit[0] = 1.0;
+            let mut total = [0.0; 2];
+            for (body, t) in total.iter_mut().enumerate() {
+                self.apply_one(body, &unit, &mut u);
+                *t = u[0].max(0.0);
+            }
+            let sum = total[0] + total[1];
+            if sum > 0.0 {
+                total.map(|t| t / sum)
+            } else {
+                [0.0; 2]
+            }
+        })
+    }
+
+    /// Approximate inverse: the first body's (or else the second's) scaled by its share of the
+    /// compliance, exact when the kernels are proportional (two half-spaces on one grid, or a
+    /// half-space against a rigid body).
+    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        let shares = self.shares(displacement.len());
+        for (body, &share) in shares.iter().enumerate() {
+            if share <= 0.0 {
+                continue;
+            }
+            let b = self.bodies[body].get();
+            let done = match (&self.pair, body) {
+                (None, _) | (_, 0) => b.precondition(displacement, force),
+                (Some(pair), _) => {
+                    let mut scratch = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+                    let [input, output] = &mut *scratch;
+                    for (i, &j) in pair.iter().enumerate() {
+                        input[j] = displacement[i];
+                    }
+                    let done = b.precondition(input, output);
+                    for (i, &j) in pair.iter().enumerate() {
+                        force[i] = output[j];
+                    }
+                    done
+                }
+            };
+            if done {
+                force.iter_mut().for_each(|f| *f *= share);
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// A free rigid-body mode of the interface problem: the normal displacement it gives the
+/// points it moves per unit amplitude (a column of R, eq. 2.6, stored by its non-zeros) and the
+/// load q it must balance, Σᵢ wᵢ rᵢ pᵢ = −q (2.10).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreeMode {
+    /// A short name for messages.
+    pub name: String,
+    /// The points it moves.
+    pub points: Vec<usize>,
+    /// Their normal displacement into the body per unit amplitude, rᵢ.
+    pub displacement: Vec<f64>,
+    /// The work q of the given loads on the mode \[N\].
+    pub load: f64,
+}
+
+impl FreeMode {
+    /// Σᵢ wᵢ rᵢ pᵢ over the mode's points: the force the pressure `p` puts on it \[N\].
+    pub fn force(&self, weights: &[f64], pressure: &[f64]) -> f64 {
+        self.points
+            .iter()
+            .zip(&self.displacement)
+            .map(|(&i, r)| weights[i] * r * pressure[i])
+            .sum()
+    }
+}
+
 /// Frictionless normal contact of two bodies, condensed to their common interface points.
 ///
-/// With W = diag(wᵢ) the point weights, A = A¹ + A² the summed influence matrices of the
-/// bodies (displacement into the body per unit force, [`ElasticBody::influence_matrix`]) and
+/// With W = diag(wᵢ) the point weights, A = A¹ + A² the summed influence operators of the
+/// bodies (displacement into the body per unit force, [`ElasticBody::apply_influence`]) and
 /// g = h + f¹ + f² the initial gap plus the displacements under the given loads, the gap after
 /// deformation is (2.7)
 ///
@@ -16,122 +164,74 @@ use faer::{Mat, Side};
 /// where the columns of R are the interface displacements of the free rigid modes and λ their
 /// amplitudes. Equilibrium of each free mode (2.10) reads Rᵀ W p = −q. In the paper's notation
 /// (2.12)–(2.14): H = W A W, t = −W g, G_R = W R, and its q is our −q.
-#[derive(Clone, Debug)]
-pub struct InterfaceProblem {
-    interface: Interface,
-    influence: Mat<f64>,
+///
+/// The problem holds the bodies' operators, never a dense matrix of its own: a 2-D region of
+/// 2·10⁴ points would need 3 GB for one. Solvers that work on the dense matrix ask for it
+/// ([`InterfaceProblem::dense_influence`]); it is built once, shared by every problem derived
+/// from this one ([`InterfaceProblem::with_initial_gap`] copies only the gap), and refused with
+/// [`Error::TooLarge`] past the memory limit.
+#[derive(Clone)]
+pub struct InterfaceProblem<'a> {
+    operator: Rc<Operator<'a>>,
+    interface: Rc<Interface>,
+    load_gap: Rc<Vec<f64>>,
+    modes: Rc<Vec<FreeMode>>,
+    pressure_basis: Option<Rc<GapShape>>,
     initial_gap: Vec<f64>,
-    load_gap: Vec<f64>,
-    rigid: Mat<f64>,
-    load: Vec<f64>,
-    mode_names: Vec<String>,
-    pressure_basis: Option<GapShape>,
+    dense_limit: u64,
 }
 
-impl InterfaceProblem {
+impl std::fmt::Debug for InterfaceProblem<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InterfaceProblem")
+            .field("points", &self.len())
+            .field(
+                "bodies",
+                &self
+                    .operator
+                    .bodies
+                    .each_ref()
+                    .map(|b| b.get().name().to_string()),
+            )
+            .field("modes", &self.modes)
+            .finish()
+    }
+}
+
+impl<'a> InterfaceProblem<'a> {
     /// The problem of `body1` and `body2` touching over their common points with initial
     /// gap `initial_gap` \[mm\] (h of eq. 2.1, one value per point of `body1`). The two
     /// interfaces must hold the same points (in any order: they are paired by position), with
     /// the same weights and opposite normals; the first mismatch is reported.
     pub fn new(
-        body1: &dyn ElasticBody,
-        body2: &dyn ElasticBody,
+        body1: &'a dyn ElasticBody,
+        body2: &'a dyn ElasticBody,
         initial_gap: &[f64],
     ) -> Result<Self> {
-        let (s1, s2) = (body1.interface(), body2.interface());
-        let pair = s1.partners(s2, body1.name(), body2.name())?;
-        for (i, &j) in pair.iter().enumerate() {
-            let (wa, wb) = (s1.weights[i], s2.weights[j]);
-            if (wa - wb).abs() > 1e-9 * wa.abs().max(wb.abs()) {
-                return Err(Error::InterfaceMismatch {
-                    index: i,
-                    detail: format!(
-                        "weight {wa} of `{}` against {wb} of `{}`",
-                        body1.name(),
-                        body2.name()
-                    ),
-                });
-            }
-            let (na, nb) = (s1.normals[i], s2.normals[j]);
-            if (0..3).map(|c| (na[c] + nb[c]).abs()).fold(0.0, f64::max) > 1e-6 {
-                return Err(Error::InterfaceMismatch {
-                    index: i,
-                    detail: format!("normals {na:?} and {nb:?} are not opposite"),
-                });
-            }
-        }
+        Self::from_bodies([Body::Borrowed(body1), Body::Borrowed(body2)], initial_gap)
+    }
+
+    /// As [`InterfaceProblem::new`], with the problem owning its bodies.
+    pub fn owned(
+        body1: Box<dyn ElasticBody + 'a>,
+        body2: Box<dyn ElasticBody + 'a>,
+        initial_gap: &[f64],
+    ) -> Result<Self> {
+        Self::from_bodies([Body::Owned(body1), Body::Owned(body2)], initial_gap)
+    }
+
+    fn from_bodies(bodies: [Body<'a>; 2], initial_gap: &[f64]) -> Result<Self> {
+        let (b1, b2) = (bodies[0].get(), bodies[1].get());
+        let (s1, s2) = (b1.interface(), b2.interface());
+        let pair = s1.partners(s2, b1.name(), b2.name())?;
+        check_partners(b1, b2, &pair)?;
         let n = s1.len();
         check_gap(initial_gap, n)?;
-        let a2 = body2.influence_matrix();
-        let influence =
-            body1.influence_matrix() + Mat::from_fn(n, n, |i, j| a2[(pair[i], pair[j])]);
-        let f1 = body1.load_displacement()?;
-        let f2 = body2.load_displacement()?;
+        let f1 = b1.load_displacement()?;
+        let f2 = b2.load_displacement()?;
         let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
-        let identity: Vec<usize> = (0..n).collect();
-        let modes: Vec<(String, Vec<f64>, f64)> = [(body1, &identity), (body2, &pair)]
-            .iter()
-            .flat_map(|(b, order)| {
-                b.rigid_modes().iter().map(move |m| {
-                    let r = order.iter().map(|&j| m.interface_displacement[j]).collect();
-                    (format!("{} of `{}`", m.name, b.name()), r, m.load)
-                })
-            })
-            .collect();
-        let mut kept = vec![];
-        for (name, r, q) in modes {
-            let span = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let total = r
-                .iter()
-                .zip(&s1.weights)
-                .map(|(v, w)| (v * w).abs())
-                .sum::<f64>();
-            if span < 1e-12 {
-                // A mode that does not move the interface normally cannot be loaded.
-                if q.abs() > 1e-9 * total.max(1.0) {
-                    return Err(Error::invalid(format!("load on {name}"), q, "cannot be equilibrated by normal contact: the mode does not move the interface"));
-                }
-                continue;
-            }
-            let all_pos = r.iter().all(|v| *v >= -1e-12 * span);
-            let all_neg = r.iter().all(|v| *v <= 1e-12 * span);
-            if (all_pos && q > 0.0) || (all_neg && q < 0.0) {
-                return Err(Error::invalid(
-                    format!("load on {name}"),
-                    q,
-                    "pulls the bodies apart: compressive contact cannot carry it",
-                ));
-            }
-            if q == 0.0 && (all_pos || all_neg) {
-                return Err(Error::invalid(
-                    format!("load on {name}"),
-                    q,
-                    "is zero: the floating body is not pressed into contact",
-                ));
-            }
-            kept.push((name, r, q));
-        }
-        let m = kept.len();
-        let rigid = Mat::from_fn(n, m, |i, k| kept[k].1[i]);
-        // Two modes that move the interface alike leave λ undetermined.
-        if m > 1 {
-            let gram = Mat::from_fn(m, m, |a, b| {
-                (0..n)
-                    .map(|i| rigid[(i, a)] * rigid[(i, b)] * s1.weights[i])
-                    .sum::<f64>()
-            });
-            let independent = faer::linalg::solvers::Llt::new(gram.as_ref(), faer::Side::Lower)
-                .is_ok_and(|l| (0..m).all(|k| l.L()[(k, k)].powi(2) > 1e-10 * gram[(k, k)]));
-            if !independent {
-                let names: Vec<&str> = kept.iter().map(|k| k.0.as_str()).collect();
-                return Err(Error::invalid(
-                    "rigid modes",
-                    names.join(", "),
-                    "move the interface alike: support one of the bodies",
-                ));
-            }
-        }
-        let pressure_basis = match (body1.pressure_basis(), body2.pressure_basis()) {
+        let modes = free_modes(b1, b2, &pair)?;
+        let pressure_basis = match (b1.pressure_basis(), b2.pressure_basis()) {
             (Some(b), _) => Some(b.clone()),
             (None, Some(b)) => Some(GapShape::new(
                 b.nodes().to_vec(),
@@ -139,23 +239,81 @@ impl InterfaceProblem {
             )?),
             (None, None) => None,
         };
+        let interface = Rc::new(s1.clone());
+        let identity = pair.iter().enumerate().all(|(i, &j)| i == j);
+        let operator = Operator {
+            scratch: Mutex::new([vec![0.0; n], vec![0.0; n]]),
+            pair: (!identity).then_some(pair),
+            bodies,
+            dense: OnceLock::new(),
+            shares: OnceLock::new(),
+        };
         Ok(Self {
-            interface: s1.clone(),
-            pressure_basis,
-            influence,
+            interface,
+            operator: Rc::new(operator),
+            load_gap: Rc::new(load_gap),
+            modes: Rc::new(modes),
+            pressure_basis: pressure_basis.map(Rc::new),
             initial_gap: initial_gap.to_vec(),
-            load_gap,
-            mode_names: kept.iter().map(|k| k.0.clone()).collect(),
-            load: kept.into_iter().map(|k| k.2).collect(),
-            rigid,
+            dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
         })
     }
 
-    /// The same problem with another initial gap h (the optimisation changes it).
+    /// The same problem with another initial gap h (the optimisation changes it): the
+    /// operators, the interface and the dense matrix, once built, are shared, not copied.
     pub fn with_initial_gap(&self, initial_gap: &[f64]) -> Result<Self> {
         check_gap(initial_gap, self.len())?;
         Ok(Self {
             initial_gap: initial_gap.to_vec(),
+            ..self.clone()
+        })
+    }
+
+    /// The same problem with the memory its solvers' dense matrices may take set to `bytes`.
+    pub fn with_dense_limit(mut self, bytes: u64) -> Self {
+        self.dense_limit = bytes;
+        self
+    }
+
+    /// The memory limit for dense matrices \[bytes\].
+    pub fn dense_limit(&self) -> u64 {
+        self.dense_limit
+    }
+
+    /// The same problem with other free modes: `modes` replace the bodies' rigid modes. The
+    /// optimiser gives each design column of a gap shape its own translation and load this way
+    /// (the column approaches are then the multipliers of a contact solve).
+    pub fn with_modes(&self, modes: Vec<FreeMode>) -> Result<Self> {
+        let n = self.len();
+        for mode in &modes {
+            if mode.points.len() != mode.displacement.len() {
+                return Err(Error::invalid(
+                    format!("mode `{}`", mode.name),
+                    format!(
+                        "{} points, {} values",
+                        mode.points.len(),
+                        mode.displacement.len()
+                    ),
+                    "one displacement per point",
+                ));
+            }
+            if let Some(k) = mode.points.iter().position(|&i| i >= n) {
+                return Err(Error::invalid(
+                    format!("mode `{}`.points[{k}]", mode.name),
+                    mode.points[k],
+                    format!("an interface point below {n}"),
+                ));
+            }
+            if !mode.load.is_finite() || mode.displacement.iter().any(|r| !r.is_finite()) {
+                return Err(Error::invalid(
+                    format!("mode `{}`", mode.name),
+                    mode.load,
+                    "load and displacements must be finite",
+                ));
+            }
+        }
+        Ok(Self {
+            modes: Rc::new(modes),
             ..self.clone()
         })
     }
@@ -180,9 +338,68 @@ impl InterfaceProblem {
         &self.interface.weights
     }
 
-    /// Summed influence matrix A = A¹ + A² \[mm/N\].
-    pub fn influence(&self) -> &Mat<f64> {
-        &self.influence
+    /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the
+    /// bodies' operators (an FFT convolution on a half-space grid).
+    pub fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+        let mut spare = vec![0.0; force.len()];
+        self.operator.apply(force, displacement, &mut spare);
+    }
+
+    /// As [`InterfaceProblem::apply_influence`] with a caller's buffer `spare` of the same
+    /// length, for loops that must not allocate.
+    pub fn apply_influence_with(&self, force: &[f64], displacement: &mut [f64], spare: &mut [f64]) {
+        self.operator.apply(force, displacement, spare);
+    }
+
+    /// An approximate inverse of A for preconditioning: writes forces that roughly produce
+    /// `displacement` and returns `true`, or `false` when neither body offers one
+    /// ([`ElasticBody::precondition`]).
+    pub fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        self.operator.precondition(displacement, force)
+    }
+
+    /// The dense summed influence matrix A = A¹ + P A² Pᵀ \[mm/N\], built on the first call and
+    /// shared by every problem derived from this one. `copies` is how many n × n matrices the
+    /// calling solver will hold at once, this one included; the call fails with
+    /// [`Error::TooLarge`] before allocating anything when they would exceed the limit
+    /// ([`InterfaceProblem::with_dense_limit`]).
+    pub fn dense_influence(&self, copies: u64) -> Result<&Mat<f64>> {
+        let n = self.len() as u64;
+        // Building the matrix holds both bodies' matrices and their sum.
+        let bytes = n
+            .checked_mul(n)
+            .and_then(|e| e.checked_mul(8 * copies.max(3)))
+            .unwrap_or(u64::MAX);
+        if bytes > self.dense_limit {
+            return Err(Error::TooLarge {
+                what: format!(
+                    "a dense {n} × {n} influence matrix ({} copies)",
+                    copies.max(3)
+                ),
+                bytes,
+                limit: self.dense_limit,
+                advice: "use the matrix-free solver (polonsky_keer) and the load split, or raise \
+                         the limit (dense_limit_mb)"
+                    .into(),
+            });
+        }
+        Ok(self.operator.dense.get_or_init(|| self.build_dense()))
+    }
+
+    fn build_dense(&self) -> Mat<f64> {
+        let op = &self.operator;
+        let mut a = op.bodies[0].get().influence_matrix();
+        let a2 = op.bodies[1].get().influence_matrix();
+        let n = self.len();
+        for j in 0..n {
+            for i in 0..n {
+                a[(i, j)] += match &op.pair {
+                    None => a2[(i, j)],
+                    Some(pair) => a2[(pair[i], pair[j])],
+                };
+            }
+        }
+        a
     }
 
     /// Initial gap h \[mm\].
@@ -194,47 +411,71 @@ impl InterfaceProblem {
     pub fn free_gap(&self) -> Vec<f64> {
         self.initial_gap
             .iter()
-            .zip(&self.load_gap)
+            .zip(self.load_gap.iter())
             .map(|(h, f)| h + f)
             .collect()
     }
 
-    /// Interface displacements of the free rigid modes, R (n × m).
-    pub fn rigid(&self) -> &Mat<f64> {
-        &self.rigid
+    /// The free rigid modes.
+    pub fn modes(&self) -> &[FreeMode] {
+        &self.modes
     }
 
-    /// Load resultant q of each free rigid mode \[N\].
-    pub fn load(&self) -> &[f64] {
-        &self.load
+    /// The interface displacements of the free rigid modes as a dense n × m matrix R, for the
+    /// dense solvers.
+    pub fn rigid(&self) -> Mat<f64> {
+        let mut r = Mat::zeros(self.len(), self.modes.len());
+        for (k, mode) in self.modes.iter().enumerate() {
+            for (&i, &v) in mode.points.iter().zip(&mode.displacement) {
+                r[(i, k)] = v;
+            }
+        }
+        r
+    }
+
+    /// Load q of each free rigid mode \[N\].
+    pub fn load(&self) -> Vec<f64> {
+        self.modes.iter().map(|m| m.load).collect()
     }
 
     /// Names of the free rigid modes.
-    pub fn mode_names(&self) -> &[String] {
-        &self.mode_names
+    pub fn mode_names(&self) -> Vec<String> {
+        self.modes.iter().map(|m| m.name.clone()).collect()
+    }
+
+    /// Adds the rigid motion R λ to `gap`.
+    pub fn add_rigid_motion(&self, rigid: &[f64], gap: &mut [f64]) {
+        for (mode, &l) in self.modes.iter().zip(rigid) {
+            for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
+                gap[i] += r * l;
+            }
+        }
     }
 
     /// Gap after deformation d = g + A W p + R λ, eq. (2.7).
     pub fn gap(&self, pressure: &[f64], rigid: &[f64]) -> Vec<f64> {
-        let n = self.len();
-        let w = self.weights();
-        let force: Vec<f64> = (0..n).map(|j| w[j] * pressure[j]).collect();
-        let g = self.free_gap();
-        (0..n)
-            .map(|i| {
-                let elastic: f64 = (0..n).map(|j| self.influence[(i, j)] * force[j]).sum();
-                let motion: f64 = (0..rigid.len())
-                    .map(|k| self.rigid[(i, k)] * rigid[k])
-                    .sum();
-                g[i] + elastic + motion
-            })
-            .collect()
+        let force: Vec<f64> = pressure
+            .iter()
+            .zip(self.weights())
+            .map(|(p, w)| p * w)
+            .collect();
+        let mut d = vec![0.0; self.len()];
+        self.apply_influence(&force, &mut d);
+        for ((d, h), f) in d
+            .iter_mut()
+            .zip(&self.initial_gap)
+            .zip(self.load_gap.iter())
+        {
+            *d += h + f;
+        }
+        self.add_rigid_motion(rigid, &mut d);
+        d
     }
 
     /// The field the point pressures sample (see [`ElasticBody::pressure_basis`]), from the
     /// first body that has one.
     pub fn pressure_basis(&self) -> Option<&GapShape> {
-        self.pressure_basis.as_ref()
+        self.pressure_basis.as_deref()
     }
 
     /// The pressure read as a field: the W-weighted least-squares fit p̃ = B (BᵀWB)⁻¹ BᵀW p by
@@ -272,19 +513,15 @@ impl InterfaceProblem {
     /// Residuals of a pressure p with its gap d.
     pub fn residuals(&self, pressure: &[f64], gap: &[f64]) -> Residuals {
         let w = self.weights();
-        let equilibrium = (0..self.load.len())
-            .map(|k| {
-                ((0..self.len())
-                    .map(|i| w[i] * pressure[i] * self.rigid[(i, k)])
-                    .sum::<f64>()
-                    + self.load[k])
-                    .abs()
-            })
+        let equilibrium = self
+            .modes
+            .iter()
+            .map(|m| (m.force(w, pressure) + m.load).abs())
             .fold(0.0, f64::max);
         Residuals::new(equilibrium, pressure, gap)
     }
 
-    /// Assembles a [`ContactState`] from a solution, with its gap and residuals.
+    /// Assembles a solved [`ContactState`] from a solution, with its gap and residuals.
     pub fn state(
         &self,
         pressure: Vec<f64>,
@@ -303,8 +540,179 @@ impl InterfaceProblem {
             iterp: counts[1],
             iterd: counts[2],
             residuals,
+            status: contopt_core::Status::Solved,
         }
     }
+
+    /// The problem over a part of the interface that holds every point marked in `keep` and
+    /// whose products are cheaper (a grid's bounding box), with the indices of its points among
+    /// this problem's; `None` when a body offers no such part, when the two bodies' parts differ,
+    /// or when a loaded mode would lose all its points. Modes keep their loads: the points left
+    /// out carry no pressure.
+    pub fn restrict(&self, keep: &[bool]) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
+        let op = &self.operator;
+        let (part1, index) = op.bodies[0].get().restrict(keep)?;
+        let n2 = op.bodies[1].get().interface().len();
+        let to_second = |i: usize| op.pair.as_ref().map_or(i, |p| p[i]);
+        let mut keep2 = vec![false; n2];
+        for &i in &index {
+            keep2[to_second(i)] = true;
+        }
+        let (part2, mut index2) = op.bodies[1].get().restrict(&keep2)?;
+        let mut wanted: Vec<usize> = index.iter().map(|&i| to_second(i)).collect();
+        wanted.sort_unstable();
+        index2.sort_unstable();
+        if wanted != index2 {
+            return None;
+        }
+        let mut position = vec![usize::MAX; self.len()];
+        for (a, &i) in index.iter().enumerate() {
+            position[i] = a;
+        }
+        let mut modes = Vec::with_capacity(self.modes.len());
+        for mode in self.modes.iter() {
+            let (points, displacement): (Vec<usize>, Vec<f64>) = mode
+                .points
+                .iter()
+                .zip(&mode.displacement)
+                .filter(|(&i, _)| position[i] != usize::MAX)
+                .map(|(&i, &r)| (position[i], r))
+                .unzip();
+            if points.is_empty() && mode.load != 0.0 {
+                return None;
+            }
+            modes.push(FreeMode {
+                points,
+                displacement,
+                ..mode.clone()
+            });
+        }
+        let gap: Vec<f64> = index.iter().map(|&i| self.initial_gap[i]).collect();
+        let mut part = Self::from_bodies([Body::Owned(part1), Body::Owned(part2)], &gap).ok()?;
+        part.load_gap = Rc::new(index.iter().map(|&i| self.load_gap[i]).collect());
+        part.modes = Rc::new(modes);
+        part.dense_limit = self.dense_limit;
+        Some((part, index))
+    }
+}
+
+/// The paired points have equal weights and opposite normals.
+fn check_partners(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Result<()> {
+    let (s1, s2) = (b1.interface(), b2.interface());
+    for (i, &j) in pair.iter().enumerate() {
+        let (wa, wb) = (s1.weights[i], s2.weights[j]);
+        if (wa - wb).abs() > WEIGHT_MATCH * wa.abs().max(wb.abs()) {
+            return Err(Error::InterfaceMismatch {
+                index: i,
+                detail: format!(
+                    "weight {wa} of `{}` against {wb} of `{}`",
+                    b1.name(),
+                    b2.name()
+                ),
+            });
+        }
+        let (na, nb) = (s1.normals[i], s2.normals[j]);
+        if (0..3).map(|c| (na[c] + nb[c]).abs()).fold(0.0, f64::max) > NORMAL_MATCH {
+            return Err(Error::InterfaceMismatch {
+                index: i,
+                detail: format!("normals {na:?} and {nb:?} are not opposite"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Relative size below which a mode's interface displacement counts as zero (it does not move
+/// the interface) or of one sign.
+const MODE_ZERO: f64 = 1e-12;
+
+/// The bodies' rigid modes in the first body's numbering, with the ones that do not move the
+/// interface dropped (and refused when loaded), loads that pull the bodies apart refused, and
+/// modes that move the interface alike refused.
+fn free_modes(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Result<Vec<FreeMode>> {
+    let n = pair.len();
+    let w = &b1.interface().weights;
+    let identity: Vec<usize> = (0..n).collect();
+    let mut kept = vec![];
+    for (b, order) in [(b1, identity.as_slice()), (b2, pair)] {
+        for m in b.rigid_modes() {
+            let r: Vec<f64> = order.iter().map(|&j| m.interface_displacement[j]).collect();
+            let name = format!("{} of `{}`", m.name, b.name());
+            let q = m.load;
+            let span = r.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            let total = r.iter().zip(w).map(|(v, w)| (v * w).abs()).sum::<f64>();
+            if span < MODE_ZERO {
+                if q.abs() > 1e-9 * total.max(1.0) {
+                    return Err(Error::invalid(format!("load on {name}"), q, "cannot be equilibrated by normal contact: the mode does not move the interface"));
+                }
+                continue;
+            }
+            let all_pos = r.iter().all(|v| *v >= -MODE_ZERO * span);
+            let all_neg = r.iter().all(|v| *v <= MODE_ZERO * span);
+            if (all_pos && q > 0.0) || (all_neg && q < 0.0) {
+                return Err(Error::invalid(
+                    format!("load on {name}"),
+                    q,
+                    "pulls the bodies apart: compressive contact cannot carry it",
+                ));
+            }
+            if q == 0.0 && (all_pos || all_neg) {
+                return Err(Error::invalid(
+                    format!("load on {name}"),
+                    q,
+                    "is zero: the floating body is not pressed into contact",
+                ));
+            }
+            let (points, displacement) = r
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| **v != 0.0)
+                .map(|(i, &v)| (i, v))
+                .unzip();
+            kept.push(FreeMode {
+                name,
+                points,
+                displacement,
+                load: q,
+            });
+        }
+    }
+    check_independent(&kept, w)?;
+    Ok(kept)
+}
+
+/// Two modes that move the interface alike leave λ undetermined.
+fn check_independent(modes: &[FreeMode], w: &[f64]) -> Result<()> {
+    let m = modes.len();
+    if m < 2 {
+        return Ok(());
+    }
+    let dense: Vec<Vec<f64>> = modes
+        .iter()
+        .map(|mode| {
+            let mut r = vec![0.0; w.len()];
+            for (&i, &v) in mode.points.iter().zip(&mode.displacement) {
+                r[i] = v;
+            }
+            r
+        })
+        .collect();
+    let gram = Mat::from_fn(m, m, |a, b| {
+        (0..w.len())
+            .map(|i| dense[a][i] * dense[b][i] * w[i])
+            .sum::<f64>()
+    });
+    let independent = Llt::new(gram.as_ref(), Side::Lower)
+        .is_ok_and(|l| (0..m).all(|k| l.L()[(k, k)].powi(2) > 1e-10 * gram[(k, k)]));
+    if !independent {
+        let names: Vec<&str> = modes.iter().map(|k| k.name.as_str()).collect();
+        return Err(Error::invalid(
+            "rigid modes",
+            names.join(", "),
+            "move the interface alike: support one of the bodies",
+        ));
+    }
+    Ok(())
 }
 
 /// Checks an initial gap: one finite value per interface point.

@@ -4,7 +4,7 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
-use contopt_core::{ContactState, Error, Result};
+use contopt_core::{ContactState, Error, Result, Status};
 
 use crate::{kalker, ContactSolver, InterfaceProblem};
 
@@ -39,7 +39,13 @@ impl ContactSolver for Qp {
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
         let n = problem.len();
         let m = problem.load().len();
-        let (w, a, r) = (problem.weights(), problem.influence(), problem.rigid());
+        // The upper triangle as triplets and CSC (three n²/2 arrays) and the factor's fill.
+        const QP_COPIES: u64 = 5;
+        let (w, a, r) = (
+            problem.weights(),
+            problem.dense_influence(QP_COPIES)?,
+            problem.rigid(),
+        );
         let g = problem.free_gap();
         // Scale pressures so the Hessian's diagonal is of order one.
         let s = (0..n)
@@ -108,14 +114,17 @@ impl ContactSolver for Qp {
                 ));
             }
             status => {
-                return Err(Error::NotConverged {
-                    method: "QP (clarabel)".into(),
-                    iterations: sol.iterations as usize,
-                    detail: format!(
-                        "status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
-                        sol.r_prim, sol.r_dual
-                    ),
-                })
+                // clarabel's last iterate, with its own rigid amplitudes and the status.
+                let pressure = sol.x.iter().map(|&x| x.max(0.0) / s).collect::<Vec<_>>();
+                let active = pressure.iter().map(|&p| p > 0.0).collect();
+                let rigid = sol.z[..m].to_vec();
+                let mut state =
+                    problem.state(pressure, rigid, active, [sol.iterations as usize, 0, 0]);
+                state.status = Status::Stopped(format!(
+                    "clarabel status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
+                    sol.r_prim, sol.r_dual
+                ));
+                return Ok(state);
             }
         }
         // Polish on clarabel's contact set (see the type's documentation).
@@ -125,11 +134,7 @@ impl ContactSolver for Qp {
         // The polish must reproduce clarabel's own rigid-body approach.
         for (k, (&mine, &theirs)) in state.rigid.iter().zip(&sol.z[..m]).enumerate() {
             if (mine - theirs).abs() > 1e-6 * theirs.abs().max(1e-12) {
-                return Err(Error::NotConverged {
-                    method: "QP (clarabel)".into(),
-                    iterations: sol.iterations as usize,
-                    detail: format!("polished rigid amplitude {k} = {mine:e} disagrees with the interior point's {theirs:e}"),
-                });
+                state.status = Status::Stopped(format!("polished rigid amplitude {k} = {mine:e} disagrees with the interior point's {theirs:e}"));
             }
         }
         state.iterations = sol.iterations as usize;

@@ -5,11 +5,21 @@ use contopt_core::{ContactState, Error, Result};
 use crate::{kalker, InterfaceProblem};
 
 /// A method that solves the interface problem: p ≥ 0, d ≥ 0, pᵀd = 0 and equilibrium (2.15).
+///
+/// The outcome of a solve is a state with a [`Status`](contopt_core::Status): a method that
+/// stops short returns its last iterate and residuals ([`ContactState::solved`] turns that into
+/// an error). Errors are for bad input, and for dense matrices past the problem's memory limit.
 pub trait ContactSolver {
     /// Name for messages and reports.
     fn name(&self) -> &str;
-    /// Solves `problem`; an error says how far the method got when it does not converge.
+    /// Solves `problem`.
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState>;
+    /// Solves `problem` starting from the pressure `start` (one value per point, a previous
+    /// solution: a warm start). Solvers that cannot use one solve from scratch (the default).
+    fn solve_from(&self, problem: &InterfaceProblem, start: &[f64]) -> Result<ContactState> {
+        let _ = start;
+        self.solve(problem)
+    }
 }
 
 fn check_penalty(c: f64) -> Result<()> {

@@ -39,6 +39,18 @@ pub enum Error {
         /// The two values that differ.
         detail: String,
     },
+    /// An allocation refused before it was made: it would exceed the memory limit.
+    #[error("{what} would take {} MB, over the limit of {} MB: {advice}", bytes / 1_000_000, limit / 1_000_000)]
+    TooLarge {
+        /// What would have been allocated, with its size.
+        what: String,
+        /// Its estimated memory \[bytes\].
+        bytes: u64,
+        /// The limit in force \[bytes\].
+        limit: u64,
+        /// What to do instead.
+        advice: String,
+    },
     /// An iterative method stopped before meeting its tolerance.
     #[error("{method} did not converge in {iterations} iterations: {detail}")]
     NotConverged {

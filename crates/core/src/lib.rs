@@ -18,4 +18,4 @@ pub use gap_shape::GapShape;
 pub use interface::{Geometry, Interface, Region};
 pub use material::Material;
 pub use rigid::RigidBody;
-pub use state::{ContactState, Residuals};
+pub use state::{ContactState, Residuals, Status};

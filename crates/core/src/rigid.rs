@@ -97,6 +97,38 @@ impl ElasticBody for RigidBody {
         Ok(vec![0.0; self.interface.len()])
     }
 
+    /// Exactly the kept points: a rigid body costs nothing per point, so no margin is needed.
+    /// Its modes keep their loads (the points left out carry no pressure).
+    fn restrict(&self, keep: &[bool]) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
+        let index: Vec<usize> = (0..self.interface.len()).filter(|&i| keep[i]).collect();
+        if index.is_empty() || index.len() == self.interface.len() {
+            return None;
+        }
+        let pick = |v: &[f64]| index.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+        let interface = Interface::new(
+            self.interface.geometry,
+            index.iter().map(|&i| self.interface.points[i]).collect(),
+            pick(&self.interface.weights),
+            index.iter().map(|&i| self.interface.normals[i]).collect(),
+        )
+        .ok()?;
+        let modes = self
+            .modes
+            .iter()
+            .map(|m| RigidMode {
+                name: m.name.clone(),
+                interface_displacement: pick(&m.interface_displacement),
+                load: m.load,
+            })
+            .collect();
+        let part = Self {
+            name: self.name.clone(),
+            interface,
+            modes,
+        };
+        Some((Box::new(part), index))
+    }
+
     fn rigid_modes(&self) -> &[RigidMode] {
         &self.modes
     }

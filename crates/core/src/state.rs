@@ -1,5 +1,7 @@
 use serde::{Deserialize, Serialize};
 
+use crate::{Error, Result};
+
 /// How well a contact solution satisfies the conditions (2.15).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Residuals {
@@ -25,6 +27,17 @@ impl Residuals {
     }
 }
 
+/// How a solve ended: clarabel's way, a status rather than an error (errors are for bad input).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub enum Status {
+    /// The method met its tolerance.
+    #[default]
+    Solved,
+    /// The method stopped before its tolerance; the text says where and how far it got. The
+    /// state holds its last iterate and that iterate's residuals.
+    Stopped(String),
+}
+
 /// The solution of a normal contact problem at the interface points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ContactState {
@@ -48,9 +61,29 @@ pub struct ContactState {
     pub iterd: usize,
     /// Residuals of the returned solution.
     pub residuals: Residuals,
+    /// Whether the method met its tolerance.
+    pub status: Status,
 }
 
 impl ContactState {
+    /// The state itself when its method met its tolerance; otherwise
+    /// [`Error::NotConverged`] naming `method`, the reason and the residuals reached.
+    pub fn solved(self, method: &str) -> Result<Self> {
+        match &self.status {
+            Status::Solved => Ok(self),
+            Status::Stopped(reason) => Err(Error::NotConverged {
+                method: method.into(),
+                iterations: self.iterations,
+                detail: format!(
+                    "{reason}; reached: equilibrium {:.3e} N, penetration {:.3e} mm, |p·d| {:.3e} MPa·mm",
+                    self.residuals.equilibrium,
+                    self.residuals.penetration,
+                    self.residuals.complementarity
+                ),
+            }),
+        }
+    }
+
     /// Largest contact pressure p_max \[MPa\].
     pub fn p_max(&self) -> f64 {
         self.pressure.iter().fold(0.0, |m, &p| m.max(p))

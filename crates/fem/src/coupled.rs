@@ -1,7 +1,7 @@
 //! The penalty method on the full finite-element system of two bodies (eq. 2.22), without
 //! condensation: the cross-check of the condensed interface problem.
 
-use contopt_core::{ContactState, ElasticBody, Error, Residuals, Result};
+use contopt_core::{ContactState, ElasticBody, Error, Residuals, Result, Status};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use faer::Mat;
 use nalgebra::{DMatrix, DVector};
@@ -190,6 +190,7 @@ pub fn penalty_full(
                 iterp,
                 iterd,
                 residuals,
+                status: Status::Solved,
             });
         }
         if iterp + iterd > 4 * n + 20 {

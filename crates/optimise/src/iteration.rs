@@ -4,7 +4,7 @@ use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
 use contopt_core::{Error, Region, Result};
-use faer::linalg::solvers::SolveLstsq;
+use faer::linalg::solvers::{ColPivQr, SolveLstsq};
 use faer::Mat;
 
 use crate::{Optimisation, Optimum};
@@ -78,23 +78,23 @@ impl Optimisation<'_> {
             _ => {}
         }
         let omega_v = self.omega_v();
-        // Step 6's least-squares matrix: Q on the rows of Ω_v.
-        let mut fit = Mat::<f64>::zeros(omega_v.len(), self.shape.nodes().len());
-        for (a, &i) in omega_v.iter().enumerate() {
-            for &(k, wt) in self.shape.row(i) {
-                fit[(a, k)] += wt;
-            }
-        }
-        let qr = fit.col_piv_qr();
+        let fit = StepSix::new(self, &omega_v)?;
         let h0 = problem.initial_gap();
         let in_opt = |i: usize| self.regions[i] != Region::Contact;
         let mut dh = vec![0.0; self.shape.nodes().len()];
         let mut rows: Vec<Iteration> = vec![];
+        let mut warm: Option<Vec<f64>> = None;
         for k in 1..=max_iterations {
-            // Steps 3–4.
+            // Steps 3–4, each contact solve starting from the previous pressure.
             let change = self.shape.apply(&dh);
             let h: Vec<f64> = h0.iter().zip(&change).map(|(a, b)| a + b).collect();
-            let state = solver.solve(&problem.with_initial_gap(&h)?)?;
+            let trial = problem.with_initial_gap(&h)?;
+            let state = match &warm {
+                Some(p) => solver.solve_from(&trial, p)?,
+                None => solver.solve(&trial)?,
+            }
+            .solved(solver.name())?;
+            warm = Some(state.pressure.clone());
             let p_max = match mode {
                 Mode::GivenDisplacement => {
                     let field = problem.recovered_pressure(&state.pressure)?;
@@ -112,13 +112,12 @@ impl Optimisation<'_> {
             }
             // Step 6: the residual gap on Ω_v with the original initial gap h₀.
             let m = problem.gap(&p, &state.rigid);
-            let mut rhs = Mat::<f64>::from_fn(omega_v.len(), 1, |a, _| -m[omega_v[a]]);
-            qr.solve_lstsq_in_place(rhs.as_mut());
+            let fitted = fit.solve(&omega_v.iter().map(|&i| -m[i]).collect::<Vec<_>>());
             // Q's rows sum to one, so subtracting Δh_N from every node moves the gap by −m_N
             // everywhere: the uniform part of the residual (the approach, a rigid translation)
             // is left to the contact solver and the gap does not change at N.
-            let at_n = rhs[(self.reference, 0)];
-            let next: Vec<f64> = (0..dh.len()).map(|k| rhs[(k, 0)] - at_n).collect();
+            let at_n = fitted[self.reference];
+            let next: Vec<f64> = fitted.iter().map(|v| v - at_n).collect();
             let tolh_k: f64 = next.iter().zip(&dh).map(|(a, b)| (a - b).powi(2)).sum();
             dh = next;
             rows.push(Iteration {
@@ -157,15 +156,14 @@ impl Optimisation<'_> {
     /// v·p_max (a moment against a symmetric controller, say) or would need p_max ≤ 0.
     pub(crate) fn equilibrium_p_max(&self, pressure: &[f64]) -> Result<f64> {
         let problem = self.problem;
-        let (w, rigid, q) = (problem.weights(), problem.rigid(), problem.load());
-        let n = problem.len();
+        let (w, q) = (problem.weights(), problem.load());
         let (mut a, mut b) = (vec![0.0; q.len()], vec![0.0; q.len()]);
-        for m in 0..q.len() {
-            for i in 0..n {
+        for (m, mode) in problem.modes().iter().enumerate() {
+            for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
                 if self.regions[i] == Region::OmegaV {
-                    a[m] += rigid[(i, m)] * w[i] * self.v[i];
+                    a[m] += r * w[i] * self.v[i];
                 } else {
-                    b[m] += rigid[(i, m)] * w[i] * pressure[i];
+                    b[m] += r * w[i] * pressure[i];
                 }
             }
         }
@@ -189,5 +187,82 @@ impl Optimisation<'_> {
             ));
         }
         Ok(p_max)
+    }
+}
+
+/// Step 6's least-squares fit of Q on the rows of Ω_v, min ‖Q_Ω_v Δh − b‖, from the structure
+/// of Q: when every Ω_v row reaches one node (a pointwise or an extruded shape), the normal
+/// equations are diagonal and Δh_k is the weighted mean of b over its rows; otherwise (the
+/// quadratic face rows of a finite-element body, a short 1-D region) a dense pivoted QR.
+enum StepSix {
+    Diagonal {
+        /// (node, weight) of each Ω_v row.
+        rows: Vec<(usize, f64)>,
+        /// Σ weight² per node.
+        norms: Vec<f64>,
+    },
+    /// The QR factors and the number of nodes.
+    Qr(ColPivQr<f64>, usize),
+}
+
+impl StepSix {
+    fn new(opt: &Optimisation, omega_v: &[usize]) -> Result<Self> {
+        let nodes = opt.shape.nodes().len();
+        let single: Option<Vec<(usize, f64)>> = omega_v
+            .iter()
+            .map(|&i| match opt.shape.row(i) {
+                [one] => Some(*one),
+                _ => None,
+            })
+            .collect();
+        if let Some(rows) = single {
+            let mut norms = vec![0.0; nodes];
+            for &(k, wt) in &rows {
+                norms[k] += wt * wt;
+            }
+            return Ok(StepSix::Diagonal { rows, norms });
+        }
+        let bytes = (omega_v.len() as u64)
+            .saturating_mul(nodes as u64)
+            .saturating_mul(16);
+        let limit = opt.problem.dense_limit();
+        if bytes > limit {
+            return Err(Error::TooLarge {
+                what: format!("step 6's dense {} × {nodes} fit of Q", omega_v.len()),
+                bytes,
+                limit,
+                advice: "give the gap shape one node per point row (pointwise or extruded)".into(),
+            });
+        }
+        let mut fit = Mat::<f64>::zeros(omega_v.len(), nodes);
+        for (a, &i) in omega_v.iter().enumerate() {
+            for &(k, wt) in opt.shape.row(i) {
+                fit[(a, k)] += wt;
+            }
+        }
+        Ok(StepSix::Qr(fit.col_piv_qr(), nodes))
+    }
+
+    /// Δh at every node from the right-hand side b on the Ω_v rows.
+    fn solve(&self, b: &[f64]) -> Vec<f64> {
+        match self {
+            StepSix::Diagonal { rows, norms } => {
+                let mut dh = vec![0.0; norms.len()];
+                for (&(k, wt), b) in rows.iter().zip(b) {
+                    dh[k] += wt * b;
+                }
+                for (v, n) in dh.iter_mut().zip(norms) {
+                    if *n > 0.0 {
+                        *v /= n;
+                    }
+                }
+                dh
+            }
+            StepSix::Qr(qr, nodes) => {
+                let mut rhs = Mat::<f64>::from_fn(b.len(), 1, |a, _| b[a]);
+                qr.solve_lstsq_in_place(rhs.as_mut());
+                (0..*nodes).map(|k| rhs[(k, 0)]).collect()
+            }
+        }
     }
 }

@@ -9,13 +9,18 @@
 //!   ([`Optimisation::iterate`]), under a given load (p_max from equilibrium, the case of
 //!   eq. 4.1 and Tables 1 and 3) or a given displacement (p_max from the contact pressure,
 //!   Table 2), stopping on TOLH (4.2);
-//! - or as the restricted linear programme (3.5) ([`Optimisation::linear_programme`]).
+//! - as the restricted linear programme (3.5) on the dense influence matrix
+//!   ([`Optimisation::linear_programme`]), for small problems and as a cross-check;
+//! - or, for large problems, as the same optimum without a dense matrix: one strictly convex
+//!   contact QP per update of the loads carried by the design columns
+//!   ([`Optimisation::load_split`]), solved by any contact solver, matrix-free ones included.
 
 // Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod controller;
 mod iteration;
+mod load_split;
 mod lp;
 
 pub use controller::{Constant, Controller, Product, Profile};
@@ -55,7 +60,7 @@ impl Optimum {
 /// The data of an optimisation: the interface problem, the gap map Q, the controller's values
 /// and the regions.
 pub struct Optimisation<'a> {
-    problem: &'a InterfaceProblem,
+    problem: &'a InterfaceProblem<'a>,
     shape: &'a GapShape,
     /// v(xᵢ) at every point (used on Ω_opt).
     v: Vec<f64>,
@@ -71,7 +76,7 @@ impl<'a> Optimisation<'a> {
     /// The reference node N, where the gap does not change, is the design node nearest the
     /// origin (the axis or the plane of symmetry); see [`Optimisation::with_reference`].
     pub fn new(
-        problem: &'a InterfaceProblem,
+        problem: &'a InterfaceProblem<'a>,
         shape: &'a GapShape,
         controller: &dyn Controller,
     ) -> Result<Self> {

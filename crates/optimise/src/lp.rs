@@ -4,10 +4,16 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
-use contopt_contact::{ActiveSet, ContactSolver};
+use contopt_contact::ContactSolver;
+#[cfg(doc)]
+use contopt_contact::InterfaceProblem;
 use contopt_core::{Error, Region, Result};
 
 use crate::{Iteration, Optimisation, Optimum};
+
+/// The n × n arrays of a pass held at once: A, its rows, the triplets and the CSC matrix, and
+/// the interior point's factor.
+const LP_COPIES: u64 = 10;
 
 /// A constraint row: its (column, coefficient) entries and its right-hand side.
 type Row = (Vec<(usize, f64)>, f64);
@@ -30,16 +36,19 @@ impl Optimisation<'_> {
     ///
     /// The complementarity pᵀd = 0 is kept by restriction: the programme is solved without
     /// it; while some point outside Ω_v carries pressure across an open gap, the contact
-    /// problem is solved on the programme's gap ([`ActiveSet`]) and its contact set restricts
+    /// problem is solved on the programme's gap and its contact set restricts
     /// the next pass, d = 0 on the points in contact and p = 0 on the others, until a pass is
-    /// complementary (on a one-dimensional region, where Ω_v is everything, the first is).
+    /// complementary (on a one-dimensional region, where Ω_v is everything, the first is). The
+    /// contact solves use `contact_solver`. Dense: it needs the influence matrix
+    /// ([`InterfaceProblem::dense_influence`]); large problems take
+    /// [`Optimisation::load_split`].
     /// Without a floating body the displacement is given, and N fixes the shape: Δh = 0 there.
-    pub fn linear_programme(&self) -> Result<Optimum> {
+    pub fn linear_programme(&self, contact_solver: &dyn ContactSolver) -> Result<Optimum> {
         let problem = self.problem;
         let n = problem.len();
         let (w, a, rigid, q) = (
             problem.weights(),
-            problem.influence(),
+            problem.dense_influence(LP_COPIES)?,
             problem.rigid(),
             problem.load(),
         );
@@ -226,7 +235,9 @@ impl Optimisation<'_> {
                 .zip(&gap_change)
                 .map(|(a, b)| a + b)
                 .collect();
-            let contact = ActiveSet.solve(&problem.with_initial_gap(&h)?)?;
+            let contact = contact_solver
+                .solve(&problem.with_initial_gap(&h)?)?
+                .solved(contact_solver.name())?;
             for (i, r) in restricted.iter_mut().enumerate() {
                 if !omega_v(i) {
                     *r = if contact.active[i] && contact.pressure[i] > 0.0 {

@@ -3,8 +3,7 @@
 use std::time::Instant;
 
 use contopt_contact::{
-    ActiveSet, AugmentedLagrangian, ContactSolver, Indentation, InterfaceProblem, Penalty,
-    PolonskyKeer, Qp,
+    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, PolonskyKeer, Qp,
 };
 use contopt_core::{ElasticBody, Error, GapShape, Material, Region, Result, RigidBody};
 use contopt_fem::paper::{self as fe_paper, PaperMesh, PunchGeometry, PunchLoad};
@@ -27,8 +26,6 @@ struct Bodies {
     first: Box<dyn ElasticBody>,
     second: Box<dyn ElasticBody>,
     gap: Vec<f64>,
-    /// The indenter's drive, for Polonsky–Keer (rigid indenter on a half-space grid).
-    indentation: Option<Indentation>,
 }
 
 fn material(m: &MaterialSpec) -> Result<Material> {
@@ -61,7 +58,9 @@ fn indenter_gap(indenter: &Indenter, r: f64, y: f64) -> Result<f64> {
     })
 }
 
-/// A rigid indenter on `body`, pressed along `axis` (away from the body) or pushed in.
+/// A rigid indenter on `body`, pressed along `axis` (away from the body) by a force, which
+/// floats it, or held at a given approach, which enters the initial gap once (h − a) and nowhere
+/// else.
 fn rigid_on(
     body: Box<dyn ElasticBody>,
     axis: [f64; 3],
@@ -74,27 +73,20 @@ fn rigid_on(
         .iter()
         .map(|&x| gap(x))
         .collect::<Result<Vec<_>>>()?;
-    let (second, indentation) = match load {
-        RigidLoad::ForceN(f) => (
-            RigidBody::pressed("indenter", iface, axis, f)?,
-            Indentation::Force(f),
-        ),
+    let second = match load {
+        RigidLoad::ForceN(f) => RigidBody::pressed("indenter", iface, axis, f)?,
         RigidLoad::ApproachMm(a) => {
             if !(a > 0.0 && a.is_finite()) {
                 return Err(Error::invalid("load.approach_mm", a, "must be positive"));
             }
             h.iter_mut().for_each(|v| *v -= a);
-            (
-                RigidBody::fixed("indenter", iface),
-                Indentation::Approach(a),
-            )
+            RigidBody::fixed("indenter", iface)
         }
     };
     Ok(Bodies {
         first: body,
         second: Box::new(second),
         gap: h,
-        indentation: Some(indentation),
     })
 }
 
@@ -170,7 +162,6 @@ fn bodies(problem: &Problem) -> Result<Bodies> {
                 first: Box::new(base),
                 second: Box::new(punch),
                 gap: vec![0.0; n],
-                indentation: None,
             })
         }
         Problem::RigidOnHalfSpace {
@@ -306,12 +297,14 @@ fn solver(spec: &SolverSpec) -> Result<Box<dyn ContactSolver>> {
             al.max_steps = max_steps.unwrap_or(al.max_steps);
             Box::new(al)
         }
-        SolverSpec::PolonskyKeer { .. } => {
-            return Err(Error::invalid(
-                "solver.kind",
-                "polonsky_keer",
-                "solves a rigid indenter on a half-space grid without optimisation only",
-            ))
+        SolverSpec::PolonskyKeer {
+            tolerance,
+            max_steps,
+        } => {
+            let mut pk = PolonskyKeer::default();
+            pk.tolerance = tolerance.unwrap_or(pk.tolerance);
+            pk.max_steps = max_steps.unwrap_or(pk.max_steps);
+            Box::new(pk)
         }
     })
 }
@@ -338,70 +331,46 @@ impl Case {
     pub fn check(&self) -> std::result::Result<(), SceneError> {
         let spec = &self.spec;
         bodies(&spec.problem).map_err(|e| self.invalid("problem", e))?;
-        self.check_solver()?;
+        solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
+        self.dense_limit()?;
         if let Some(opt) = &spec.optimisation {
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         }
         Ok(())
     }
 
-    fn check_solver(&self) -> std::result::Result<(), SceneError> {
-        let spec = &self.spec;
-        match spec.solver {
-            SolverSpec::PolonskyKeer { .. } => {
-                if !matches!(spec.problem, Problem::RigidOnHalfSpace { .. })
-                    || spec.optimisation.is_some()
-                {
-                    return Err(self.invalid(
-                        "solver",
-                        Error::invalid(
-                            "solver.kind",
-                            "polonsky_keer",
-                            "needs problem.kind = \"rigid_on_half_space\" and no [optimisation]",
-                        ),
-                    ));
-                }
-            }
-            _ => {
-                solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
-            }
+    /// The scene's memory limit for dense matrices \[bytes\].
+    fn dense_limit(&self) -> std::result::Result<u64, SceneError> {
+        match self.spec.dense_limit_mb {
+            None => Ok(contopt_contact::DEFAULT_DENSE_LIMIT_BYTES),
+            Some(mb) if mb > 0.0 && mb.is_finite() => Ok((mb * 1e6) as u64),
+            Some(mb) => Err(self.invalid(
+                "dense_limit_mb",
+                Error::invalid("dense_limit_mb", mb, "must be positive and finite"),
+            )),
         }
-        Ok(())
     }
 
     /// Solves the case. A solver or an optimisation that does not converge gives a report with
     /// `converged: false` and the error; bad input is an error.
     pub fn run(&self) -> std::result::Result<CaseReport, SceneError> {
-        self.check_solver()?;
         let spec = &self.spec;
+        let solver = solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
+        let dense_limit = self.dense_limit()?;
         let mut report = CaseReport::new(&self.label, &self.params);
         let start = Instant::now();
         let built = bodies(&spec.problem).map_err(|e| self.invalid("problem", e))?;
-        if let (
-            SolverSpec::PolonskyKeer {
-                tolerance,
-                max_steps,
-            },
-            Some(drive),
-        ) = (spec.solver, built.indentation)
-        {
-            let mut pk = PolonskyKeer::default();
-            pk.tolerance = tolerance.unwrap_or(pk.tolerance);
-            pk.max_steps = max_steps.unwrap_or(pk.max_steps);
-            report.time("build", start);
-            let solved = Instant::now();
-            let outcome = pk.solve(built.first.as_ref(), &built.gap, drive);
-            report.time("solve", solved);
-            return Ok(self.contact_report(report, built.first.as_ref(), &[], outcome));
-        }
         let problem =
             InterfaceProblem::new(built.first.as_ref(), built.second.as_ref(), &built.gap)
-                .map_err(|e| self.invalid("problem", e))?;
+                .map_err(|e| self.invalid("problem", e))?
+                .with_dense_limit(dense_limit);
         report.time("build", start);
-        let solver = solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
         let solved = Instant::now();
         let Some(opt) = &spec.optimisation else {
-            let outcome = solver.solve(&problem);
+            let outcome = solver
+                .solve(&problem)
+                .map_err(|e| self.invalid("solver", e))?
+                .solved(solver.name());
             report.time("solve", solved);
             return Ok(self.contact_report(report, built.first.as_ref(), &[], outcome));
         };
@@ -445,7 +414,10 @@ impl Case {
                 opt.tolh_mm2,
                 opt.max_iterations,
             ),
-            ModeSpec::LinearProgramme => optimisation.linear_programme(),
+            ModeSpec::LinearProgramme => optimisation.linear_programme(solver.as_ref()),
+            ModeSpec::LoadSplit => {
+                optimisation.load_split(solver.as_ref(), opt.tolerance, opt.max_iterations)
+            }
         };
         report.time("optimise", solved);
         match outcome {

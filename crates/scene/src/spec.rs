@@ -22,6 +22,10 @@ pub struct SceneSpec {
     /// Cases over one numeric key.
     #[serde(default)]
     pub sweep: Option<Sweep>,
+    /// Memory the dense matrices of a solve may take \[MB\] (default 2000); past it a dense
+    /// solver or the linear programme refuses the case before allocating.
+    #[serde(default)]
+    pub dense_limit_mb: Option<f64>,
 }
 
 /// A sweep: the scene is run once per value of `key`, a dotted path to a number in the scene
@@ -242,8 +246,8 @@ pub enum SolverSpec {
         #[serde(default)]
         max_steps: Option<usize>,
     },
-    /// Polonsky–Keer's conjugate gradients with FFT products (rigid indenter on a half-space
-    /// grid, no optimisation).
+    /// Polonsky–Keer's constrained conjugate gradients through the bodies' operators (FFT
+    /// products on half-space grids): no dense matrix, for large grids.
     PolonskyKeer {
         /// Relative tolerance (default 1e-12).
         #[serde(default)]
@@ -268,6 +272,10 @@ pub struct Optimise {
     /// Largest number of outer iterations (default 100).
     #[serde(default = "hundred")]
     pub max_iterations: usize,
+    /// `load_split`: stop when each column's Ω_v pressure is within this fraction of p_max of
+    /// v·p_max (default 1e-8).
+    #[serde(default = "split_tolerance")]
+    pub tolerance: f64,
     /// Ω_v as a strip |y| ≤ half-width (the rest of the zone is Ω_nv); default: all of it.
     #[serde(default)]
     pub omega_v: Option<OmegaVSpec>,
@@ -283,6 +291,10 @@ fn tolh() -> f64 {
 
 fn hundred() -> usize {
     100
+}
+
+fn split_tolerance() -> f64 {
+    1e-8
 }
 
 /// Ω_v of a two-dimensional zone.
@@ -301,8 +313,11 @@ pub enum ModeSpec {
     GivenLoad,
     /// The iteration of §3.2 with p_max from the contact pressure (Table 2).
     GivenDisplacement,
-    /// The restricted linear programme (3.5).
+    /// The restricted linear programme (3.5) on the dense influence matrix (small problems).
     LinearProgramme,
+    /// The optimum of (3.5) without a dense matrix: the load carried by each design column,
+    /// one contact solve per update (given load; pointwise or extruded profiles).
+    LoadSplit,
 }
 
 /// A controller v(x).

@@ -1,0 +1,333 @@
+//! The optimum of (3.5) without a dense matrix: the load carried by each design column.
+
+use contopt_contact::{ContactSolver, FreeMode, InterfaceProblem};
+use contopt_core::{ContactState, Error, Region, Result};
+
+use crate::{Iteration, Optimisation, Optimum};
+
+/// Bounds of the exponent α in p̄ ∝ F^α that a column's update assumes: ½ for a Hertzian line
+/// contact, 1 for a single point; secant estimates outside are noise from the coupling.
+const EXPONENT: (f64, f64) = (0.25, 1.0);
+/// Relative change of a column's load below which the secant estimate of α is not taken.
+const SECANT_STEP: f64 = 1e-3;
+
+/// The design columns of a gap shape whose rows each reach one node: the points of each node,
+/// their rigid-mode displacement r (one value per column), and the column's Ω_v measure and mean
+/// controller value.
+struct Columns {
+    points: Vec<Vec<usize>>,
+    r: Vec<f64>,
+    /// L_k = Σ wᵢ over the column's Ω_v points.
+    measure: Vec<f64>,
+    /// v̄_k, the L-weighted mean of v on the column's Ω_v points.
+    v: Vec<f64>,
+}
+
+impl Optimisation<'_> {
+    /// The optimum of the restricted LP (3.5) for a given load, found as a sequence of strictly
+    /// convex contact QPs instead of a dense programme: every design column j of the gap shape
+    /// (a node of Q, reached by the rows of its points) becomes a rigid mode of its own, loaded
+    /// by a prescribed share F_j of the total load,
+    ///
+    /// min ½ pᵀ W A W p + pᵀ W g  subject to  p ≥ 0,  Σᵢ∈j wᵢ rᵢ pᵢ = F_j,
+    ///
+    /// whose multipliers λ_j are the column approaches; the gap change is their spread,
+    /// Δh_j = r (λ_j − λ_N), zero at the reference node N. An outer update of the shares drives
+    /// each column's Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the
+    /// exponent α_j of p̄ ∝ F^α from a secant (½ for a Hertzian line contact) and p_max the value
+    /// at which the shares add up to the load. At its fixed point the Ω_v points are closed at
+    /// v·p_max, equilibrium holds and the rest of Ω is complementary: the conditions of (3.5),
+    /// whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the programme's feasible set
+    /// is that one point). A column whose Ω_v holds several points is driven by their weighted
+    /// mean.
+    ///
+    /// Every contact solve starts from the previous pressure, so a matrix-free `solver`
+    /// ([`contopt_contact::PolonskyKeer`]) takes a few steps after the first; a dense one works
+    /// too, for small problems. Stops when every column's Ω_v pressure is within
+    /// `tolerance`·p_max of v·p_max, after at most `max_iterations` solves. Needs a floating body
+    /// with one rigid mode (the given load) and a gap shape whose rows each reach one node
+    /// (pointwise, or extruded along an axis).
+    pub fn load_split(
+        &self,
+        solver: &dyn ContactSolver,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<Optimum> {
+        if !(tolerance > 0.0 && tolerance < 1.0) {
+            return Err(Error::invalid("tolerance", tolerance, "must lie in (0, 1)"));
+        }
+        let columns = self.columns()?;
+        let total = -self.problem.modes()[0].load;
+        let m = columns.points.len();
+        // Shares as fractions of the load: a Hertzian column carries F ∝ p₀².
+        let mut share: Vec<f64> = (0..m)
+            .map(|k| columns.measure[k] * columns.v[k].powi(2))
+            .collect();
+        normalise(&mut share);
+        let mut exponent = vec![0.5; m];
+        let mut last: Option<(Vec<f64>, Vec<f64>)> = None;
+        let mut warm: Option<Vec<f64>> = None;
+        let mut rows: Vec<Iteration> = vec![];
+        let mut dh_last = vec![0.0; self.shape.nodes().len()];
+        for k in 1..=max_iterations {
+            let state = self.column_solve(solver, &columns, &share, total, warm.as_deref())?;
+            let mean = columns.omega_v_pressure(self, &state.pressure);
+            let p_max = columns.fitted_p_max(&mean);
+            let miss = (0..m)
+                .map(|j| (mean[j] - columns.v[j] * p_max).abs())
+                .fold(0.0, f64::max)
+                / p_max;
+            let dh = self.column_crown(&columns, &state.rigid);
+            rows.push(Iteration {
+                k,
+                p_max,
+                dh_max: dh.iter().fold(0.0, |a: f64, b| a.max(*b)),
+                tolh: dh.iter().zip(&dh_last).map(|(a, b)| (a - b).powi(2)).sum(),
+                iterp: state.iterp.max(state.iterations),
+                iterd: state.iterd,
+            });
+            if miss <= tolerance {
+                return self.column_optimum(state, p_max, dh, rows);
+            }
+            if let Some((share_last, mean_last)) = &last {
+                for j in 0..m {
+                    let step = (share[j] / share_last[j]).ln();
+                    if step.abs() > SECANT_STEP && mean[j] > 0.0 && mean_last[j] > 0.0 {
+                        let alpha = (mean[j] / mean_last[j]).ln() / step;
+                        exponent[j] = alpha.clamp(EXPONENT.0, EXPONENT.1);
+                    }
+                }
+            }
+            last = Some((share.clone(), mean.clone()));
+            share = next_shares(&share, &mean, &columns.v, &exponent, p_max);
+            warm = Some(state.pressure);
+            dh_last = dh;
+        }
+        let miss = rows.last().map_or(f64::NAN, |r| r.p_max);
+        Err(Error::NotConverged {
+            method: "load split (3.5)".into(),
+            iterations: max_iterations,
+            detail: format!(
+                "the Ω_v pressure is not yet v·p_max within {tolerance:e} (p_max {miss:.6} MPa)"
+            ),
+        })
+    }
+
+    /// The design columns, checked: one rigid mode, rows that each reach one node, and one
+    /// displacement r per column.
+    fn columns(&self) -> Result<Columns> {
+        let problem = self.problem;
+        let modes = problem.modes();
+        if modes.len() != 1 {
+            return Err(Error::invalid(
+                "mode",
+                format!("{} rigid modes", modes.len()),
+                "the load split needs one floating body with one mode (the given load)",
+            ));
+        }
+        let n = problem.len();
+        let mut r = vec![0.0; n];
+        for (&i, &v) in modes[0].points.iter().zip(&modes[0].displacement) {
+            r[i] = v;
+        }
+        let nodes = self.shape.nodes().len();
+        let mut points = vec![vec![]; nodes];
+        for (i, &ri) in r.iter().enumerate() {
+            match self.shape.row(i) {
+                [(k, _)] => points[*k].push(i),
+                row => {
+                    return Err(Error::invalid(
+                        format!("gap_shape.rows[{i}]"),
+                        format!("{} nodes", row.len()),
+                        "the load split needs one node per point (a pointwise or extruded shape)",
+                    ))
+                }
+            }
+            if ri == 0.0 {
+                return Err(Error::invalid(
+                    format!("rigid mode at point {i}"),
+                    0.0,
+                    "the floating body must move every point of the region",
+                ));
+            }
+        }
+        let w = problem.weights();
+        let (mut measure, mut v, mut column_r) =
+            (vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]);
+        for (k, members) in points.iter().enumerate() {
+            column_r[k] = r[members[0]];
+            if let Some(&i) = members
+                .iter()
+                .find(|&&i| (r[i] - column_r[k]).abs() > 1e-9 * column_r[k].abs())
+            {
+                return Err(Error::invalid(
+                    format!("rigid mode at point {i}"),
+                    r[i],
+                    format!(
+                        "moves the column of node {k} unevenly ({} at its first point): a column \
+                         must translate as a whole",
+                        column_r[k]
+                    ),
+                ));
+            }
+            for &i in members
+                .iter()
+                .filter(|&&i| self.regions[i] == Region::OmegaV)
+            {
+                measure[k] += w[i];
+                v[k] += w[i] * self.v[i];
+            }
+            v[k] /= measure[k];
+        }
+        Ok(Columns {
+            points,
+            r: column_r,
+            measure,
+            v,
+        })
+    }
+
+    /// The contact problem with each column a mode of its own loaded by `share`·`total`.
+    fn column_solve(
+        &self,
+        solver: &dyn ContactSolver,
+        columns: &Columns,
+        share: &[f64],
+        total: f64,
+        warm: Option<&[f64]>,
+    ) -> Result<ContactState> {
+        let modes = columns
+            .points
+            .iter()
+            .enumerate()
+            .map(|(k, members)| FreeMode {
+                name: format!("column {k}"),
+                points: members.clone(),
+                displacement: vec![columns.r[k]; members.len()],
+                load: -share[k] * total,
+            })
+            .collect();
+        let problem: InterfaceProblem = self.problem.with_modes(modes)?;
+        match warm {
+            Some(p) => solver.solve_from(&problem, p),
+            None => solver.solve(&problem),
+        }?
+        .solved(solver.name())
+    }
+
+    /// Δh_j = r (λ_j − λ_N) from the column approaches.
+    fn column_crown(&self, columns: &Columns, lambda: &[f64]) -> Vec<f64> {
+        let at_n = lambda[self.reference];
+        lambda
+            .iter()
+            .zip(&columns.r)
+            .map(|(l, r)| r * (l - at_n))
+            .collect()
+    }
+
+    /// The optimum of a converged split: the crown checked for sign, the pressure of Ω_nv
+    /// checked against v·p_max (χ ≥ 0 of 3.5).
+    fn column_optimum(
+        &self,
+        state: ContactState,
+        p_max: f64,
+        dh: Vec<f64>,
+        rows: Vec<Iteration>,
+    ) -> Result<Optimum> {
+        self.check_sign(&dh)?;
+        let excess = (0..state.pressure.len())
+            .filter(|&i| self.regions[i] == Region::OmegaNv)
+            .map(|i| state.pressure[i] - self.v[i] * p_max)
+            .fold(f64::NEG_INFINITY, f64::max);
+        if excess > 1e-6 * p_max {
+            return Err(Error::invalid(
+                "omega_v",
+                format!("{excess:.4e} MPa above v·p_max on Ω_nv"),
+                "Ω_v does not hold the largest pressure of its columns, so no crown along them \
+                 meets χ ≥ 0 (3.5): put Ω_v where each column peaks",
+            ));
+        }
+        Ok(Optimum {
+            p_max,
+            gap_change: self.shape.apply(&dh),
+            dh,
+            rigid: vec![state.rigid[self.reference]],
+            pressure: state.pressure,
+            gap: state.gap,
+            iterations: rows,
+        })
+    }
+}
+
+impl Columns {
+    /// p̄_k, the L-weighted mean pressure on each column's Ω_v points.
+    fn omega_v_pressure(&self, opt: &Optimisation, pressure: &[f64]) -> Vec<f64> {
+        let w = opt.problem.weights();
+        self.points
+            .iter()
+            .zip(&self.measure)
+            .map(|(members, l)| {
+                members
+                    .iter()
+                    .filter(|&&i| opt.regions[i] == Region::OmegaV)
+                    .map(|&i| w[i] * pressure[i])
+                    .sum::<f64>()
+                    / l
+            })
+            .collect()
+    }
+
+    /// The p_max that fits p̄ = v̄ p_max best in the L-weighted least-squares sense.
+    fn fitted_p_max(&self, mean: &[f64]) -> f64 {
+        let (mut num, mut den) = (0.0, 0.0);
+        for ((l, v), p) in self.measure.iter().zip(&self.v).zip(mean) {
+            num += l * v * p;
+            den += l * v * v;
+        }
+        num / den
+    }
+}
+
+/// Scales `share` to sum to one.
+fn normalise(share: &mut [f64]) {
+    let sum: f64 = share.iter().sum();
+    share.iter_mut().for_each(|s| *s /= sum);
+}
+
+/// The next shares F_k (v_k P / p̄_k)^(1/α_k), with P chosen (Newton in ln P) so that they add
+/// up to one; a column whose Ω_v opened (p̄ = 0) doubles its share.
+fn next_shares(share: &[f64], mean: &[f64], v: &[f64], exponent: &[f64], p_max: f64) -> Vec<f64> {
+    let grown = |x: f64| -> Vec<f64> {
+        (0..share.len())
+            .map(|k| {
+                if v[k] == 0.0 {
+                    0.0
+                } else if mean[k] > 0.0 {
+                    share[k] * ((v[k] * x.exp() / mean[k]).ln() / exponent[k]).exp()
+                } else {
+                    2.0 * share[k]
+                }
+            })
+            .collect()
+    };
+    let mut x = p_max.ln();
+    for _ in 0..50 {
+        let next = grown(x);
+        let sum: f64 = next.iter().sum();
+        let slope: f64 = next
+            .iter()
+            .zip(exponent)
+            .zip(mean)
+            .filter(|(_, m)| **m > 0.0)
+            .map(|((s, a), _)| s / a)
+            .sum();
+        let step = (sum - 1.0) / slope.max(f64::MIN_POSITIVE);
+        x -= step.clamp(-1.0, 1.0);
+        if step.abs() < 1e-14 {
+            break;
+        }
+    }
+    let mut next = grown(x);
+    normalise(&mut next);
+    next
+}
