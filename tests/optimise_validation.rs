@@ -5,7 +5,9 @@
 
 use std::f64::consts::PI;
 
-use contopt::contact::{ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Qp};
+use contopt::contact::{
+    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, PolonskyKeer, Qp,
+};
 use contopt::fem::paper::{PaperMesh, PunchLoad};
 use contopt::fem::Analysis;
 use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
@@ -333,4 +335,29 @@ fn crowned_roller_on_a_half_space() {
     assert!(uncrowned > 1.25 * hertz, "{uncrowned}");
     assert!((iterated.p_max / lp.p_max - 1.0).abs() < 0.005);
     assert!((iterated.dh_max() / lp.dh_max() - 1.0).abs() < 0.005);
+    // The load split reaches the LP's optimum itself, with the dense active set and with the
+    // matrix-free solver: p_max and every Δh within 1e-6.
+    for solver in [&ActiveSet as &dyn ContactSolver, &PolonskyKeer::default()] {
+        let split = optimisation.load_split(solver, 1e-10, 50).unwrap();
+        let dh_error = split
+            .dh
+            .iter()
+            .zip(&lp.dh)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / lp.dh_max();
+        eprintln!(
+            "roller, load split with {}: p_max {:.6} MPa (LP {:.6}), Δh off by {dh_error:.2e} of Δh_max, {} solves",
+            solver.name(),
+            split.p_max,
+            lp.p_max,
+            split.iterations.len()
+        );
+        assert!(
+            (split.p_max / lp.p_max - 1.0).abs() < 1e-6,
+            "{}",
+            solver.name()
+        );
+        assert!(dh_error < 1e-6, "{}: {dh_error:e}", solver.name());
+    }
 }

@@ -2,6 +2,8 @@
 
 use contopt_contact::{ContactSolver, FreeMode, InterfaceProblem};
 use contopt_core::{ContactState, Error, Region, Result};
+use faer::linalg::solvers::{Llt, Solve};
+use faer::{Mat, Side};
 
 use crate::{Iteration, Optimisation, Optimum};
 
@@ -10,6 +12,11 @@ use crate::{Iteration, Optimisation, Optimum};
 const EXPONENT: (f64, f64) = (0.25, 1.0);
 /// Relative change of a column's load below which the secant estimate of α is not taken.
 const SECANT_STEP: f64 = 1e-3;
+/// The updates whose secants set α; later ones keep it, so that the map Anderson mixing
+/// accelerates stays the same.
+const SECANT_UPDATES: usize = 3;
+/// How many past iterates Anderson mixing combines.
+const ANDERSON_DEPTH: usize = 5;
 
 /// The design columns of a gap shape whose rows each reach one node: the points of each node,
 /// their rigid-mode displacement r (one value per column), and the column's Ω_v measure and mean
@@ -65,6 +72,7 @@ impl Optimisation<'_> {
             .collect();
         normalise(&mut share);
         let mut exponent = vec![0.5; m];
+        let mut anderson = Anderson::default();
         let mut last: Option<(Vec<f64>, Vec<f64>)> = None;
         let mut warm: Option<Vec<f64>> = None;
         let mut rows: Vec<Iteration> = vec![];
@@ -89,17 +97,32 @@ impl Optimisation<'_> {
             if miss <= tolerance {
                 return self.column_optimum(state, p_max, dh, rows);
             }
-            if let Some((share_last, mean_last)) = &last {
-                for j in 0..m {
-                    let step = (share[j] / share_last[j]).ln();
-                    if step.abs() > SECANT_STEP && mean[j] > 0.0 && mean_last[j] > 0.0 {
-                        let alpha = (mean[j] / mean_last[j]).ln() / step;
-                        exponent[j] = alpha.clamp(EXPONENT.0, EXPONENT.1);
+            match &last {
+                Some((share_last, mean_last)) if k <= SECANT_UPDATES => {
+                    for j in 0..m {
+                        let step = (share[j] / share_last[j]).ln();
+                        if step.abs() > SECANT_STEP && mean[j] > 0.0 && mean_last[j] > 0.0 {
+                            let alpha = (mean[j] / mean_last[j]).ln() / step;
+                            exponent[j] = alpha.clamp(EXPONENT.0, EXPONENT.1);
+                        }
                     }
+                    anderson.reset();
                 }
+                _ => {}
             }
             last = Some((share.clone(), mean.clone()));
-            share = next_shares(&share, &mean, &columns.v, &exponent, p_max);
+            let image = next_shares(&share, &mean, &columns.v, &exponent, p_max);
+            share = if mean
+                .iter()
+                .zip(&columns.v)
+                .all(|(p, v)| *p > 0.0 || *v == 0.0)
+            {
+                anderson.mix(&share, &image)
+            } else {
+                // An Ω_v point opened: its column's share doubles, outside the smooth map.
+                anderson.reset();
+                image
+            };
             warm = Some(state.pressure);
             dh_last = dh;
         }
@@ -330,4 +353,67 @@ fn next_shares(share: &[f64], mean: &[f64], v: &[f64], exponent: &[f64], p_max: 
     let mut next = grown(x);
     normalise(&mut next);
     next
+}
+
+/// Anderson mixing (type II; Walker & Ni, SIAM J. Numer. Anal. 49, 2011) of the share update,
+/// on the logarithms of the shares: the next iterate combines the last few iterates and their
+/// images so that the columns' coupling through the half-space, which the per-column update
+/// ignores, is learnt from the history. Columns without load (v = 0) stay at zero.
+#[derive(Default)]
+struct Anderson {
+    /// The last iterates x and residuals f = G(x) − x, oldest first.
+    history: Vec<(Vec<f64>, Vec<f64>)>,
+}
+
+impl Anderson {
+    fn reset(&mut self) {
+        self.history.clear();
+    }
+
+    /// The next shares from the current ones and their image under the update.
+    fn mix(&mut self, share: &[f64], image: &[f64]) -> Vec<f64> {
+        let log = |s: &[f64]| -> Vec<f64> {
+            s.iter()
+                .map(|&v| if v > 0.0 { v.ln() } else { 0.0 })
+                .collect()
+        };
+        let (x, gx) = (log(share), log(image));
+        let f: Vec<f64> = gx.iter().zip(&x).map(|(g, x)| g - x).collect();
+        self.history.push((x, f.clone()));
+        if self.history.len() > ANDERSON_DEPTH + 1 {
+            self.history.remove(0);
+        }
+        let k = self.history.len() - 1;
+        if k == 0 {
+            return image.to_vec();
+        }
+        let diff = |i: usize, pick: fn(&(Vec<f64>, Vec<f64>)) -> &Vec<f64>| -> Vec<f64> {
+            let (a, b) = (pick(&self.history[i + 1]), pick(&self.history[i]));
+            a.iter().zip(b).map(|(a, b)| a - b).collect()
+        };
+        let df: Vec<Vec<f64>> = (0..k).map(|i| diff(i, |h| &h.1)).collect();
+        let dx: Vec<Vec<f64>> = (0..k).map(|i| diff(i, |h| &h.0)).collect();
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
+        let trace: f64 = df.iter().map(|d| dot(d, d)).sum();
+        let gram = Mat::from_fn(k, k, |a, b| {
+            dot(&df[a], &df[b]) + if a == b { 1e-12 * trace } else { 0.0 }
+        });
+        let rhs = Mat::from_fn(k, 1, |a, _| dot(&df[a], &f));
+        let Ok(llt) = Llt::new(gram.as_ref(), Side::Lower) else {
+            self.reset();
+            return image.to_vec();
+        };
+        let gamma = llt.solve(&rhs);
+        let mut next: Vec<f64> = (0..gx.len())
+            .map(|j| {
+                if image[j] == 0.0 {
+                    return 0.0;
+                }
+                let correction: f64 = (0..k).map(|i| gamma[(i, 0)] * (dx[i][j] + df[i][j])).sum();
+                (gx[j] - correction).exp()
+            })
+            .collect();
+        normalise(&mut next);
+        next
+    }
 }
