@@ -387,12 +387,11 @@ impl Anderson {
         if k == 0 {
             return image.to_vec();
         }
-        let diff = |i: usize, pick: fn(&(Vec<f64>, Vec<f64>)) -> &Vec<f64>| -> Vec<f64> {
-            let (a, b) = (pick(&self.history[i + 1]), pick(&self.history[i]));
-            a.iter().zip(b).map(|(a, b)| a - b).collect()
-        };
-        let df: Vec<Vec<f64>> = (0..k).map(|i| diff(i, |h| &h.1)).collect();
-        let dx: Vec<Vec<f64>> = (0..k).map(|i| diff(i, |h| &h.0)).collect();
+        let diff =
+            |a: &[f64], b: &[f64]| -> Vec<f64> { a.iter().zip(b).map(|(a, b)| a - b).collect() };
+        let h = &self.history;
+        let df: Vec<Vec<f64>> = (0..k).map(|i| diff(&h[i + 1].1, &h[i].1)).collect();
+        let dx: Vec<Vec<f64>> = (0..k).map(|i| diff(&h[i + 1].0, &h[i].0)).collect();
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
         let trace: f64 = df.iter().map(|d| dot(d, d)).sum();
         let gram = Mat::from_fn(k, k, |a, b| {
