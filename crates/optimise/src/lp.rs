@@ -15,6 +15,10 @@ use crate::{Iteration, Optimisation, Optimum};
 /// the interior point's factor.
 const LP_COPIES: u64 = 10;
 
+/// Relative size of a pressure (of p_max) or a gap (of the gap unit) below which a point counts
+/// as being at the edge of contact when the next pass is restricted.
+const EDGE: f64 = 1e-6;
+
 /// A constraint row: its (column, coefficient) entries and its right-hand side.
 type Row = (Vec<(usize, f64)>, f64);
 
@@ -136,7 +140,11 @@ impl Optimisation<'_> {
                 } else if in_opt(i) {
                     nonneg.push((vec![(i, 1.0), (i_max, -self.v[i])], 0.0));
                 }
-                nonneg.push((vec![(i, -1.0)], 0.0));
+                // p ≥ 0 where p is not fixed already: a bound that holds with equality leaves
+                // the programme no interior, and the interior point stalls.
+                if !omega_v(i) && restricted[i] != Restriction::Open {
+                    nonneg.push((vec![(i, -1.0)], 0.0));
+                }
             }
             for c in 0..nf {
                 nonneg.push((vec![(ih + c, -1.0)], 0.0));
@@ -238,12 +246,18 @@ impl Optimisation<'_> {
             let contact = contact_solver
                 .solve(&problem.with_initial_gap(&h)?)?
                 .solved(contact_solver.name())?;
+            // Points at the edge of contact, with both p and d at round-off, stay free: forcing
+            // them closed or open leaves the programme no interior, and the interior point
+            // stalls (a 40 × 21 roller did).
+            let contact_p_max = contact.p_max();
             for (i, r) in restricted.iter_mut().enumerate() {
                 if !omega_v(i) {
-                    *r = if contact.active[i] && contact.pressure[i] > 0.0 {
+                    *r = if contact.pressure[i] > EDGE * contact_p_max {
                         Restriction::Closed
-                    } else {
+                    } else if contact.gap[i] > EDGE * unit_g {
                         Restriction::Open
+                    } else {
+                        Restriction::Free
                     };
                 }
             }

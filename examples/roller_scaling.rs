@@ -1,0 +1,403 @@
+//! The bearing roller at production size: the crown optimised by the load split with the
+//! matrix-free Polonsky–Keer solver, one core, each case in its own process so that its peak
+//! memory is its own. Prints the tables of the book's performance section and writes
+//! `results/roller_scaling/{scaling.csv,scaling.svg}`.
+//!
+//! The roller: D = 10 mm, l = 10 mm, Q = 5446 N, steel on steel as a rigid cylinder (R = 5 mm)
+//! on one half-space of the pair's modulus (E = 1.05·10⁵ MPa, ν = 0.3); the C¹ controller along
+//! the axis with L2 = l/2; Ω_v the centre row. Hertz line contact for the nominal 544.6 N/mm:
+//! b = 0.17334 mm, p₀ = 2000.1 MPa.
+//!
+//! `cargo run --release --example roller_scaling` (add `large` for an 800 × 417 grid too, or
+//! name the sections to run: `production`, `dense`, `straight`, `scaling`).
+
+use std::f64::consts::PI;
+use std::process::Command;
+use std::time::Instant;
+
+use contopt::contact::{ActiveSet, ContactSolver, InterfaceProblem, PolonskyKeer};
+use contopt::greens::HalfSpace;
+use contopt::optimise::{Constant, Controller, Optimisation, Optimum, Profile};
+use contopt::{plot, ElasticBody, GapShape, Material, Region, RigidBody};
+
+const E: f64 = 1.05e5;
+const NU: f64 = 0.3;
+const RADIUS: f64 = 5.0;
+const LENGTH: f64 = 10.0;
+const LOAD: f64 = 5446.0;
+/// The load split's tolerance: Ω_v pressure within 1e-8·p_max of v·p_max.
+const TOLERANCE: f64 = 1e-8;
+/// The grid reaches ±2.6 b across the roller.
+const REACH: f64 = 2.6;
+
+fn estar() -> f64 {
+    E / (1.0 - NU * NU)
+}
+
+/// Hertz's half-width b and peak p₀ for the line load `q` [N/mm].
+fn hertz(q: f64) -> (f64, f64) {
+    let b = (4.0 * q * RADIUS / (PI * estar())).sqrt();
+    (b, 2.0 * q / (PI * b))
+}
+
+/// Peak resident memory of this process [MB] (Linux), or NaN.
+fn peak_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(f64::NAN, |kib| kib * 1.024e-3)
+}
+
+/// The roller's grid: `nx` cells along the axis over l, `ny` (odd) across ±2.6 b.
+fn roller_grid(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>) {
+    let (b, _) = hertz(LOAD / LENGTH);
+    let (dx, dy) = (LENGTH / nx as f64, REACH * b / ((ny - 1) / 2) as f64);
+    let origin = [-0.5 * LENGTH + 0.5 * dx, -(((ny - 1) / 2) as f64) * dy];
+    let body = HalfSpace::grid(
+        "raceway",
+        Material::new(E, NU).unwrap(),
+        nx,
+        ny,
+        dx,
+        dy,
+        origin,
+    )
+    .unwrap();
+    let h = body
+        .interface()
+        .points
+        .iter()
+        .map(|x| x[1] * x[1] / (2.0 * RADIUS))
+        .collect();
+    (body, h)
+}
+
+/// Ω_v the row nearest y = 0, Ω_nv the rest.
+fn centre_row(body: &HalfSpace) -> Vec<Region> {
+    let dy = body.interface().points[body.cells().0][1] - body.interface().points[0][1];
+    body.interface()
+        .points
+        .iter()
+        .map(|x| {
+            if x[1].abs() < 0.5 * dy {
+                Region::OmegaV
+            } else {
+                Region::OmegaNv
+            }
+        })
+        .collect()
+}
+
+/// How an optimum is found.
+#[derive(Clone, Copy)]
+enum Method {
+    /// The load split with Polonsky–Keer.
+    Split,
+    /// The load split with the dense active set.
+    DenseSplit,
+    /// The LP (3.5) on the dense matrix.
+    DenseLp,
+}
+
+/// The optimum of `body` under the rigid cylinder of gap `h` and `load`, controller `v`.
+fn optimum(
+    body: &HalfSpace,
+    h: &[f64],
+    load: f64,
+    v: &dyn Controller,
+    method: Method,
+) -> contopt::Result<(Optimum, f64)> {
+    let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], load).unwrap();
+    let problem = InterfaceProblem::new(body, &roller, h).unwrap();
+    let shape = GapShape::extruded(body.interface(), 0).unwrap();
+    let opt = Optimisation::new(&problem, &shape, v)
+        .unwrap()
+        .with_regions(centre_row(body))
+        .unwrap();
+    let t = Instant::now();
+    let optimum = match method {
+        Method::Split => opt.load_split(&PolonskyKeer::default(), TOLERANCE, 100),
+        Method::DenseSplit => opt.load_split(&ActiveSet, TOLERANCE, 100),
+        Method::DenseLp => opt.linear_programme(&ActiveSet),
+    }?;
+    Ok((optimum, t.elapsed().as_secs_f64()))
+}
+
+/// One case, in this process: prints `seconds peak_MB p_max centre_miss dh_min dh_ref dh_max
+/// solves` on one line.
+fn case(nx: usize, ny: usize, l1: f64) {
+    let (body, h) = roller_grid(nx, ny);
+    let v = Profile::cubic(l1, 0.5 * LENGTH).unwrap();
+    let (opt, seconds) = optimum(&body, &h, LOAD, &v, Method::Split).unwrap();
+    let regions = centre_row(&body);
+    let iface = body.interface();
+    // The largest miss of p = v·p_max on Ω_v, relative to v·p_max, where v > 1 %.
+    let miss = (0..iface.len())
+        .filter(|&i| regions[i] == Region::OmegaV)
+        .map(|i| (v.value(iface.points[i]), opt.pressure[i]))
+        .filter(|(v, _)| *v > 0.01)
+        .map(|(v, p)| (p / (v * opt.p_max) - 1.0).abs())
+        .fold(0.0, f64::max);
+    let dh_min = opt.dh.iter().fold(f64::INFINITY, |m, v| m.min(*v));
+    let reference = opt
+        .dh
+        .iter()
+        .zip(GapShape::extruded(iface, 0).unwrap().nodes())
+        .min_by(|a, b| a.1[0].abs().total_cmp(&b.1[0].abs()))
+        .map_or(f64::NAN, |(d, _)| *d);
+    println!(
+        "{seconds} {} {} {miss} {dh_min} {reference} {} {}",
+        peak_mb(),
+        opt.p_max,
+        opt.dh_max(),
+        opt.iterations.len()
+    );
+}
+
+/// A case run in a child process.
+struct Row {
+    nx: usize,
+    ny: usize,
+    l1: f64,
+    seconds: f64,
+    peak_mb: f64,
+    p_max: f64,
+    miss: f64,
+    dh_min: f64,
+    dh_ref: f64,
+    dh_max: f64,
+    solves: usize,
+}
+
+fn child(nx: usize, ny: usize, l1: f64) -> Row {
+    let out = Command::new(std::env::current_exe().unwrap())
+        .args(["case", &nx.to_string(), &ny.to_string(), &l1.to_string()])
+        .output()
+        .expect("the example runs itself");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let f: Vec<f64> = text
+        .split_whitespace()
+        .map(|t| t.parse().unwrap_or(f64::NAN))
+        .collect();
+    assert!(
+        f.len() == 8,
+        "case {nx} x {ny}, L1 = {l1}: {text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    Row {
+        nx,
+        ny,
+        l1,
+        seconds: f[0],
+        peak_mb: f[1],
+        p_max: f[2],
+        miss: f[3],
+        dh_min: f[4],
+        dh_ref: f[5],
+        dh_max: f[6],
+        solves: f[7] as usize,
+    }
+}
+
+/// Item 4's table: both grids, every L1.
+fn production(grids: &[(usize, usize)]) -> Vec<Row> {
+    println!("\n## The optimised roller (load split, Polonsky–Keer, one core)\n");
+    println!("| grid | L1 mm | time s | peak MB | solves | p_max MPa | Δp_max to the finer grid | largest miss of v·p_max on Ω_v | Δh_max µm | min Δh µm | Δh at x = 0 µm |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    let l1s = [0.0, 2.0, 3.0, 4.0, 5.0];
+    let rows: Vec<Row> = grids
+        .iter()
+        .flat_map(|&(nx, ny)| l1s.iter().map(move |&l1| child(nx, ny, l1)))
+        .collect();
+    for r in &rows {
+        let finer = rows
+            .iter()
+            .find(|o| o.l1 == r.l1 && o.nx == 2 * r.nx)
+            .map_or("".to_string(), |o| {
+                format!("{:+.4} %", 100.0 * (r.p_max / o.p_max - 1.0))
+            });
+        println!(
+            "| {} × {} | {} | {:.2} | {:.0} | {} | {:.2} | {finer} | {:.1e} | {:.3} | {:.1e} | {:.1e} |",
+            r.nx,
+            r.ny,
+            r.l1,
+            r.seconds,
+            r.peak_mb,
+            r.solves,
+            r.p_max,
+            r.miss,
+            1e3 * r.dh_max,
+            1e3 * r.dh_min,
+            1e3 * r.dh_ref
+        );
+    }
+    rows
+}
+
+/// The load split against the dense paths on the first roller scene's grids (R = 10 mm, 12 kN,
+/// E = 2·10⁵ MPa, v = 1, cells 0.5 or 0.25 × 0.04 mm): the LP (3.5) on the dense matrix, and
+/// the load split with the dense active set in place of Polonsky–Keer.
+fn dense_agreement() {
+    println!("\n## Against the dense paths\n");
+    println!("| grid | dense path | its time s | split (Polonsky–Keer) s | p_max MPa | p_max split / dense − 1 | max |ΔΔh| / Δh_max |");
+    println!("| --- | --- | --- | --- | --- | --- | --- |");
+    for nx in [20, 40] {
+        let (ny, dx, dy) = (21, 10.0 / nx as f64, 0.04);
+        let origin = [-5.0 + 0.5 * dx, -10.0 * dy];
+        let body = HalfSpace::grid(
+            "hs",
+            Material::new(2e5, NU).unwrap(),
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+        )
+        .unwrap();
+        let h: Vec<f64> = body
+            .interface()
+            .points
+            .iter()
+            .map(|x| x[1] * x[1] / 20.0)
+            .collect();
+        let v = Constant::new(1.0).unwrap();
+        let (split, split_s) = optimum(&body, &h, 12_000.0, &v, Method::Split).unwrap();
+        for (name, method) in [
+            ("LP (3.5)", Method::DenseLp),
+            ("split, active set", Method::DenseSplit),
+        ] {
+            match optimum(&body, &h, 12_000.0, &v, method) {
+                Ok((dense, dense_s)) => {
+                    let dh = split
+                        .dh
+                        .iter()
+                        .zip(&dense.dh)
+                        .map(|(a, b)| (a - b).abs())
+                        .fold(0.0, f64::max)
+                        / dense.dh_max();
+                    println!(
+                        "| {nx} × {ny} | {name} | {dense_s:.2} | {split_s:.3} | {:.6} | {:+.1e} | {dh:.1e} |",
+                        dense.p_max,
+                        split.p_max / dense.p_max - 1.0
+                    );
+                }
+                Err(e) => println!("| {nx} × {ny} | {name} | failed: {e} | | | | |"),
+            }
+        }
+    }
+}
+
+/// The straight roller against Hertz's line contact with the local centre line load.
+fn straight(grids: &[(usize, usize)]) {
+    println!("\n## The straight roller against Hertz (local centre line load)\n");
+    println!("| grid | cell mm | centre line load N/mm | p at the centre MPa | Hertz local p₀ | error | / nominal p₀ 2000.1 | end pressure MPa (cell-dependent) | time s |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    for &(nx, ny) in grids {
+        let (body, h) = roller_grid(nx, ny);
+        let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], LOAD).unwrap();
+        let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
+        let t = Instant::now();
+        let st = PolonskyKeer::default()
+            .solve(&problem)
+            .unwrap()
+            .solved("Polonsky-Keer")
+            .unwrap();
+        let seconds = t.elapsed().as_secs_f64();
+        let iface = body.interface();
+        let dx = LENGTH / nx as f64;
+        // The two columns either side of x = 0.
+        let centre: Vec<usize> = (0..iface.len())
+            .filter(|&i| iface.points[i][0].abs() < dx)
+            .collect();
+        let q: f64 = centre
+            .iter()
+            .map(|&i| iface.weights[i] * st.pressure[i])
+            .sum::<f64>()
+            / (2.0 * dx);
+        let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);
+        let (_, p0) = hertz(q);
+        println!(
+            "| {nx} × {ny} | {dx} | {q:.2} | {p:.1} | {p0:.1} | {:+.3} % | {:.4} | {:.0} | {seconds:.2} |",
+            100.0 * (p / p0 - 1.0),
+            p / hertz(LOAD / LENGTH).1,
+            st.p_max()
+        );
+    }
+}
+
+/// The solve against the number of points (L1 = 3 mm): the CSV and the log-log plot.
+fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
+    println!("\n## Scaling (L1 = 3 mm)\n");
+    println!("| grid | points | solves | time s | time per solve ms | peak MB |");
+    println!("| --- | --- | --- | --- | --- | --- |");
+    let mut csv = String::from("nx,ny,points,solves,seconds,peak_mb,p_max_mpa\n");
+    let mut points = vec![];
+    for &(nx, ny) in grids {
+        let r = child(nx, ny, 3.0);
+        let n = nx * ny;
+        println!(
+            "| {nx} × {ny} | {n} | {} | {:.3} | {:.1} | {:.0} |",
+            r.solves,
+            r.seconds,
+            1e3 * r.seconds / r.solves as f64,
+            r.peak_mb
+        );
+        csv.push_str(&format!(
+            "{nx},{ny},{n},{},{},{},{}\n",
+            r.solves, r.seconds, r.peak_mb, r.p_max
+        ));
+        points.push(((n as f64).log10(), r.seconds.log10()));
+    }
+    let dir = std::path::Path::new("results/roller_scaling");
+    std::fs::create_dir_all(dir)?;
+    std::fs::write(dir.join("scaling.csv"), csv)?;
+    let (n0, t0) = points[0];
+    let linear: Vec<(f64, f64)> = points.iter().map(|&(n, _)| (n, t0 + (n - n0))).collect();
+    let svg = plot::line_plot(
+        "Optimised roller crown: run time against grid size (log-log)",
+        "log10 (interface points)",
+        "log10 (run time / s)",
+        &[("load split, Polonsky-Keer", &points), ("slope 1", &linear)],
+    );
+    std::fs::write(dir.join("scaling.svg"), svg)?;
+    println!("\nwritten: results/roller_scaling/{{scaling.csv,scaling.svg}}");
+    Ok(())
+}
+
+fn main() -> std::io::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("case") {
+        let num = |k: usize| args[k].parse::<f64>().expect("case NX NY L1");
+        case(num(1) as usize, num(2) as usize, num(3));
+        return Ok(());
+    }
+    // Sections named on the command line, or all of them.
+    let wanted = |name: &str| {
+        args.iter().any(|a| a == name) || !args.iter().any(|a| SECTIONS.contains(&a.as_str()))
+    };
+    let production_grids = [(200, 105), (400, 209)];
+    if wanted("production") {
+        production(&production_grids);
+    }
+    if wanted("dense") {
+        dense_agreement();
+    }
+    if wanted("straight") {
+        straight(&production_grids);
+    }
+    if wanted("scaling") {
+        let mut grids = vec![(50, 27), (100, 53), (200, 105), (400, 209)];
+        if args.iter().any(|a| a == "large") {
+            grids.push((800, 417));
+        }
+        scaling(&grids)?;
+    }
+    Ok(())
+}
+
+/// The sections the example can run alone.
+const SECTIONS: [&str; 4] = ["production", "dense", "straight", "scaling"];
