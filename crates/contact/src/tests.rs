@@ -194,3 +194,82 @@ fn mismatched_interfaces_and_impossible_loads_are_named() {
         )
         .is_err());
 }
+
+/// The dense matrix is refused before allocation past the memory limit, with its size, the
+/// memory and the way out; under the limit it is built once and shared by the problems derived
+/// by changing the gap.
+#[test]
+fn dense_matrix_is_refused_past_the_limit_and_shared() {
+    let problem = floating_three_points(0.2e-3);
+    let small = problem.clone().with_dense_limit(100);
+    let err = ActiveSet.solve(&small).unwrap_err().to_string();
+    assert!(
+        err.contains("dense 3 × 3 influence matrix")
+            && err.contains("limit")
+            && err.contains("dense_limit_mb"),
+        "{err}"
+    );
+    let first = problem.dense_influence(1).unwrap() as *const _;
+    let moved = problem.with_initial_gap(&[1e-3, 0.0, 0.0]).unwrap();
+    assert!(std::ptr::eq(first, moved.dense_influence(1).unwrap()));
+    // The operator gives what the matrix does.
+    let mut u = vec![0.0; 3];
+    moved.apply_influence(&[1.0, 2.0, 3.0], &mut u);
+    assert_close(
+        &u,
+        &[1e-3 + 1e-3, 2e-3 + 0.8e-3, 3e-3 + 0.6e-3],
+        1e-15,
+        "A f",
+    );
+}
+
+/// Polonsky–Keer from a warm start (another solution's pressure) reaches the same answer, and a
+/// start of the wrong length is refused.
+#[test]
+fn polonsky_keer_warm_start() {
+    let problem = floating_three_points(0.2e-3);
+    let cold = PolonskyKeer::default().solve(&problem).unwrap();
+    let warm = PolonskyKeer::default()
+        .solve_from(&problem, &[3.0, 0.0, 1.0])
+        .unwrap();
+    assert_close(&warm.pressure, &cold.pressure, 1e-10, "warm");
+    assert!(PolonskyKeer::default()
+        .solve_from(&problem, &[1.0])
+        .is_err());
+}
+
+/// Free modes replaced by two column translations, each with its own load (the optimiser's
+/// load split): points 0–1 carry 2 N, point 2 carries 1 N; every solver agrees with the QP, and
+/// each column's multiplier closes its contact points.
+#[test]
+fn column_modes_carry_their_own_loads() {
+    let problem = floating_three_points(0.2e-3);
+    let columns = problem
+        .with_modes(vec![
+            crate::FreeMode {
+                name: "column 0".into(),
+                points: vec![0, 1],
+                displacement: vec![1.0; 2],
+                load: -2.0,
+            },
+            crate::FreeMode {
+                name: "column 1".into(),
+                points: vec![2],
+                displacement: vec![1.0],
+                load: -1.0,
+            },
+        ])
+        .unwrap();
+    let reference = Qp::default().solve(&columns).unwrap();
+    assert!(
+        (reference.pressure[2] - 1.0).abs() < 1e-9,
+        "{:?}",
+        reference.pressure
+    );
+    for s in solvers() {
+        let st = s.solve(&columns).unwrap().solved(s.name()).unwrap();
+        assert_close(&st.pressure, &reference.pressure, 1e-9, s.name());
+        assert_close(&st.rigid, &reference.rigid, 1e-12, s.name());
+        assert!(st.residuals.equilibrium < 1e-9, "{}", s.name());
+    }
+}
