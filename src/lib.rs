@@ -9,10 +9,13 @@
 //!   plane strain) and the structured mesh generator;
 //! - [`greens`]: bodies from closed-form Green's functions: the axisymmetric half-space and
 //!   the half-plane;
-//! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies and the
-//!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian;
+//! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies (their
+//!   influence operators; dense matrices on demand) and the
+//!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian,
+//!   and the matrix-free Polonsky–Keer;
 //! - [`optimise`]: pressure [`Controller`](optimise::Controller)s and the
-//!   [`Optimisation`](optimise::Optimisation) of the initial gap (§3).
+//!   [`Optimisation`](optimise::Optimisation) of the initial gap (§3): the iteration, the LP
+//!   (3.5) and the load split.
 //!
 //! ```
 //! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
