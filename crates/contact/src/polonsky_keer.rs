@@ -129,18 +129,13 @@ impl PolonskyKeer {
                 .filter(|&k| !inside[k] && gap[k] < -PENETRATION * scale)
                 .collect();
             if penetrating.is_empty() || state.status != Status::Solved {
-                let residuals = problem.residuals(&pressure, &gap);
-                return Ok(ContactState {
-                    active: pressure.iter().map(|&p| p > 0.0).collect(),
+                return Ok(outcome(
+                    problem,
                     pressure,
-                    gap,
-                    rigid,
-                    iterations: steps,
-                    iterp: 0,
-                    iterd: 0,
-                    residuals,
-                    status: state.status,
-                });
+                    (gap, rigid),
+                    steps,
+                    state.status,
+                ));
             }
             for k in index.into_iter().chain(penetrating) {
                 keep[k] = true;
@@ -250,21 +245,32 @@ impl PolonskyKeer {
                 self.tolerance
             ));
         }
-        let (gap, rigid) = groups.final_gap(problem, &p);
-        let residuals = problem.residuals(&p, &gap);
-        Ok(ContactState {
-            active: p.iter().map(|&v| v > 0.0).collect(),
-            pressure: p,
-            gap,
-            rigid,
-            iterations: steps,
-            iterp: 0,
-            iterd: 0,
-            residuals,
-            status: stopped.map_or(Status::Solved, |s| {
-                Status::Stopped(format!("Polonsky-Keer: {s}"))
-            }),
-        })
+        let gap_rigid = groups.final_gap(problem, &p);
+        let status = stopped.map_or(Status::Solved, |s| {
+            Status::Stopped(format!("Polonsky-Keer: {s}"))
+        });
+        Ok(outcome(problem, p, gap_rigid, steps, status))
+    }
+}
+
+/// The state of a final pressure with its gap and rigid amplitudes.
+fn outcome(
+    problem: &InterfaceProblem,
+    pressure: Vec<f64>,
+    (gap, rigid): (Vec<f64>, Vec<f64>),
+    steps: usize,
+    status: Status,
+) -> ContactState {
+    ContactState {
+        active: pressure.iter().map(|&p| p > 0.0).collect(),
+        residuals: problem.residuals(&pressure, &gap),
+        pressure,
+        gap,
+        rigid,
+        iterations: steps,
+        iterp: 0,
+        iterd: 0,
+        status,
     }
 }
 

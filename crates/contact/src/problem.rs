@@ -47,23 +47,36 @@ struct Operator<'a> {
 }
 
 impl Operator<'_> {
-    /// `out = A¹ force` (first body) or `out = P A² Pᵀ force` (second).
-    fn apply_one(&self, body: usize, force: &[f64], out: &mut [f64]) {
+    /// `map(body, input, output)` in the body's own numbering, with `input` and `output` in the
+    /// first body's: the second body's points are permuted through the pairing P.
+    fn in_own_numbering<T>(
+        &self,
+        body: usize,
+        input: &[f64],
+        output: &mut [f64],
+        map: impl FnOnce(&dyn ElasticBody, &[f64], &mut [f64]) -> T,
+    ) -> T {
         let b = self.bodies[body].get();
         match (&self.pair, body) {
-            (None, _) | (_, 0) => b.apply_influence(force, out),
+            (None, _) | (_, 0) => map(b, input, output),
             (Some(pair), _) => {
                 let mut scratch = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-                let [input, output] = &mut *scratch;
+                let [own_in, own_out] = &mut *scratch;
                 for (i, &j) in pair.iter().enumerate() {
-                    input[j] = force[i];
+                    own_in[j] = input[i];
                 }
-                b.apply_influence(input, output);
+                let result = map(b, own_in, own_out);
                 for (i, &j) in pair.iter().enumerate() {
-                    out[i] = output[j];
+                    output[i] = own_out[j];
                 }
+                result
             }
         }
+    }
+
+    /// `out = A¹ force` (first body) or `out = P A² Pᵀ force` (second).
+    fn apply_one(&self, body: usize, force: &[f64], out: &mut [f64]) {
+        self.in_own_numbering(body, force, out, |b, f, o| b.apply_influence(f, o));
     }
 
     fn apply(&self, force: &[f64], out: &mut [f64], spare: &mut [f64]) {
@@ -101,22 +114,8 @@ impl Operator<'_> {
             if share <= 0.0 {
                 continue;
             }
-            let b = self.bodies[body].get();
-            let done = match (&self.pair, body) {
-                (None, _) | (_, 0) => b.precondition(displacement, force),
-                (Some(pair), _) => {
-                    let mut scratch = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-                    let [input, output] = &mut *scratch;
-                    for (i, &j) in pair.iter().enumerate() {
-                        input[j] = displacement[i];
-                    }
-                    let done = b.precondition(input, output);
-                    for (i, &j) in pair.iter().enumerate() {
-                        force[i] = output[j];
-                    }
-                    done
-                }
-            };
+            let done =
+                self.in_own_numbering(body, displacement, force, |b, d, f| b.precondition(d, f));
             if done {
                 force.iter_mut().for_each(|f| *f *= share);
                 return true;

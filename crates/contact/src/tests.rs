@@ -273,3 +273,45 @@ fn column_modes_carry_their_own_loads() {
         assert!(st.residuals.equilibrium < 1e-9, "{}", s.name());
     }
 }
+
+/// A second body that lists its points in another order is paired by position: its influence
+/// enters through the permutation, A = A¹ + P A² Pᵀ, in products and in the dense matrix.
+#[test]
+fn second_body_in_another_order_is_permuted() {
+    let a1 = Mat::from_fn(3, 3, |i, j| if i == j { 2e-3 } else { 0.5e-3 });
+    let b1 = body(a1, vec![]);
+    // Body 2 lists the points backwards; its own compliance is 1e-3·(own index + 1) on the
+    // diagonal and 0.1e-3·|i − j| off it.
+    let mut b2 = body(
+        Mat::from_fn(3, 3, |i, j| {
+            if i == j {
+                1e-3 * (i + 1) as f64
+            } else {
+                0.1e-3 * i.abs_diff(j) as f64
+            }
+        }),
+        vec![],
+    );
+    b2.interface.points.reverse();
+    b2.interface.normals = vec![[0.0, -1.0, 0.0]; 3];
+    let problem = InterfaceProblem::new(&b1, &b2, &[0.0; 3]).unwrap();
+    let f = [1.0, 2.0, 4.0];
+    let mut u = vec![0.0; 3];
+    problem.apply_influence(&f, &mut u);
+    // Point i of body 1 is point 2 − i of body 2.
+    let own = [f[2], f[1], f[0]];
+    let a2 = &b2.a;
+    let expected: Vec<f64> = (0..3)
+        .map(|i| {
+            let first: f64 = (0..3).map(|j| b1.a[(i, j)] * f[j]).sum();
+            let second: f64 = (0..3).map(|j| a2[(2 - i, j)] * own[j]).sum();
+            first + second
+        })
+        .collect();
+    assert_close(&u, &expected, 1e-15, "A f");
+    let dense = problem.dense_influence(1).unwrap();
+    let from_dense: Vec<f64> = (0..3)
+        .map(|i| (0..3).map(|j| dense[(i, j)] * f[j]).sum())
+        .collect();
+    assert_close(&from_dense, &expected, 1e-15, "dense A f");
+}
