@@ -41,8 +41,10 @@ impl Optimisation<'_> {
     /// whose multipliers λ_j are the column approaches; the gap change is their spread,
     /// Δh_j = r (λ_j − λ_N), zero at the reference node N. An outer update of the shares drives
     /// each column's Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the
-    /// exponent α_j of p̄ ∝ F^α from a secant (½ for a Hertzian line contact) and p_max the value
-    /// at which the shares add up to the load. At its fixed point the Ω_v points are closed at
+    /// exponent α_j of p̄ ∝ F^α from the first secants (½ for a Hertzian line contact, 1 for a
+    /// single point) and p_max the value at which the shares add up to the load, accelerated by
+    /// Anderson mixing of the last updates, which learns how the columns couple through the
+    /// body. At its fixed point the Ω_v points are closed at
     /// v·p_max, equilibrium holds and the rest of Ω is complementary: the conditions of (3.5),
     /// whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the programme's feasible set
     /// is that one point). A column whose Ω_v holds several points is driven by their weighted
@@ -51,7 +53,8 @@ impl Optimisation<'_> {
     /// Every contact solve starts from the previous pressure, so a matrix-free `solver`
     /// ([`contopt_contact::PolonskyKeer`]) takes a few steps after the first; a dense one works
     /// too, for small problems. Stops when every column's Ω_v pressure is within
-    /// `tolerance`·p_max of v·p_max, after at most `max_iterations` solves. Needs a floating body
+    /// `tolerance`·p_max of v·p_max, after at most `max_iterations` solves; each solve is a row
+    /// of the result (its `iterp` counts the contact solver's steps). Needs a floating body
     /// with one rigid mode (the given load) and a gap shape whose rows each reach one node
     /// (pointwise, or extruded along an axis).
     pub fn load_split(
@@ -65,23 +68,17 @@ impl Optimisation<'_> {
         }
         let columns = self.columns()?;
         let total = -self.problem.modes()[0].load;
-        let m = columns.points.len();
-        // Shares as fractions of the load: a Hertzian column carries F ∝ p₀².
-        let mut share: Vec<f64> = (0..m)
-            .map(|k| columns.measure[k] * columns.v[k].powi(2))
-            .collect();
-        normalise(&mut share);
-        let mut exponent = vec![0.5; m];
-        let mut anderson = Anderson::default();
-        let mut last: Option<(Vec<f64>, Vec<f64>)> = None;
+        let mut update = ShareUpdate::new(&columns);
         let mut warm: Option<Vec<f64>> = None;
         let mut rows: Vec<Iteration> = vec![];
         let mut dh_last = vec![0.0; self.shape.nodes().len()];
+        let mut miss = f64::NAN;
         for k in 1..=max_iterations {
-            let state = self.column_solve(solver, &columns, &share, total, warm.as_deref())?;
+            let state =
+                self.column_solve(solver, &columns, &update.share, total, warm.as_deref())?;
             let mean = columns.omega_v_pressure(self, &state.pressure);
             let p_max = columns.fitted_p_max(&mean);
-            let miss = (0..m)
+            miss = (0..mean.len())
                 .map(|j| (mean[j] - columns.v[j] * p_max).abs())
                 .fold(0.0, f64::max)
                 / p_max;
@@ -97,41 +94,15 @@ impl Optimisation<'_> {
             if miss <= tolerance {
                 return self.column_optimum(state, p_max, dh, rows);
             }
-            match &last {
-                Some((share_last, mean_last)) if k <= SECANT_UPDATES => {
-                    for j in 0..m {
-                        let step = (share[j] / share_last[j]).ln();
-                        if step.abs() > SECANT_STEP && mean[j] > 0.0 && mean_last[j] > 0.0 {
-                            let alpha = (mean[j] / mean_last[j]).ln() / step;
-                            exponent[j] = alpha.clamp(EXPONENT.0, EXPONENT.1);
-                        }
-                    }
-                    anderson.reset();
-                }
-                _ => {}
-            }
-            last = Some((share.clone(), mean.clone()));
-            let image = next_shares(&share, &mean, &columns.v, &exponent, p_max);
-            share = if mean
-                .iter()
-                .zip(&columns.v)
-                .all(|(p, v)| *p > 0.0 || *v == 0.0)
-            {
-                anderson.mix(&share, &image)
-            } else {
-                // An Ω_v point opened: its column's share doubles, outside the smooth map.
-                anderson.reset();
-                image
-            };
+            update.next(k, &mean, &columns.v, p_max);
             warm = Some(state.pressure);
             dh_last = dh;
         }
-        let miss = rows.last().map_or(f64::NAN, |r| r.p_max);
         Err(Error::NotConverged {
             method: "load split (3.5)".into(),
             iterations: max_iterations,
             detail: format!(
-                "the Ω_v pressure is not yet v·p_max within {tolerance:e} (p_max {miss:.6} MPa)"
+                "the Ω_v pressure misses v·p_max by {miss:.3e} of p_max (tolerance {tolerance:e})"
             ),
         })
     }
@@ -353,6 +324,55 @@ fn next_shares(share: &[f64], mean: &[f64], v: &[f64], exponent: &[f64], p_max: 
     let mut next = grown(x);
     normalise(&mut next);
     next
+}
+
+/// The shares F_j / Q of the load split and how they are updated: the per-column power law with
+/// secant exponents (the first [`SECANT_UPDATES`] updates), accelerated by Anderson mixing.
+struct ShareUpdate {
+    share: Vec<f64>,
+    exponent: Vec<f64>,
+    anderson: Anderson,
+    /// The shares and Ω_v pressures of the previous solve.
+    last: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+impl ShareUpdate {
+    /// First shares: a Hertzian column carries F ∝ p₀², so F_j ∝ L_j v_j².
+    fn new(columns: &Columns) -> Self {
+        let mut share: Vec<f64> = (0..columns.v.len())
+            .map(|k| columns.measure[k] * columns.v[k].powi(2))
+            .collect();
+        normalise(&mut share);
+        Self {
+            exponent: vec![0.5; share.len()],
+            share,
+            anderson: Anderson::default(),
+            last: None,
+        }
+    }
+
+    /// The shares after the `k`-th solve, which gave the Ω_v pressures `mean` and `p_max`.
+    fn next(&mut self, k: usize, mean: &[f64], v: &[f64], p_max: f64) {
+        if let (Some((share_last, mean_last)), true) = (&self.last, k <= SECANT_UPDATES) {
+            for j in 0..mean.len() {
+                let step = (self.share[j] / share_last[j]).ln();
+                if step.abs() > SECANT_STEP && mean[j] > 0.0 && mean_last[j] > 0.0 {
+                    let alpha = (mean[j] / mean_last[j]).ln() / step;
+                    self.exponent[j] = alpha.clamp(EXPONENT.0, EXPONENT.1);
+                }
+            }
+            self.anderson.reset();
+        }
+        self.last = Some((self.share.clone(), mean.to_vec()));
+        let image = next_shares(&self.share, mean, v, &self.exponent, p_max);
+        self.share = if mean.iter().zip(v).all(|(p, v)| *p > 0.0 || *v == 0.0) {
+            self.anderson.mix(&self.share, &image)
+        } else {
+            // An Ω_v point opened: its column's share doubles, outside the smooth map.
+            self.anderson.reset();
+            image
+        };
+    }
 }
 
 /// Anderson mixing (type II; Walker & Ni, SIAM J. Numer. Anal. 49, 2011) of the share update,
