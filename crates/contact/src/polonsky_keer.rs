@@ -157,21 +157,7 @@ impl PolonskyKeer {
         let n = w.len();
         let g = problem.free_gap();
         let mut cg = Buffers::new(n);
-        // κ: a point's displacement under unit pressure on itself, for seeding pressures from
-        // gaps (a uniform pressure would not do: it moves a periodic grid not at all).
-        let kappa = {
-            cg.forces.fill(0.0);
-            cg.forces[0] = w[0];
-            problem.apply_influence_with(&cg.forces, &mut cg.u, &mut cg.spare);
-            cg.u[0]
-        };
-        if !(kappa > 0.0 && kappa.is_finite()) {
-            return Err(Error::invalid(
-                "influence",
-                kappa,
-                "the bodies have no compliance at the interface (two rigid bodies?)",
-            ));
-        }
+        let kappa = cg.self_compliance(problem)?;
         let mut p = match start {
             Some(s) => s.iter().map(|v| v.max(0.0)).collect(),
             None => groups.initial(w, &g, kappa),
@@ -185,38 +171,14 @@ impl PolonskyKeer {
             steps += 1;
             cg.residual(problem, &mut groups, &g, &p);
             cg.direction(problem, &mut groups, conjugate, &mut gz_old);
-            // Step length along t: the residual's component over the curvature.
-            for ((f, t), w) in cg.forces.iter_mut().zip(&cg.t).zip(w) {
-                *f = t * w;
-            }
-            problem.apply_influence_with(&cg.forces, &mut cg.r, &mut cg.spare);
-            let curvature = cg.dot(w, &cg.r, &cg.t);
-            let along = cg.dot(w, &cg.d, &cg.t);
-            let tau = if along == 0.0 {
-                0.0
-            } else if curvature > 0.0 {
-                along / curvature
-            } else {
-                stopped = Some(format!(
-                    "the influence operator is not positive on the contact set (curvature {curvature:e})"
-                ));
-                break;
-            };
             previous.copy_from_slice(&p);
-            for i in 0..n {
-                if cg.contact[i] {
-                    p[i] = (p[i] - tau * cg.t[i]).max(0.0);
+            let entered = match cg.step(problem, &groups, &mut p, kappa) {
+                Ok(entered) => entered,
+                Err(reason) => {
+                    stopped = Some(reason);
+                    break;
                 }
-            }
-            // Penetrating points outside the contact set re-enter; conjugation restarts.
-            let enter = if tau > 0.0 { tau } else { 1.0 / kappa };
-            let mut entered = false;
-            for i in 0..n {
-                if !cg.contact[i] && groups.may_enter(i) && cg.d[i] < 0.0 {
-                    p[i] = -enter * cg.d[i];
-                    entered = true;
-                }
-            }
+            };
             conjugate = !entered;
             groups.restore(w, &cg.d, &mut p);
             let scale = groups
@@ -306,6 +268,67 @@ impl Buffers {
             r: zero(),
             contact: vec![false; n],
         }
+    }
+
+    /// κ: a point's displacement under unit pressure on itself, for seeding pressures from
+    /// gaps (a uniform pressure would not do: it moves a periodic grid not at all).
+    fn self_compliance(&mut self, problem: &InterfaceProblem) -> Result<f64> {
+        let w = problem.weights();
+        self.forces.fill(0.0);
+        self.forces[0] = w[0];
+        problem.apply_influence_with(&self.forces, &mut self.u, &mut self.spare);
+        let kappa = self.u[0];
+        if !(kappa > 0.0 && kappa.is_finite()) {
+            return Err(Error::invalid(
+                "influence",
+                kappa,
+                "the bodies have no compliance at the interface (two rigid bodies?)",
+            ));
+        }
+        Ok(kappa)
+    }
+
+    /// Moves `p` along the direction t by the residual's component over the curvature, clipped
+    /// at p = 0, and lets the penetrating points outside the contact set re-enter (with that
+    /// step, or 1/κ when it is zero). Returns whether any entered; fails when the operator is
+    /// not positive on the contact set.
+    fn step(
+        &mut self,
+        problem: &InterfaceProblem,
+        groups: &Groups,
+        p: &mut [f64],
+        kappa: f64,
+    ) -> std::result::Result<bool, String> {
+        let w = problem.weights();
+        for ((f, t), w) in self.forces.iter_mut().zip(&self.t).zip(w) {
+            *f = t * w;
+        }
+        problem.apply_influence_with(&self.forces, &mut self.r, &mut self.spare);
+        let curvature = self.dot(w, &self.r, &self.t);
+        let along = self.dot(w, &self.d, &self.t);
+        let tau = if along == 0.0 {
+            0.0
+        } else if curvature > 0.0 {
+            along / curvature
+        } else {
+            return Err(format!(
+                "the influence operator is not positive on the contact set (curvature {curvature:e})"
+            ));
+        };
+        for i in 0..p.len() {
+            if self.contact[i] {
+                p[i] = (p[i] - tau * self.t[i]).max(0.0);
+            }
+        }
+        let enter = if tau > 0.0 { tau } else { 1.0 / kappa };
+        let mut entered = false;
+        for i in 0..p.len() {
+            if !self.contact[i] && groups.may_enter(i) && self.d[i] < 0.0 {
+                p[i] = -enter * self.d[i];
+                entered = true;
+            }
+        }
+        Ok(entered)
     }
 
     /// Σ over the contact set of wᵢ aᵢ bᵢ.
