@@ -383,6 +383,43 @@ fn polonsky_keer_under_a_given_approach_matches_the_dense_solution() {
     );
 }
 
+/// Two elastic grids pressed together (steel below, aluminium above as `HalfSpace::upper`), the
+/// sphere's gap a²/R-approached: the summed operator and the compliance-weighted preconditioner
+/// give Polonsky–Keer the dense active set's pressure to 1e-8 of p_max, and the force is Hertz's
+/// with the pair's modulus 1/E* = Σ (1 − νₖ²)/Eₖ within 2 % on the 32² grid.
+#[test]
+fn two_elastic_grids_summed() {
+    let (lower, gap, _) = peer_grid(32);
+    let h = 4.0 / 32.0;
+    let origin = -16.0 * h;
+    let aluminium = Material::new(7e4, 0.33).unwrap();
+    let upper = HalfSpace::grid("upper", aluminium, 32, 32, h, h, [origin, origin])
+        .unwrap()
+        .upper();
+    let approach: Vec<f64> = gap.iter().map(|g| g - 0.01).collect();
+    let problem = InterfaceProblem::new(&lower, &upper, &approach).unwrap();
+    let pk = PolonskyKeer::default()
+        .solve(&problem)
+        .unwrap()
+        .solved("Polonsky-Keer")
+        .unwrap();
+    let dense = ActiveSet.solve(&problem).unwrap().solved("active set").unwrap();
+    let dp = pk
+        .pressure
+        .iter()
+        .zip(&dense.pressure)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / dense.p_max();
+    assert!(dp < 1e-8, "pressure differs by {dp:e} of p_max");
+    assert_eq!(pk.active, dense.active);
+    let estar = 1.0 / ((1.0 - NU * NU) / 210e3 + (1.0 - 0.33f64.powi(2)) / 7e4);
+    let force = lower.interface().resultant(&pk.pressure);
+    let hertz = 4.0 * estar / 300.0;
+    eprintln!("two grids: force {force:.2} N against Hertz {hertz:.2} N, {} steps", pk.iterations);
+    assert!((force / hertz - 1.0).abs() < 0.02, "force {force} vs {hertz}");
+}
+
 #[test]
 fn polonsky_keer_matches_the_dense_solution() {
     polonsky_keer_against_dense(1.0);

@@ -187,7 +187,7 @@ impl HalfSpace {
             Geometry::Surface,
             points,
             weights,
-            vec![[0.0, 0.0, 1.0]; cx * cy],
+            vec![self.interface.normals[0]; cx * cy],
         )?;
         let kernel = Mat::from_fn(cx, cy, |i, j| self.kernel[(i, j)]);
         let convolution = Arc::new(Convolution::free(cx, cy, |i, j| kernel[(i, j)]));
@@ -217,6 +217,16 @@ impl HalfSpace {
     /// Number of cells (nx, ny).
     pub fn cells(&self) -> (usize, usize) {
         (self.nx, self.ny)
+    }
+
+    /// The same grid as the surface of the half-space z ≥ 0 above the plane, whose outward
+    /// normal is −z: the second of two elastic bodies pressed together (a roller on its
+    /// raceway, both as half-spaces). The influence is unchanged.
+    pub fn upper(mut self) -> Self {
+        for n in &mut self.interface.normals {
+            *n = [0.0, 0.0, -1.0];
+        }
+        self
     }
 }
 
