@@ -32,6 +32,8 @@ pub struct HalfSpace {
     /// index is |Δ| on a free grid and Δ mod n on a periodic one.
     kernel: Mat<f64>,
     convolution: Arc<Convolution>,
+    /// The free translation of a pressed body ([`HalfSpace::pressed`]), or none.
+    modes: Vec<RigidMode>,
 }
 
 /// The smallest length ≥ `n` (at most `max`) whose prime factors are 2, 3, 5 and 7, for
@@ -91,6 +93,7 @@ impl HalfSpace {
             periodic: false,
             kernel,
             convolution,
+            modes: vec![],
         })
     }
 
@@ -134,6 +137,7 @@ impl HalfSpace {
             periodic: true,
             kernel,
             convolution,
+            modes: vec![],
         })
     }
 
@@ -200,6 +204,14 @@ impl HalfSpace {
                 periodic: false,
                 kernel,
                 convolution,
+                modes: self
+                    .modes
+                    .iter()
+                    .map(|m| RigidMode {
+                        interface_displacement: vec![1.0; cx * cy],
+                        ..m.clone()
+                    })
+                    .collect(),
             },
             index,
         ))
@@ -217,6 +229,25 @@ impl HalfSpace {
     /// Number of cells (nx, ny).
     pub fn cells(&self) -> (usize, usize) {
         (self.nx, self.ny)
+    }
+
+    /// The body free to translate along its normal, pressed into its partner by `force` \[N\] >
+    /// 0 (a roller under its load, both as half-spaces): one rigid mode that moves every point by
+    /// one unit into the body, loaded by −force.
+    pub fn pressed(mut self, force: f64) -> Result<Self> {
+        if !(force > 0.0 && force.is_finite()) {
+            return Err(Error::invalid(
+                "half_space.force",
+                force,
+                "must be positive: the body is pressed into contact",
+            ));
+        }
+        self.modes = vec![RigidMode {
+            name: "translation".into(),
+            interface_displacement: vec![1.0; self.interface.len()],
+            load: -force,
+        }];
+        Ok(self)
     }
 
     /// The same grid as the surface of the half-space z ≥ 0 above the plane, whose outward
@@ -290,7 +321,7 @@ impl ElasticBody for HalfSpace {
     }
 
     fn rigid_modes(&self) -> &[RigidMode] {
-        &[]
+        &self.modes
     }
 }
 
