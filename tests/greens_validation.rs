@@ -461,6 +461,51 @@ fn two_elastic_grids_summed() {
     );
 }
 
+/// Polonsky–Keer is unit-free: the 32² Hertz case in N-m-Pa (lengths × 10⁻³, E × 10⁶) gives
+/// the N-mm-MPa pressure × 10⁶ to 1e-9, in as many steps give or take two.
+#[test]
+fn polonsky_keer_is_unit_free() {
+    let solve = |length: f64, modulus: f64| {
+        let n = 32;
+        let h = 4.0 / n as f64 * length;
+        let origin = -((n / 2) as f64) * h;
+        let body = HalfSpace::grid(
+            "half-space",
+            Material::new(210e3 * modulus, NU).unwrap(),
+            n,
+            n,
+            h,
+            h,
+            [origin, origin],
+        )
+        .unwrap();
+        let gap: Vec<f64> = body
+            .interface()
+            .points
+            .iter()
+            .map(|x| (x[0] * x[0] + x[1] * x[1]) / (200.0 * length))
+            .collect();
+        let force = 4.0 * 210e3 / (1.0 - NU * NU) / 300.0;
+        indent(&PolonskyKeer::default(), &body, &gap, Drive::Force(force))
+    };
+    let mm = solve(1.0, 1.0);
+    let m = solve(1e-3, 1e6);
+    let dp = mm
+        .pressure
+        .iter()
+        .zip(&m.pressure)
+        .map(|(a, b)| (a - b * 1e-6).abs())
+        .fold(0.0, f64::max)
+        / mm.p_max();
+    assert!(dp < 1e-9, "pressures differ by {dp:e} of p_max");
+    assert!(
+        mm.iterations.abs_diff(m.iterations) <= 2,
+        "{} vs {}",
+        mm.iterations,
+        m.iterations
+    );
+}
+
 #[test]
 fn polonsky_keer_matches_the_dense_solution() {
     polonsky_keer_against_dense(1.0);
