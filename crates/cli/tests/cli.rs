@@ -79,16 +79,101 @@ fn paper_table1_scene_matches_the_paper() {
     }
 }
 
-/// Writes a variant of a bundled scene.
+/// Writes a variant of the Table 1 scene.
 fn variant(name: &str, from: &str, to: &str) -> PathBuf {
-    let text = std::fs::read_to_string(
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/paper-table1.toml"),
+    variant_of("paper-table1", name, &[(from, to)])
+}
+
+/// Writes a variant of a bundled scene, each `(from, to)` replaced once.
+fn variant_of(scene: &str, name: &str, changes: &[(&str, &str)]) -> PathBuf {
+    let mut text = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{scene}.toml")),
     )
     .unwrap();
-    assert!(text.contains(from), "{from}");
+    for (from, to) in changes {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
     let path = scratch(name).join(format!("{name}.toml"));
-    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    std::fs::write(&path, text).unwrap();
     path
+}
+
+/// Runs a scene file with `--json`.
+fn run_file_json(path: &PathBuf) -> Value {
+    let output = contopt()
+        .args(["run", "--json", "--out"])
+        .arg(path.parent().unwrap())
+        .arg(path)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
+/// Hertz under a given approach δ = a²/R (a = 0.3 mm) on 32² cells: Polonsky–Keer and the dense
+/// active set find the same pressure, and the force is Hertz's 4E*a³/(3R) within 2 %. The
+/// first scene runner subtracted the approach twice for Polonsky–Keer and pressed 2δ.
+#[test]
+fn hertz_scene_under_an_approach_agrees_across_solvers() {
+    let (a, r, e_star): (f64, f64, f64) = (0.3, 10.0, 2e5 / (1.0 - 0.09));
+    let approach = format!("load = {{ approach_mm = {} }}", a * a / r);
+    let mut forces = vec![];
+    for solver in ["polonsky_keer", "active_set"] {
+        let path = variant_of(
+            "hertz",
+            &format!("approach-{solver}"),
+            &[
+                ("cells = [64, 64]", "cells = [32, 32]"),
+                ("cell_mm = [0.0125, 0.0125]", "cell_mm = [0.025, 0.025]"),
+                ("load = { force_n = 1000.0 }", &approach),
+                ("kind = \"polonsky_keer\"", &format!("kind = \"{solver}\"")),
+            ],
+        );
+        let report = run_file_json(&path);
+        let case = &report["cases"][0];
+        assert_eq!(case["converged"], true, "{solver}");
+        let force: f64 = case["interface"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["p"].as_f64().unwrap() * 0.025 * 0.025)
+            .sum();
+        forces.push((force, case["p_max"].as_f64().unwrap()));
+    }
+    let hertz = 4.0 * e_star * a.powi(3) / (3.0 * r);
+    assert!(
+        (forces[0].0 / hertz - 1.0).abs() < 0.02,
+        "{forces:?} vs {hertz}"
+    );
+    assert!((forces[0].1 / forces[1].1 - 1.0).abs() < 1e-8, "{forces:?}");
+}
+
+/// The roller on 200 × 105 cells with a dense solver and the dense LP: refused before the
+/// matrix is built, with its size, the memory, the limit and the way out.
+#[test]
+fn dense_matrix_past_the_limit_is_refused() {
+    let path = variant_of(
+        "roller",
+        "dense-roller",
+        &[
+            ("kind = \"polonsky_keer\"", "kind = \"active_set\""),
+            ("mode = \"load_split\"", "mode = \"linear_programme\""),
+        ],
+    );
+    fails_with(
+        &["run"],
+        &path,
+        &[
+            "dense 21000 × 21000 influence matrix",
+            "over the limit of 2000 MB",
+            "polonsky_keer",
+        ],
+    );
 }
 
 fn fails_with(args: &[&str], path: &PathBuf, needles: &[&str]) {
