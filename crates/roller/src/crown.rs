@@ -1,0 +1,250 @@
+//! Crown profiles: the drop of the roller's radius along its axis.
+
+use std::f64::consts::PI;
+
+use contopt_core::{Error, Result};
+
+/// A crown: the drop z(x) of the roller's surface below the straight generator at the axial
+/// position x, |x| < l/2 \[mm\]. The logarithmic profiles are written with the pair's modulus
+/// E* (1/E* = Σ (1 − νₖ²)/Eₖ) and the load Q on the effective length l; each is infinite or
+/// steep only at the very ends, which the cell centres of a grid over the length never reach.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Crown {
+    /// No crown: edge loading at the ends.
+    Straight,
+    /// ISO/TS 16281's default: z = 0.00035·D·ln[1/(1 − (2x/l)²)].
+    Iso {
+        /// Roller diameter D \[mm\].
+        diameter: f64,
+    },
+    /// Lundberg (1939), the profile of a uniform line load: z = Q/(π l E*)·ln[1/(1 − (2x/l)²)].
+    Lundberg {
+        /// Q/(π l E*) \[mm\].
+        scale: f64,
+    },
+    /// Johns & Gohar (1981), Lundberg's profile made finite at the ends:
+    /// z = Q/(π l E*)·ln[1/(1 − (1 − (2b/l)²)(2x/l)²)], b the Hertz half-width.
+    JohnsGohar {
+        /// Q/(π l E*) \[mm\].
+        scale: f64,
+        /// (2b/l)².
+        end: f64,
+    },
+    /// Fujiwara & Kawase (NTN Technical Review 75, 2007): a flat centre and a logarithmic crown
+    /// over the outer fraction K2 of each half-length, dropping z_m at the ends:
+    /// z = A·ln[1/(1 − (1 − e^(−z_m/A))·s²)], s = (|x| − (1 − K2)·l/2)/(K2·l/2) ≥ 0,
+    /// A = K1·Q/(π l E*).
+    FujiwaraKawase {
+        /// A = K1·Q/(π l E*) \[mm\].
+        a: f64,
+        /// K2, the crowned fraction of each half-length, in (0, 1].
+        k2: f64,
+        /// The drop z_m at the ends \[mm\].
+        z_m: f64,
+    },
+    /// A measured or designed profile: the drop at |x| interpolated linearly in a table of
+    /// (|x|, drop) rows with increasing |x|, held constant beyond its ends.
+    Table {
+        /// |x| \[mm\], increasing.
+        x: Vec<f64>,
+        /// The drop there \[mm\].
+        drop: Vec<f64>,
+    },
+}
+
+/// Q/(π l E*): the logarithmic profiles' length scale.
+fn log_scale(load: f64, length: f64, e_star: f64) -> f64 {
+    load / (PI * length * e_star)
+}
+
+impl Crown {
+    /// ISO/TS 16281's profile for a roller of diameter `diameter` \[mm\].
+    pub fn iso(diameter: f64) -> Result<Self> {
+        positive("profile.diameter_mm", diameter)?;
+        Ok(Crown::Iso { diameter })
+    }
+
+    /// Lundberg's profile for `load` \[N\] on `length` \[mm\] with the pair's modulus `e_star`.
+    pub fn lundberg(load: f64, length: f64, e_star: f64) -> Result<Self> {
+        Ok(Crown::Lundberg {
+            scale: checked_scale(load, length, e_star)?,
+        })
+    }
+
+    /// Johns and Gohar's profile; `half_width` is Hertz's b for the line load Q/l \[mm\].
+    pub fn johns_gohar(load: f64, length: f64, e_star: f64, half_width: f64) -> Result<Self> {
+        positive("half_width", half_width)?;
+        let end = (2.0 * half_width / length).powi(2);
+        if !(end < 1.0) {
+            return Err(Error::invalid(
+                "half_width",
+                half_width,
+                format!("must be below half the length ({length} mm)"),
+            ));
+        }
+        Ok(Crown::JohnsGohar {
+            scale: checked_scale(load, length, e_star)?,
+            end,
+        })
+    }
+
+    /// Fujiwara and Kawase's profile with load coefficient `k1`, crowned fraction `k2` and end
+    /// drop `z_m` \[mm\].
+    pub fn fujiwara_kawase(
+        k1: f64,
+        k2: f64,
+        z_m: f64,
+        load: f64,
+        length: f64,
+        e_star: f64,
+    ) -> Result<Self> {
+        positive("profile.k1", k1)?;
+        positive("profile.z_m_mm", z_m)?;
+        if !(k2 > 0.0 && k2 <= 1.0) {
+            return Err(Error::invalid("profile.k2", k2, "must lie in (0, 1]"));
+        }
+        Ok(Crown::FujiwaraKawase {
+            a: k1 * checked_scale(load, length, e_star)?,
+            k2,
+            z_m,
+        })
+    }
+
+    /// A table of (|x|, drop) rows \[mm\].
+    pub fn table(x: Vec<f64>, drop: Vec<f64>) -> Result<Self> {
+        if x.len() != drop.len() || x.is_empty() {
+            return Err(Error::invalid(
+                "profile.table",
+                format!("{} positions, {} drops", x.len(), drop.len()),
+                "one drop per position, at least one row",
+            ));
+        }
+        if let Some(k) = (0..x.len()).find(|&k| {
+            !(x[k].is_finite() && x[k] >= 0.0 && drop[k].is_finite())
+                || (k > 0 && !(x[k] > x[k - 1]))
+        }) {
+            return Err(Error::invalid(
+                format!("profile.table row {}", k + 1),
+                format!("({}, {})", x[k], drop[k]),
+                "positions |x| ≥ 0 increasing, drops finite",
+            ));
+        }
+        Ok(Crown::Table { x, drop })
+    }
+
+    /// The drop z at the axial position `x` of a roller of effective length `length` \[mm\];
+    /// an error at or past the ends, where the logarithmic profiles are infinite.
+    pub fn drop(&self, x: f64, length: f64) -> Result<f64> {
+        let u = 2.0 * x.abs() / length;
+        if !(u < 1.0) {
+            return Err(Error::invalid(
+                "x",
+                x,
+                format!("must lie inside the effective length ±{}", 0.5 * length),
+            ));
+        }
+        let log = |c: f64| -(1.0 - c * u * u).ln();
+        Ok(match self {
+            Crown::Straight => 0.0,
+            Crown::Iso { diameter } => 0.00035 * diameter * log(1.0),
+            Crown::Lundberg { scale } => scale * log(1.0),
+            Crown::JohnsGohar { scale, end } => scale * log(1.0 - end),
+            Crown::FujiwaraKawase { a, k2, z_m } => {
+                let s = ((u - (1.0 - k2)) / k2).max(0.0);
+                -a * (1.0 - (1.0 - (-z_m / a).exp()) * s * s).ln()
+            }
+            Crown::Table { x: xs, drop } => {
+                let ax = x.abs();
+                let k = xs.partition_point(|&t| t <= ax);
+                if k == 0 {
+                    drop[0]
+                } else if k == xs.len() {
+                    drop[k - 1]
+                } else {
+                    let t = (ax - xs[k - 1]) / (xs[k] - xs[k - 1]);
+                    drop[k - 1] + t * (drop[k] - drop[k - 1])
+                }
+            }
+        })
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<()> {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, v, "must be positive and finite"))
+    }
+}
+
+fn checked_scale(load: f64, length: f64, e_star: f64) -> Result<f64> {
+    positive("load", load)?;
+    positive("length", length)?;
+    positive("e_star", e_star)?;
+    Ok(log_scale(load, length, e_star))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each profile against its formula at sample points, written out independently here.
+    #[test]
+    fn profiles_match_their_formulas() {
+        let (d, l, q, e_star, b) = (10.0, 10.0, 5446.0, 1.1538e5, 0.17334);
+        let scale = q / (PI * l * e_star);
+        let samples = [0.0, 1.0, -2.5, 4.0, 4.9, -4.99];
+        for x in samples {
+            let u2 = (2.0 * x / l) * (2.0 * x / l);
+            let cases = [
+                (Crown::Straight, 0.0),
+                (
+                    Crown::iso(d).unwrap(),
+                    0.00035 * d * (1.0 / (1.0 - u2)).ln(),
+                ),
+                (
+                    Crown::lundberg(q, l, e_star).unwrap(),
+                    scale * (1.0 / (1.0 - u2)).ln(),
+                ),
+                (
+                    Crown::johns_gohar(q, l, e_star, b).unwrap(),
+                    scale * (1.0 / (1.0 - (1.0 - (2.0 * b / l).powi(2)) * u2)).ln(),
+                ),
+            ];
+            for (crown, want) in cases {
+                let got = crown.drop(x, l).unwrap();
+                assert!(
+                    (got - want).abs() <= 1e-14 * want.abs().max(1e-9),
+                    "{crown:?} at {x}: {got} vs {want}"
+                );
+            }
+        }
+        // Fujiwara–Kawase: flat inside (1 − K2)·l/2, z_m at the end, the log law between.
+        let fk = Crown::fujiwara_kawase(1.2, 0.4, 0.01, q, l, e_star).unwrap();
+        let a = 1.2 * scale;
+        assert_eq!(fk.drop(2.9, l).unwrap(), 0.0);
+        let s: f64 = (0.9 - 0.6) / 0.4;
+        let want = a * (1.0 / (1.0 - (1.0 - (-0.01 / a).exp()) * s * s)).ln();
+        assert!((fk.drop(-4.5, l).unwrap() - want).abs() < 1e-15);
+        assert!((fk.drop(4.999_999, l).unwrap() - 0.01).abs() < 1e-6);
+        // A table interpolates linearly in |x| and holds its ends.
+        let t = Crown::table(vec![0.0, 2.0, 4.0], vec![0.0, 0.001, 0.005]).unwrap();
+        assert!((t.drop(-3.0, l).unwrap() - 0.003).abs() < 1e-15);
+        assert_eq!(t.drop(4.5, l).unwrap(), 0.005);
+    }
+
+    #[test]
+    fn bad_profiles_are_named() {
+        assert!(Crown::Straight.drop(5.0, 10.0).is_err());
+        let e = Crown::fujiwara_kawase(1.0, 1.5, 0.01, 1.0, 1.0, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("profile.k2") && e.contains("1.5"), "{e}");
+        let e = Crown::table(vec![0.0, 2.0, 1.0], vec![0.0; 3])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("row 3"), "{e}");
+        let e = Crown::iso(-1.0).unwrap_err().to_string();
+        assert!(e.contains("diameter_mm"), "{e}");
+    }
+}
