@@ -26,6 +26,9 @@ struct Bodies {
     first: Box<dyn ElasticBody>,
     second: Box<dyn ElasticBody>,
     gap: Vec<f64>,
+    /// Defaults of the problem kind for an optimisation: Ω_v as |y| ≤ this, the profile axis.
+    omega_v: Option<f64>,
+    profile_axis: Option<usize>,
 }
 
 fn material(m: &MaterialSpec) -> Result<Material> {
@@ -87,6 +90,8 @@ fn rigid_on(
         first: body,
         second: Box::new(second),
         gap: h,
+        omega_v: None,
+        profile_axis: None,
     })
 }
 
@@ -114,8 +119,41 @@ fn analysis(spec: AnalysisSpec, thickness: Option<f64>) -> Result<Analysis> {
     })
 }
 
-fn bodies(problem: &Problem) -> Result<Bodies> {
+/// The bodies of `problem`; files it names are read from `dir`, the scene file's folder.
+fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
     match problem {
+        Problem::Roller {
+            diameter_mm,
+            length_mm,
+            raceway_diameter_mm,
+            roller,
+            raceway,
+            load_n,
+            tilt_arcmin,
+            cells,
+            reach_b,
+            profile,
+        } => {
+            let built = crate::roller::build(
+                *diameter_mm,
+                *length_mm,
+                *raceway_diameter_mm,
+                [material(roller)?, material(raceway)?],
+                *load_n,
+                *tilt_arcmin,
+                *cells,
+                *reach_b,
+                profile,
+                dir,
+            )?;
+            Ok(Bodies {
+                first: built.raceway,
+                second: built.roller,
+                gap: built.gap,
+                omega_v: Some(0.5 * built.dy),
+                profile_axis: Some(0),
+            })
+        }
         Problem::PunchOnBase {
             analysis: a,
             thickness_mm,
@@ -162,6 +200,8 @@ fn bodies(problem: &Problem) -> Result<Bodies> {
                 first: Box::new(base),
                 second: Box::new(punch),
                 gap: vec![0.0; n],
+                omega_v: None,
+                profile_axis: None,
             })
         }
         Problem::RigidOnHalfSpace {
@@ -330,13 +370,31 @@ impl Case {
     /// factorised), the solver and the controller constructed.
     pub fn check(&self) -> std::result::Result<(), SceneError> {
         let spec = &self.spec;
-        bodies(&spec.problem).map_err(|e| self.invalid("problem", e))?;
+        bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
         solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
+        if let Problem::Roller { profile, .. } = &spec.problem {
+            let optimised = *profile == crate::spec::ProfileSpec::Optimised;
+            if optimised != spec.optimisation.is_some() {
+                return Err(self.invalid(
+                    "problem.profile",
+                    Error::invalid(
+                        "profile.kind",
+                        if optimised { "optimised" } else { "a given crown" },
+                        "an optimised crown needs [optimisation], and [optimisation] an optimised crown",
+                    ),
+                ));
+            }
+        }
         self.dense_limit()?;
         if let Some(opt) = &spec.optimisation {
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         }
         Ok(())
+    }
+
+    /// The folder of the scene file, where the files it names are read.
+    fn dir(&self) -> &std::path::Path {
+        self.file.parent().unwrap_or(std::path::Path::new("."))
     }
 
     /// The scene's memory limit for dense matrices \[bytes\].
@@ -359,7 +417,7 @@ impl Case {
         let dense_limit = self.dense_limit()?;
         let mut report = CaseReport::new(&self.label, &self.params);
         let start = Instant::now();
-        let built = bodies(&spec.problem).map_err(|e| self.invalid("problem", e))?;
+        let built = bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
         let problem =
             InterfaceProblem::new(built.first.as_ref(), built.second.as_ref(), &built.gap)
                 .map_err(|e| self.invalid("problem", e))?
@@ -377,7 +435,10 @@ impl Case {
         let v =
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         let iface = problem.interface();
-        let shape = match (opt.profile_axis, problem.pressure_basis()) {
+        let shape = match (
+            opt.profile_axis.or(built.profile_axis),
+            problem.pressure_basis(),
+        ) {
             (Some(axis), _) => GapShape::extruded(iface, axis),
             (None, Some(basis)) => Ok(basis.clone()),
             (None, None) => Ok(GapShape::pointwise(iface)),
@@ -385,12 +446,12 @@ impl Case {
         .map_err(|e| self.invalid("optimisation.profile_axis", e))?;
         let mut optimisation = Optimisation::new(&problem, &shape, v.as_ref())
             .map_err(|e| self.invalid("optimisation", e))?;
-        if let Some(omega) = opt.omega_v {
+        if let Some(half_width) = opt.omega_v.map(|o| o.half_width_mm).or(built.omega_v) {
             let regions = iface
                 .points
                 .iter()
                 .map(|x| {
-                    if x[1].abs() <= omega.half_width_mm {
+                    if x[1].abs() <= half_width {
                         Region::OmegaV
                     } else {
                         Region::OmegaNv

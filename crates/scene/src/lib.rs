@@ -8,6 +8,7 @@
 
 mod build;
 mod report;
+mod roller;
 mod spec;
 
 pub use report::{CaseReport, IterationRow, PointReport, Report};

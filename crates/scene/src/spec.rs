@@ -201,6 +201,34 @@ pub enum Problem {
         /// The load.
         load: RigidLoad,
     },
+    /// A bearing roller on its raceway, both elastic half-spaces (the roller floats under its
+    /// load): a grid of `cells` over the effective length and ±`reach_b`·b across it.
+    Roller {
+        /// Roller diameter D \[mm\].
+        diameter_mm: f64,
+        /// Effective length l \[mm\].
+        length_mm: f64,
+        /// Raceway diameter \[mm\]: positive for an inner ring, negative for an outer ring;
+        /// default a flat raceway.
+        #[serde(default)]
+        raceway_diameter_mm: Option<f64>,
+        /// The roller's material.
+        roller: MaterialSpec,
+        /// The raceway's material.
+        raceway: MaterialSpec,
+        /// Load Q \[N\].
+        load_n: f64,
+        /// Misalignment γ \[arc-minutes\]: an extra gap γ·x along the axis (default 0).
+        #[serde(default)]
+        tilt_arcmin: f64,
+        /// Cells along the axis and across (odd: the centre row lies on y = 0).
+        cells: [usize; 2],
+        /// How far the grid reaches across, in Hertz half-widths b (default 2.6).
+        #[serde(default = "reach")]
+        reach_b: f64,
+        /// The crown.
+        profile: ProfileSpec,
+    },
     /// A rigid indenter on a large axisymmetric finite-element block clamped at its bottom.
     RigidOnBlock {
         /// The block's material.
@@ -220,6 +248,41 @@ pub enum Problem {
 
 fn datum() -> f64 {
     100.0
+}
+
+fn reach() -> f64 {
+    2.6
+}
+
+/// A roller's crown.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ProfileSpec {
+    /// No crown.
+    Straight,
+    /// ISO/TS 16281: 0.00035·D·ln[1/(1 − (2x/l)²)].
+    Iso,
+    /// Lundberg: Q/(π l E*)·ln[1/(1 − (2x/l)²)].
+    Lundberg,
+    /// Johns–Gohar: Q/(π l E*)·ln[1/(1 − (1 − (2b/l)²)(2x/l)²)].
+    JohnsGohar,
+    /// Fujiwara–Kawase: load coefficient K1, crowned fraction K2, end drop z_m.
+    FujiwaraKawase {
+        /// K1.
+        k1: f64,
+        /// K2, in (0, 1].
+        k2: f64,
+        /// z_m \[mm\].
+        z_m_mm: f64,
+    },
+    /// A CSV file of `x_mm, drop_mm` rows (|x| increasing; one header line allowed), relative
+    /// to the scene file.
+    Table {
+        /// The file.
+        file: String,
+    },
+    /// The crown the `[optimisation]` finds: Ω_v the centre row, the profile along the axis.
+    Optimised,
 }
 
 /// The contact solver.
