@@ -31,6 +31,10 @@ const BUNDLED: &[(&str, &str)] = &[
         include_str!("../../../scenes/paper-table3.toml"),
     ),
     ("roller", include_str!("../../../scenes/roller.toml")),
+    (
+        "roller-study",
+        include_str!("../../../scenes/roller-study.toml"),
+    ),
     ("hertz", include_str!("../../../scenes/hertz.toml")),
     (
         "flat-punch",
@@ -168,6 +172,9 @@ fn run(scene: &Scene, json: bool, out: &Path) -> Result<bool, SceneError> {
 }
 
 fn table(report: &Report) -> String {
+    if report.cases.iter().any(|c| c.roller.is_some()) {
+        return roller_table(report);
+    }
     use std::fmt::Write;
     let mut s = format!(
         "{:<16} {:>12} {:>12} {:>6} {:>10}\n",
@@ -188,6 +195,63 @@ fn table(report: &Report) -> String {
         );
         if let Some(e) = &c.error {
             let _ = writeln!(s, "  not converged: {e}");
+        }
+    }
+    s
+}
+
+/// The table of a roller study: per case p_max and where it sits, edge loading, the approach,
+/// the contact half-widths at mid-length and at the ends, and the crown's drop at the ends.
+fn roller_table(report: &Report) -> String {
+    use std::fmt::Write;
+    let width = report
+        .cases
+        .iter()
+        .map(|c| c.label.len())
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    let mut s = format!(
+        "{:<width$} {:>10} {:>14} {:>5} {:>12} {:>16} {:>12} {:>8}\n",
+        "case",
+        "p_max MPa",
+        "at x, y mm",
+        "edge",
+        "approach µm",
+        "half-width mm",
+        "end drop µm",
+        "time ms"
+    );
+    let _ = writeln!(
+        s,
+        "{:<width$} {:>10} {:>14} {:>5} {:>12} {:>16}",
+        "", "", "", "", "", "mid / ends"
+    );
+    for c in &report.cases {
+        let total: f64 = c.timings_ms.values().sum();
+        match (&c.roller, c.p_max) {
+            (Some(r), Some(p)) => {
+                let _ = writeln!(
+                    s,
+                    "{:<width$} {:>10.1} {:>14} {:>5} {:>12.3} {:>16} {:>12.3} {:>8.0}",
+                    c.label,
+                    p,
+                    format!("{:.2}, {:.3}", r.p_max_at_mm[0], r.p_max_at_mm[1]),
+                    if r.edge_loading { "yes" } else { "no" },
+                    c.approach_um.unwrap_or(f64::NAN),
+                    format!("{:.4} / {:.4}", r.half_width_mm[0], r.half_width_mm[1]),
+                    r.crown_drop_end_um,
+                    total
+                );
+            }
+            _ => {
+                let _ = writeln!(
+                    s,
+                    "{:<width$} not converged: {}",
+                    c.label,
+                    c.error.as_deref().unwrap_or("?")
+                );
+            }
         }
     }
     s

@@ -240,6 +240,7 @@ fn list_names_the_bundled_scenes() {
         "paper-table2",
         "paper-table3",
         "roller",
+        "roller-study",
         "hertz",
         "flat-punch",
         "punch-on-block",

@@ -13,8 +13,8 @@ use contopt_optimise::{Constant, Controller, Mode, Optimisation, Optimum, Profil
 
 use crate::report::{CaseReport, IterationRow, PointReport};
 use crate::spec::{
-    AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, ModeSpec, Problem, PunchLoadSpec,
-    RigidLoad, SolverSpec,
+    AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, ModeSpec, Optimise, Problem, ProfileSpec,
+    PunchLoadSpec, RigidLoad, SolverSpec,
 };
 use crate::{Case, SceneError};
 
@@ -26,9 +26,8 @@ struct Bodies {
     first: Box<dyn ElasticBody>,
     second: Box<dyn ElasticBody>,
     gap: Vec<f64>,
-    /// Defaults of the problem kind for an optimisation: Ω_v as |y| ≤ this, the profile axis.
-    omega_v: Option<f64>,
-    profile_axis: Option<usize>,
+    /// A roller's cell size and crown (the `roller` kind).
+    roller: Option<crate::roller::Info>,
 }
 
 fn material(m: &MaterialSpec) -> Result<Material> {
@@ -90,8 +89,7 @@ fn rigid_on(
         first: body,
         second: Box::new(second),
         gap: h,
-        omega_v: None,
-        profile_axis: None,
+        roller: None,
     })
 }
 
@@ -150,8 +148,7 @@ fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
                 first: built.raceway,
                 second: built.roller,
                 gap: built.gap,
-                omega_v: Some(0.5 * built.dy),
-                profile_axis: Some(0),
+                roller: Some(built.info),
             })
         }
         Problem::PunchOnBase {
@@ -200,8 +197,7 @@ fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
                 first: Box::new(base),
                 second: Box::new(punch),
                 gap: vec![0.0; n],
-                omega_v: None,
-                profile_axis: None,
+                roller: None,
             })
         }
         Problem::RigidOnHalfSpace {
@@ -373,14 +369,13 @@ impl Case {
         bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
         solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
         if let Problem::Roller { profile, .. } = &spec.problem {
-            let optimised = *profile == crate::spec::ProfileSpec::Optimised;
-            if optimised != spec.optimisation.is_some() {
+            if *profile == ProfileSpec::Optimised && spec.optimisation.is_none() {
                 return Err(self.invalid(
                     "problem.profile",
                     Error::invalid(
                         "profile.kind",
-                        if optimised { "optimised" } else { "a given crown" },
-                        "an optimised crown needs [optimisation], and [optimisation] an optimised crown",
+                        "optimised",
+                        "an optimised crown needs [optimisation]",
                     ),
                 ));
             }
@@ -424,29 +419,71 @@ impl Case {
                 .with_dense_limit(dense_limit);
         report.time("build", start);
         let solved = Instant::now();
-        let Some(opt) = &spec.optimisation else {
-            let outcome = solver
-                .solve(&problem)
-                .map_err(|e| self.invalid("solver", e))?
-                .solved(solver.name());
-            report.time("solve", solved);
-            return Ok(self.contact_report(report, built.first.as_ref(), &[], outcome));
+        let crown = built.roller.as_ref().map(|r| r.crown.as_slice());
+        let mut report = match self.optimisation() {
+            None => {
+                let outcome = solver
+                    .solve(&problem)
+                    .map_err(|e| self.invalid("solver", e))?
+                    .solved(solver.name());
+                report.time("solve", solved);
+                contact_report(report, problem.interface(), crown.unwrap_or(&[]), outcome)
+            }
+            Some(opt) => {
+                let outcome =
+                    self.optimise(&problem, opt, solver.as_ref(), built.roller.as_ref())?;
+                report.time("optimise", solved);
+                match outcome {
+                    Ok(optimum) => optimum_report(report, &problem, &optimum),
+                    Err(e) => {
+                        report.error = Some(e.to_string());
+                        report
+                    }
+                }
+            }
         };
+        if let (Some(info), true) = (&built.roller, report.converged) {
+            report.roller = Some(roller_report(&report, info));
+        }
+        Ok(report)
+    }
+
+    /// The case's optimisation: none for a roller with a given crown (its `[optimisation]`
+    /// serves the optimised cases of a study).
+    fn optimisation(&self) -> Option<&Optimise> {
+        match &self.spec.problem {
+            Problem::Roller { profile, .. } if *profile != ProfileSpec::Optimised => None,
+            _ => self.spec.optimisation.as_ref(),
+        }
+    }
+
+    /// Runs the optimisation `opt` of `problem`: the optimum, or the error of a method that did
+    /// not converge; bad input is a scene error. A roller's Ω_v defaults to its centre row and
+    /// its profile to the axis.
+    fn optimise(
+        &self,
+        problem: &InterfaceProblem,
+        opt: &Optimise,
+        solver: &dyn ContactSolver,
+        roller: Option<&crate::roller::Info>,
+    ) -> std::result::Result<std::result::Result<Optimum, Error>, SceneError> {
         let v =
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         let iface = problem.interface();
-        let shape = match (
-            opt.profile_axis.or(built.profile_axis),
-            problem.pressure_basis(),
-        ) {
+        let axis = opt.profile_axis.or(roller.map(|_| 0));
+        let shape = match (axis, problem.pressure_basis()) {
             (Some(axis), _) => GapShape::extruded(iface, axis),
             (None, Some(basis)) => Ok(basis.clone()),
             (None, None) => Ok(GapShape::pointwise(iface)),
         }
         .map_err(|e| self.invalid("optimisation.profile_axis", e))?;
-        let mut optimisation = Optimisation::new(&problem, &shape, v.as_ref())
+        let mut optimisation = Optimisation::new(problem, &shape, v.as_ref())
             .map_err(|e| self.invalid("optimisation", e))?;
-        if let Some(half_width) = opt.omega_v.map(|o| o.half_width_mm).or(built.omega_v) {
+        let half_width = opt
+            .omega_v
+            .map(|o| o.half_width_mm)
+            .or(roller.map(|r| 0.5 * r.dy));
+        if let Some(half_width) = half_width {
             let regions = iface
                 .points
                 .iter()
@@ -463,56 +500,54 @@ impl Case {
                 .map_err(|e| self.invalid("optimisation.omega_v", e))?;
         }
         let outcome = match opt.mode {
-            ModeSpec::GivenLoad => optimisation.iterate(
-                Mode::GivenLoad,
-                solver.as_ref(),
-                opt.tolh_mm2,
-                opt.max_iterations,
-            ),
+            ModeSpec::GivenLoad => {
+                optimisation.iterate(Mode::GivenLoad, solver, opt.tolh_mm2, opt.max_iterations)
+            }
             ModeSpec::GivenDisplacement => optimisation.iterate(
                 Mode::GivenDisplacement,
-                solver.as_ref(),
+                solver,
                 opt.tolh_mm2,
                 opt.max_iterations,
             ),
-            ModeSpec::LinearProgramme => optimisation.linear_programme(solver.as_ref()),
+            ModeSpec::LinearProgramme => optimisation.linear_programme(solver),
             ModeSpec::LoadSplit => {
-                optimisation.load_split(solver.as_ref(), opt.tolerance, opt.max_iterations)
+                optimisation.load_split(solver, opt.tolerance, opt.max_iterations)
             }
         };
-        report.time("optimise", solved);
         match outcome {
-            Ok(optimum) => Ok(optimum_report(report, &problem, &optimum)),
-            Err(e @ Error::NotConverged { .. }) => {
-                report.error = Some(e.to_string());
-                Ok(report)
-            }
+            Err(e @ Error::NotConverged { .. }) => Ok(Err(e)),
             Err(e) => Err(self.invalid("optimisation", e)),
+            Ok(optimum) => Ok(Ok(optimum)),
         }
     }
+}
 
-    fn contact_report(
-        &self,
-        mut report: CaseReport,
-        body: &dyn ElasticBody,
-        dh: &[f64],
-        outcome: Result<contopt_core::ContactState>,
-    ) -> CaseReport {
-        match outcome {
-            Ok(state) => {
-                report.converged = true;
-                report.p_max = Some(state.p_max());
-                report.interface = points(
-                    body.interface().points.as_slice(),
-                    &state.pressure,
-                    &state.gap,
-                    dh,
-                );
-            }
-            Err(e) => report.error = Some(e.to_string()),
+/// The report of a contact solve: the points with their pressure, gap and `dh` (a roller's
+/// crown, or nothing).
+fn contact_report(
+    mut report: CaseReport,
+    interface: &contopt_core::Interface,
+    dh: &[f64],
+    outcome: Result<contopt_core::ContactState>,
+) -> CaseReport {
+    match outcome {
+        Ok(state) => {
+            report.converged = true;
+            report.p_max = Some(state.p_max());
+            report.approach_um = state.rigid.first().map(|l| -1e3 * l);
+            report.interface = points(&interface.points, &state.pressure, &state.gap, dh);
         }
-        report
+        Err(e) => report.error = Some(e.to_string()),
     }
+    report
+}
+
+/// A roller's figures from a converged report.
+fn roller_report(report: &CaseReport, info: &crate::roller::Info) -> crate::RollerReport {
+    let points: Vec<[f64; 3]> = report.interface.iter().map(|q| q.x).collect();
+    let p: Vec<f64> = report.interface.iter().map(|q| q.p).collect();
+    let dh: Vec<f64> = report.interface.iter().map(|q| q.dh).collect();
+    crate::roller::report(&points, &p, &dh, info.dy)
 }
 
 fn points(x: &[[f64; 3]], p: &[f64], d: &[f64], dh: &[f64]) -> Vec<PointReport> {
@@ -533,6 +568,7 @@ fn optimum_report(
 ) -> CaseReport {
     report.converged = true;
     report.p_max = Some(optimum.p_max);
+    report.approach_um = optimum.rigid.first().map(|l| -1e3 * l);
     report.dh_max_um = Some(1e3 * optimum.dh_max());
     report.iterations = optimum
         .iterations

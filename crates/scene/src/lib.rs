@@ -11,7 +11,7 @@ mod report;
 mod roller;
 mod spec;
 
-pub use report::{CaseReport, IterationRow, PointReport, Report};
+pub use report::{CaseReport, IterationRow, PointReport, Report, RollerReport};
 pub use spec::{
     AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec, OmegaVSpec, Optimise,
     Problem, PunchLoadSpec, RigidLoad, SolverSpec, Sweep,
@@ -137,8 +137,11 @@ impl Scene {
         Ok(scene)
     }
 
-    /// The cases: one per value of the sweep, or the scene itself.
+    /// The cases: one per `[[case]]`, one per value of the sweep, or the scene itself.
     pub fn cases(&self) -> Result<Vec<Case>, SceneError> {
+        if !self.spec.case.is_empty() {
+            return self.named_cases();
+        }
         let Some(sweep) = &self.spec.sweep else {
             return Ok(vec![Case {
                 label: self.spec.name.clone(),
@@ -191,6 +194,56 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// The `[[case]]` list: each case the scene with its keys replaced (a key must exist in the
+    /// scene; the value may be of any kind the schema takes there).
+    fn named_cases(&self) -> Result<Vec<Case>, SceneError> {
+        let parse = |message: String| SceneError::Parse {
+            file: self.file.clone(),
+            message,
+        };
+        if self.spec.sweep.is_some() {
+            return Err(parse("give either a [sweep] or [[case]]s, not both".into()));
+        }
+        let mut base = self.tree.clone();
+        if let Some(map) = base.as_object_mut() {
+            map.remove("case");
+        }
+        self.spec
+            .case
+            .iter()
+            .map(|case| {
+                let mut tree = base.clone();
+                let mut params = std::collections::BTreeMap::new();
+                for (key, value) in &case.set {
+                    let mut node = &mut tree;
+                    for part in key.split('.') {
+                        node = node.get_mut(part).ok_or_else(|| {
+                            parse(format!(
+                                "case `{}`: the scene has no `{key}` (no `{part}` there)",
+                                case.label
+                            ))
+                        })?;
+                    }
+                    *node = value.clone();
+                    if let Some(v) = value.as_f64() {
+                        params.insert(key.rsplit('.').next().unwrap_or(key).to_string(), v);
+                    }
+                }
+                let spec: spec::SceneSpec = serde_json::from_value(tree)
+                    .map_err(|e| parse(format!("case `{}`: {e}", case.label)))?;
+                Ok(Case {
+                    label: case.label.clone(),
+                    params,
+                    spec,
+                    file: self.file.clone(),
+                    text: self.text.clone(),
+                })
+            })
+            .collect()
+    }
+}
+
 impl Case {
     /// The error of a section of this case.
     fn invalid(&self, key: &str, source: contopt_core::Error) -> SceneError {
@@ -203,7 +256,7 @@ impl Case {
         SceneError::Invalid {
             line,
             file: self.file.clone(),
-            case: if self.params.is_empty() {
+            case: if self.label == self.spec.name {
                 String::new()
             } else {
                 format!("[{}] ", self.label)

@@ -25,6 +25,10 @@ pub struct CaseReport {
     pub p_max: Option<f64>,
     /// Largest gap change \[µm\]; null without optimisation.
     pub dh_max_um: Option<f64>,
+    /// The floating body's approach, −λ of its rigid mode \[µm\] (with an optimisation, at the
+    /// reference node); null when nothing floats.
+    #[serde(default)]
+    pub approach_um: Option<f64>,
     /// Whether the solver (and the optimisation) converged.
     pub converged: bool,
     /// Why not, when it did not.
@@ -35,6 +39,24 @@ pub struct CaseReport {
     pub interface: Vec<PointReport>,
     /// Wall time of the stages \[ms\]: `build`, then `solve` or `optimise`.
     pub timings_ms: BTreeMap<String, f64>,
+    /// What a bearing engineer reads off a roller case (the `roller` kind only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roller: Option<RollerReport>,
+}
+
+/// A roller case's figures. Columns are the grid's cells along the axis; the ends are the
+/// outermost columns, at the cell nearest each end of the effective length.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct RollerReport {
+    /// Where the largest pressure sits: x along the axis, y across \[mm\].
+    pub p_max_at_mm: [f64; 2],
+    /// Whether the ends carry more than 10 % above the pressure at mid-length.
+    pub edge_loading: bool,
+    /// Contact half-width at mid-length and at the ends (the mean of both) \[mm\], counted in
+    /// cells.
+    pub half_width_mm: [f64; 2],
+    /// The crown's drop at the ends \[µm\].
+    pub crown_drop_end_um: f64,
 }
 
 impl CaseReport {
@@ -44,11 +66,13 @@ impl CaseReport {
             params: params.clone(),
             p_max: None,
             dh_max_um: None,
+            approach_um: None,
             converged: false,
             error: None,
             iterations: vec![],
             interface: vec![],
             timings_ms: BTreeMap::new(),
+            roller: None,
         }
     }
 

@@ -13,7 +13,15 @@ pub(crate) struct Built {
     pub raceway: Box<dyn ElasticBody>,
     pub roller: Box<dyn ElasticBody>,
     pub gap: Vec<f64>,
+    pub info: Info,
+}
+
+/// What the run keeps of a roller for its defaults and its report.
+pub(crate) struct Info {
+    /// The cell size across \[mm\].
     pub dy: f64,
+    /// The crown's drop at each point \[mm\].
+    pub crown: Vec<f64>,
 }
 
 /// The scene's roller: `dir` is the scene file's folder, where a table profile is read.
@@ -43,11 +51,17 @@ pub(crate) fn build(
     roller.crown = crown(&roller, profile, dir)?;
     let (raceway, body, gap) = roller.bodies(cells[0], cells[1], reach)?;
     let dy = reach * roller.hertz()?.0 / ((cells[1] - 1) / 2) as f64;
+    let crown = raceway
+        .interface()
+        .points
+        .iter()
+        .map(|x| roller.crown.drop(x[0], length))
+        .collect::<Result<Vec<f64>>>()?;
     Ok(Built {
         raceway: Box::new(raceway),
         roller: Box::new(body),
         gap,
-        dy,
+        info: Info { dy, crown },
     })
 }
 
@@ -98,4 +112,45 @@ fn table(path: &Path) -> Result<Crown> {
         }
     }
     Crown::table(x, drop)
+}
+
+/// Ends that carry more than this over the pressure at mid-length are edge loading.
+const EDGE_LOADING: f64 = 1.1;
+
+/// A roller case's figures from its interface: points, pressure, crown drop per point and the
+/// cell size across.
+pub(crate) fn report(
+    points: &[[f64; 3]],
+    pressure: &[f64],
+    drop: &[f64],
+    dy: f64,
+) -> crate::RollerReport {
+    let mut xs: Vec<f64> = points.iter().map(|x| x[0]).collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let (first, last) = (xs[0], xs[xs.len() - 1]);
+    let middle = xs
+        .iter()
+        .copied()
+        .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .unwrap_or(0.0);
+    let column = |c: f64| (0..points.len()).filter(move |&i| (points[i][0] - c).abs() < 1e-9);
+    let peak = |c: f64| column(c).map(|i| pressure[i]).fold(0.0, f64::max);
+    let half_width = |c: f64| 0.5 * dy * column(c).filter(|&i| pressure[i] > 0.0).count() as f64;
+    let top = (0..points.len())
+        .max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))
+        .unwrap_or(0);
+    let end_drop = column(first)
+        .chain(column(last))
+        .map(|i| drop[i])
+        .fold(0.0, f64::max);
+    crate::RollerReport {
+        p_max_at_mm: [points[top][0], points[top][1]],
+        edge_loading: peak(first).max(peak(last)) > EDGE_LOADING * peak(middle),
+        half_width_mm: [
+            half_width(middle),
+            0.5 * (half_width(first) + half_width(last)),
+        ],
+        crown_drop_end_um: 1e3 * end_drop,
+    }
 }

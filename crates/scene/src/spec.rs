@@ -22,6 +22,10 @@ pub struct SceneSpec {
     /// Cases over one numeric key.
     #[serde(default)]
     pub sweep: Option<Sweep>,
+    /// Named cases, each the scene with some values replaced (`[[case]]`): a study over
+    /// anything, where a sweep varies one number.
+    #[serde(default)]
+    pub case: Vec<CaseSpec>,
     /// Memory the dense matrices of a solve may take \[MB\] (default 2000); past it a dense
     /// solver or the linear programme refuses the case before allocating.
     #[serde(default)]
@@ -37,6 +41,17 @@ pub struct Sweep {
     pub key: String,
     /// Its values.
     pub values: Vec<f64>,
+}
+
+/// A named case of a study: the dotted keys of the scene it replaces, with their values
+/// (`set = { "problem.profile" = { kind = "iso" } }`).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseSpec {
+    /// The case's name in tables and plots.
+    pub label: String,
+    /// Dotted key → its value in this case.
+    pub set: std::collections::BTreeMap<String, serde_json::Value>,
 }
 
 /// An isotropic linear-elastic material.
