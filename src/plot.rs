@@ -63,9 +63,11 @@ pub fn line_plot(
     );
     let _ = writeln!(s, "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{ylabel}</text>", h / 2.0, h / 2.0);
     for (k, (name, data)) in series.iter().enumerate() {
+        // Ten distinct colours (the Tableau palette), so that a study's series do not repeat.
         let colour = [
-            "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
-        ][k % 6];
+            "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#7f7f7f",
+            "#bcbd22", "#17becf",
+        ][k % 10];
         let dash = if k % 2 == 0 {
             ""
         } else {
