@@ -93,3 +93,143 @@ pub fn line_plot(
     s.push_str("</svg>\n");
     s
 }
+
+/// Colour levels of a heat map: nearby values share a level, so a row of cells draws as a few
+/// rectangles.
+const HEAT_LEVELS: usize = 64;
+
+/// Viridis at nine stops, interpolated: dark for zero, yellow for the largest value.
+fn viridis(t: f64) -> String {
+    const STOPS: [[f64; 3]; 9] = [
+        [68.0, 1.0, 84.0],
+        [71.0, 44.0, 122.0],
+        [59.0, 81.0, 139.0],
+        [44.0, 113.0, 142.0],
+        [33.0, 144.0, 141.0],
+        [39.0, 173.0, 129.0],
+        [92.0, 200.0, 99.0],
+        [170.0, 220.0, 50.0],
+        [253.0, 231.0, 37.0],
+    ];
+    let s = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
+    let k = (s.floor() as usize).min(STOPS.len() - 2);
+    let f = s - k as f64;
+    let c: Vec<u8> = (0..3)
+        .map(|i| (STOPS[k][i] + f * (STOPS[k + 1][i] - STOPS[k][i])).round() as u8)
+        .collect();
+    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
+}
+
+/// A heat map of `values` at the centres of a regular grid of cells, `points` (x, y, value),
+/// as a stand-alone SVG document: cropped to the rows where some value is positive (with one
+/// row of margin), cells of one colour level merged along x, and a colour bar from 0 to the
+/// largest value in `unit`. The aspect is not kept: a roller's contact is 50 times longer
+/// than wide.
+pub fn heat_map(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    unit: &str,
+    points: &[(f64, f64, f64)],
+) -> String {
+    let distinct = |pick: fn(&(f64, f64, f64)) -> f64| {
+        let mut v: Vec<f64> = points.iter().map(pick).collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        v
+    };
+    let (xs, ys) = (distinct(|p| p.0), distinct(|p| p.1));
+    let top = points.iter().map(|p| p.2).fold(0.0, f64::max);
+    let index = |v: &[f64], c: f64| v.partition_point(|&t| t < c - 1e-9).min(v.len() - 1);
+    let mut grid = vec![vec![0.0; xs.len()]; ys.len()];
+    for p in points {
+        grid[index(&ys, p.1)][index(&xs, p.0)] = p.2;
+    }
+    let used: Vec<usize> = (0..ys.len())
+        .filter(|&j| grid[j].iter().any(|&v| v > 0.0))
+        .collect();
+    let (j0, j1) = match (used.first(), used.last()) {
+        (Some(&a), Some(&b)) => (a.saturating_sub(1), (b + 1).min(ys.len() - 1)),
+        _ => (0, ys.len() - 1),
+    };
+    let (w, h, m, bar) = (720.0, 360.0, 60.0, 70.0);
+    let (cw, ch) = (
+        (w - 2.0 * m - bar) / xs.len() as f64,
+        (h - 2.0 * m) / (j1 - j0 + 1) as f64,
+    );
+    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">{}</text>",
+        w / 2.0,
+        escape(title)
+    );
+    let level = |v: f64| {
+        if top > 0.0 {
+            ((v / top) * (HEAT_LEVELS - 1) as f64).round() as usize
+        } else {
+            0
+        }
+    };
+    for j in j0..=j1 {
+        let y = m + (j1 - j) as f64 * ch;
+        let mut i = 0;
+        while i < xs.len() {
+            let l = level(grid[j][i]);
+            let start = i;
+            while i < xs.len() && level(grid[j][i]) == l {
+                i += 1;
+            }
+            let _ = writeln!(
+                s,
+                "<rect x=\"{:.2}\" y=\"{y:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
+                m + start as f64 * cw,
+                (i - start) as f64 * cw + 0.3,
+                ch + 0.3,
+                viridis(l as f64 / (HEAT_LEVELS - 1) as f64)
+            );
+        }
+    }
+    // Axes: the extremes of x and y of the drawn cells.
+    let (x_lo, x_hi, y_lo, y_hi) = (xs[0], xs[xs.len() - 1], ys[j0], ys[j1]);
+    let right = w - m - bar;
+    let _ = writeln!(s, "<text x=\"{m}\" y=\"{}\" text-anchor=\"start\">{x_lo:.3}</text><text x=\"{right}\" y=\"{}\" text-anchor=\"end\">{x_hi:.3}</text>", h - m + 16.0, h - m + 16.0);
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
+        (m + right) / 2.0,
+        h - m + 32.0,
+        escape(xlabel)
+    );
+    let _ = writeln!(s, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{y_hi:.3}</text><text x=\"{}\" y=\"{}\" text-anchor=\"end\">{y_lo:.3}</text>", m - 4.0, m + 10.0, m - 4.0, h - m);
+    let _ = writeln!(
+        s,
+        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>",
+        h / 2.0,
+        h / 2.0,
+        escape(ylabel)
+    );
+    // The colour bar.
+    let bx = w - m - bar + 20.0;
+    for k in 0..HEAT_LEVELS {
+        let t = k as f64 / (HEAT_LEVELS - 1) as f64;
+        let _ = writeln!(
+            s,
+            "<rect x=\"{bx}\" y=\"{:.2}\" width=\"16\" height=\"{:.2}\" fill=\"{}\"/>",
+            h - m - (k + 1) as f64 * (h - 2.0 * m) / HEAT_LEVELS as f64,
+            (h - 2.0 * m) / HEAT_LEVELS as f64 + 0.3,
+            viridis(t)
+        );
+    }
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\">{top:.1} {}</text><text x=\"{}\" y=\"{}\">0</text>",
+        bx + 20.0,
+        m + 10.0,
+        escape(unit),
+        bx + 20.0,
+        h - m
+    );
+    s.push_str("</svg>\n");
+    s
+}

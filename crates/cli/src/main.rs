@@ -322,5 +322,27 @@ fn write(report: &Report, dir: &Path) -> std::io::Result<()> {
         );
         std::fs::write(dir.join(file), svg)?;
     }
+    write_maps(report, dir)
+}
+
+/// A heat map of the pressure over a two-dimensional region, one per case:
+/// `p_map_<case number>.svg`.
+fn write_maps(report: &Report, dir: &Path) -> std::io::Result<()> {
+    for (k, c) in report.cases.iter().enumerate() {
+        let first_y = c.interface.first().map_or(0.0, |q| q.x[1]);
+        if !c.converged || c.interface.iter().all(|q| (q.x[1] - first_y).abs() < 1e-12) {
+            continue;
+        }
+        let points: Vec<(f64, f64, f64)> =
+            c.interface.iter().map(|q| (q.x[0], q.x[1], q.p)).collect();
+        let svg = contopt::plot::heat_map(
+            &format!("{}: contact pressure, {}", report.scene, c.label),
+            "x [mm] (along the axis)",
+            "y [mm]",
+            "MPa",
+            &points,
+        );
+        std::fs::write(dir.join(format!("p_map_{}.svg", k + 1)), svg)?;
+    }
     Ok(())
 }
