@@ -171,13 +171,13 @@ pub fn heat_map(
             0
         }
     };
-    for j in j0..=j1 {
+    for (j, row) in grid.iter().enumerate().take(j1 + 1).skip(j0) {
         let y = m + (j1 - j) as f64 * ch;
         let mut i = 0;
         while i < xs.len() {
-            let l = level(grid[j][i]);
+            let l = level(row[i]);
             let start = i;
-            while i < xs.len() && level(grid[j][i]) == l {
+            while i < xs.len() && level(row[i]) == l {
                 i += 1;
             }
             let _ = writeln!(
