@@ -233,3 +233,31 @@ pub fn heat_map(
     s.push_str("</svg>\n");
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One loaded cell in a 5 × 5 grid: the map keeps its row and one row either side, colours
+    /// it at the top of the scale and labels the bar with its value.
+    #[test]
+    fn heat_map_crops_to_the_contact_and_scales_to_the_peak() {
+        let points: Vec<(f64, f64, f64)> = (0..25)
+            .map(|k| {
+                let (i, j) = (k % 5, k / 5);
+                (
+                    i as f64,
+                    j as f64,
+                    if (i, j) == (2, 2) { 10.0 } else { 0.0 },
+                )
+            })
+            .collect();
+        let svg = heat_map("t", "x", "y", "MPa", &points);
+        assert!(svg.contains("10.0 MPa"), "{svg}");
+        assert!(svg.contains(&viridis(1.0)) && viridis(1.0) == "#fde725");
+        // Rows 1, 2 and 3 drawn: the loaded row as three runs, the others as one each.
+        let cells = svg.matches("<rect x=").count() - HEAT_LEVELS;
+        assert_eq!(cells, 5, "{svg}");
+        assert!(svg.contains(">3.000<") && svg.contains(">1.000<"), "{svg}");
+    }
+}
