@@ -301,6 +301,16 @@ fn peer_grid(n: usize) -> (HalfSpace, Vec<f64>, f64) {
     (body, gap, e / (1.0 - NU * NU))
 }
 
+/// The largest pressure difference of two states over the second's p_max.
+fn pressure_difference(a: &ContactState, b: &ContactState) -> f64 {
+    a.pressure
+        .iter()
+        .zip(&b.pressure)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / b.p_max()
+}
+
 /// What drives a rigid indenter into a grid.
 #[derive(Clone, Copy, Debug)]
 enum Drive {
@@ -336,13 +346,7 @@ fn indent(solver: &dyn ContactSolver, body: &HalfSpace, gap: &[f64], drive: Driv
 fn against_dense(body: &HalfSpace, gap: &[f64], drive: Drive) -> (ContactState, ContactState, f64) {
     let pk = indent(&PolonskyKeer::default(), body, gap, drive);
     let dense = indent(&ActiveSet, body, gap, drive);
-    let dp = pk
-        .pressure
-        .iter()
-        .zip(&dense.pressure)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / dense.p_max();
+    let dp = pressure_difference(&pk, &dense);
     (pk, dense, dp)
 }
 
@@ -409,13 +413,7 @@ fn two_elastic_grids_summed() {
         .unwrap()
         .solved("active set")
         .unwrap();
-    let dp = pk
-        .pressure
-        .iter()
-        .zip(&dense.pressure)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / dense.p_max();
+    let dp = pressure_difference(&pk, &dense);
     assert!(dp < 1e-8, "pressure differs by {dp:e} of p_max");
     assert_eq!(pk.active, dense.active);
     let estar = 1.0 / ((1.0 - NU * NU) / 210e3 + (1.0 - 0.33f64.powi(2)) / 7e4);
@@ -445,13 +443,7 @@ fn two_elastic_grids_summed() {
         .unwrap()
         .solved("active set")
         .unwrap();
-    let dp = floating
-        .pressure
-        .iter()
-        .zip(&dense.pressure)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / dense.p_max();
+    let dp = pressure_difference(&floating, &dense);
     assert!(dp < 1e-8, "floating: pressure differs by {dp:e} of p_max");
     assert!((floating.rigid[0] / dense.rigid[0] - 1.0).abs() < 1e-9);
     assert!(
