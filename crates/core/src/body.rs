@@ -72,6 +72,15 @@ pub trait ElasticBody {
         false
     }
 
+    /// The influence operator as a multiple of a fixed one: `(shape, scale)` when A = scale·A₀
+    /// with A₀ named by `shape` (a half-space grid: its cells and spacing; scale (1 − ν²)/E).
+    /// Two bodies of one shape, paired point for point, share one product: the interface
+    /// problem applies one of them and scales it. `None` (the default) when the body does not
+    /// say.
+    fn influence_shape(&self) -> Option<(String, f64)> {
+        None
+    }
+
     /// A body over a subset of this body's points that contains every point marked in `keep`
     /// and whose influence product is cheaper (a grid's bounding box), with the indices of its
     /// points among this body's; `None` (the default) when the body offers none. Iterative

@@ -34,6 +34,8 @@ pub struct HalfSpace {
     convolution: Arc<Convolution>,
     /// The free translation of a pressed body ([`HalfSpace::pressed`]), or none.
     modes: Vec<RigidMode>,
+    /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
+    compliance: f64,
 }
 
 /// The smallest length ≥ `n` (at most `max`) whose prime factors are 2, 3, 5 and 7, for
@@ -94,6 +96,7 @@ impl HalfSpace {
             kernel,
             convolution,
             modes: vec![],
+            compliance: (1.0 - material.nu().powi(2)) / material.e(),
         })
     }
 
@@ -138,6 +141,7 @@ impl HalfSpace {
             kernel,
             convolution,
             modes: vec![],
+            compliance: (1.0 - material.nu().powi(2)) / material.e(),
         })
     }
 
@@ -212,6 +216,7 @@ impl HalfSpace {
                         ..m.clone()
                     })
                     .collect(),
+                compliance: self.compliance,
             },
             index,
         ))
@@ -304,6 +309,25 @@ impl ElasticBody for HalfSpace {
         }
         let (sub, index) = self.sub_grid(i0, j0, cx, cy).ok()?;
         Some((Box::new(sub), index))
+    }
+
+    /// The grid's cells, spacing and kind; the kernel is (1 − ν²)/E times one of those alone.
+    fn influence_shape(&self) -> Option<(String, f64)> {
+        let p = &self.interface.points;
+        let dx = if self.nx > 1 { p[1][0] - p[0][0] } else { 0.0 };
+        let dy = if self.ny > 1 {
+            p[self.nx][1] - p[0][1]
+        } else {
+            0.0
+        };
+        let w = self.interface.weights[0];
+        Some((
+            format!(
+                "half-space grid {} x {}, {dx:e} x {dy:e} mm, cell {w:e} mm², periodic {}",
+                self.nx, self.ny, self.periodic
+            ),
+            self.compliance,
+        ))
     }
 
     fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
