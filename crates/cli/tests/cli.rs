@@ -18,12 +18,14 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// Runs a bundled scene with `--json`: stdout is one JSON document and nothing else.
-fn run_json(scene: &str) -> Value {
-    let out = scratch(scene);
+/// Runs a scene (a bundled name or a file) with `--json`, its results under `out`: stdout is one
+/// JSON document and nothing else.
+fn run_json_into(scene: &std::ffi::OsStr, out: &std::path::Path) -> Value {
     let output = contopt()
-        .args(["run", scene, "--json", "--out"])
-        .arg(&out)
+        .arg("run")
+        .arg(scene)
+        .args(["--json", "--out"])
+        .arg(out)
         .output()
         .unwrap();
     assert!(
@@ -31,7 +33,13 @@ fn run_json(scene: &str) -> Value {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
+/// Runs a bundled scene with `--json` and checks that its files were written.
+fn run_json(scene: &str) -> Value {
+    let out = scratch(scene);
+    let report = run_json_into(scene.as_ref(), &out);
     assert!(out.join(scene).join("result.json").exists());
     assert!(out.join(scene).join("p.svg").exists());
     report
@@ -99,20 +107,9 @@ fn variant_of(scene: &str, name: &str, changes: &[(&str, &str)]) -> PathBuf {
     path
 }
 
-/// Runs a scene file with `--json`.
-fn run_file_json(path: &PathBuf) -> Value {
-    let output = contopt()
-        .args(["run", "--json", "--out"])
-        .arg(path.parent().unwrap())
-        .arg(path)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).unwrap()
+/// Runs a scene file with `--json`, its results beside it.
+fn run_file_json(path: &std::path::Path) -> Value {
+    run_json_into(path.as_os_str(), path.parent().unwrap())
 }
 
 /// Hertz under a given approach δ = a²/R (a = 0.3 mm) on 32² cells: Polonsky–Keer and the dense
