@@ -50,10 +50,26 @@ impl GapShape {
     /// shared by every point with that coordinate (within 10⁻⁹ of the interface's size): a
     /// profile along one direction, extruded along the others.
     pub fn extruded(interface: &Interface, axis: usize) -> Result<Self> {
+        Self::along(interface, axis, |c| c)
+    }
+
+    /// The gap change of [`GapShape::extruded`], symmetric about the plane x_axis = 0: one
+    /// node per distinct |x_axis|, which moves the points at x_axis and −x_axis together (a
+    /// crown that is the same at both ends of a roller).
+    pub fn symmetric(interface: &Interface, axis: usize) -> Result<Self> {
+        Self::along(interface, axis, f64::abs)
+    }
+
+    /// One node per distinct value of `coordinate` applied to x_axis.
+    fn along(interface: &Interface, axis: usize, coordinate: fn(f64) -> f64) -> Result<Self> {
         if axis > 2 {
             return Err(Error::invalid("gap_shape.axis", axis, "0, 1 or 2"));
         }
-        let coordinate: Vec<f64> = interface.points.iter().map(|x| x[axis]).collect();
+        let coordinate: Vec<f64> = interface
+            .points
+            .iter()
+            .map(|x| coordinate(x[axis]))
+            .collect();
         let size = coordinate
             .iter()
             .fold(0.0f64, |m, c| m.max(c.abs()))

@@ -13,7 +13,12 @@
 //!   ([`Optimisation::linear_programme`]), for small problems and as a cross-check;
 //! - or, for large problems, as the same optimum without a dense matrix: one strictly convex
 //!   contact QP per update of the loads carried by the design columns
-//!   ([`Optimisation::load_split`]), solved by any contact solver, matrix-free ones included.
+//!   ([`Optimisation::load_split`]), solved by any contact solver, matrix-free ones included;
+//!   its generalisation to several load cases sharing one gap change, the robust optimum of
+//!   max over the cases of p ≤ v·p_max ([`Optimisation::envelope_split`]).
+//!
+//! [`nelder_mead`] tunes the few parameters of a given profile family (a derivative-free
+//! search), the published practice the optimised gaps are compared with.
 
 // Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -22,9 +27,12 @@ mod controller;
 mod iteration;
 mod load_split;
 mod lp;
+mod simplex;
 
 pub use controller::{Constant, Controller, Product, Profile};
 pub use iteration::{Iteration, Mode};
+pub use load_split::EnvelopeOptimum;
+pub use simplex::{nelder_mead, Minimum};
 
 use contopt_contact::InterfaceProblem;
 use contopt_core::{Error, GapShape, Region, Result};

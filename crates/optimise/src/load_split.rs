@@ -17,6 +17,8 @@ const SECANT_STEP: f64 = 1e-3;
 const SECANT_UPDATES: usize = 3;
 /// How many past iterates Anderson mixing combines.
 const ANDERSON_DEPTH: usize = 5;
+/// How far above v·p_max, as a fraction of p_max, an Ω_nv pressure may lie (round-off).
+const OMEGA_NV_SLACK: f64 = 1e-6;
 
 /// The design columns of a gap shape whose rows each reach one node: the points of each node,
 /// their rigid-mode displacement r (one value per column), and the column's Ω_v measure and mean
@@ -47,8 +49,8 @@ impl Optimisation<'_> {
     /// body. At its fixed point the Ω_v points are closed at
     /// v·p_max, equilibrium holds and the rest of Ω is complementary: the conditions of (3.5),
     /// whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the programme's feasible set
-    /// is that one point). A column whose Ω_v holds several points is driven by their weighted
-    /// mean.
+    /// is that one point). A column whose Ω_v holds several points is driven by the largest
+    /// p/v among them, so that none exceeds v·p_max.
     ///
     /// Every contact solve starts from the previous pressure, so a matrix-free `solver`
     /// ([`contopt_contact::PolonskyKeer`]) takes a few steps after the first; a dense one works
@@ -63,48 +65,125 @@ impl Optimisation<'_> {
         tolerance: f64,
         max_iterations: usize,
     ) -> Result<Optimum> {
+        Ok(self.split(&[], solver, tolerance, max_iterations)?.optimum)
+    }
+
+    /// The robust optimum over an envelope of load cases that share one gap change: the least
+    /// p_max with max_c p_c ≤ v·p_max for every case c, the problem's own (the design case)
+    /// and each of `cases` (the same interface with its own initial gap, say a tilt, and its
+    /// own load), equality on Ω_v. It is the load split of the design case, whose column
+    /// shares are driven by the envelope maxₖ p̄ of the cases' Ω_v pressures instead of its
+    /// own; every case is solved again, from its last pressure, under the gap change of each
+    /// update.
+    ///
+    /// Why the closed envelope is the optimum: raising the gap of one column lowers that
+    /// column's pressure and raises the others' in every case (the load is carried
+    /// elsewhere), and a uniform gap change changes nothing, so the Jacobian J of the envelope
+    /// in Δh has a non-positive diagonal, non-negative off-diagonal entries and zero row sums.
+    /// Its transpose has a non-negative null vector μ (Perron–Frobenius), which are the
+    /// multipliers of the minimax's stationarity μᵀJ = 0 with every column active. With one
+    /// case it is the load split itself.
+    pub fn envelope_split(
+        &self,
+        cases: &[InterfaceProblem],
+        solver: &dyn ContactSolver,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<EnvelopeOptimum> {
+        self.split(cases, solver, tolerance, max_iterations)
+    }
+
+    /// The load split over the design case and `cases` (none: the plain load split).
+    fn split(
+        &self,
+        cases: &[InterfaceProblem],
+        solver: &dyn ContactSolver,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<EnvelopeOptimum> {
         if !(tolerance > 0.0 && tolerance < 1.0) {
             return Err(Error::invalid("tolerance", tolerance, "must lie in (0, 1)"));
         }
+        self.check_cases(cases)?;
         let columns = self.columns()?;
         let total = -self.problem.modes()[0].load;
         let mut update = ShareUpdate::new(&columns);
         let mut warm: Option<Vec<f64>> = None;
+        let mut case_warm: Vec<Option<Vec<f64>>> = vec![None; cases.len()];
         let mut rows: Vec<Iteration> = vec![];
         let mut dh_last = vec![0.0; self.shape.nodes().len()];
         let mut miss = f64::NAN;
         for k in 1..=max_iterations {
             let state =
                 self.column_solve(solver, &columns, &update.share, total, warm.as_deref())?;
-            let mean = columns.omega_v_pressure(self, &state.pressure);
-            let p_max = columns.fitted_p_max(&mean);
-            miss = (0..mean.len())
-                .map(|j| (mean[j] - columns.v[j] * p_max).abs())
+            let dh = self.column_crown(&columns, &state.rigid);
+            let mut envelope = columns.omega_v_pressure(self, &state.pressure);
+            let mut states = Vec::with_capacity(cases.len());
+            let gap_change = self.shape.apply(&dh);
+            for (case, start) in cases.iter().zip(&case_warm) {
+                let solved = case_solve(solver, case, &gap_change, start.as_deref())?;
+                let mean = columns.omega_v_pressure(self, &solved.pressure);
+                envelope
+                    .iter_mut()
+                    .zip(mean)
+                    .for_each(|(e, m)| *e = e.max(m));
+                states.push(solved);
+            }
+            let p_max = columns.fitted_p_max(&envelope);
+            miss = (0..envelope.len())
+                .map(|j| (envelope[j] - columns.v[j] * p_max).abs())
                 .fold(0.0, f64::max)
                 / p_max;
-            let dh = self.column_crown(&columns, &state.rigid);
             rows.push(Iteration {
                 k,
                 p_max,
                 dh_max: dh.iter().fold(0.0, |a: f64, b| a.max(*b)),
                 tolh: dh.iter().zip(&dh_last).map(|(a, b)| (a - b).powi(2)).sum(),
-                iterp: state.iterp.max(state.iterations),
+                iterp: std::iter::once(&state)
+                    .chain(&states)
+                    .map(|s| s.iterp.max(s.iterations))
+                    .sum(),
                 iterd: state.iterd,
             });
+
             if miss <= tolerance {
-                return self.column_optimum(state, p_max, dh, rows);
+                return self.column_optimum(state, states, p_max, dh, rows);
             }
-            update.next(k, &mean, &columns.v, p_max);
+            update.next(k, &envelope, &columns.v, p_max);
             warm = Some(state.pressure);
+            case_warm = states.into_iter().map(|s| Some(s.pressure)).collect();
             dh_last = dh;
         }
+        let method = if cases.is_empty() {
+            "load split (3.5)"
+        } else {
+            "envelope load split (3.5)"
+        };
         Err(Error::NotConverged {
-            method: "load split (3.5)".into(),
+            method: method.into(),
             iterations: max_iterations,
             detail: format!(
                 "the Ω_v pressure misses v·p_max by {miss:.3e} of p_max (tolerance {tolerance:e})"
             ),
         })
+    }
+
+    /// The envelope's cases share the design case's interface.
+    fn check_cases(&self, cases: &[InterfaceProblem]) -> Result<()> {
+        for (c, case) in cases.iter().enumerate() {
+            if case.len() != self.problem.len() || case.modes().len() != 1 {
+                return Err(Error::invalid(
+                    format!("cases[{c}]"),
+                    format!("{} points, {} modes", case.len(), case.modes().len()),
+                    format!(
+                        "a case of the envelope shares the design case's {} points and floats \
+                         under one load",
+                        self.problem.len()
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The design columns, checked: one rigid mode, rows that each reach one node, and one
@@ -219,21 +298,26 @@ impl Optimisation<'_> {
             .collect()
     }
 
-    /// The optimum of a converged split: the crown checked for sign, the pressure of Ω_nv
-    /// checked against v·p_max (χ ≥ 0 of 3.5).
+    /// The optimum of a converged split: the crown checked for sign, the pressure of Ω_nv in
+    /// every case checked against v·p_max (χ ≥ 0 of 3.5).
     fn column_optimum(
         &self,
         state: ContactState,
+        cases: Vec<ContactState>,
         p_max: f64,
         dh: Vec<f64>,
         rows: Vec<Iteration>,
-    ) -> Result<Optimum> {
+    ) -> Result<EnvelopeOptimum> {
         self.check_sign(&dh)?;
-        let excess = (0..state.pressure.len())
-            .filter(|&i| self.regions[i] == Region::OmegaNv)
-            .map(|i| state.pressure[i] - self.v[i] * p_max)
+        let excess = std::iter::once(&state)
+            .chain(&cases)
+            .flat_map(|s| {
+                (0..s.pressure.len())
+                    .filter(|&i| self.regions[i] == Region::OmegaNv)
+                    .map(|i| s.pressure[i] - self.v[i] * p_max)
+            })
             .fold(f64::NEG_INFINITY, f64::max);
-        if excess > 1e-6 * p_max {
+        if excess > OMEGA_NV_SLACK * p_max {
             return Err(Error::invalid(
                 "omega_v",
                 format!("{excess:.4e} MPa above v·p_max on Ω_nv"),
@@ -241,32 +325,66 @@ impl Optimisation<'_> {
                  meets χ ≥ 0 (3.5): put Ω_v where each column peaks",
             ));
         }
-        Ok(Optimum {
-            p_max,
-            gap_change: self.shape.apply(&dh),
-            dh,
-            rigid: vec![state.rigid[self.reference]],
-            pressure: state.pressure,
-            gap: state.gap,
-            iterations: rows,
+        Ok(EnvelopeOptimum {
+            optimum: Optimum {
+                p_max,
+                gap_change: self.shape.apply(&dh),
+                dh,
+                rigid: vec![state.rigid[self.reference]],
+                pressure: state.pressure,
+                gap: state.gap,
+                iterations: rows,
+            },
+            cases,
         })
     }
 }
 
+/// The robust optimum of [`Optimisation::envelope_split`].
+#[derive(Clone, Debug)]
+pub struct EnvelopeOptimum {
+    /// The gap change, p_max and the design case's contact.
+    pub optimum: Optimum,
+    /// The contact of each further case under the same gap change.
+    pub cases: Vec<ContactState>,
+}
+
+/// Solves `case` with its initial gap changed by `gap_change`, from `start` if given.
+fn case_solve(
+    solver: &dyn ContactSolver,
+    case: &InterfaceProblem,
+    gap_change: &[f64],
+    start: Option<&[f64]>,
+) -> Result<ContactState> {
+    let gap: Vec<f64> = case
+        .initial_gap()
+        .iter()
+        .zip(gap_change)
+        .map(|(h, d)| h + d)
+        .collect();
+    let problem = case.with_initial_gap(&gap)?;
+    match start {
+        Some(p) => solver.solve_from(&problem, p),
+        None => solver.solve(&problem),
+    }?
+    .solved(solver.name())
+}
+
 impl Columns {
-    /// p̄_k, the L-weighted mean pressure on each column's Ω_v points.
+    /// p̄_k = v̄_k · max p/v over each column's Ω_v points (where v > 0): the pressure that
+    /// meets v·p_max first, so that p ≤ v·p_max holds on every Ω_v point of the column when
+    /// p̄_k = v̄_k·p_max. On a single Ω_v point it is that point's pressure; on the two ends of
+    /// a symmetric column, the larger.
     fn omega_v_pressure(&self, opt: &Optimisation, pressure: &[f64]) -> Vec<f64> {
-        let w = opt.problem.weights();
         self.points
             .iter()
-            .zip(&self.measure)
-            .map(|(members, l)| {
-                members
+            .zip(&self.v)
+            .map(|(members, v)| {
+                v * members
                     .iter()
-                    .filter(|&&i| opt.regions[i] == Region::OmegaV)
-                    .map(|&i| w[i] * pressure[i])
-                    .sum::<f64>()
-                    / l
+                    .filter(|&&i| opt.regions[i] == Region::OmegaV && opt.v[i] > 0.0)
+                    .map(|&i| pressure[i] / opt.v[i])
+                    .fold(0.0, f64::max)
             })
             .collect()
     }
