@@ -35,6 +35,10 @@ const BUNDLED: &[(&str, &str)] = &[
         "roller-study",
         include_str!("../../../scenes/roller-study.toml"),
     ),
+    (
+        "roller-envelope",
+        include_str!("../../../scenes/roller-envelope.toml"),
+    ),
     ("hertz", include_str!("../../../scenes/hertz.toml")),
     (
         "flat-punch",
@@ -254,7 +258,55 @@ fn roller_table(report: &Report) -> String {
             }
         }
     }
-    s
+    s + &envelope_table(report, width)
+}
+
+/// The table of a roller envelope: per case, p_max under each load and tilt (`*` marks edge
+/// loading) and the worst; the tuned profiles' parameters below. Empty without an envelope.
+fn envelope_table(report: &Report, width: usize) -> String {
+    use std::fmt::Write;
+    let Some(first) = report
+        .cases
+        .iter()
+        .filter_map(|c| c.roller.as_ref())
+        .find(|r| !r.envelope.is_empty())
+    else {
+        return String::new();
+    };
+    let nominal = first.envelope[0].load_n;
+    let mut s = format!(
+        "\np_max MPa over the envelope (* edge loading)\n{:<width$}",
+        "case"
+    );
+    for e in &first.envelope {
+        let head = format!("{:.1}Q {:+.0}′", e.load_n / nominal, e.tilt_arcmin);
+        let _ = write!(s, " {head:>10}");
+    }
+    let _ = writeln!(s, " {:>10}", "worst");
+    let mut tuned = String::new();
+    for c in &report.cases {
+        let Some(r) = c.roller.as_ref().filter(|r| !r.envelope.is_empty()) else {
+            continue;
+        };
+        let _ = write!(s, "{:<width$}", c.label);
+        for e in &r.envelope {
+            let mark = if e.edge_loading { "*" } else { " " };
+            let _ = write!(s, " {:>9.1}{mark}", e.p_max);
+        }
+        let _ = writeln!(s, " {:>10.1}", r.worst_p_max.unwrap_or(f64::NAN));
+        if let Some(t) = &r.tuned {
+            let _ = writeln!(
+                tuned,
+                "{}: K1 = {:.4}, K2 = {:.4}, z_m = {:.4} µm ({} crowns searched)",
+                c.label,
+                t.k1,
+                t.k2,
+                1e3 * t.z_m_mm,
+                t.evaluations
+            );
+        }
+    }
+    s + &tuned
 }
 
 /// Writes `result.json`, `interface.csv` and the plots of p and Δh along x (on a grid: along
@@ -343,6 +395,37 @@ fn write_maps(report: &Report, dir: &Path) -> std::io::Result<()> {
             &points,
         );
         std::fs::write(dir.join(format!("p_map_{}.svg", k + 1)), svg)?;
+    }
+    write_envelopes(report, dir)
+}
+
+/// The centre-line pressure of a roller under each case of its envelope, one chart per case of
+/// the scene: `envelope_<case number>.svg`.
+fn write_envelopes(report: &Report, dir: &Path) -> std::io::Result<()> {
+    for (k, c) in report.cases.iter().enumerate() {
+        let Some(r) = c.roller.as_ref().filter(|r| !r.envelope.is_empty()) else {
+            continue;
+        };
+        let nominal = r.envelope[0].load_n;
+        let series: Vec<(String, Vec<(f64, f64)>)> = r
+            .envelope
+            .iter()
+            .map(|e| {
+                let label = format!("{:.1} Q, {:+.1}′", e.load_n / nominal, e.tilt_arcmin);
+                (label, e.centre_line.iter().map(|p| (p[0], p[1])).collect())
+            })
+            .collect();
+        let refs: Vec<(&str, &[(f64, f64)])> = series
+            .iter()
+            .map(|(l, v)| (l.as_str(), v.as_slice()))
+            .collect();
+        let svg = contopt::plot::line_plot(
+            &format!("{}: centre-line pressure, {}", report.scene, c.label),
+            "x [mm] (along the axis)",
+            "p [MPa]",
+            &refs,
+        );
+        std::fs::write(dir.join(format!("envelope_{}.svg", k + 1)), svg)?;
     }
     Ok(())
 }

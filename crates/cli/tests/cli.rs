@@ -334,3 +334,74 @@ fn roller_scenes() {
         &["lonely.toml", "needs [optimisation]"],
     );
 }
+
+/// The bundled envelope study on 60 × 31 cells: nine cases per profile, the scene's own first;
+/// the robust crown (L1 = 5 mm) has the lowest worst case, below ISO, the single-load optimum
+/// and Fujiwara–Kawase tuned for the same envelope, with no case edge loaded; every case of the
+/// robust crown stays at or below its worst p_max. Bad envelopes are refused by name.
+#[test]
+fn roller_envelope_study() {
+    let path = variant_of(
+        "roller-envelope",
+        "envelope-coarse",
+        &[("cells = [200, 105]", "cells = [60, 31]")],
+    );
+    let report = run_file_json(&path);
+    let cases = report["cases"].as_array().unwrap();
+    let worst = |label: &str| -> f64 {
+        let case = cases.iter().find(|c| c["label"] == label).unwrap();
+        assert_eq!(case["converged"], true, "{label}: {}", case["error"]);
+        let envelope = case["roller"]["envelope"].as_array().unwrap();
+        assert_eq!(envelope.len(), 9, "{label}");
+        assert_eq!(envelope[0]["load_n"], 5446.0);
+        assert_eq!(envelope[0]["tilt_arcmin"], 0.0);
+        case["roller"]["worst_p_max"].as_f64().unwrap()
+    };
+    let robust = worst("robust, L1 = 5 mm");
+    for other in [
+        "ISO/TS 16281",
+        "Fujiwara-Kawase tuned",
+        "optimised at Q, L1 = 5 mm",
+        "robust, L1 = 4.5 mm",
+    ] {
+        let w = worst(other);
+        assert!(robust < w, "robust {robust} not below {other} {w}");
+    }
+    let case = cases
+        .iter()
+        .find(|c| c["label"] == "robust, L1 = 5 mm")
+        .unwrap();
+    for e in case["roller"]["envelope"].as_array().unwrap() {
+        assert_eq!(e["edge_loading"], false, "{e}");
+        assert!(e["p_max"].as_f64().unwrap() <= robust * (1.0 + 1e-6));
+    }
+    let tuned = cases
+        .iter()
+        .find(|c| c["label"] == "Fujiwara-Kawase tuned")
+        .unwrap();
+    assert!(tuned["roller"]["tuned"]["k2"].as_f64().unwrap() <= 1.0);
+    assert!(path
+        .parent()
+        .unwrap()
+        .join("roller-envelope/envelope_7.svg")
+        .exists());
+
+    fails_with(
+        &["check"],
+        &roller_scene(
+            "robust-alone",
+            "{ kind = \"robust\" }",
+            "\n[optimisation]\nmode = \"load_split\"\ncontroller = { kind = \"constant\", level = 1.0 }\n",
+        ),
+        &["robust-alone.toml", "needs the [envelope]"],
+    );
+    fails_with(
+        &["run"],
+        &roller_scene(
+            "bad-envelope",
+            "{ kind = \"iso\" }",
+            "\n[envelope]\nload_factors = [1.0, -0.5]\ntilts_arcmin = [0.0]\n",
+        ),
+        &["bad-envelope.toml", "envelope.load_factors[1]", "-0.5"],
+    );
+}

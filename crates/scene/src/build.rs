@@ -9,9 +9,12 @@ use contopt_core::{ElasticBody, Error, GapShape, Material, Region, Result, Rigid
 use contopt_fem::paper::{self as fe_paper, PaperMesh, PunchGeometry, PunchLoad};
 use contopt_fem::{Analysis, ElementKind, FeBody};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
-use contopt_optimise::{Constant, Controller, Mode, Optimisation, Optimum, Profile};
+use contopt_optimise::{
+    Constant, Controller, EnvelopeOptimum, Mode, Optimisation, Optimum, Profile,
+};
 
-use crate::report::{CaseReport, IterationRow, PointReport};
+use crate::envelope::LoadCase;
+use crate::report::{CaseReport, EnvelopeCaseReport, IterationRow, PointReport, TunedProfile};
 use crate::spec::{
     AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, ModeSpec, Optimise, Problem, ProfileSpec,
     PunchLoadSpec, RigidLoad, SolverSpec,
@@ -20,6 +23,25 @@ use crate::{Case, SceneError};
 
 /// The initial gap of an open point, beyond a flat punch's rim \[mm\].
 const OPEN: f64 = 1e3;
+
+/// What a case designs.
+enum Design<'s> {
+    /// Nothing: the contact of the given bodies and gap.
+    Contact,
+    /// The gap for the scene's own load (a roller's `optimised` crown).
+    Optimised(&'s Optimise),
+    /// A roller's `robust` crown for its envelope.
+    Robust(&'s Optimise),
+    /// A roller's `fujiwara_kawase_tuned` crown for its envelope.
+    Tuned,
+}
+
+/// A roller's envelope after the design: a gap change to solve the cases under, or the cases
+/// solved already (with the tuned profile's parameters).
+enum Envelope {
+    Given(Vec<f64>),
+    Solved(Vec<EnvelopeCaseReport>, Option<TunedProfile>),
+}
 
 /// The elastic body, its rigid or elastic partner, and the initial gap.
 struct Bodies {
@@ -368,17 +390,31 @@ impl Case {
         let spec = &self.spec;
         bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
         solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
-        if let Problem::Roller { profile, .. } = &spec.problem {
-            if *profile == ProfileSpec::Optimised && spec.optimisation.is_none() {
-                return Err(self.invalid(
-                    "problem.profile",
-                    Error::invalid(
-                        "profile.kind",
-                        "optimised",
-                        "an optimised crown needs [optimisation]",
-                    ),
-                ));
+        match &spec.problem {
+            Problem::Roller { profile, .. } => {
+                let needs = match profile {
+                    ProfileSpec::Optimised if spec.optimisation.is_none() => {
+                        Some(("optimised", "an optimised crown needs [optimisation]"))
+                    }
+                    ProfileSpec::Robust if spec.optimisation.is_none() => {
+                        Some(("robust", "a robust crown needs [optimisation]"))
+                    }
+                    ProfileSpec::Robust if spec.envelope.is_none() => Some((
+                        "robust",
+                        "a robust crown needs the [envelope] of load cases it serves",
+                    )),
+                    _ => None,
+                };
+                if let Some((kind, why)) = needs {
+                    let e = Error::invalid("profile.kind", kind, why);
+                    return Err(self.invalid("problem.profile", e));
+                }
             }
+            _ if spec.envelope.is_some() => {
+                let e = Error::invalid("envelope", "given", "only a roller has an envelope");
+                return Err(self.invalid("envelope", e));
+            }
+            _ => {}
         }
         self.dense_limit()?;
         if let Some(opt) = &spec.optimisation {
@@ -419,59 +455,209 @@ impl Case {
                 .with_dense_limit(dense_limit);
         report.time("build", start);
         let solved = Instant::now();
+        let cases = match &built.roller {
+            Some(info) => crate::envelope::load_cases(&problem, info, spec.envelope.as_ref())
+                .map_err(|e| self.invalid("envelope", e))?,
+            None => vec![],
+        };
         let crown = built.roller.as_ref().map(|r| r.crown.as_slice());
-        let mut report = match self.optimisation() {
-            None => {
+        let (mut report, envelope) = match self.design() {
+            Design::Contact => {
                 let outcome = solver
                     .solve(&problem)
                     .map_err(|e| self.invalid("solver", e))?
                     .solved(solver.name());
                 report.time("solve", solved);
-                contact_report(report, problem.interface(), crown.unwrap_or(&[]), outcome)
+                let report =
+                    contact_report(report, problem.interface(), crown.unwrap_or(&[]), outcome);
+                (report, Envelope::Given(vec![0.0; problem.len()]))
             }
-            Some(opt) => {
+            Design::Optimised(opt) => {
                 let outcome =
-                    self.optimise(&problem, opt, solver.as_ref(), built.roller.as_ref())?;
+                    self.optimise(&problem, opt, solver.as_ref(), built.roller.as_ref(), None)?;
                 report.time("optimise", solved);
                 match outcome {
-                    Ok(optimum) => optimum_report(report, &problem, &optimum),
+                    Ok(found) => {
+                        let change = found.optimum.gap_change.clone();
+                        let report = optimum_report(report, &problem, &found.optimum);
+                        (report, Envelope::Given(change))
+                    }
                     Err(e) => {
                         report.error = Some(e.to_string());
-                        report
+                        (report, Envelope::Given(vec![]))
                     }
                 }
             }
+            Design::Robust(opt) => {
+                let info = built.roller.as_ref().ok_or_else(|| self.not_a_roller())?;
+                let (report, cases) = self.robust(report, &cases, opt, solver.as_ref(), info)?;
+                (report, Envelope::Solved(cases, None))
+            }
+            Design::Tuned => {
+                let info = built.roller.as_ref().ok_or_else(|| self.not_a_roller())?;
+                let (report, cases, tuned) = self.tuned(report, &cases, solver.as_ref(), info)?;
+                (report, Envelope::Solved(cases, Some(tuned)))
+            }
         };
         if let (Some(info), true) = (&built.roller, report.converged) {
-            report.roller = Some(roller_report(&report, info));
+            let mut roller = roller_report(&report, info);
+            let outcome = match envelope {
+                Envelope::Given(change) if spec.envelope.is_some() => {
+                    let started = Instant::now();
+                    let states =
+                        crate::envelope::solve_cases(&cases, &change, solver.as_ref(), None);
+                    report.time("envelope", started);
+                    states.map(|s| crate::envelope::state_reports(&cases, &s, info.dy))
+                }
+                Envelope::Given(_) => Ok(vec![]),
+                Envelope::Solved(reports, tuned) => {
+                    roller.tuned = tuned;
+                    Ok(reports)
+                }
+            };
+            match outcome {
+                Ok(reports) => {
+                    roller.worst_p_max = spec
+                        .envelope
+                        .is_some()
+                        .then(|| reports.iter().map(|c| c.p_max).fold(0.0, f64::max));
+                    roller.envelope = reports;
+                }
+                Err(e) => {
+                    report.converged = false;
+                    report.error = Some(format!("a case of the envelope: {e}"));
+                }
+            }
+            report.roller = Some(roller);
         }
         Ok(report)
     }
 
-    /// The case's optimisation: none for a roller with a given crown (its `[optimisation]`
-    /// serves the optimised cases of a study).
-    fn optimisation(&self) -> Option<&Optimise> {
-        match &self.spec.problem {
-            Problem::Roller { profile, .. } if *profile != ProfileSpec::Optimised => None,
-            _ => self.spec.optimisation.as_ref(),
+    /// What the case designs: nothing (a contact solve), a gap for the scene's load, or a
+    /// roller's crown for its envelope (optimised or tuned).
+    fn design(&self) -> Design<'_> {
+        let opt = self.spec.optimisation.as_ref();
+        match (&self.spec.problem, opt) {
+            (Problem::Roller { profile, .. }, _) => match (profile, opt) {
+                (ProfileSpec::Optimised, Some(opt)) => Design::Optimised(opt),
+                (ProfileSpec::Robust, Some(opt)) => Design::Robust(opt),
+                (ProfileSpec::FujiwaraKawaseTuned, _) => Design::Tuned,
+                _ => Design::Contact,
+            },
+            (_, Some(opt)) => Design::Optimised(opt),
+            (_, None) => Design::Contact,
+        }
+    }
+
+    fn not_a_roller(&self) -> SceneError {
+        self.invalid(
+            "problem.profile",
+            Error::invalid("problem.kind", "not a roller", "a crown needs a roller"),
+        )
+    }
+
+    /// The robust crown over the envelope `cases`: the report of the scene's own case (the
+    /// first) and of every case.
+    fn robust(
+        &self,
+        mut report: CaseReport,
+        cases: &[LoadCase],
+        opt: &Optimise,
+        solver: &dyn ContactSolver,
+        info: &crate::roller::Info,
+    ) -> std::result::Result<(CaseReport, Vec<EnvelopeCaseReport>), SceneError> {
+        let started = Instant::now();
+        let design = crate::envelope::design_case(cases);
+        let others: Vec<InterfaceProblem> = (0..cases.len())
+            .filter(|&k| k != design)
+            .map(|k| cases[k].problem.clone())
+            .collect();
+        let outcome = self.optimise(
+            &cases[design].problem,
+            opt,
+            solver,
+            Some(info),
+            Some(&others),
+        )?;
+        report.time("optimise", started);
+        let found = match outcome {
+            Ok(found) => found,
+            Err(e) => {
+                report.error = Some(e.to_string());
+                return Ok((report, vec![]));
+            }
+        };
+        let optimum = &found.optimum;
+        // The cases' contact in their own order, the design case's from the optimum.
+        let mut rest = found.cases.iter();
+        let (mut pressures, mut approaches, mut own) = (vec![], vec![], None);
+        for k in 0..cases.len() {
+            let (p, gap, rigid) = match (k == design, rest.next()) {
+                (true, _) => (&optimum.pressure, &optimum.gap, &optimum.rigid),
+                (false, Some(s)) => (&s.pressure, &s.gap, &s.rigid),
+                (false, None) => break,
+            };
+            if k == 0 {
+                own = Some(Optimum {
+                    pressure: p.clone(),
+                    gap: gap.clone(),
+                    rigid: rigid.clone(),
+                    ..optimum.clone()
+                });
+            }
+            pressures.push(p.as_slice());
+            approaches.push(-rigid[0]);
+        }
+        let reports = crate::envelope::reports(cases, &pressures, &approaches, info.dy);
+        let own = own.unwrap_or_else(|| optimum.clone());
+        let mut report = optimum_report(report, &cases[0].problem, &own);
+        report.p_max = Some(own.pressure.iter().fold(0.0, |m: f64, v| m.max(*v)));
+        Ok((report, reports))
+    }
+
+    /// The Fujiwara–Kawase profile tuned for the envelope `cases`: the report of the scene's
+    /// own case under it, the cases' reports and the parameters.
+    fn tuned(
+        &self,
+        mut report: CaseReport,
+        cases: &[LoadCase],
+        solver: &dyn ContactSolver,
+        info: &crate::roller::Info,
+    ) -> std::result::Result<(CaseReport, Vec<EnvelopeCaseReport>, TunedProfile), SceneError> {
+        let started = Instant::now();
+        let outcome = crate::envelope::tune_fujiwara_kawase(cases, info, solver);
+        report.time("tune", started);
+        match outcome {
+            Ok((tuned, drop, states)) => {
+                let reports = crate::envelope::state_reports(cases, &states, info.dy);
+                let own = states.into_iter().next();
+                let iface = cases[0].problem.interface();
+                let own = own.ok_or_else(|| Error::invalid("envelope", "no case", "one case"));
+                let report = contact_report(report, iface, &drop, own);
+                Ok((report, reports, tuned))
+            }
+            Err(e) => Err(self.invalid("problem.profile", e)),
         }
     }
 
     /// Runs the optimisation `opt` of `problem`: the optimum, or the error of a method that did
     /// not converge; bad input is a scene error. A roller's Ω_v defaults to its centre row and
-    /// its profile to the axis.
+    /// its profile to the axis. With `envelope`, the further cases of a robust crown, the
+    /// profile is symmetric and found by the envelope load split.
     fn optimise(
         &self,
         problem: &InterfaceProblem,
         opt: &Optimise,
         solver: &dyn ContactSolver,
         roller: Option<&crate::roller::Info>,
-    ) -> std::result::Result<std::result::Result<Optimum, Error>, SceneError> {
+        envelope: Option<&[InterfaceProblem]>,
+    ) -> std::result::Result<std::result::Result<EnvelopeOptimum, Error>, SceneError> {
         let v =
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         let iface = problem.interface();
         let axis = opt.profile_axis.or(roller.map(|_| 0));
         let shape = match (axis, problem.pressure_basis()) {
+            (Some(axis), _) if envelope.is_some() => GapShape::symmetric(iface, axis),
             (Some(axis), _) => GapShape::extruded(iface, axis),
             (None, Some(basis)) => Ok(basis.clone()),
             (None, None) => Ok(GapShape::pointwise(iface)),
@@ -499,19 +685,36 @@ impl Case {
                 .with_regions(regions)
                 .map_err(|e| self.invalid("optimisation.omega_v", e))?;
         }
-        let outcome = match opt.mode {
-            ModeSpec::GivenLoad => {
-                optimisation.iterate(Mode::GivenLoad, solver, opt.tolh_mm2, opt.max_iterations)
+        let single = |outcome: Result<Optimum>| {
+            outcome.map(|optimum| EnvelopeOptimum {
+                optimum,
+                cases: vec![],
+            })
+        };
+        let outcome = match (opt.mode, envelope) {
+            (ModeSpec::LoadSplit, Some(cases)) => {
+                optimisation.envelope_split(cases, solver, opt.tolerance, opt.max_iterations)
             }
-            ModeSpec::GivenDisplacement => optimisation.iterate(
+            (mode, Some(_)) => Err(Error::invalid(
+                "optimisation.mode",
+                format!("{mode:?}"),
+                "a robust crown is found by the load split: mode = \"load_split\"",
+            )),
+            (ModeSpec::GivenLoad, None) => single(optimisation.iterate(
+                Mode::GivenLoad,
+                solver,
+                opt.tolh_mm2,
+                opt.max_iterations,
+            )),
+            (ModeSpec::GivenDisplacement, None) => single(optimisation.iterate(
                 Mode::GivenDisplacement,
                 solver,
                 opt.tolh_mm2,
                 opt.max_iterations,
-            ),
-            ModeSpec::LinearProgramme => optimisation.linear_programme(solver),
-            ModeSpec::LoadSplit => {
-                optimisation.load_split(solver, opt.tolerance, opt.max_iterations)
+            )),
+            (ModeSpec::LinearProgramme, None) => single(optimisation.linear_programme(solver)),
+            (ModeSpec::LoadSplit, None) => {
+                single(optimisation.load_split(solver, opt.tolerance, opt.max_iterations))
             }
         };
         match outcome {

@@ -7,14 +7,17 @@
 //! schema is in the book's chapter "Scene files and the `contopt` command").
 
 mod build;
+mod envelope;
 mod report;
 mod roller;
 mod spec;
 
-pub use report::{CaseReport, IterationRow, PointReport, Report, RollerReport};
+pub use report::{
+    CaseReport, EnvelopeCaseReport, IterationRow, PointReport, Report, RollerReport, TunedProfile,
+};
 pub use spec::{
-    AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec, OmegaVSpec, Optimise,
-    Problem, PunchLoadSpec, RigidLoad, SolverSpec, Sweep,
+    AnalysisSpec, ControllerSpec, EnvelopeSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec,
+    OmegaVSpec, Optimise, Problem, PunchLoadSpec, RigidLoad, SolverSpec, Sweep,
 };
 
 use std::path::{Path, PathBuf};

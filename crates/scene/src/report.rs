@@ -57,6 +57,48 @@ pub struct RollerReport {
     pub half_width_mm: [f64; 2],
     /// The crown's drop at the ends \[µm\].
     pub crown_drop_end_um: f64,
+    /// The cases of the scene's `[envelope]` under this crown, the scene's own load and tilt
+    /// first; empty without an envelope.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub envelope: Vec<EnvelopeCaseReport>,
+    /// The largest p_max over the envelope \[MPa\]; null without an envelope.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub worst_p_max: Option<f64>,
+    /// The parameters a `fujiwara_kawase_tuned` profile found.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tuned: Option<TunedProfile>,
+}
+
+/// One load case of a roller's envelope.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct EnvelopeCaseReport {
+    /// Load Q \[N\].
+    pub load_n: f64,
+    /// Misalignment γ \[arc-minutes\].
+    pub tilt_arcmin: f64,
+    /// Largest contact pressure \[MPa\].
+    pub p_max: f64,
+    /// Where it sits: x along the axis, y across \[mm\].
+    pub p_max_at_mm: [f64; 2],
+    /// Whether an end carries more than 10 % above the pressure at mid-length.
+    pub edge_loading: bool,
+    /// The roller's approach \[µm\].
+    pub approach_um: f64,
+    /// The pressure along the centre row: (x \[mm\], p \[MPa\]).
+    pub centre_line: Vec<[f64; 2]>,
+}
+
+/// A Fujiwara–Kawase profile tuned by the Nelder–Mead search.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct TunedProfile {
+    /// Load coefficient K1.
+    pub k1: f64,
+    /// Crowned fraction K2 of each half-length.
+    pub k2: f64,
+    /// End drop z_m \[mm\].
+    pub z_m_mm: f64,
+    /// How many crowns the search solved (each under every case).
+    pub evaluations: usize,
 }
 
 impl CaseReport {

@@ -22,6 +22,8 @@ pub(crate) struct Info {
     pub dy: f64,
     /// The crown's drop at each point \[mm\].
     pub crown: Vec<f64>,
+    /// The roller as built (its crown straight when the run designs it).
+    pub roller: Roller,
 }
 
 /// The scene's roller: `dir` is the scene file's folder, where a table profile is read.
@@ -61,14 +63,17 @@ pub(crate) fn build(
         raceway: Box::new(raceway),
         roller: Box::new(body),
         gap,
-        info: Info { dy, crown },
+        info: Info { dy, crown, roller },
     })
 }
 
 fn crown(roller: &Roller, profile: &ProfileSpec, dir: &Path) -> Result<Crown> {
     let (q, l, e_star) = (roller.load, roller.length, roller.e_star());
     match profile {
-        ProfileSpec::Straight | ProfileSpec::Optimised => Ok(Crown::Straight),
+        ProfileSpec::Straight
+        | ProfileSpec::Optimised
+        | ProfileSpec::Robust
+        | ProfileSpec::FujiwaraKawaseTuned => Ok(Crown::Straight),
         ProfileSpec::Iso => Crown::iso(roller.diameter),
         ProfileSpec::Lundberg => Crown::lundberg(q, l, e_star),
         ProfileSpec::JohnsGohar => Crown::johns_gohar(q, l, e_star, roller.hertz()?.0),
@@ -115,7 +120,69 @@ fn table(path: &Path) -> Result<Crown> {
 }
 
 /// Ends that carry more than this over the pressure at mid-length are edge loading.
-const EDGE_LOADING: f64 = 1.1;
+pub(crate) const EDGE_LOADING: f64 = 1.1;
+
+/// The columns of a roller grid: the distinct x of its points, in order.
+struct Columns<'a> {
+    points: &'a [[f64; 3]],
+    first: f64,
+    last: f64,
+    middle: f64,
+}
+
+impl<'a> Columns<'a> {
+    fn new(points: &'a [[f64; 3]]) -> Self {
+        let mut xs: Vec<f64> = points.iter().map(|x| x[0]).collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        let middle = xs
+            .iter()
+            .copied()
+            .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap_or(0.0);
+        Self {
+            points,
+            first: xs.first().copied().unwrap_or(0.0),
+            last: xs.last().copied().unwrap_or(0.0),
+            middle,
+        }
+    }
+
+    /// The points of the column at `c`.
+    fn column(&self, c: f64) -> impl Iterator<Item = usize> + '_ {
+        (0..self.points.len()).filter(move |&i| (self.points[i][0] - c).abs() < 1e-9)
+    }
+
+    fn peak(&self, c: f64, pressure: &[f64]) -> f64 {
+        self.column(c).map(|i| pressure[i]).fold(0.0, f64::max)
+    }
+
+    /// The larger end's peak over the peak at mid-length (infinite when mid-length is open).
+    fn end_ratio(&self, pressure: &[f64]) -> f64 {
+        let end = self
+            .peak(self.first, pressure)
+            .max(self.peak(self.last, pressure));
+        match self.peak(self.middle, pressure) {
+            mid if mid > 0.0 => end / mid,
+            _ if end > 0.0 => f64::INFINITY,
+            _ => 0.0,
+        }
+    }
+}
+
+/// The larger end's peak pressure over the peak at mid-length: above [`EDGE_LOADING`], the
+/// ends are edge loaded.
+pub(crate) fn end_ratio(points: &[[f64; 3]], pressure: &[f64]) -> f64 {
+    Columns::new(points).end_ratio(pressure)
+}
+
+/// The point of largest pressure: x, y \[mm\].
+fn peak_at(points: &[[f64; 3]], pressure: &[f64]) -> [f64; 2] {
+    let top = (0..points.len())
+        .max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))
+        .unwrap_or(0);
+    [points[top][0], points[top][1]]
+}
 
 /// A roller case's figures from its interface: points, pressure, crown drop per point and the
 /// cell size across.
@@ -125,32 +192,47 @@ pub(crate) fn report(
     drop: &[f64],
     dy: f64,
 ) -> crate::RollerReport {
-    let mut xs: Vec<f64> = points.iter().map(|x| x[0]).collect();
-    xs.sort_by(f64::total_cmp);
-    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
-    let (first, last) = (xs[0], xs[xs.len() - 1]);
-    let middle = xs
-        .iter()
-        .copied()
-        .min_by(|a, b| a.abs().total_cmp(&b.abs()))
-        .unwrap_or(0.0);
-    let column = |c: f64| (0..points.len()).filter(move |&i| (points[i][0] - c).abs() < 1e-9);
-    let peak = |c: f64| column(c).map(|i| pressure[i]).fold(0.0, f64::max);
-    let half_width = |c: f64| 0.5 * dy * column(c).filter(|&i| pressure[i] > 0.0).count() as f64;
-    let top = (0..points.len())
-        .max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))
-        .unwrap_or(0);
-    let end_drop = column(first)
-        .chain(column(last))
+    let columns = Columns::new(points);
+    let half_width =
+        |c: f64| 0.5 * dy * columns.column(c).filter(|&i| pressure[i] > 0.0).count() as f64;
+    let end_drop = columns
+        .column(columns.first)
+        .chain(columns.column(columns.last))
         .map(|i| drop[i])
         .fold(0.0, f64::max);
     crate::RollerReport {
-        p_max_at_mm: [points[top][0], points[top][1]],
-        edge_loading: peak(first).max(peak(last)) > EDGE_LOADING * peak(middle),
+        p_max_at_mm: peak_at(points, pressure),
+        edge_loading: columns.end_ratio(pressure) > EDGE_LOADING,
         half_width_mm: [
-            half_width(middle),
-            0.5 * (half_width(first) + half_width(last)),
+            half_width(columns.middle),
+            0.5 * (half_width(columns.first) + half_width(columns.last)),
         ],
         crown_drop_end_um: 1e3 * end_drop,
+        envelope: vec![],
+        worst_p_max: None,
+        tuned: None,
+    }
+}
+
+/// One case of an envelope from its contact: load, tilt, points, pressure, approach \[mm\] and
+/// the cell size across (for the centre row).
+pub(crate) fn envelope_case(
+    [load_n, tilt_arcmin]: [f64; 2],
+    points: &[[f64; 3]],
+    pressure: &[f64],
+    approach: f64,
+    dy: f64,
+) -> crate::EnvelopeCaseReport {
+    crate::EnvelopeCaseReport {
+        load_n,
+        tilt_arcmin,
+        p_max: pressure.iter().fold(0.0, |m: f64, p| m.max(*p)),
+        p_max_at_mm: peak_at(points, pressure),
+        edge_loading: end_ratio(points, pressure) > EDGE_LOADING,
+        approach_um: 1e3 * approach,
+        centre_line: (0..points.len())
+            .filter(|&i| points[i][1].abs() < 0.5 * dy)
+            .map(|i| [points[i][0], pressure[i]])
+            .collect(),
     }
 }

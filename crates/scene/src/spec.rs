@@ -26,6 +26,10 @@ pub struct SceneSpec {
     /// anything, where a sweep varies one number.
     #[serde(default)]
     pub case: Vec<CaseSpec>,
+    /// Load cases that share a roller's crown (the `roller` kind): each case is also solved
+    /// under every load and tilt of the envelope, and a `robust` crown is designed for all.
+    #[serde(default)]
+    pub envelope: Option<EnvelopeSpec>,
     /// Memory the dense matrices of a solve may take \[MB\] (default 2000); past it a dense
     /// solver or the linear programme refuses the case before allocating.
     #[serde(default)]
@@ -52,6 +56,17 @@ pub struct CaseSpec {
     pub label: String,
     /// Dotted key → its value in this case.
     pub set: std::collections::BTreeMap<String, serde_json::Value>,
+}
+
+/// An envelope of load cases for a roller: every combination of a load factor (of `load_n`)
+/// and a tilt. The scene's own load and tilt are always a case.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvelopeSpec {
+    /// Loads as multiples of `load_n`, each positive.
+    pub load_factors: Vec<f64>,
+    /// Misalignments \[arc-minutes\].
+    pub tilts_arcmin: Vec<f64>,
 }
 
 /// An isotropic linear-elastic material.
@@ -298,6 +313,13 @@ pub enum ProfileSpec {
     },
     /// The crown the `[optimisation]` finds: Ω_v the centre row, the profile along the axis.
     Optimised,
+    /// The symmetric crown the `[optimisation]` (mode `load_split`) finds for the whole
+    /// `[envelope]`: the least worst-case p_max, max over the cases of p ≤ v·p_max.
+    Robust,
+    /// Fujiwara–Kawase with K1, K2 and z_m tuned by a Nelder–Mead search to the least
+    /// worst-case p_max over the `[envelope]` (or at the scene's load without one), ends that
+    /// carry more than 10 % over mid-length penalised; from K1 = 1, K2 = ½ and z_m = 5 Q/(π l E*).
+    FujiwaraKawaseTuned,
 }
 
 /// The contact solver.
