@@ -389,6 +389,19 @@ fn bearing_roller(nx: usize, ny: usize) -> (contopt::greens::HalfSpace, Vec<f64>
     (body, h, estar)
 }
 
+/// Ω_v the centre row y = 0 of a roller grid, the rest Ω_nv.
+fn centre_row(iface: &contopt::Interface) -> Vec<contopt::Region> {
+    use contopt::Region;
+    let tag = |x: &[f64; 3]| {
+        if x[1].abs() < 1e-9 {
+            Region::OmegaV
+        } else {
+            Region::OmegaNv
+        }
+    };
+    iface.points.iter().map(tag).collect()
+}
+
 /// The straight roller on 100 × 53 cells (10 across Hertz's half-width), matrix-free: the
 /// centre carries less than the nominal 544.6 N/mm (the ends take more on a half-space), and
 /// its peak is Hertz's p₀ for the local centre line load within 0.2 % (measured −0.009 %; the
@@ -433,17 +446,7 @@ fn optimised_roller_crown_by_the_load_split() {
     let iface = body.interface();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
     let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let regions: Vec<Region> = iface
-        .points
-        .iter()
-        .map(|x| {
-            if x[1].abs() < 1e-9 {
-                Region::OmegaV
-            } else {
-                Region::OmegaNv
-            }
-        })
-        .collect();
+    let regions = centre_row(iface);
     let v = Profile::cubic(3.0, 5.0).unwrap();
     let shape = GapShape::extruded(iface, 0).unwrap();
     let opt = Optimisation::new(&problem, &shape, &v)
@@ -503,17 +506,7 @@ fn robust_roller_crown_over_an_envelope() {
     };
     let design = case(1.5, gamma);
     let others = [case(1.5, -gamma), case(1.0, 0.0), case(0.5, 0.0)];
-    let regions: Vec<Region> = iface
-        .points
-        .iter()
-        .map(|x| {
-            if x[1].abs() < 1e-9 {
-                Region::OmegaV
-            } else {
-                Region::OmegaNv
-            }
-        })
-        .collect();
+    let regions = centre_row(iface);
     let v = Profile::cubic(4.5, 5.0).unwrap();
     let shape = GapShape::symmetric(iface, 0).unwrap();
     let pk = PolonskyKeer::default();

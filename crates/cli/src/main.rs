@@ -362,19 +362,24 @@ fn write(report: &Report, dir: &Path) -> std::io::Result<()> {
             .iter()
             .map(|c| (c.label.clone(), line(c, f)))
             .collect();
-        let refs: Vec<(&str, &[(f64, f64)])> = series
-            .iter()
-            .map(|(l, v)| (l.as_str(), v.as_slice()))
-            .collect();
-        let svg = contopt::plot::line_plot(
+        let svg = chart(
             &format!("{}: {title}", report.scene),
             "x [mm]",
             label,
-            &refs,
+            &series,
         );
         std::fs::write(dir.join(file), svg)?;
     }
     write_maps(report, dir)
+}
+
+/// A line chart of labelled series.
+fn chart(title: &str, x: &str, y: &str, series: &[(String, Vec<(f64, f64)>)]) -> String {
+    let refs: Vec<(&str, &[(f64, f64)])> = series
+        .iter()
+        .map(|(l, v)| (l.as_str(), v.as_slice()))
+        .collect();
+    contopt::plot::line_plot(title, x, y, &refs)
 }
 
 /// A heat map of the pressure over a two-dimensional region, one per case:
@@ -415,15 +420,11 @@ fn write_envelopes(report: &Report, dir: &Path) -> std::io::Result<()> {
                 (label, e.centre_line.iter().map(|p| (p[0], p[1])).collect())
             })
             .collect();
-        let refs: Vec<(&str, &[(f64, f64)])> = series
-            .iter()
-            .map(|(l, v)| (l.as_str(), v.as_slice()))
-            .collect();
-        let svg = contopt::plot::line_plot(
+        let svg = chart(
             &format!("{}: centre-line pressure, {}", report.scene, c.label),
             "x [mm] (along the axis)",
             "p [MPa]",
-            &refs,
+            &series,
         );
         std::fs::write(dir.join(format!("envelope_{}.svg", k + 1)), svg)?;
     }

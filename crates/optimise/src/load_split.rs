@@ -65,7 +65,9 @@ impl Optimisation<'_> {
         tolerance: f64,
         max_iterations: usize,
     ) -> Result<Optimum> {
-        Ok(self.split(&[], solver, tolerance, max_iterations)?.optimum)
+        Ok(self
+            .envelope_split(&[], solver, tolerance, max_iterations)?
+            .optimum)
     }
 
     /// The robust optimum over an envelope of load cases that share one gap change: the least
@@ -84,17 +86,6 @@ impl Optimisation<'_> {
     /// multipliers of the minimax's stationarity μᵀJ = 0 with every column active. With one
     /// case it is the load split itself.
     pub fn envelope_split(
-        &self,
-        cases: &[InterfaceProblem],
-        solver: &dyn ContactSolver,
-        tolerance: f64,
-        max_iterations: usize,
-    ) -> Result<EnvelopeOptimum> {
-        self.split(cases, solver, tolerance, max_iterations)
-    }
-
-    /// The load split over the design case and `cases` (none: the plain load split).
-    fn split(
         &self,
         cases: &[InterfaceProblem],
         solver: &dyn ContactSolver,
