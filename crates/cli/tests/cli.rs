@@ -338,13 +338,17 @@ fn roller_scenes() {
 /// The bundled envelope study on 60 × 31 cells: nine cases per profile, the scene's own first;
 /// the robust crown (L1 = 5 mm) has the lowest worst case, below ISO, the single-load optimum
 /// and Fujiwara–Kawase tuned for the same envelope, with no case edge loaded; every case of the
-/// robust crown stays at or below its worst p_max. Bad envelopes are refused by name.
+/// robust crown stays at or below its worst p_max, and mirrored tilts give the same p_max.
+/// Bad envelopes are refused by name.
 #[test]
 fn roller_envelope_study() {
     let path = variant_of(
         "roller-envelope",
         "envelope-coarse",
-        &[("cells = [200, 105]", "cells = [60, 31]")],
+        &[
+            ("cells = [200, 105]", "cells = [60, 31]"),
+            ("[-2.0, 0.0, 2.0]", "[2.0, 0.0, -2.0]"),
+        ],
     );
     let report = run_file_json(&path);
     let cases = report["cases"].as_array().unwrap();
@@ -371,9 +375,27 @@ fn roller_envelope_study() {
         .iter()
         .find(|c| c["label"] == "robust, L1 = 5 mm")
         .unwrap();
-    for e in case["roller"]["envelope"].as_array().unwrap() {
+    let envelope = case["roller"]["envelope"].as_array().unwrap();
+    for e in envelope {
         assert_eq!(e["edge_loading"], false, "{e}");
         assert!(e["p_max"].as_f64().unwrap() <= robust * (1.0 + 1e-6));
+        // The crown is symmetric: a tilt and its mirror give one p_max, each reported under
+        // its own case (the design case, 1.5 Q at +2′, is not the last one here).
+        let mirror = envelope
+            .iter()
+            .find(|m| {
+                m["load_n"] == e["load_n"]
+                    && m["tilt_arcmin"] == -e["tilt_arcmin"].as_f64().unwrap()
+            })
+            .unwrap();
+        let (a, b) = (
+            e["p_max"].as_f64().unwrap(),
+            mirror["p_max"].as_f64().unwrap(),
+        );
+        assert!(
+            (a / b - 1.0).abs() < 1e-3,
+            "{e} against its mirror {mirror}"
+        );
     }
     let tuned = cases
         .iter()

@@ -592,10 +592,13 @@ impl Case {
         let mut rest = found.cases.iter();
         let (mut pressures, mut approaches, mut own) = (vec![], vec![], None);
         for k in 0..cases.len() {
-            let (p, gap, rigid) = match (k == design, rest.next()) {
-                (true, _) => (&optimum.pressure, &optimum.gap, &optimum.rigid),
-                (false, Some(s)) => (&s.pressure, &s.gap, &s.rigid),
-                (false, None) => break,
+            let (p, gap, rigid) = if k == design {
+                (&optimum.pressure, &optimum.gap, &optimum.rigid)
+            } else {
+                match rest.next() {
+                    Some(s) => (&s.pressure, &s.gap, &s.rigid),
+                    None => break,
+                }
             };
             if k == 0 {
                 own = Some(Optimum {
