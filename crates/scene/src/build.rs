@@ -496,7 +496,7 @@ impl Case {
             Design::Tuned => {
                 let info = built.roller.as_ref().ok_or_else(|| self.not_a_roller())?;
                 let (report, cases, tuned) = self.tuned(report, &cases, solver.as_ref(), info)?;
-                (report, Envelope::Solved(cases, Some(tuned)))
+                (report, Envelope::Solved(cases, tuned))
             }
         };
         if let (Some(info), true) = (&built.roller, report.converged) {
@@ -619,14 +619,16 @@ impl Case {
     }
 
     /// The Fujiwara–Kawase profile tuned for the envelope `cases`: the report of the scene's
-    /// own case under it, the cases' reports and the parameters.
+    /// own case under it, the cases' reports and the parameters; a contact solve that does not
+    /// converge during the search leaves the report unconverged, with its error.
     fn tuned(
         &self,
         mut report: CaseReport,
         cases: &[LoadCase],
         solver: &dyn ContactSolver,
         info: &crate::roller::Info,
-    ) -> std::result::Result<(CaseReport, Vec<EnvelopeCaseReport>, TunedProfile), SceneError> {
+    ) -> std::result::Result<(CaseReport, Vec<EnvelopeCaseReport>, Option<TunedProfile>), SceneError>
+    {
         let started = Instant::now();
         let outcome = crate::envelope::tune_fujiwara_kawase(cases, info, solver);
         report.time("tune", started);
@@ -637,7 +639,11 @@ impl Case {
                 let iface = cases[0].problem.interface();
                 let own = own.ok_or_else(|| Error::invalid("envelope", "no case", "one case"));
                 let report = contact_report(report, iface, &drop, own);
-                Ok((report, reports, tuned))
+                Ok((report, reports, Some(tuned)))
+            }
+            Err(e @ Error::NotConverged { .. }) => {
+                report.error = Some(e.to_string());
+                Ok((report, vec![], None))
             }
             Err(e) => Err(self.invalid("problem.profile", e)),
         }
