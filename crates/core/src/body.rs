@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{GapShape, Interface, Result};
+use crate::{Error, GapShape, Interface, Result, Subsurface, SubsurfaceRequest};
 
 /// A rigid-body mode that a body's supports leave free (the floating punch of Table 1 has
 /// one: the axial translation).
@@ -105,5 +105,18 @@ pub trait ElasticBody {
     /// default) when every point pressure moves the body.
     fn pressure_basis(&self) -> Option<&GapShape> {
         None
+    }
+
+    /// The stresses below the surface under the contact pressure `pressure` \[MPa\] at the
+    /// interface points (and the body's given loads, if it has any): the peaks of each
+    /// criterion over the requested depths, and the requested sections. The default refuses:
+    /// a body that cannot say what happens below its surface says so.
+    fn subsurface(&self, pressure: &[f64], request: &SubsurfaceRequest) -> Result<Subsurface> {
+        let _ = (pressure, request);
+        Err(Error::invalid(
+            format!("{}.subsurface", self.name()),
+            "requested",
+            "this body does not compute stresses below its surface",
+        ))
     }
 }

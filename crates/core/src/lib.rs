@@ -11,6 +11,7 @@ mod interface;
 mod material;
 mod rigid;
 mod state;
+pub mod stress;
 
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
@@ -19,3 +20,7 @@ pub use interface::{Geometry, Interface, Region};
 pub use material::Material;
 pub use rigid::RigidBody;
 pub use state::{ContactState, Residuals, Status};
+pub use stress::{
+    Peak, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,
+    SubsurfaceRequest,
+};

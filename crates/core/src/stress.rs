@@ -1,0 +1,342 @@
+//! Stresses below a contact surface and the criteria a designer judges them by: von Mises,
+//! Tresca (the largest shear) and the principal stresses, with where each is largest.
+//!
+//! A contact pressure is not yet a verdict: yield, case-hardening depth and rolling-contact
+//! fatigue are judged by these stresses, which peak below the surface (Johnson, *Contact
+//! Mechanics*, §4.2). Bodies that can say what happens below their surface implement
+//! [`crate::ElasticBody::subsurface`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::{Error, Result};
+
+/// A symmetric stress tensor \[MPa\], tension positive. For a body with a contact surface, x
+/// and y run along the surface and z into the body; a plane or axisymmetric body puts its
+/// in-plane components in `xx`, `zz` and `xz` (x or r along the surface, z the depth) and its
+/// out-of-plane (hoop) stress in `yy`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StressTensor {
+    /// σ_xx.
+    pub xx: f64,
+    /// σ_yy.
+    pub yy: f64,
+    /// σ_zz.
+    pub zz: f64,
+    /// τ_xy.
+    pub xy: f64,
+    /// τ_xz.
+    pub xz: f64,
+    /// τ_yz.
+    pub yz: f64,
+}
+
+impl StressTensor {
+    /// The principal stresses σ₁ ≥ σ₂ ≥ σ₃, the eigenvalues of the tensor, by the
+    /// trigonometric solution of the characteristic cubic (Smith 1961), to about 1e-8 of the
+    /// deviatoric size where two are equal (acos is steep near ±1) and to round-off elsewhere.
+    pub fn principal(&self) -> [f64; 3] {
+        let off = self.xy * self.xy + self.xz * self.xz + self.yz * self.yz;
+        let mean = (self.xx + self.yy + self.zz) / 3.0;
+        let (a, b, c) = (self.xx - mean, self.yy - mean, self.zz - mean);
+        let spread = ((a * a + b * b + c * c + 2.0 * off) / 6.0).sqrt();
+        if spread == 0.0 {
+            return [mean; 3];
+        }
+        // det((S − mean·I)/spread) / 2 = cos 3φ.
+        let det = a * (b * c - self.yz * self.yz) - self.xy * (self.xy * c - self.yz * self.xz)
+            + self.xz * (self.xy * self.yz - b * self.xz);
+        let cos3 = (det / (2.0 * spread.powi(3))).clamp(-1.0, 1.0);
+        let phi = cos3.acos() / 3.0;
+        let s1 = mean + 2.0 * spread * phi.cos();
+        let s3 = mean + 2.0 * spread * (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos();
+        [s1, 3.0 * mean - s1 - s3, s3]
+    }
+
+    /// The von Mises equivalent stress √(3 J₂).
+    pub fn von_mises(&self) -> f64 {
+        let (a, b, c) = (self.xx - self.yy, self.yy - self.zz, self.zz - self.xx);
+        let shear = self.xy * self.xy + self.xz * self.xz + self.yz * self.yz;
+        (0.5 * (a * a + b * b + c * c) + 3.0 * shear).sqrt()
+    }
+
+    /// The largest shear stress (σ₁ − σ₃)/2: Tresca's criterion compares it with half the
+    /// yield stress.
+    pub fn tresca(&self) -> f64 {
+        let [s1, _, s3] = self.principal();
+        0.5 * (s1 - s3)
+    }
+
+    /// Whether every component is finite.
+    pub fn is_finite(&self) -> bool {
+        [self.xx, self.yy, self.zz, self.xy, self.xz, self.yz]
+            .iter()
+            .all(|v| v.is_finite())
+    }
+}
+
+/// Where a criterion is largest and its value there.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Peak {
+    /// The criterion's value \[MPa\].
+    pub value: f64,
+    /// Position along the surface \[mm\]: x of a grid or a strip, r of a ring, the node's
+    /// first coordinate in a finite-element body.
+    pub x: f64,
+    /// The second surface coordinate \[mm\] of a grid (0 for a plane or axisymmetric body; the
+    /// node's second coordinate in a finite-element body).
+    pub y: f64,
+    /// Depth below the contact surface \[mm\].
+    pub depth: f64,
+}
+
+/// The largest value of each criterion over the points a body evaluated.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StressPeaks {
+    /// Largest von Mises stress.
+    pub von_mises: Peak,
+    /// Largest shear stress (σ₁ − σ₃)/2.
+    pub tresca: Peak,
+    /// Largest principal stress σ₁ (the largest tension when positive).
+    pub max_principal: Peak,
+    /// Smallest principal stress σ₃ (the largest compression), its value negative.
+    pub min_principal: Peak,
+}
+
+impl Default for StressPeaks {
+    fn default() -> Self {
+        let low = Peak {
+            value: f64::NEG_INFINITY,
+            ..Peak::default()
+        };
+        Self {
+            von_mises: low,
+            tresca: low,
+            max_principal: low,
+            min_principal: Peak {
+                value: f64::INFINITY,
+                ..Peak::default()
+            },
+        }
+    }
+}
+
+impl StressPeaks {
+    /// Takes the stress `s` at surface position (`x`, `y`) and `depth` into account.
+    pub fn record(&mut self, s: &StressTensor, x: f64, y: f64, depth: f64) {
+        let at = |value| Peak { value, x, y, depth };
+        let [s1, _, s3] = s.principal();
+        let von_mises = s.von_mises();
+        if von_mises > self.von_mises.value {
+            self.von_mises = at(von_mises);
+        }
+        let tresca = 0.5 * (s1 - s3);
+        if tresca > self.tresca.value {
+            self.tresca = at(tresca);
+        }
+        if s1 > self.max_principal.value {
+            self.max_principal = at(s1);
+        }
+        if s3 < self.min_principal.value {
+            self.min_principal = at(s3);
+        }
+    }
+
+    /// The larger of each criterion over `self` and `other`.
+    pub fn merge(&mut self, other: &StressPeaks) {
+        for (mine, theirs) in [
+            (&mut self.von_mises, other.von_mises),
+            (&mut self.tresca, other.tresca),
+            (&mut self.max_principal, other.max_principal),
+        ] {
+            if theirs.value > mine.value {
+                *mine = theirs;
+            }
+        }
+        if other.min_principal.value < self.min_principal.value {
+            self.min_principal = other.min_principal;
+        }
+    }
+
+    /// The peaks when every value recorded was finite; otherwise an error naming the body.
+    pub fn finite(self, body: &str) -> Result<Self> {
+        let all = [
+            self.von_mises,
+            self.tresca,
+            self.max_principal,
+            self.min_principal,
+        ];
+        match all.iter().find(|p| !p.value.is_finite()) {
+            None => Ok(self),
+            Some(p) => Err(Error::invalid(
+                format!("{body}.subsurface"),
+                p.value,
+                "a stress below the surface is not finite (no points evaluated, or a pressure \
+                 that is not finite)",
+            )),
+        }
+    }
+}
+
+/// The direction of a vertical section through a surface grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SectionAxis {
+    /// Along x, at a fixed y.
+    X,
+    /// Along y, at a fixed x.
+    Y,
+}
+
+/// A vertical section: the plane through the line `axis` at the other surface coordinate
+/// `at` \[mm\]. A plane or axisymmetric body has one section, its own plane, and ignores both.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Section {
+    /// The section's direction along the surface.
+    pub axis: SectionAxis,
+    /// The fixed other coordinate \[mm\]; a grid takes its nearest row or column of cells.
+    pub at: f64,
+}
+
+/// What to compute below the surface.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SubsurfaceRequest {
+    /// Depths \[mm\], each positive, at which every surface point is evaluated for the peaks.
+    pub depths: Vec<f64>,
+    /// Sections whose whole stress field is returned, at the same depths.
+    pub sections: Vec<Section>,
+}
+
+impl SubsurfaceRequest {
+    /// Checks the depths (at least one, each finite and positive).
+    pub fn check(&self) -> Result<()> {
+        if self.depths.is_empty() {
+            return Err(Error::invalid(
+                "subsurface.depths",
+                "[]",
+                "give at least one depth",
+            ));
+        }
+        if let Some((i, d)) = self
+            .depths
+            .iter()
+            .enumerate()
+            .find(|(_, d)| !(d.is_finite() && **d > 0.0))
+        {
+            return Err(Error::invalid(
+                format!("subsurface.depths[{i}]"),
+                d,
+                "must be positive and finite (the surface itself is the contact pressure)",
+            ));
+        }
+        if let Some((i, s)) = self
+            .sections
+            .iter()
+            .enumerate()
+            .find(|(_, s)| !s.at.is_finite())
+        {
+            return Err(Error::invalid(
+                format!("subsurface.sections[{i}].at"),
+                s.at,
+                "must be finite",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The stress field on one vertical section.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SectionField {
+    /// The section as the body took it (`at` moved to the grid row it used).
+    pub section: Section,
+    /// Positions along the section \[mm\].
+    pub positions: Vec<f64>,
+    /// Depths \[mm\].
+    pub depths: Vec<f64>,
+    /// The stress at each depth and position, depth after depth:
+    /// `tensors[k·positions.len() + i]`.
+    pub tensors: Vec<StressTensor>,
+}
+
+impl SectionField {
+    /// The stress at depth index `k` and position index `i`.
+    pub fn at(&self, k: usize, i: usize) -> &StressTensor {
+        &self.tensors[k * self.positions.len() + i]
+    }
+}
+
+/// Stresses below a body's surface under a contact pressure.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Subsurface {
+    /// The largest value of each criterion over every surface point and requested depth.
+    pub peaks: StressPeaks,
+    /// The requested sections.
+    pub sections: Vec<SectionField>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn principal_stresses_of_a_rotated_tensor() {
+        // diag(3, −1, 2) rotated by 30° about z: the eigenvalues come back, sorted.
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let t = StressTensor {
+            xx: 3.0 * c * c - s * s,
+            yy: 3.0 * s * s - c * c,
+            zz: 2.0,
+            xy: 4.0 * c * s,
+            xz: 0.0,
+            yz: 0.0,
+        };
+        let p = t.principal();
+        for (got, want) in p.iter().zip([3.0, 2.0, -1.0]) {
+            assert!((got - want).abs() < 1e-12, "{p:?}");
+        }
+        assert!((t.tresca() - 2.0).abs() < 1e-12);
+        // von Mises from the principal stresses: √(½[(3−2)² + (2+1)² + (−1−3)²]) = √13.
+        assert!((t.von_mises() - 13f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn hydrostatic_and_pure_shear() {
+        let h = StressTensor {
+            xx: -5.0,
+            yy: -5.0,
+            zz: -5.0,
+            ..Default::default()
+        };
+        assert_eq!(h.principal(), [-5.0; 3]);
+        assert_eq!(h.von_mises(), 0.0);
+        let shear = StressTensor {
+            yz: 2.0,
+            ..Default::default()
+        };
+        let p = shear.principal();
+        assert!((p[0] - 2.0).abs() < 1e-12 && p[1].abs() < 1e-12 && (p[2] + 2.0).abs() < 1e-12);
+        assert!((shear.von_mises() - 2.0 * 3f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn peaks_keep_the_largest_and_reject_nothing_recorded() {
+        let mut peaks = StressPeaks::default();
+        assert!(peaks.finite("b").is_err());
+        let small = StressTensor {
+            zz: -1.0,
+            ..Default::default()
+        };
+        let large = StressTensor {
+            zz: -3.0,
+            ..Default::default()
+        };
+        peaks.record(&small, 0.0, 0.0, 1.0);
+        peaks.record(&large, 2.0, 0.0, 0.5);
+        peaks.record(&small, 4.0, 0.0, 2.0);
+        let peaks = peaks.finite("b").unwrap();
+        assert_eq!((peaks.von_mises.value, peaks.von_mises.x), (3.0, 2.0));
+        assert_eq!(peaks.min_principal.value, -3.0);
+        // A double eigenvalue costs the trigonometric solution ~√ε of relative accuracy.
+        assert!(peaks.max_principal.value.abs() < 1e-8 * 3.0);
+    }
+}
