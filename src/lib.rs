@@ -37,8 +37,9 @@
 pub use contopt_contact as contact;
 pub use contopt_core as core;
 pub use contopt_core::{
-    ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Region, Residuals,
-    Result, RigidBody, RigidMode,
+    ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Peak, Region,
+    Residuals, Result, RigidBody, RigidMode, Section, SectionAxis, SectionField, StressPeaks,
+    StressTensor, Subsurface, SubsurfaceRequest,
 };
 pub use contopt_fem as fem;
 pub use contopt_greens as greens;

@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{Error, GapShape, Interface, Result, Subsurface, SubsurfaceRequest};
+use crate::{GapShape, Interface, Result, Subsurface, SubsurfaceRequest};
 
 /// A rigid-body mode that a body's supports leave free (the floating punch of Table 1 has
 /// one: the axial translation).
@@ -109,14 +109,15 @@ pub trait ElasticBody {
 
     /// The stresses below the surface under the contact pressure `pressure` \[MPa\] at the
     /// interface points (and the body's given loads, if it has any): the peaks of each
-    /// criterion over the requested depths, and the requested sections. The default refuses:
-    /// a body that cannot say what happens below its surface says so.
-    fn subsurface(&self, pressure: &[f64], request: &SubsurfaceRequest) -> Result<Subsurface> {
+    /// criterion over the requested depths, and the requested sections. `None` (the default)
+    /// when the body does not compute stresses below its surface: a rigid body, or a user
+    /// type that does not say.
+    fn subsurface(
+        &self,
+        pressure: &[f64],
+        request: &SubsurfaceRequest,
+    ) -> Result<Option<Subsurface>> {
         let _ = (pressure, request);
-        Err(Error::invalid(
-            format!("{}.subsurface", self.name()),
-            "requested",
-            "this body does not compute stresses below its surface",
-        ))
+        Ok(None)
     }
 }

@@ -121,22 +121,20 @@ impl Default for StressPeaks {
 }
 
 impl StressPeaks {
-    /// Takes the stress `s` at surface position (`x`, `y`) and `depth` into account.
+    /// Takes the stress `s` at surface position (`x`, `y`) and `depth` into account. A value
+    /// that is not a number sticks, so that [`StressPeaks::finite`] refuses the peaks.
     pub fn record(&mut self, s: &StressTensor, x: f64, y: f64, depth: f64) {
         let at = |value| Peak { value, x, y, depth };
         let [s1, _, s3] = s.principal();
-        let von_mises = s.von_mises();
-        if von_mises > self.von_mises.value {
-            self.von_mises = at(von_mises);
-        }
-        let tresca = 0.5 * (s1 - s3);
-        if tresca > self.tresca.value {
-            self.tresca = at(tresca);
-        }
-        if s1 > self.max_principal.value {
-            self.max_principal = at(s1);
-        }
-        if s3 < self.min_principal.value {
+        let raise = |peak: &mut Peak, value: f64| {
+            if !peak.value.is_nan() && (value.is_nan() || value > peak.value) {
+                *peak = at(value);
+            }
+        };
+        raise(&mut self.von_mises, s.von_mises());
+        raise(&mut self.tresca, 0.5 * (s1 - s3));
+        raise(&mut self.max_principal, s1);
+        if !self.min_principal.value.is_nan() && (s3.is_nan() || s3 < self.min_principal.value) {
             self.min_principal = at(s3);
         }
     }
@@ -333,6 +331,14 @@ mod tests {
         peaks.record(&small, 0.0, 0.0, 1.0);
         peaks.record(&large, 2.0, 0.0, 0.5);
         peaks.record(&small, 4.0, 0.0, 2.0);
+        let mut poisoned = peaks;
+        let nan = StressTensor {
+            xz: f64::NAN,
+            ..Default::default()
+        };
+        poisoned.record(&nan, 0.0, 0.0, 1.0);
+        poisoned.record(&large, 0.0, 0.0, 1.0);
+        assert!(poisoned.finite("b").is_err(), "a NaN must not be outgrown");
         let peaks = peaks.finite("b").unwrap();
         assert_eq!((peaks.von_mises.value, peaks.von_mises.x), (3.0, 2.0));
         assert_eq!(peaks.min_principal.value, -3.0);

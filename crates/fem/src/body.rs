@@ -2,7 +2,9 @@
 
 use std::time::{Duration, Instant};
 
-use contopt_core::{ElasticBody, Error, GapShape, Interface, Result, RigidMode};
+use contopt_core::{
+    ElasticBody, Error, GapShape, Interface, Result, RigidMode, Subsurface, SubsurfaceRequest,
+};
 use faer::Mat;
 
 use crate::element::GAUSS3;
@@ -301,5 +303,23 @@ impl ElasticBody for FeBody {
 
     fn rigid_modes(&self) -> &[RigidMode] {
         &self.rigid_modes
+    }
+
+    /// The peaks of each criterion over every node of the mesh, with the stresses recovered
+    /// at the nodes ([`FeBody::nodal_stresses`]: Gauss-point stresses extrapolated and
+    /// averaged) under `pressure` and the body's given loads. Each [`contopt_core::Peak`]
+    /// gives the node's model coordinates as `x`, `y` (r, z in axisymmetry) and as `depth`
+    /// its distance to the nearest interface point.
+    ///
+    /// A mesh has its own points below the surface, so the request's `depths` and `sections`
+    /// do not apply: they are ignored and `sections` comes back empty (the whole field is
+    /// [`FeBody::nodal_stresses`]). At a singular point (the edge of a flat punch) the nodal
+    /// peak grows as the mesh is refined, as the exact stress is unbounded there.
+    fn subsurface(
+        &self,
+        pressure: &[f64],
+        request: &SubsurfaceRequest,
+    ) -> Result<Option<Subsurface>> {
+        self.nodal_subsurface(pressure, request).map(Some)
     }
 }

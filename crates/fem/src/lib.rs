@@ -18,6 +18,7 @@ mod factor;
 mod mesh;
 mod model;
 pub mod paper;
+mod recovery;
 mod solution;
 mod system;
 

@@ -1,7 +1,10 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use contopt_core::{ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode};
+use contopt_core::{
+    ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode, Subsurface,
+    SubsurfaceRequest,
+};
 use faer::Mat;
 
 use crate::fft::Convolution;
@@ -23,11 +26,11 @@ use crate::fft::Convolution;
 /// undetermined constant, which the approach absorbs.
 #[derive(Clone, Debug)]
 pub struct HalfSpace {
-    name: String,
-    interface: Interface,
-    nx: usize,
-    ny: usize,
-    periodic: bool,
+    pub(crate) name: String,
+    pub(crate) interface: Interface,
+    pub(crate) nx: usize,
+    pub(crate) ny: usize,
+    pub(crate) periodic: bool,
     /// K[(Δi, Δj)]: deflection at a cell centre per unit force on a cell Δi, Δj away; the
     /// index is |Δ| on a free grid and Δ mod n on a periodic one.
     kernel: Mat<f64>,
@@ -36,6 +39,11 @@ pub struct HalfSpace {
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
     compliance: f64,
+    /// Cell sizes \[mm\].
+    pub(crate) dx: f64,
+    pub(crate) dy: f64,
+    /// Poisson's ratio: the stresses below the surface depend on it alone, not on E.
+    pub(crate) nu: f64,
 }
 
 /// The smallest length ≥ `n` (at most `max`) whose prime factors are 2, 3, 5 and 7, for
@@ -97,6 +105,9 @@ impl HalfSpace {
             convolution,
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
+            dx,
+            dy,
+            nu: material.nu(),
         })
     }
 
@@ -142,6 +153,9 @@ impl HalfSpace {
             convolution,
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
+            dx,
+            dy,
+            nu: material.nu(),
         })
     }
 
@@ -217,6 +231,9 @@ impl HalfSpace {
                     })
                     .collect(),
                 compliance: self.compliance,
+                dx: self.dx,
+                dy: self.dy,
+                nu: self.nu,
             },
             index,
         ))
@@ -234,6 +251,11 @@ impl HalfSpace {
     /// Number of cells (nx, ny).
     pub fn cells(&self) -> (usize, usize) {
         (self.nx, self.ny)
+    }
+
+    /// Whether the grid repeats ([`HalfSpace::periodic`]).
+    pub fn is_periodic(&self) -> bool {
+        self.periodic
     }
 
     /// The body free to translate along its normal, pressed into its partner by `force` \[N\] >
@@ -346,6 +368,14 @@ impl ElasticBody for HalfSpace {
 
     fn rigid_modes(&self) -> &[RigidMode] {
         &self.modes
+    }
+
+    fn subsurface(
+        &self,
+        pressure: &[f64],
+        request: &SubsurfaceRequest,
+    ) -> Result<Option<Subsurface>> {
+        self.stresses_below(pressure, request).map(Some)
     }
 }
 

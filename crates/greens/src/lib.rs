@@ -16,6 +16,8 @@ pub mod elliptic;
 mod fft;
 mod half_plane;
 mod half_space;
+mod subsurface;
+mod subsurface_2d;
 
 pub use axisymmetric::AxisymmetricHalfSpace;
 pub use half_plane::{HalfPlane, PlaneState};
@@ -72,7 +74,8 @@ impl DenseSurface {
     }
 }
 
-/// Implements `ElasticBody` for a type with a `surface: DenseSurface` field.
+/// Implements `ElasticBody` for a type with a `surface: DenseSurface` field and an inherent
+/// `stresses_below(&self, pressure, request)`, to which `subsurface` delegates.
 macro_rules! surface_body {
     ($body:ty) => {
         impl contopt_core::ElasticBody for $body {
@@ -101,6 +104,14 @@ macro_rules! surface_body {
 
             fn rigid_modes(&self) -> &[contopt_core::RigidMode] {
                 &[]
+            }
+
+            fn subsurface(
+                &self,
+                pressure: &[f64],
+                request: &contopt_core::SubsurfaceRequest,
+            ) -> contopt_core::Result<Option<contopt_core::Subsurface>> {
+                self.stresses_below(pressure, request).map(Some)
             }
         }
     };
