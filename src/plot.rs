@@ -132,6 +132,32 @@ pub fn heat_map(
     unit: &str,
     points: &[(f64, f64, f64)],
 ) -> String {
+    map_svg(title, xlabel, ylabel, unit, points, false)
+}
+
+/// A heat map of a vertical section below a surface, `points` (position along the surface,
+/// depth, value): the surface at the top, depth growing downwards and labelled as depth.
+pub fn section_map(title: &str, xlabel: &str, unit: &str, points: &[(f64, f64, f64)]) -> String {
+    let flipped: Vec<(f64, f64, f64)> = points.iter().map(|&(x, d, v)| (x, -d, v)).collect();
+    map_svg(
+        title,
+        xlabel,
+        "depth below the surface [mm]",
+        unit,
+        &flipped,
+        true,
+    )
+}
+
+/// [`heat_map`], with the y labels negated when `depth_down` (y is −depth).
+fn map_svg(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    unit: &str,
+    points: &[(f64, f64, f64)],
+    depth_down: bool,
+) -> String {
     let distinct = |pick: fn(&(f64, f64, f64)) -> f64| {
         let mut v: Vec<f64> = points.iter().map(pick).collect();
         v.sort_by(f64::total_cmp);
@@ -158,12 +184,16 @@ pub fn heat_map(
         (h - 2.0 * m) / (j1 - j0 + 1) as f64,
     );
     let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">{}</text>",
-        w / 2.0,
-        escape(title)
-    );
+    // A title of two lines (split at a newline) fits above the map.
+    for (k, line) in title.lines().enumerate() {
+        let _ = writeln!(
+            s,
+            "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"14\">{}</text>",
+            w / 2.0,
+            20 + 18 * k,
+            escape(line)
+        );
+    }
     let level = |v: f64| {
         if top > 0.0 {
             ((v / top) * (HEAT_LEVELS - 1) as f64).round() as usize
@@ -191,7 +221,9 @@ pub fn heat_map(
         }
     }
     // Axes: the extremes of x and y of the drawn cells.
-    let (x_lo, x_hi, y_lo, y_hi) = (xs[0], xs[xs.len() - 1], ys[j0], ys[j1]);
+    let (x_lo, x_hi) = (xs[0], xs[xs.len() - 1]);
+    let sign = if depth_down { -1.0 } else { 1.0 };
+    let (y_lo, y_hi) = (sign * ys[j0], sign * ys[j1]);
     let right = w - m - bar;
     let _ = writeln!(s, "<text x=\"{m}\" y=\"{}\" text-anchor=\"start\">{x_lo:.3}</text><text x=\"{right}\" y=\"{}\" text-anchor=\"end\">{x_hi:.3}</text>", h - m + 16.0, h - m + 16.0);
     let _ = writeln!(

@@ -1,7 +1,8 @@
 //! `contopt`: runs scene files (TOML or JSON) and writes their results.
 //!
 //! - `contopt run <scene> [--json] [--out DIR]`: solves every case and writes
-//!   `DIR/<name>/result.json`, `interface.csv`, `p.svg` and `dh.svg`, then prints a table (or,
+//!   `DIR/<name>/result.json`, `interface.csv`, `p.svg` and `dh.svg` (with `[output.subsurface]`
+//!   also `subsurface_<case>.csv` and `mises_<case>_<section>.svg`), then prints a table (or,
 //!   with `--json`, the report as one JSON document on stdout);
 //! - `contopt check <scene>`: reads and checks the scene without solving;
 //! - `contopt list`: the bundled scenes, which `run` and `check` also take by name.
@@ -160,10 +161,22 @@ fn run(scene: &Scene, json: bool, out: &Path) -> Result<bool, SceneError> {
     } else {
         print!("{}", table(&report));
         match &written {
-            Ok(()) => println!(
-                "results: {}/{{result.json,interface.csv,p.svg,dh.svg}}",
-                dir.display()
-            ),
+            Ok(()) => {
+                let sections = report
+                    .cases
+                    .iter()
+                    .flat_map(|c| c.subsurface.iter().flat_map(|s| &s.bodies))
+                    .any(|b| !b.sections.is_empty());
+                let stresses = if sections {
+                    ",subsurface_<case>.csv,mises_<case>_<section>.svg"
+                } else {
+                    ""
+                };
+                println!(
+                    "results: {}/{{result.json,interface.csv,p.svg,dh.svg{stresses}}}",
+                    dir.display()
+                )
+            }
             Err(e) => eprintln!("could not write {}: {e}", dir.display()),
         }
     }
@@ -176,9 +189,16 @@ fn run(scene: &Scene, json: bool, out: &Path) -> Result<bool, SceneError> {
 }
 
 fn table(report: &Report) -> String {
-    if report.cases.iter().any(|c| c.roller.is_some()) {
-        return roller_table(report);
-    }
+    let cases = if report.cases.iter().any(|c| c.roller.is_some()) {
+        roller_table(report)
+    } else {
+        case_table(report)
+    };
+    cases + &subsurface_table(report)
+}
+
+/// p_max, Δh_max, the optimisation's steps and the time of each case.
+fn case_table(report: &Report) -> String {
     use std::fmt::Write;
     let mut s = format!(
         "{:<16} {:>12} {:>12} {:>6} {:>10}\n",
@@ -309,6 +329,46 @@ fn envelope_table(report: &Report, width: usize) -> String {
     s + &tuned
 }
 
+/// The largest stresses below the surface of each case's bodies: von Mises and the largest
+/// shear (Tresca) with their depth and position, the largest tension and compression. Empty
+/// when no case asked for them.
+fn subsurface_table(report: &Report) -> String {
+    use std::fmt::Write;
+    if report.cases.iter().all(|c| c.subsurface.is_none()) {
+        return String::new();
+    }
+    let width = report
+        .cases
+        .iter()
+        .map(|c| c.label.len())
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    let mut s = format!(
+        "\nbelow the surface (MPa; depth and position x, y in mm)\n{:<width$} {:<22} {:>10} {:>8} {:>16} {:>10} {:>8} {:>10} {:>10}\n",
+        "case", "body", "von Mises", "depth", "at x, y", "Tresca", "depth", "σ1 max", "σ3 min"
+    );
+    for c in &report.cases {
+        for b in c.subsurface.iter().flat_map(|r| &r.bodies) {
+            let p = &b.peaks;
+            let _ = writeln!(
+                s,
+                "{:<width$} {:<22} {:>10.1} {:>8.4} {:>16} {:>10.1} {:>8.4} {:>10.1} {:>10.1}",
+                c.label,
+                b.body,
+                p.von_mises.value,
+                p.von_mises.depth,
+                format!("{:.3}, {:.3}", p.von_mises.x, p.von_mises.y),
+                p.tresca.value,
+                p.tresca.depth,
+                p.max_principal.value,
+                p.min_principal.value
+            );
+        }
+    }
+    s
+}
+
 /// Writes `result.json`, `interface.csv` and the plots of p and Δh along x (on a grid: along
 /// the points nearest the x axis).
 fn write(report: &Report, dir: &Path) -> std::io::Result<()> {
@@ -427,6 +487,80 @@ fn write_envelopes(report: &Report, dir: &Path) -> std::io::Result<()> {
             &series,
         );
         std::fs::write(dir.join(format!("envelope_{}.svg", k + 1)), svg)?;
+    }
+    write_sections(report, dir)
+}
+
+/// The stresses on each vertical section below each body, one CSV per case,
+/// `subsurface_<case number>.csv`, and a von Mises heat map per section,
+/// `mises_<case number>_<section number>.svg` (sections numbered over the case's bodies).
+fn write_sections(report: &Report, dir: &Path) -> std::io::Result<()> {
+    use std::fmt::Write;
+    for (k, c) in report.cases.iter().enumerate() {
+        let Some(sub) = &c.subsurface else {
+            continue;
+        };
+        let mut csv = String::from(
+            "body,section,along,at_mm,position_mm,depth_mm,sxx_mpa,syy_mpa,szz_mpa,sxy_mpa,sxz_mpa,syz_mpa,von_mises_mpa,tresca_mpa,s1_mpa,s3_mpa\n",
+        );
+        let sections = sub
+            .bodies
+            .iter()
+            .flat_map(|b| b.sections.iter().map(move |f| (b, f)));
+        for (n, (body, field)) in sections.enumerate() {
+            let along = match field.section.axis {
+                contopt::SectionAxis::X => "x",
+                contopt::SectionAxis::Y => "y",
+            };
+            let mut points = Vec::with_capacity(field.tensors.len());
+            for (kd, depth) in field.depths.iter().enumerate() {
+                for (i, position) in field.positions.iter().enumerate() {
+                    let t = field.at(kd, i);
+                    let [s1, _, s3] = t.principal();
+                    let _ = writeln!(
+                        csv,
+                        "\"{}\",{},{along},{},{position},{depth},{},{},{},{},{},{},{},{},{s1},{s3}",
+                        body.body.replace('"', "\"\""),
+                        n + 1,
+                        field.section.at,
+                        t.xx,
+                        t.yy,
+                        t.zz,
+                        t.xy,
+                        t.xz,
+                        t.yz,
+                        t.von_mises(),
+                        t.tresca()
+                    );
+                    points.push((*position, *depth, t.von_mises()));
+                }
+            }
+            let across = if along == "x" { "y" } else { "x" };
+            let case = if c.label == report.scene {
+                String::new()
+            } else {
+                format!(", {}", c.label)
+            };
+            let (top, depth) =
+                points
+                    .iter()
+                    .fold((0.0, 0.0), |m, p| if p.2 > m.0 { (p.2, p.1) } else { m });
+            let title = format!(
+                "von Mises below the {}{case}, along {along} at {across} = {:.3} mm\n\
+                 largest {top:.0} MPa at depth {depth:.3} mm",
+                body.body, field.section.at
+            );
+            let svg = contopt::plot::section_map(
+                &title,
+                &format!("{along} [mm] along the section"),
+                "MPa",
+                &points,
+            );
+            std::fs::write(dir.join(format!("mises_{}_{}.svg", k + 1, n + 1)), svg)?;
+        }
+        if sub.bodies.iter().any(|b| !b.sections.is_empty()) {
+            std::fs::write(dir.join(format!("subsurface_{}.csv", k + 1)), csv)?;
+        }
     }
     Ok(())
 }

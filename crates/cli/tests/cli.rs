@@ -59,6 +59,74 @@ fn hertz_scene_matches_hertz() {
     assert!((p_max / p0 - 1.0).abs() < 0.005, "{p_max} vs {p0}");
     assert!(case["dh_max_um"].is_null());
     assert_eq!(case["interface"].as_array().unwrap().len(), 64 * 64);
+    // Below the surface (Johnson eq. 3.45 on the axis): the largest shear 0.310 p₀ and von
+    // Mises 0.620 p₀, both 0.48 a down; the scene's depths are 0.01 mm apart.
+    let body = &case["subsurface"]["bodies"][0];
+    let peak = |name: &str| {
+        let p = &body["peaks"][name];
+        (p["value"].as_f64().unwrap(), p["depth"].as_f64().unwrap())
+    };
+    for (name, ratio) in [("tresca", 0.310), ("von_mises", 0.620)] {
+        let (value, depth) = peak(name);
+        assert!((value / (ratio * p0) - 1.0).abs() < 0.005, "{name} {value}");
+        assert!((depth - 0.48 * a).abs() < 0.006, "{name} at {depth}");
+    }
+    let out = scratch("hertz").join("hertz");
+    let csv = std::fs::read_to_string(out.join("subsurface_1.csv")).unwrap();
+    assert!(csv.starts_with("body,section,along,at_mm,position_mm,depth_mm,sxx_mpa"));
+    assert_eq!(csv.lines().count(), 1 + 2 * 64 * 60);
+    let map = std::fs::read_to_string(out.join("mises_1_1.svg")).unwrap();
+    assert!(map.contains("depth below the surface [mm]") && !map.contains("NaN"));
+}
+
+/// Stresses below an axisymmetric half-space and a half-plane through a scene: Hertz's sphere
+/// and cylinder (Johnson eqs. 3.45, 4.45); and the scene's errors.
+#[test]
+fn subsurface_of_rings_and_strips() {
+    let axisymmetric = scene_file(
+        "rings",
+        "name = \"rings\"\n[problem]\nkind = \"rigid_on_axisymmetric_half_space\"\n\
+         material = { e_mpa = 2.0e5, nu = 0.3 }\nrings = 80\nradius_mm = 0.5\n\
+         indenter = { shape = \"sphere\", radius_mm = 10.0 }\nload = { force_n = 1000.0 }\n\
+         [solver]\nkind = \"active_set\"\n[output.subsurface]\ndepths = 200\n",
+    );
+    let report = run_file_json(&axisymmetric);
+    let case = &report["cases"][0];
+    let p0 = case["p_max"].as_f64().unwrap();
+    let body = &case["subsurface"]["bodies"][0];
+    let mises = body["peaks"]["von_mises"]["value"].as_f64().unwrap();
+    assert!((mises / (0.620 * p0) - 1.0).abs() < 0.01, "{mises} vs {p0}");
+    assert_eq!(body["peaks"]["von_mises"]["x"].as_f64(), Some(0.0));
+    let plane = scene_file(
+        "strips",
+        "name = \"strips\"\n[problem]\nkind = \"rigid_on_half_plane\"\n\
+         material = { e_mpa = 2.0e5, nu = 0.3 }\nanalysis = \"plane_strain\"\n\
+         thickness_mm = 1.0\nstrips = 120\nhalf_width_mm = 0.3\n\
+         indenter = { shape = \"sphere\", radius_mm = 10.0 }\nload = { force_n = 500.0 }\n\
+         [solver]\nkind = \"active_set\"\n[output.subsurface]\ndepths = 200\n",
+    );
+    let report = run_file_json(&plane);
+    let case = &report["cases"][0];
+    let p0 = case["p_max"].as_f64().unwrap();
+    let tresca = case["subsurface"]["bodies"][0]["peaks"]["tresca"]["value"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (tresca / (0.3003 * p0) - 1.0).abs() < 0.01,
+        "{tresca} vs {p0}"
+    );
+    let bad = variant_of("hertz", "bad-depths", &[("depths = 60", "depths = 0")]);
+    fails_with(
+        &["check"],
+        &bad,
+        &["output.subsurface", "depths", "from 1 to 1000"],
+    );
+    let bad = variant_of(
+        "hertz",
+        "bad-depth",
+        &[("max_depth_mm = 0.6", "max_depth_mm = -1.0")],
+    );
+    fails_with(&["check"], &bad, &["max_depth_mm", "-1"]);
 }
 
 /// Table 1 as a scene: five cases, p_max from equilibrium, Δh_max within 0.5 % of the paper.
@@ -283,13 +351,32 @@ fn roller_scenes() {
     // stays within 3 % of its middle value, where the straight roller's end cell carries 30 %
     // more (57 % with 0.25 mm cells: the edge singularity, finer cells give more).
     for (profile, spread) in [("lundberg", 0.03), ("straight", 0.3)] {
-        let report = run_file_json(&roller_scene(
+        let path = roller_scene(
             profile,
             &format!("{{ kind = \"{profile}\" }}"),
-            "",
-        ));
+            "\n[output.subsurface]\ndepths = 40\n",
+        );
+        let report = run_file_json(&path);
         let row = centre_row(&report["cases"][0]);
         let middle = row[row.len() / 2].1;
+        // Below mid-length the line contact's von Mises peak, 0.5575 p₀ (Johnson eq. 4.45),
+        // from the section across the contact there (the first), in the roller and raceway
+        // at once (one Poisson's ratio).
+        let sub = &report["cases"][0]["subsurface"];
+        assert_eq!(sub["bodies"][0]["body"], "raceway and roller");
+        let csv =
+            std::fs::read_to_string(path.with_file_name(profile).join("subsurface_1.csv")).unwrap();
+        let mises = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|f| f[1] == "1")
+            .map(|f| f[12].parse::<f64>().unwrap())
+            .fold(0.0, f64::max);
+        assert!(
+            (mises / (0.5575 * middle) - 1.0).abs() < 0.03,
+            "{profile}: {mises} vs {middle}"
+        );
         let worst = row
             .iter()
             .map(|(_, p)| (p / middle - 1.0).abs())

@@ -52,6 +52,16 @@ struct Bodies {
     roller: Option<crate::roller::Info>,
 }
 
+impl Bodies {
+    /// Whether both bodies have one stress field below the surface: a roller and raceway of
+    /// one Poisson's ratio (two half-spaces on one grid under one pressure).
+    fn shared_stresses(&self) -> bool {
+        self.roller
+            .as_ref()
+            .is_some_and(|r| r.roller.roller.nu() == r.roller.raceway.nu())
+    }
+}
+
 fn material(m: &MaterialSpec) -> Result<Material> {
     Material::new(m.e_mpa, m.nu)
 }
@@ -417,6 +427,9 @@ impl Case {
             _ => {}
         }
         self.dense_limit()?;
+        if let Some(sub) = &spec.output.subsurface {
+            crate::subsurface::check(sub).map_err(|e| self.invalid("output.subsurface", e))?;
+        }
         if let Some(opt) = &spec.optimisation {
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         }
@@ -529,6 +542,19 @@ impl Case {
                 }
             }
             report.roller = Some(roller);
+        }
+        if let (Some(sub), true) = (&spec.output.subsurface, report.converged) {
+            let started = Instant::now();
+            let pressure: Vec<f64> = report.interface.iter().map(|q| q.p).collect();
+            report.subsurface = crate::subsurface::compute(
+                sub,
+                [built.first.as_ref(), built.second.as_ref()],
+                built.shared_stresses(),
+                &pressure,
+                built.roller.is_some(),
+            )
+            .map_err(|e| self.invalid("output.subsurface", e))?;
+            report.time("subsurface", started);
         }
         Ok(report)
     }

@@ -11,13 +11,16 @@ mod envelope;
 mod report;
 mod roller;
 mod spec;
+mod subsurface;
 
 pub use report::{
-    CaseReport, EnvelopeCaseReport, IterationRow, PointReport, Report, RollerReport, TunedProfile,
+    BodyStresses, CaseReport, EnvelopeCaseReport, IterationRow, PointReport, Report, RollerReport,
+    SubsurfaceReport, TunedProfile,
 };
 pub use spec::{
     AnalysisSpec, ControllerSpec, EnvelopeSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec,
-    OmegaVSpec, Optimise, Problem, PunchLoadSpec, RigidLoad, SolverSpec, Sweep,
+    OmegaVSpec, Optimise, OutputSpec, Problem, PunchLoadSpec, RigidLoad, SectionSpec, SolverSpec,
+    SubsurfaceSpec, Sweep,
 };
 
 use std::path::{Path, PathBuf};

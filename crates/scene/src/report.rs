@@ -42,6 +42,35 @@ pub struct CaseReport {
     /// What a bearing engineer reads off a roller case (the `roller` kind only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub roller: Option<RollerReport>,
+    /// Stresses below the surface (`[output.subsurface]`); null when not asked for or when
+    /// nothing is in contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subsurface: Option<SubsurfaceReport>,
+}
+
+/// Stresses below the surface under a case's contact pressure.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct SubsurfaceReport {
+    /// The depths evaluated \[mm\].
+    pub depths_mm: Vec<f64>,
+    /// Each body that computes stresses (a rigid body does not).
+    pub bodies: Vec<BodyStresses>,
+}
+
+/// The stresses below one body's surface.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct BodyStresses {
+    /// The body (two names when they share one field: a roller and raceway of one Poisson's
+    /// ratio).
+    pub body: String,
+    /// The largest von Mises and Tresca stresses, the largest tension σ₁ and compression σ₃,
+    /// each with its position (x, y) and depth \[MPa, mm\]. A finite-element body reports
+    /// its nodes, (x, y) in its own coordinates and the depth as the distance to the nearest
+    /// contact point; a peak at a singular edge grows as the mesh is refined.
+    pub peaks: contopt_core::StressPeaks,
+    /// The sections' fields, written as CSV and heat maps (not into the JSON report).
+    #[serde(skip)]
+    pub sections: Vec<contopt_core::SectionField>,
 }
 
 /// A roller case's figures. Columns are the grid's cells along the axis; the ends are the
@@ -115,6 +144,7 @@ impl CaseReport {
             interface: vec![],
             timings_ms: BTreeMap::new(),
             roller: None,
+            subsurface: None,
         }
     }
 

@@ -34,6 +34,53 @@ pub struct SceneSpec {
     /// solver or the linear programme refuses the case before allocating.
     #[serde(default)]
     pub dense_limit_mb: Option<f64>,
+    /// What the results gain beyond the contact pressure.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// What the results gain beyond the contact pressure (`[output]`).
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Stresses below the surface (`[output.subsurface]`): their peaks in the report, the
+    /// sections as CSV and von Mises heat maps.
+    #[serde(default)]
+    pub subsurface: Option<SubsurfaceSpec>,
+}
+
+/// Stresses below the surface of every elastic body that computes them (half-spaces,
+/// half-planes, finite-element bodies), under each case's contact pressure.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubsurfaceSpec {
+    /// Deepest depth \[mm\]; default twice the contact's half-width (the smaller half-extent
+    /// of the contact area; its radius on an axisymmetric body), where the largest shear of a
+    /// Hertz contact (0.5–0.8 half-widths down) lies well inside.
+    #[serde(default)]
+    pub max_depth_mm: Option<f64>,
+    /// Number of depths, evenly spaced from max_depth/depths down to max_depth (default 40).
+    #[serde(default = "forty")]
+    pub depths: usize,
+    /// Vertical sections of a grid; default: along x and along y through the largest
+    /// pressure (a roller: across the contact at mid-length, at the largest pressure and at
+    /// the end cell). A plane or axisymmetric body has one section, its own plane.
+    #[serde(default)]
+    pub sections: Vec<SectionSpec>,
+}
+
+fn forty() -> usize {
+    40
+}
+
+/// A vertical section through a grid.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionSpec {
+    /// `"x"` or `"y"`: the direction of the section along the surface.
+    pub along: contopt_core::SectionAxis,
+    /// The other surface coordinate \[mm\] (the nearest row or column of cells is taken).
+    pub at_mm: f64,
 }
 
 /// A sweep: the scene is run once per value of `key`, a dotted path to a number in the scene

@@ -1,0 +1,199 @@
+//! Stresses below the surface of a case's bodies (`[output.subsurface]`): the request a case
+//! makes of its bodies, and their answers for the report.
+
+use contopt_core::{
+    ElasticBody, Error, Geometry, Interface, Result, Section, SectionAxis, SubsurfaceRequest,
+};
+
+use crate::report::{BodyStresses, SubsurfaceReport};
+use crate::spec::SubsurfaceSpec;
+
+/// The most depths a case may ask for: each costs a pass over the whole grid.
+const MAX_DEPTHS: usize = 1000;
+
+/// Default deepest depth, in contact half-widths: the largest shear of a Hertz contact lies
+/// 0.5–0.8 half-widths down.
+const DEFAULT_DEPTH_HALF_WIDTHS: f64 = 2.0;
+
+/// Two positions closer than this fraction of a cell are one section.
+const SAME_SECTION: f64 = 0.5;
+
+/// Checks the scene's values before anything is solved.
+pub(crate) fn check(spec: &SubsurfaceSpec) -> Result<()> {
+    if !(1..=MAX_DEPTHS).contains(&spec.depths) {
+        return Err(Error::invalid(
+            "subsurface.depths",
+            spec.depths,
+            format!("from 1 to {MAX_DEPTHS}"),
+        ));
+    }
+    if let Some(d) = spec.max_depth_mm.filter(|d| !(d.is_finite() && *d > 0.0)) {
+        return Err(Error::invalid(
+            "subsurface.max_depth_mm",
+            d,
+            "must be positive and finite",
+        ));
+    }
+    if let Some(s) = spec.sections.iter().find(|s| !s.at_mm.is_finite()) {
+        return Err(Error::invalid(
+            "subsurface.sections.at_mm",
+            s.at_mm,
+            "must be finite",
+        ));
+    }
+    Ok(())
+}
+
+/// The stresses below every body that computes them (a rigid body does not), under the
+/// contact pressure `pressure` at the interface points. `shared` says the second body's
+/// field is the first's (a roller and raceway of one Poisson's ratio on one grid): it is
+/// computed once. `None` when nothing is in contact.
+pub(crate) fn compute(
+    spec: &SubsurfaceSpec,
+    bodies: [&dyn ElasticBody; 2],
+    shared: bool,
+    pressure: &[f64],
+    roller: bool,
+) -> Result<Option<SubsurfaceReport>> {
+    let interface = bodies[0].interface();
+    let Some(request) = request(spec, interface, pressure, roller) else {
+        return Ok(None);
+    };
+    let mut report = SubsurfaceReport {
+        depths_mm: request.depths.clone(),
+        bodies: vec![],
+    };
+    let count = if shared { 1 } else { 2 };
+    for body in &bodies[..count] {
+        if let Some(found) = body.subsurface(pressure, &request)? {
+            let name = if shared {
+                format!("{} and {}", bodies[0].name(), bodies[1].name())
+            } else {
+                body.name().to_string()
+            };
+            report.bodies.push(BodyStresses {
+                body: name,
+                peaks: found.peaks,
+                sections: found.sections,
+            });
+        }
+    }
+    Ok(Some(report))
+}
+
+/// The depths and sections of the scene, with their defaults from the contact area.
+fn request(
+    spec: &SubsurfaceSpec,
+    interface: &Interface,
+    pressure: &[f64],
+    roller: bool,
+) -> Option<SubsurfaceRequest> {
+    let contact: Vec<[f64; 3]> = interface
+        .points
+        .iter()
+        .zip(pressure)
+        .filter(|(_, p)| **p > 0.0)
+        .map(|(x, _)| *x)
+        .collect();
+    let max_depth = match spec.max_depth_mm {
+        Some(d) => d,
+        None => DEFAULT_DEPTH_HALF_WIDTHS * half_width(interface, &contact)?,
+    };
+    let n = spec.depths;
+    let depths = (1..=n).map(|k| max_depth * k as f64 / n as f64).collect();
+    let sections = if interface.geometry != Geometry::Surface {
+        // A plane or axisymmetric body has one section, its own plane.
+        vec![Section {
+            axis: SectionAxis::X,
+            at: 0.0,
+        }]
+    } else if spec.sections.is_empty() {
+        default_sections(interface, pressure, roller)
+    } else {
+        spec.sections
+            .iter()
+            .map(|s| Section {
+                axis: s.along,
+                at: s.at_mm,
+            })
+            .collect()
+    };
+    Some(SubsurfaceRequest { depths, sections })
+}
+
+/// The contact's half-width: its radius on an axisymmetric body, else the smaller half-extent
+/// over the axes along which it extends; `None` without contact.
+fn half_width(interface: &Interface, contact: &[[f64; 3]]) -> Option<f64> {
+    let first = contact.first()?;
+    if interface.geometry == Geometry::Axisymmetric {
+        return contact.iter().map(|x| x[0]).reduce(f64::max);
+    }
+    let extent = |axis: usize| {
+        let (lo, hi) = contact
+            .iter()
+            .fold((first[axis], first[axis]), |(l, h), x| {
+                (l.min(x[axis]), h.max(x[axis]))
+            });
+        // One point in contact still spans its own weight's width (a cell or a strip).
+        let cell = spacing(interface, axis);
+        0.5 * (hi - lo + cell)
+    };
+    let axes = [0, 1].into_iter().filter(|&a| spacing(interface, a) > 0.0);
+    axes.map(extent).reduce(f64::min)
+}
+
+/// The smallest spacing between distinct point coordinates along `axis` (0 when they all
+/// agree).
+fn spacing(interface: &Interface, axis: usize) -> f64 {
+    let mut v: Vec<f64> = interface.points.iter().map(|x| x[axis]).collect();
+    v.sort_by(f64::total_cmp);
+    v.windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| *d > 1e-12)
+        .fold(0.0, |m: f64, d| if m == 0.0 { d } else { m.min(d) })
+}
+
+/// A grid's default sections: along x and along y through the largest pressure; a roller's
+/// (x along its axis): across the contact at mid-length, at the largest pressure and at the
+/// end cell.
+fn default_sections(interface: &Interface, pressure: &[f64], roller: bool) -> Vec<Section> {
+    let peak = pressure
+        .iter()
+        .enumerate()
+        .fold(0, |m, (k, p)| if *p > pressure[m] { k } else { m });
+    let at = interface.points.get(peak).copied().unwrap_or_default();
+    if !roller {
+        return vec![
+            Section {
+                axis: SectionAxis::X,
+                at: at[1],
+            },
+            Section {
+                axis: SectionAxis::Y,
+                at: at[0],
+            },
+        ];
+    }
+    let end = interface
+        .points
+        .iter()
+        .map(|x| x[0])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let cell = spacing(interface, 0);
+    let mut positions: Vec<f64> = vec![0.0];
+    for x in [at[0], end] {
+        if positions
+            .iter()
+            .all(|p| (p - x).abs() > SAME_SECTION * cell)
+        {
+            positions.push(x);
+        }
+    }
+    positions
+        .into_iter()
+        .map(|x| Section {
+            axis: SectionAxis::Y,
+            at: x,
+        })
+        .collect()
+}
