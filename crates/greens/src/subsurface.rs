@@ -12,7 +12,7 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use contopt_core::{
-    Error, Result, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,
+    Result, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,
     SubsurfaceRequest,
 };
 use realfft::num_complex::Complex;
@@ -786,7 +786,10 @@ mod tests {
             .stresses_below(&p[1..], &request)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("hs.subsurface.pressure") && e.contains("1270"), "{e}");
+        assert!(
+            e.contains("hs.subsurface.pressure") && e.contains("1270"),
+            "{e}"
+        );
         let mut nan = p.clone();
         nan[3] = f64::NAN;
         let e = body.stress_field(&nan, 0.5).unwrap_err().to_string();
