@@ -311,9 +311,11 @@ impl ElasticBody for FeBody {
     /// gives the node's model coordinates as `x`, `y` (r, z in axisymmetry) and as `depth`
     /// its distance to the nearest interface point.
     ///
-    /// A mesh has its own points below the surface, so the request's `depths` and `sections`
-    /// do not apply: they are ignored and `sections` comes back empty (the whole field is
-    /// [`FeBody::nodal_stresses`]). At a singular point (the edge of a flat punch) the nodal
+    /// A mesh has its own points below the surface, so the request's `depths` do not apply.
+    /// When sections are asked for, the answer is the model's plane itself, one section,
+    /// provided the nodes (with each Q8 element's centre) fill a grid of x × y and the contact
+    /// face is a line y = const, as a rectangular mesh's are; otherwise none (the whole field
+    /// is [`FeBody::nodal_stresses`]). At a singular point (the edge of a flat punch) the nodal
     /// peak grows as the mesh is refined, as the exact stress is unbounded there.
     fn subsurface(
         &self,

@@ -13,7 +13,8 @@
 //! parallelogram element) is recovered exactly.
 
 use contopt_core::{
-    ElasticBody, Error, Result, StressPeaks, StressTensor, Subsurface, SubsurfaceRequest,
+    ElasticBody, Error, Result, Section, SectionAxis, SectionField, StressPeaks, StressTensor,
+    Subsurface, SubsurfaceRequest,
 };
 
 use crate::element::{lagrange2, GAUSS3};
@@ -29,6 +30,9 @@ const GAUSS_ABSCISSA: f64 = GAUSS3[2].0;
 /// (the contact solvers meet equilibrium to far less): a floating body's leftover force would
 /// be carried by the unknown held to remove the mode, a point force that no contact exerts.
 const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
+
+/// Two node coordinates closer than this \[mm\] are one grid line of a section.
+const SAME_COORDINATE: f64 = 1e-9;
 
 /// The recovery's stress tensor of a Gauss-point [`Stress`], by the convention of
 /// [`StressTensor`] for plane and axisymmetric bodies: the model's x (r) to `xx`, its y (z) to
@@ -239,16 +243,100 @@ impl FeBody {
     ) -> Result<Subsurface> {
         // A mesh has its own points below the surface: the request's depths and sections
         // would need a search for the element that holds each point, which nodes make moot.
-        let _ = request;
         let stresses = self.nodal_stresses(pressure)?;
         let mut peaks = StressPeaks::default();
         for (s, x) in stresses.iter().zip(self.model.mesh.nodes()) {
             peaks.record(s, x[0], x[1], self.depth(*x));
         }
+        let sections = match request.sections.is_empty() {
+            true => vec![],
+            false => self.grid_section(&stresses).into_iter().collect(),
+        };
         Ok(Subsurface {
             peaks: peaks.finite(self.name())?,
-            sections: vec![],
+            sections,
         })
+    }
+
+    /// The whole mesh as one section, when its nodes (with a Q8 element's centre, interpolated)
+    /// fill a grid of distinct x × distinct y and its contact face is a line y = const: the
+    /// model's plane is its vertical section, positions its x (or r) and depths the distance
+    /// from the face. `None` for any other mesh.
+    fn grid_section(&self, stresses: &[StressTensor]) -> Option<SectionField> {
+        let face = self.interface().points.first()?[1];
+        let points = self.interface().points.iter();
+        if points
+            .clone()
+            .any(|p| (p[1] - face).abs() > SAME_COORDINATE)
+        {
+            return None;
+        }
+        let mut samples: Vec<([f64; 2], StressTensor)> = self
+            .model
+            .mesh
+            .nodes()
+            .iter()
+            .copied()
+            .zip(stresses.iter().copied())
+            .collect();
+        if self.model.mesh.kind().n_nodes() == 8 {
+            samples.extend(self.element_centres(stresses));
+        }
+        let distinct = |axis: usize| {
+            let mut v: Vec<f64> = samples.iter().map(|(x, _)| x[axis]).collect();
+            v.sort_by(f64::total_cmp);
+            v.dedup_by(|a, b| (*a - *b).abs() < SAME_COORDINATE);
+            v
+        };
+        let (xs, ys) = (distinct(0), distinct(1));
+        if xs.len() * ys.len() != samples.len() {
+            return None;
+        }
+        let index = |v: &[f64], c: f64| v.partition_point(|&t| t < c - SAME_COORDINATE);
+        // Rows by depth: the face first.
+        let mut depths: Vec<(usize, f64)> =
+            (0..ys.len()).map(|j| (j, (ys[j] - face).abs())).collect();
+        depths.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let row: Vec<usize> = {
+            let mut r = vec![0; ys.len()];
+            for (k, (j, _)) in depths.iter().enumerate() {
+                r[*j] = k;
+            }
+            r
+        };
+        let mut tensors = vec![StressTensor::default(); samples.len()];
+        for (x, s) in &samples {
+            tensors[row[index(&ys, x[1])] * xs.len() + index(&xs, x[0])] = *s;
+        }
+        Some(SectionField {
+            section: Section {
+                axis: SectionAxis::X,
+                at: 0.0,
+            },
+            positions: xs,
+            depths: depths.into_iter().map(|(_, d)| d).collect(),
+            tensors,
+        })
+    }
+
+    /// The centre of every element and the nodal stresses interpolated there (a Q8 element
+    /// has no centre node).
+    fn element_centres(&self, stresses: &[StressTensor]) -> Vec<([f64; 2], StressTensor)> {
+        let mesh = &self.model.mesh;
+        let shape = mesh.kind().shape(0.0, 0.0);
+        mesh.elements()
+            .iter()
+            .map(|conn| {
+                let mut x = [0.0; 2];
+                let mut s = StressTensor::default();
+                for (&node, &n) in conn.iter().zip(&shape.n) {
+                    x[0] += n * mesh.nodes()[node][0];
+                    x[1] += n * mesh.nodes()[node][1];
+                    accumulate(&mut s, &scaled(&stresses[node], n));
+                }
+                (x, s)
+            })
+            .collect()
     }
 
     /// Distance \[mm\] from `x` to the nearest interface point: the depth of a node below the
@@ -290,9 +378,15 @@ mod tests {
     /// (curved inner edges), the boundary kept straight; bottom held in y, left edge in x
     /// (in axisymmetry the left edge is the axis, held by the model).
     fn distorted_block(kind: ElementKind, analysis: Analysis) -> FeModel {
+        block(kind, analysis, 1.0)
+    }
+
+    /// The block with its interior nodes moved by `distortion` times the bump.
+    fn block(kind: ElementKind, analysis: Analysis, distortion: f64) -> FeModel {
         let x = Spacing::from_coords(vec![0.0, 11.0, 27.0, WIDTH]).unwrap();
         let y = Spacing::from_coords(vec![0.0, 8.0, HEIGHT]).unwrap();
-        let bump = |p: [f64; 2]| (PI * p[0] / WIDTH).sin() * (PI * p[1] / HEIGHT).sin();
+        let bump =
+            |p: [f64; 2]| distortion * (PI * p[0] / WIDTH).sin() * (PI * p[1] / HEIGHT).sin();
         let mesh = Mesh::rectangle(kind, &x, &y)
             .unwrap()
             .map(|p| [p[0] + 3.0 * bump(p), p[1] + 2.0 * bump(p)])
@@ -516,6 +610,38 @@ mod tests {
             unbalanced.to_string().contains("punch.pressure"),
             "{unbalanced}"
         );
+    }
+
+    /// A rectangular mesh is its own section: positions its node columns, depths from the
+    /// contact face down, every entry (a Q8 element's centre interpolated) the uniform stress;
+    /// a distorted mesh has none.
+    #[test]
+    fn a_rectangular_mesh_is_its_section() {
+        let request = SubsurfaceRequest {
+            depths: vec![1.0],
+            sections: vec![Section {
+                axis: SectionAxis::X,
+                at: 0.0,
+            }],
+        };
+        for kind in [ElementKind::Q8, ElementKind::Q9] {
+            let analysis = ANALYSES[1];
+            for (distortion, sections) in [(0.0, 1), (1.0, 0)] {
+                let model = block(kind, analysis, distortion);
+                let top = model.mesh().faces_on_y(HEIGHT, 0.0, WIDTH);
+                let body = FeBody::new("block", model, &top).unwrap();
+                let n = body.interface().len();
+                let sub = body.nodal_subsurface(&vec![P; n], &request).unwrap();
+                assert_eq!(sub.sections.len(), sections, "{kind:?}, {distortion}");
+                let Some(field) = sub.sections.first() else {
+                    continue;
+                };
+                assert_eq!(field.positions.len(), 7);
+                assert_eq!(field.depths, vec![0.0, 6.0, 12.0, 16.0, 20.0]);
+                let want = uniaxial(analysis);
+                assert!(largest_difference(&field.tensors, |_| want) < 1e-10 * P);
+            }
+        }
     }
 
     #[test]
