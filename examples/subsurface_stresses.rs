@@ -2,7 +2,8 @@
 //! run time at the roller's production size. Prints the tables of the book's "Below the
 //! surface" section.
 //!
-//! `cargo run --release --example subsurface_stresses`
+//! `cargo run --release --example subsurface_stresses` (or `-- speed N` for the run-time
+//! table alone at N depths, to compare peak memory across depth counts).
 
 use std::time::Instant;
 
@@ -139,8 +140,8 @@ fn validation() {
     }
 }
 
-/// The roller's production grid: 200 × 105 cells, 40 depths, peaks and three sections.
-fn speed() {
+/// The roller's production grid: 200 × 105 cells, `count` depths, peaks and three sections.
+fn speed(count: usize) {
     println!("\n## Run time: every cell at every depth, peaks and three sections (one core)\n");
     println!("| grid | depths | time | per depth | largest von Mises | at depth |");
     println!("| --- | --- | --- | --- | --- | --- |");
@@ -159,7 +160,6 @@ fn speed() {
             [2.6 * 2.0 * b / nx as f64, 10.0 / ny as f64],
             pressure,
         );
-        let count = 40;
         let request = SubsurfaceRequest {
             depths: depths(0.01, 0.6, count),
             sections: [0.0, 3.5, 3.9]
@@ -183,6 +183,12 @@ fn speed() {
 }
 
 fn main() {
-    validation();
-    speed();
+    let args: Vec<String> = std::env::args().collect();
+    match args.get(1).map(String::as_str) {
+        Some("speed") => speed(args.get(2).and_then(|n| n.parse().ok()).unwrap_or(40)),
+        _ => {
+            validation();
+            speed(40);
+        }
+    }
 }
