@@ -224,17 +224,22 @@ fn case_table(report: &Report) -> String {
     s
 }
 
-/// The table of a roller study: per case p_max and where it sits, edge loading, the approach,
-/// the contact half-widths at mid-length and at the ends, and the crown's drop at the ends.
-fn roller_table(report: &Report) -> String {
-    use std::fmt::Write;
-    let width = report
+/// The width of the case column: the longest label, at least 4.
+fn label_width(report: &Report) -> usize {
+    report
         .cases
         .iter()
         .map(|c| c.label.len())
         .max()
         .unwrap_or(4)
-        .max(4);
+        .max(4)
+}
+
+/// The table of a roller study: per case p_max and where it sits, edge loading, the approach,
+/// the contact half-widths at mid-length and at the ends, and the crown's drop at the ends.
+fn roller_table(report: &Report) -> String {
+    use std::fmt::Write;
+    let width = label_width(report);
     let mut s = format!(
         "{:<width$} {:>10} {:>14} {:>5} {:>12} {:>16} {:>12} {:>8}\n",
         "case",
@@ -337,13 +342,7 @@ fn subsurface_table(report: &Report) -> String {
     if report.cases.iter().all(|c| c.subsurface.is_none()) {
         return String::new();
     }
-    let width = report
-        .cases
-        .iter()
-        .map(|c| c.label.len())
-        .max()
-        .unwrap_or(4)
-        .max(4);
+    let width = label_width(report);
     let mut s = format!(
         "\nbelow the surface (MPa; depth and position x, y in mm)\n{:<width$} {:<22} {:>10} {:>8} {:>16} {:>10} {:>8} {:>10} {:>10}\n",
         "case", "body", "von Mises", "depth", "at x, y", "Tresca", "depth", "σ1 max", "σ3 min"

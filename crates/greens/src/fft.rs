@@ -21,6 +21,40 @@ struct Work {
     scratch: Vec<Complex<f64>>,
 }
 
+/// The transforms of a `px` × `py` grid: real rows along x, complex columns along y, and the
+/// scratch length that serves all four.
+pub(crate) struct Plans {
+    pub r2c: Arc<dyn RealToComplex<f64>>,
+    pub c2r: Arc<dyn ComplexToReal<f64>>,
+    pub forward_y: Arc<dyn Fft<f64>>,
+    pub inverse_y: Arc<dyn Fft<f64>>,
+    pub scratch: usize,
+}
+
+impl Plans {
+    pub fn new(px: usize, py: usize) -> Self {
+        let (mut real, mut complex) = (RealFftPlanner::new(), FftPlanner::new());
+        let (r2c, c2r) = (real.plan_fft_forward(px), real.plan_fft_inverse(px));
+        let (forward_y, inverse_y) = (complex.plan_fft_forward(py), complex.plan_fft_inverse(py));
+        let scratch = [
+            r2c.get_scratch_len(),
+            c2r.get_scratch_len(),
+            forward_y.get_inplace_scratch_len(),
+            inverse_y.get_inplace_scratch_len(),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        Self {
+            r2c,
+            c2r,
+            forward_y,
+            inverse_y,
+            scratch,
+        }
+    }
+}
+
 pub(crate) struct Convolution {
     nx: usize,
     ny: usize,
@@ -51,22 +85,14 @@ impl std::fmt::Debug for Convolution {
 impl Convolution {
     /// Plans the transforms of a `px` × `py` grid holding an `nx` × `ny` field.
     fn plan(nx: usize, ny: usize, px: usize, py: usize) -> Self {
-        let mut real = RealFftPlanner::<f64>::new();
-        let mut complex = FftPlanner::<f64>::new();
-        let r2c = real.plan_fft_forward(px);
-        let c2r = real.plan_fft_inverse(px);
-        let forward_y = complex.plan_fft_forward(py);
-        let inverse_y = complex.plan_fft_inverse(py);
+        let Plans {
+            r2c,
+            c2r,
+            forward_y,
+            inverse_y,
+            scratch: scratch_len,
+        } = Plans::new(px, py);
         let cx = px / 2 + 1;
-        let scratch_len = [
-            r2c.get_scratch_len(),
-            c2r.get_scratch_len(),
-            forward_y.get_inplace_scratch_len(),
-            inverse_y.get_inplace_scratch_len(),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0);
         let work = Work {
             row: vec![0.0; px],
             rows: vec![Complex::new(0.0, 0.0); cx * ny],

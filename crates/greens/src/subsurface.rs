@@ -16,9 +16,10 @@ use contopt_core::{
     SubsurfaceRequest,
 };
 use realfft::num_complex::Complex;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftPlanner};
+use realfft::{ComplexToReal, RealToComplex};
+use rustfft::Fft;
 
+use crate::fft::Plans;
 use crate::subsurface_2d::check_pressure;
 use crate::HalfSpace;
 
@@ -136,18 +137,13 @@ struct Transform {
 
 impl Transform {
     fn new(px: usize, py: usize) -> Self {
-        let (mut real, mut complex) = (RealFftPlanner::new(), FftPlanner::new());
-        let (r2c, c2r) = (real.plan_fft_forward(px), real.plan_fft_inverse(px));
-        let (forward_y, inverse_y) = (complex.plan_fft_forward(py), complex.plan_fft_inverse(py));
-        let scratch = [
-            r2c.get_scratch_len(),
-            c2r.get_scratch_len(),
-            forward_y.get_inplace_scratch_len(),
-            inverse_y.get_inplace_scratch_len(),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0);
+        let Plans {
+            r2c,
+            c2r,
+            forward_y,
+            inverse_y,
+            scratch,
+        } = Plans::new(px, py);
         let cx = px / 2 + 1;
         let zero = Complex::new(0.0, 0.0);
         Self {
