@@ -120,15 +120,18 @@ impl AxisymmetricHalfSpace {
         pressure: &[f64],
         request: &SubsurfaceRequest,
     ) -> Result<Subsurface> {
-        request.check()?;
         let name = &self.surface.name;
-        check_pressure(name, pressure, self.edges.len() - 1)?;
         let radii: Vec<f64> = std::iter::once(0.0)
             .chain(self.surface.interface.points.iter().map(|p| p[0]))
             .collect();
-        sweep(name, request, &radii, &[], |r, z| {
-            self.stress(pressure, r, z)
-        })
+        sweep(
+            name,
+            request,
+            (pressure, self.edges.len() - 1),
+            &radii,
+            &[],
+            |r, z| self.stress(pressure, r, z),
+        )
     }
 
     /// The stress at radius `r` \[mm\] ≥ 0 and `depth` \[mm\] > 0 under the ring pressures

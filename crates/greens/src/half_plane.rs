@@ -126,16 +126,19 @@ impl HalfPlane {
         pressure: &[f64],
         request: &SubsurfaceRequest,
     ) -> Result<Subsurface> {
-        request.check()?;
         let name = &self.surface.name;
-        check_pressure(name, pressure, self.edges.len() - 1)?;
         let centres: Vec<f64> = self.surface.interface.points.iter().map(|p| p[0]).collect();
         let (first, last) = (self.edges[0], self.edges[self.edges.len() - 1]);
         let axis_extra = first <= 0.0 && 0.0 <= last && !centres.contains(&0.0);
         let extra: &[f64] = if axis_extra { &[0.0] } else { &[] };
-        sweep(name, request, &centres, extra, |x, z| {
-            self.stress(pressure, x, z)
-        })
+        sweep(
+            name,
+            request,
+            (pressure, self.edges.len() - 1),
+            &centres,
+            extra,
+            |x, z| self.stress(pressure, x, z),
+        )
     }
 
     /// The stress at `x` \[mm\] and `depth` \[mm\] > 0 below the edge under the strip pressures

@@ -7,6 +7,10 @@
 //! - [`HalfSpace`]: a regular grid of rectangular cells on the surface of a half-space (Love);
 //! - [`HalfPlane`]: strips on the edge of a half-plane in plane strain or plane stress
 //!   (Flamant).
+//!
+//! Each also gives the stresses below its surface under a contact pressure
+//! ([`contopt_core::ElasticBody::subsurface`]): FFT products of Love's rectangle kernels on a
+//! grid, closed forms for strips and on the axis of rings, a rim quadrature off it.
 
 // Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]

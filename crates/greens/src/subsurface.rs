@@ -20,7 +20,7 @@ use realfft::{ComplexToReal, RealToComplex};
 use rustfft::Fft;
 
 use crate::fft::Plans;
-use crate::subsurface_2d::check_pressure;
+use crate::subsurface_2d::{check_pressure, not_finite};
 use crate::HalfSpace;
 
 /// Stress components in [`StressTensor`] order: xx, yy, zz, xy, xz, yz.
@@ -344,6 +344,11 @@ impl<'a> StressSolver<'a> {
     }
 }
 
+/// Six zero fields of `n` cells.
+fn zero_fields(n: usize) -> [Vec<f64>; COMPONENTS] {
+    std::array::from_fn(|_| vec![0.0; n])
+}
+
 fn tensor(fields: &[Vec<f64>; COMPONENTS], k: usize) -> StressTensor {
     StressTensor {
         xx: fields[0][k],
@@ -366,12 +371,16 @@ impl HalfSpace {
             sections: vec![],
         };
         request.check()?;
-        let mut fields: [Vec<f64>; COMPONENTS] = Default::default();
-        for f in &mut fields {
-            *f = vec![0.0; self.nx * self.ny];
-        }
+        let mut fields = zero_fields(self.nx * self.ny);
         StressSolver::new(self, pressure).depth(depth, &mut fields);
-        Ok((0..self.nx * self.ny).map(|k| tensor(&fields, k)).collect())
+        let field: Vec<StressTensor> = (0..self.nx * self.ny).map(|k| tensor(&fields, k)).collect();
+        match field.iter().position(|s| !s.is_finite()) {
+            None => Ok(field),
+            Some(k) => Err(not_finite(
+                &self.name,
+                format!("{:?} at cell {k}", field[k]),
+            )),
+        }
     }
 
     /// [`contopt_core::ElasticBody::subsurface`] for the grid: every cell centre at every
@@ -390,10 +399,7 @@ impl HalfSpace {
             .iter()
             .map(|s| self.section_cells(*s, origin))
             .collect();
-        let mut fields: [Vec<f64>; COMPONENTS] = Default::default();
-        for f in &mut fields {
-            *f = vec![0.0; nx * ny];
-        }
+        let mut fields = zero_fields(nx * ny);
         let mut solver = StressSolver::new(self, pressure);
         let mut peaks = StressPeaks::default();
         let mut sections: Vec<SectionField> = lines
@@ -790,5 +796,14 @@ mod tests {
         nan[3] = f64::NAN;
         let e = body.stress_field(&nan, 0.5).unwrap_err().to_string();
         assert!(e.contains("pressure[3]"), "{e}");
+        // Finite pressures whose stresses overflow f64: an error, not infinities.
+        let e = body
+            .stress_field(&vec![1e308; p.len()], 0.5)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("hs.subsurface") && e.contains("not finite"),
+            "{e}"
+        );
     }
 }

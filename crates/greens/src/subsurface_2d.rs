@@ -61,26 +61,37 @@ fn finite_stress(
     if s.is_finite() {
         Ok(s)
     } else {
-        Err(Error::invalid(
-            format!("{body}.subsurface"),
+        Err(not_finite(
+            body,
             format!("{s:?} at x = {x}, depth = {depth}"),
-            "a stress below the surface is not finite (pressures too large for f64?)",
         ))
     }
+}
+
+/// The error of a stress `value` (and where) that is not finite.
+pub(crate) fn not_finite(body: &str, value: String) -> Error {
+    Error::invalid(
+        format!("{body}.subsurface"),
+        value,
+        "a stress below the surface is not finite (pressures too large for f64?)",
+    )
 }
 
 /// Evaluates `stress_at(x, depth)` at every requested depth under every `x` of `positions`
 /// (the section, also swept for the peaks) and of `extra` (swept for the peaks only), and
 /// returns the peaks and one copy of the section per requested section: a plane or
 /// axisymmetric body has one section, its own plane, reported as `axis: X, at: 0`. The request
-/// must have been checked ([`SubsurfaceRequest::check`]).
+/// and the `pressure` (one value per contact point, `points` of them) are checked first.
 pub(crate) fn sweep(
     body: &str,
     request: &SubsurfaceRequest,
+    (pressure, points): (&[f64], usize),
     positions: &[f64],
     extra: &[f64],
     stress_at: impl Fn(f64, f64) -> StressTensor,
 ) -> Result<Subsurface> {
+    request.check()?;
+    check_pressure(body, pressure, points)?;
     let mut peaks = StressPeaks::default();
     let mut tensors = Vec::with_capacity(positions.len() * request.depths.len());
     for &depth in &request.depths {

@@ -128,18 +128,21 @@ fn half_width(interface: &Interface, contact: &[[f64; 3]]) -> Option<f64> {
     if interface.geometry == Geometry::Axisymmetric {
         return contact.iter().map(|x| x[0]).reduce(f64::max);
     }
-    let extent = |axis: usize| {
+    // One point in contact still spans its own weight's width (a cell or a strip).
+    let extent = |axis: usize, cell: f64| {
         let (lo, hi) = contact
             .iter()
             .fold((first[axis], first[axis]), |(l, h), x| {
                 (l.min(x[axis]), h.max(x[axis]))
             });
-        // One point in contact still spans its own weight's width (a cell or a strip).
-        let cell = spacing(interface, axis);
         0.5 * (hi - lo + cell)
     };
-    let axes = [0, 1].into_iter().filter(|&a| spacing(interface, a) > 0.0);
-    axes.map(extent).reduce(f64::min)
+    [0, 1]
+        .into_iter()
+        .map(|axis| (axis, spacing(interface, axis)))
+        .filter(|&(_, cell)| cell > 0.0)
+        .map(|(axis, cell)| extent(axis, cell))
+        .reduce(f64::min)
 }
 
 /// The smallest spacing between distinct point coordinates along `axis` (0 when they all
