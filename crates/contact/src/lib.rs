@@ -15,6 +15,6 @@ mod solvers;
 mod tests;
 
 pub use polonsky_keer::PolonskyKeer;
-pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES};
+pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
 pub use qp::Qp;
 pub use solvers::{ActiveSet, AugmentedLagrangian, ContactSolver, Penalty};

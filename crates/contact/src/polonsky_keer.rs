@@ -223,7 +223,7 @@ fn outcome(
     steps: usize,
     status: Status,
 ) -> ContactState {
-    ContactState {
+    let mut state = ContactState {
         active: pressure.iter().map(|&p| p > 0.0).collect(),
         residuals: problem.residuals(&pressure, &gap),
         pressure,
@@ -233,7 +233,9 @@ fn outcome(
         iterp: 0,
         iterd: 0,
         status,
-    }
+    };
+    problem.verify(&mut state);
+    state
 }
 
 /// The vectors of the iteration, allocated once per solve.
@@ -251,6 +253,8 @@ struct Buffers {
     /// A W t.
     r: Vec<f64>,
     contact: Vec<bool>,
+    /// Whether the last direction was preconditioned (t then holds pressures, not gaps).
+    preconditioned: bool,
 }
 
 impl Buffers {
@@ -267,6 +271,7 @@ impl Buffers {
             t: zero(),
             r: zero(),
             contact: vec![false; n],
+            preconditioned: false,
         }
     }
 
@@ -289,9 +294,12 @@ impl Buffers {
     }
 
     /// Moves `p` along the direction t by the residual's component over the curvature, clipped
-    /// at p = 0, and lets the penetrating points outside the contact set re-enter (with that
-    /// step, or 1/κ when it is zero). Returns whether any entered; fails when the operator is
-    /// not positive on the contact set.
+    /// at p = 0, and lets the penetrating points outside the contact set re-enter with the
+    /// pressure −τ·dᵢ of that step. τ converts a gap into a pressure only when t is a gap (no
+    /// preconditioner); a preconditioned t is a pressure and τ a pure number, so the gap is
+    /// turned into a pressure by the point's own stiffness 1/κ, −τ·dᵢ/κ, and the step is the
+    /// same in any consistent units. When τ = 0, −dᵢ/κ. Returns whether any entered; fails
+    /// when the operator is not positive on the contact set.
     fn step(
         &mut self,
         problem: &InterfaceProblem,
@@ -320,7 +328,11 @@ impl Buffers {
                 p[i] = (p[i] - tau * self.t[i]).max(0.0);
             }
         }
-        let enter = if tau > 0.0 { tau } else { 1.0 / kappa };
+        let enter = match (tau > 0.0, self.preconditioned) {
+            (true, false) => tau,
+            (true, true) => tau / kappa,
+            (false, _) => 1.0 / kappa,
+        };
         let mut entered = false;
         for i in 0..p.len() {
             if !self.contact[i] && groups.may_enter(i) && self.d[i] < 0.0 {
@@ -368,7 +380,8 @@ impl Buffers {
         for i in 0..n {
             self.masked[i] = if self.contact[i] { self.d[i] } else { 0.0 };
         }
-        if problem.precondition(&self.masked, &mut self.z) {
+        self.preconditioned = problem.precondition(&self.masked, &mut self.z);
+        if self.preconditioned {
             for i in 0..n {
                 self.z[i] = if self.contact[i] {
                     self.z[i] / w[i]

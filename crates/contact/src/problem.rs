@@ -17,6 +17,11 @@ const WEIGHT_MATCH: f64 = 1e-9;
 /// Largest component of n¹ + n² for normals that count as opposite.
 const NORMAL_MATCH: f64 = 1e-6;
 
+/// The elastic displacement, as a multiple of the interface's size, past which a solution is
+/// refused ([`InterfaceProblem::verify`]): loose on purpose, it catches data in the wrong units
+/// or overflowing, not a mildly nonlinear contact.
+pub const SMALL_STRAIN: f64 = 1.0;
+
 /// A body the problem borrows from its caller or owns (a restricted part).
 enum Body<'a> {
     Borrowed(&'a dyn ElasticBody),
@@ -547,7 +552,7 @@ impl<'a> InterfaceProblem<'a> {
     ) -> ContactState {
         let gap = self.gap(&pressure, &rigid);
         let residuals = self.residuals(&pressure, &gap);
-        ContactState {
+        let mut state = ContactState {
             pressure,
             gap,
             rigid,
@@ -557,6 +562,38 @@ impl<'a> InterfaceProblem<'a> {
             iterd: counts[2],
             residuals,
             status: contopt_core::Status::Solved,
+        };
+        self.verify(&mut state);
+        state
+    }
+
+    /// The largest elastic displacement of a solution, maxᵢ |dᵢ − hᵢ − (Rλ)ᵢ| \[mm\]: the
+    /// scale against which its penetration is judged. `gap` is d less any gap change Δh.
+    pub fn elastic_displacement(&self, gap: &[f64], rigid: &[f64]) -> f64 {
+        let mut rigid_gap = self.free_gap();
+        self.add_rigid_motion(rigid, &mut rigid_gap);
+        gap.iter()
+            .zip(&rigid_gap)
+            .fold(0.0f64, |m, (d, h)| m.max((d - h).abs()))
+    }
+
+    /// Stops (see [`ContactState::stop_if_not_finite`]) a state that holds a NaN or an
+    /// infinity, or whose elastic displacement, d − h − Rλ, exceeds [`SMALL_STRAIN`] times the
+    /// size of the interface (the diagonal of its points' bounding box): no linear-elastic
+    /// answer, but data in the wrong units or overflowing (a modulus of 10⁻³⁰⁰ MPa). Every
+    /// solver passes its result through it.
+    pub fn verify(&self, state: &mut ContactState) {
+        state.stop_if_not_finite();
+        if state.status != contopt_core::Status::Solved || state.gap.len() != self.len() {
+            return;
+        }
+        let elastic = self.elastic_displacement(&state.gap, &state.rigid);
+        let size = self.interface().extent();
+        if size > 0.0 && elastic > SMALL_STRAIN * size {
+            state.status = contopt_core::Status::Stopped(format!(
+                "the elastic displacement {elastic:.3e} mm exceeds the size of the interface \
+                 {size:.3e} mm: not a small-strain answer (check the moduli, the load and the units)"
+            ));
         }
     }
 

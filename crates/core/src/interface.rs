@@ -72,6 +72,13 @@ impl Interface {
                 "one weight and one normal per point",
             ));
         }
+        if let Some(i) = points.iter().position(|x| x.iter().any(|c| !c.is_finite())) {
+            return Err(Error::invalid(
+                format!("interface.points[{i}]"),
+                format!("{:?}", points[i]),
+                "finite coordinates",
+            ));
+        }
         if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
             return Err(Error::invalid(
                 format!("interface.weights[{i}]"),
@@ -162,6 +169,20 @@ impl Interface {
             }
         }
         Ok(pair)
+    }
+
+    /// The size of the interface: the diagonal of its points' bounding box \[mm\] (zero for
+    /// one point).
+    pub fn extent(&self) -> f64 {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for x in &self.points {
+            for c in 0..3 {
+                lo[c] = lo[c].min(x[c]);
+                hi[c] = hi[c].max(x[c]);
+            }
+        }
+        (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
     }
 
     /// Number of points.

@@ -15,15 +15,25 @@ pub struct Residuals {
 
 impl Residuals {
     /// Residuals of pressure `p` with gap `d`, given the largest equilibrium error.
+    /// A NaN anywhere makes the residual it enters NaN (`f64::max` would drop it).
     pub fn new(equilibrium: f64, pressure: &[f64], gap: &[f64]) -> Self {
         Self {
             equilibrium,
-            penetration: gap.iter().fold(0.0, |m, &d| m.max(-d)),
+            penetration: gap.iter().fold(0.0, |m, &d| largest(m, -d)),
             complementarity: pressure
                 .iter()
                 .zip(gap)
-                .fold(0.0, |m, (p, d)| m.max((p * d).abs())),
+                .fold(0.0, |m, (p, d)| largest(m, (p * d).abs())),
         }
+    }
+}
+
+/// The larger of two values, NaN when either is.
+fn largest(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
     }
 }
 
@@ -81,6 +91,36 @@ impl ContactState {
                     self.residuals.complementarity
                 ),
             }),
+        }
+    }
+
+    /// The first field of the state that holds a NaN or an infinity, with its first such
+    /// value; `None` when every value is finite.
+    pub fn non_finite(&self) -> Option<(&'static str, f64)> {
+        let first = |v: &[f64]| v.iter().copied().find(|x| !x.is_finite());
+        let r = &self.residuals;
+        [
+            ("pressure", first(&self.pressure)),
+            ("gap", first(&self.gap)),
+            ("rigid amplitude", first(&self.rigid)),
+            (
+                "residual",
+                first(&[r.equilibrium, r.penetration, r.complementarity]),
+            ),
+        ]
+        .into_iter()
+        .find_map(|(name, v)| v.map(|v| (name, v)))
+    }
+
+    /// Stops a state that holds a NaN or an infinity ([`Status::Stopped`], naming the field),
+    /// so that no non-finite value passes for a solution: the data overflowed f64 (a load
+    /// near 10³⁰⁸ N, a modulus near 10⁻³⁰⁰) or the method broke down.
+    pub fn stop_if_not_finite(&mut self) {
+        if let Some((field, value)) = self.non_finite() {
+            self.status = Status::Stopped(format!(
+                "the {field} is not finite ({value}): the data overflow f64 \
+                 (check the load, the moduli and the units) or the method broke down"
+            ));
         }
     }
 

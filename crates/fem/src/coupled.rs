@@ -181,7 +181,7 @@ pub fn penalty_full(
                 .flat_map(|b| pinned_amplitudes(bodies[b], &u[b]))
                 .collect();
             let residuals = residuals(bodies, &pair, &pressure, &gap);
-            return Ok(ContactState {
+            let mut state = ContactState {
                 pressure,
                 gap,
                 rigid,
@@ -191,7 +191,9 @@ pub fn penalty_full(
                 iterd,
                 residuals,
                 status: Status::Solved,
-            });
+            };
+            state.stop_if_not_finite();
+            return Ok(state);
         }
         if iterp + iterd > 4 * n + 20 {
             return Err(Error::NotConverged {
