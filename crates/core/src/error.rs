@@ -40,7 +40,7 @@ pub enum Error {
         detail: String,
     },
     /// An allocation refused before it was made: it would exceed the memory limit.
-    #[error("{what} would take {} MB, over the limit of {} MB: {advice}", bytes / 1_000_000, limit / 1_000_000)]
+    #[error("{what} would take {}, over the limit of {} MB: {advice}", megabytes(*bytes), limit / 1_000_000)]
     TooLarge {
         /// What would have been allocated, with its size.
         what: String,
@@ -61,6 +61,15 @@ pub enum Error {
         /// How far it got (residuals at the last iterate).
         detail: String,
     },
+}
+
+/// A size in MB, or the words for one too large to count in bytes.
+fn megabytes(bytes: u64) -> String {
+    if bytes == u64::MAX {
+        "more bytes than 64 bits count".to_string()
+    } else {
+        format!("{} MB", bytes / 1_000_000)
+    }
 }
 
 impl Error {

@@ -9,6 +9,7 @@ mod error;
 mod gap_shape;
 mod interface;
 mod material;
+pub mod memory;
 mod rigid;
 mod state;
 pub mod stress;

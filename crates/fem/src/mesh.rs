@@ -1,8 +1,27 @@
 //! Meshes of quadratic quadrilaterals and a structured generator with grading.
 
-use contopt_core::{Error, Result};
+use contopt_core::{memory, Error, Result};
 
 use crate::element::{ElementKind, FACE_NODES};
+
+/// The most elements a [`Spacing`] may have along one axis: far more than a two-dimensional
+/// mesh that can be factorised needs, few enough that the coordinates are cheap.
+pub const MAX_AXIS_ELEMENTS: usize = 100_000;
+
+/// A generous estimate of the memory a body of `nx` × `ny` quadratic elements takes to build
+/// \[bytes\], `None` when it overflows: the sparse Cholesky factor of its 2 unknowns per node
+/// (nested dissection on a grid of N nodes fills about 8·N·log₂N blocks of 2 × 2 values, 12
+/// bytes each with its index) and the dense condensation on a contact face of up to 3·nx
+/// points (four n × n matrices).
+pub fn body_bytes(nx: usize, ny: usize) -> Option<u64> {
+    let side = |n: usize| n.checked_mul(2)?.checked_add(1);
+    let nodes = memory::bytes(&[side(nx)?, side(ny)?], 1)?;
+    let log = u64::from(64 - nodes.leading_zeros());
+    let factor = nodes.checked_mul(8 * 4 * 12)?.checked_mul(log)?;
+    let face_points = nx.checked_mul(3)?;
+    let face = memory::bytes(&[face_points, face_points], 4 * 8)?;
+    factor.checked_add(face)
+}
 
 /// Element boundaries along one axis, increasing.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,6 +54,19 @@ impl Spacing {
         Ok(Self { coords })
     }
 
+    /// Refuses more than [`MAX_AXIS_ELEMENTS`] elements, before their coordinates are
+    /// allocated.
+    fn check_count(n: usize) -> Result<()> {
+        if n > MAX_AXIS_ELEMENTS {
+            return Err(Error::invalid(
+                "spacing.elements",
+                n,
+                format!("at most {MAX_AXIS_ELEMENTS} along one axis"),
+            ));
+        }
+        Ok(())
+    }
+
     /// `n` equal elements on [a, b].
     pub fn uniform(a: f64, b: f64, n: usize) -> Result<Self> {
         Self::geometric(a, b, n, 1.0)
@@ -43,6 +75,7 @@ impl Spacing {
     /// `n` elements on [a, b] whose sizes form a geometric progression with
     /// (last size) / (first size) = `ratio`; `ratio` < 1 refines towards b.
     pub fn geometric(a: f64, b: f64, n: usize, ratio: f64) -> Result<Self> {
+        Self::check_count(n)?;
         if n == 0 {
             return Err(Error::invalid(
                 "spacing.elements",
@@ -85,6 +118,7 @@ impl Spacing {
     /// `n` elements on [a, b] growing geometrically from a first element of size `first`
     /// (which must be at most (b − a)/n): the outward continuation of a finely meshed zone.
     pub fn geometric_first(a: f64, b: f64, n: usize, first: f64) -> Result<Self> {
+        Self::check_count(n)?;
         if n == 0 {
             return Err(Error::invalid(
                 "spacing.elements",
@@ -314,6 +348,12 @@ impl Mesh {
     /// A structured mesh of the rectangle `x × y`; mid-side nodes sit at the midpoints.
     pub fn rectangle(kind: ElementKind, x: &Spacing, y: &Spacing) -> Result<Self> {
         let (nx, ny) = (x.len(), y.len());
+        memory::require(
+            format!("a body of {nx} × {ny} quadratic elements"),
+            body_bytes(nx, ny),
+            memory::BODY_LIMIT_BYTES,
+            "use fewer elements",
+        )?;
         let (gx, gy) = (2 * nx + 1, 2 * ny + 1);
         let coord = |s: &Spacing, i: usize| {
             let c = s.coords();

@@ -2,7 +2,7 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use contopt_core::{
-    ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode, Subsurface,
+    memory, ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode, Subsurface,
     SubsurfaceRequest,
 };
 use faer::Mat;
@@ -76,6 +76,11 @@ fn love(x: f64, y: f64, a: f64, b: f64) -> f64 {
         + term(x - a, y - b, y + b)
         + term(y - b, x - a, x + a)
 }
+
+/// The memory of a grid per cell \[bytes\]: 57 for the interface (point, weight, normal,
+/// region), 8 for the kernel, 64 for the padded spectrum and 64 for the FFT's work rows, with
+/// a margin.
+const GRID_BYTES_PER_CELL: u64 = 200;
 
 impl HalfSpace {
     /// A half-space of `material` under an `nx` × `ny` grid of `dx` × `dy` \[mm\] cells whose
@@ -159,6 +164,13 @@ impl HalfSpace {
         })
     }
 
+    /// The memory an `nx` × `ny` grid takes \[bytes\]: its points, its kernel and the FFT's
+    /// zero-padded 2nx × 2ny spectra and buffers ([`GRID_BYTES_PER_CELL`] per cell); `None`
+    /// when the count overflows.
+    pub fn grid_bytes(nx: usize, ny: usize) -> Option<u64> {
+        memory::bytes(&[nx, ny], GRID_BYTES_PER_CELL)
+    }
+
     /// The checked cell-centre interface of a grid, x fastest.
     fn cells_interface(
         nx: usize,
@@ -179,6 +191,12 @@ impl HalfSpace {
                 return Err(Error::invalid(field, v, "must be positive and finite"));
             }
         }
+        memory::require(
+            format!("a half-space grid of {nx} × {ny} cells"),
+            Self::grid_bytes(nx, ny),
+            memory::BODY_LIMIT_BYTES,
+            "use fewer cells",
+        )?;
         let n = nx * ny;
         let points = (0..n)
             .map(|k| {

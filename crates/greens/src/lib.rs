@@ -38,6 +38,13 @@ fn check_edges(edges: &[f64], field: &str) -> Result<()> {
             "at least two edges (one region)",
         ));
     }
+    let n = edges.len() - 1;
+    contopt_core::memory::require(
+        format!("the dense {n} × {n} influence matrix of {n} rings or strips"),
+        dense_surface_bytes(n),
+        contopt_core::memory::BODY_LIMIT_BYTES,
+        "use fewer rings or strips",
+    )?;
     if let Some(i) = (1..edges.len())
         .find(|&i| !(edges[i] > edges[i - 1]) || !edges[i].is_finite() || !edges[0].is_finite())
     {
@@ -48,6 +55,12 @@ fn check_edges(edges: &[f64], field: &str) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+/// The memory a ring or strip body of `n` regions takes to build \[bytes\]: its averaged
+/// matrix and the symmetric one it keeps; `None` when the count overflows.
+pub fn dense_surface_bytes(n: usize) -> Option<u64> {
+    contopt_core::memory::bytes(&[n, n], 2 * 8)
 }
 
 /// A surface body given by its dense, symmetric influence matrix, with no given loads and no
