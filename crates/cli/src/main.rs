@@ -1,21 +1,38 @@
 //! `contopt`: runs scene files (TOML or JSON) and writes their results.
 //!
 //! - `contopt run <scene> [--json] [--out DIR]`: solves every case and writes
-//!   `DIR/<name>/result.json`, `interface.csv`, `p.svg` and `dh.svg` (with `[output.subsurface]`
-//!   also `subsurface_<case>.csv` and `mises_<case>_<section>.svg`), then prints a table (or,
-//!   with `--json`, the report as one JSON document on stdout);
+//!   `DIR/<name>/result.json`, `interface.csv`, `p.svg` (and `dh.svg` when a case changes the
+//!   gap; with `[output.subsurface]` also `subsurface_<case>.csv` and
+//!   `mises_<case>_<section>.svg`), then prints a table (or, with `--json`, the report as one
+//!   JSON document on stdout). Files go only into `DIR/<name>/`, never through a symbolic link.
 //! - `contopt check <scene>`: reads and checks the scene without solving;
 //! - `contopt list`: the bundled scenes, which `run` and `check` also take by name.
 //!
-//! Exit status: 0, or 1 for a bad scene, or 2 when a case did not converge.
+//! Exit status: see [`EXIT_CODES`].
 
-use std::io::IsTerminal;
+mod files;
+
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use contopt_scene::{CaseReport, Format, Report, Scene, SceneError};
+use files::{csv_field, ResultsDir};
+
+/// A bad scene: unreadable, unknown or missing keys, values out of range, too large.
+const EXIT_BAD_INPUT: u8 = 1;
+/// A usage error: an unknown option or a missing argument (clap's code).
+const EXIT_USAGE: u8 = 2;
+/// Some case did not converge (its report says how far it got).
+const EXIT_NOT_CONVERGED: u8 = 3;
+/// The results could not be written.
+const EXIT_WRITE: u8 = 4;
+
+/// The exit codes, as `--help` shows them.
+const EXIT_CODES: &str = "Exit status: 0 success; 1 bad scene (unreadable, invalid or too large); \
+2 usage error; 3 some case did not converge; 4 the results could not be written.";
 
 /// The scenes in `scenes/`, built into the binary.
 const BUNDLED: &[(&str, &str)] = &[
@@ -55,7 +72,8 @@ const BUNDLED: &[(&str, &str)] = &[
 #[command(
     name = "contopt",
     version,
-    about = "Elastic contact and contact-pressure optimisation (Páczelt 1994)"
+    about = "Elastic contact and contact-pressure optimisation (Páczelt 1994)",
+    after_help = EXIT_CODES
 )]
 struct Cli {
     #[command(subcommand)]
@@ -85,27 +103,35 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    match Cli::parse().command {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { EXIT_USAGE } else { 0 });
+        }
+    };
+    match cli.command {
         Command::List => {
-            for (name, text) in BUNDLED {
-                let description = Scene::parse(text, Format::Toml, Path::new(name))
+            let mut text = String::new();
+            for (name, scene) in BUNDLED {
+                let description = Scene::parse(scene, Format::Toml, Path::new(name))
                     .map(|s| s.spec.description)
                     .unwrap_or_default();
-                println!("{name:<16} {description}");
+                text += &format!("{name:<16} {description}\n");
             }
+            emit(&text);
             ExitCode::SUCCESS
         }
         Command::Check { scene } => match load(&scene) {
             Ok(s) => {
                 let cases = s.cases().map(|c| c.len()).unwrap_or(0);
-                println!("{}: ok ({cases} case(s))", s.file.display());
+                emit(&format!("{}: ok ({cases} case(s))\n", s.file.display()));
                 ExitCode::SUCCESS
             }
             Err(e) => fail(&e),
         },
         Command::Run { scene, json, out } => match load(&scene).and_then(|s| run(&s, json, &out)) {
-            Ok(true) => ExitCode::SUCCESS,
-            Ok(false) => ExitCode::from(2),
+            Ok(code) => ExitCode::from(code),
             Err(e) => fail(&e),
         },
     }
@@ -113,7 +139,18 @@ fn main() -> ExitCode {
 
 fn fail(e: &SceneError) -> ExitCode {
     eprintln!("error: {e}");
-    ExitCode::from(1)
+    ExitCode::from(EXIT_BAD_INPUT)
+}
+
+/// Prints `text` on stdout; a reader that has gone (`contopt run … | head`) ends the output
+/// quietly instead of a panic.
+fn emit(text: &str) {
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("could not print the results: {e}");
+        }
+    }
 }
 
 /// A scene file, or a bundled scene by name.
@@ -132,8 +169,8 @@ fn load(scene: &str) -> Result<Scene, SceneError> {
     }
 }
 
-/// Runs every case; true when all converged.
-fn run(scene: &Scene, json: bool, out: &Path) -> Result<bool, SceneError> {
+/// Runs every case, writes the results and prints them; the exit code.
+fn run(scene: &Scene, json: bool, out: &Path) -> Result<u8, SceneError> {
     let cases = scene.cases()?;
     let progress = std::io::stderr().is_terminal();
     let start = Instant::now();
@@ -151,41 +188,40 @@ fn run(scene: &Scene, json: bool, out: &Path) -> Result<bool, SceneError> {
         scene: scene.spec.name.clone(),
         cases: reports,
     };
-    let dir = out.join(&scene.spec.name);
-    let written = write(&report, &dir);
+    for c in &report.cases {
+        for w in &c.warnings {
+            eprintln!("warning: {}: {w}", c.label);
+        }
+    }
+    let written = ResultsDir::create(out, &scene.spec.name).and_then(|mut dir| {
+        write(&report, &mut dir)?;
+        Ok(dir)
+    });
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).expect("a report serialises")
-        );
+        emit(&(serde_json::to_string_pretty(&report).unwrap_or_default() + "\n"));
     } else {
-        print!("{}", table(&report));
-        match &written {
-            Ok(()) => {
-                let sections = report
-                    .cases
-                    .iter()
-                    .flat_map(|c| c.subsurface.iter().flat_map(|s| &s.bodies))
-                    .any(|b| !b.sections.is_empty());
-                let stresses = if sections {
-                    ",subsurface_<case>.csv,mises_<case>_<section>.svg"
-                } else {
-                    ""
-                };
-                println!(
-                    "results: {}/{{result.json,interface.csv,p.svg,dh.svg{stresses}}}",
-                    dir.display()
-                )
+        emit(&table(&report));
+    }
+    match written {
+        Ok(dir) => {
+            if !json {
+                emit(&format!(
+                    "results: {}/{{{}}}\n",
+                    dir.path().display(),
+                    dir.written().join(",")
+                ));
             }
-            Err(e) => eprintln!("could not write {}: {e}", dir.display()),
+        }
+        Err(e) => {
+            eprintln!(
+                "error: could not write the results to {}: {e}",
+                out.join(&scene.spec.name).display()
+            );
+            return Ok(EXIT_WRITE);
         }
     }
-    if let Err(e) = written {
-        if json {
-            eprintln!("could not write {}: {e}", dir.display());
-        }
-    }
-    Ok(report.cases.iter().all(|c| c.converged))
+    let converged = report.cases.iter().all(|c| c.converged);
+    Ok(if converged { 0 } else { EXIT_NOT_CONVERGED })
 }
 
 fn table(report: &Report) -> String {
@@ -197,23 +233,24 @@ fn table(report: &Report) -> String {
     cases + &subsurface_table(report)
 }
 
-/// p_max, Δh_max, the optimisation's steps and the time of each case.
+/// p_max (the largest pressure), the optimisation's bound p̂ and Δh_max, its steps and the
+/// time of each case.
 fn case_table(report: &Report) -> String {
     use std::fmt::Write;
+    let width = label_width(report);
     let mut s = format!(
-        "{:<16} {:>12} {:>12} {:>6} {:>10}\n",
-        "case", "p_max MPa", "Δh_max µm", "steps", "time ms"
+        "{:<width$} {:>12} {:>12} {:>12} {:>6} {:>10}\n",
+        "case", "p_max MPa", "bound MPa", "Δh_max µm", "steps", "time ms"
     );
     for c in &report.cases {
-        let number =
-            |v: Option<f64>, digits: usize| v.map_or("-".into(), |v| format!("{v:.digits$}"));
         let total: f64 = c.timings_ms.values().sum();
         let _ = writeln!(
             s,
-            "{:<16} {:>12} {:>12} {:>6} {:>10.0}",
+            "{:<width$} {:>12} {:>12} {:>12} {:>6} {:>10.0}",
             c.label,
-            number(c.p_max, 2),
-            number(c.dh_max_um, 3),
+            significant(c.p_max),
+            significant(c.bound_p_max),
+            significant(c.dh_max_um),
             c.iterations.len(),
             total
         );
@@ -222,6 +259,19 @@ fn case_table(report: &Report) -> String {
         }
     }
     s
+}
+
+/// A value to six significant digits, in scientific notation outside 10⁻³…10⁶; `-` for none.
+fn significant(v: Option<f64>) -> String {
+    match v {
+        None => "-".into(),
+        Some(v) if v == 0.0 => "0".into(),
+        Some(v) if (1e-3..1e6).contains(&v.abs()) => {
+            let decimals = (5 - v.abs().log10().floor() as i32).clamp(0, 8) as usize;
+            format!("{v:.decimals$}")
+        }
+        Some(v) => format!("{v:.5e}"),
+    }
 }
 
 /// The width of the case column: the longest label, at least 4.
@@ -368,24 +418,22 @@ fn subsurface_table(report: &Report) -> String {
     s
 }
 
-/// Writes `result.json`, `interface.csv` and the plots of p and Δh along x (on a grid: along
-/// the points nearest the x axis).
-fn write(report: &Report, dir: &Path) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
-    std::fs::write(
-        dir.join("result.json"),
-        serde_json::to_string_pretty(report).expect("a report serialises"),
-    )?;
+/// Writes `result.json`, `interface.csv` and the plots of p (and of Δh, when some case changes
+/// the gap) along x (on a grid: along the points nearest the x axis).
+fn write(report: &Report, dir: &mut ResultsDir) -> std::io::Result<()> {
+    let json = serde_json::to_string_pretty(report).map_err(std::io::Error::other)?;
+    dir.write("result.json", json.as_bytes())?;
     let mut csv = String::from("case,x,y,z,p_mpa,d_mm,dh_mm\n");
     for c in &report.cases {
+        let label = csv_field(&c.label);
         for q in &c.interface {
             csv += &format!(
-                "\"{}\",{},{},{},{},{},{}\n",
-                c.label, q.x[0], q.x[1], q.x[2], q.p, q.d, q.dh
+                "{label},{},{},{},{},{},{}\n",
+                q.x[0], q.x[1], q.x[2], q.p, q.d, q.dh
             );
         }
     }
-    std::fs::write(dir.join("interface.csv"), csv)?;
+    dir.write("interface.csv", csv.as_bytes())?;
     let line =
         |c: &CaseReport, f: &dyn Fn(&contopt_scene::PointReport) -> f64| -> Vec<(f64, f64)> {
             let near = c
@@ -402,32 +450,43 @@ fn write(report: &Report, dir: &Path) -> std::io::Result<()> {
             v.sort_by(|a, b| a.0.total_cmp(&b.0));
             v
         };
-    for (file, title, label, f) in [
-        (
-            "p.svg",
-            "contact pressure",
-            "p [MPa]",
-            &(|q: &contopt_scene::PointReport| q.p) as &dyn Fn(&_) -> f64,
-        ),
+    let changes_gap = report
+        .cases
+        .iter()
+        .any(|c| c.interface.iter().any(|q| q.dh != 0.0));
+    let plots: [(
+        &str,
+        &str,
+        &str,
+        &dyn Fn(&contopt_scene::PointReport) -> f64,
+        bool,
+    ); 2] = [
+        ("p.svg", "contact pressure", "p [MPa]", &|q| q.p, true),
         (
             "dh.svg",
             "gap change",
             "Δh [µm]",
-            &|q: &contopt_scene::PointReport| 1e3 * q.dh,
+            &|q| 1e3 * q.dh,
+            changes_gap,
         ),
-    ] {
+    ];
+    for (file, title, label, f, wanted) in plots {
         let series: Vec<(String, Vec<(f64, f64)>)> = report
             .cases
             .iter()
+            .filter(|c| c.converged)
             .map(|c| (c.label.clone(), line(c, f)))
             .collect();
+        if !wanted || series.is_empty() {
+            continue;
+        }
         let svg = chart(
             &format!("{}: {title}", report.scene),
             "x [mm]",
             label,
             &series,
         );
-        std::fs::write(dir.join(file), svg)?;
+        dir.write(file, svg.as_bytes())?;
     }
     write_maps(report, dir)
 }
@@ -443,7 +502,7 @@ fn chart(title: &str, x: &str, y: &str, series: &[(String, Vec<(f64, f64)>)]) ->
 
 /// A heat map of the pressure over a two-dimensional region, one per case:
 /// `p_map_<case number>.svg`.
-fn write_maps(report: &Report, dir: &Path) -> std::io::Result<()> {
+fn write_maps(report: &Report, dir: &mut ResultsDir) -> std::io::Result<()> {
     for (k, c) in report.cases.iter().enumerate() {
         let first_y = c.interface.first().map_or(0.0, |q| q.x[1]);
         if !c.converged || c.interface.iter().all(|q| (q.x[1] - first_y).abs() < 1e-12) {
@@ -458,14 +517,14 @@ fn write_maps(report: &Report, dir: &Path) -> std::io::Result<()> {
             "MPa",
             &points,
         );
-        std::fs::write(dir.join(format!("p_map_{}.svg", k + 1)), svg)?;
+        dir.write(&format!("p_map_{}.svg", k + 1), svg.as_bytes())?;
     }
     write_envelopes(report, dir)
 }
 
 /// The centre-line pressure of a roller under each case of its envelope, one chart per case of
 /// the scene: `envelope_<case number>.svg`.
-fn write_envelopes(report: &Report, dir: &Path) -> std::io::Result<()> {
+fn write_envelopes(report: &Report, dir: &mut ResultsDir) -> std::io::Result<()> {
     for (k, c) in report.cases.iter().enumerate() {
         let Some(r) = c.roller.as_ref().filter(|r| !r.envelope.is_empty()) else {
             continue;
@@ -485,7 +544,7 @@ fn write_envelopes(report: &Report, dir: &Path) -> std::io::Result<()> {
             "p [MPa]",
             &series,
         );
-        std::fs::write(dir.join(format!("envelope_{}.svg", k + 1)), svg)?;
+        dir.write(&format!("envelope_{}.svg", k + 1), svg.as_bytes())?;
     }
     write_sections(report, dir)
 }
@@ -493,7 +552,7 @@ fn write_envelopes(report: &Report, dir: &Path) -> std::io::Result<()> {
 /// The stresses on each vertical section below each body, one CSV per case,
 /// `subsurface_<case number>.csv`, and a von Mises heat map per section,
 /// `mises_<case number>_<section number>.svg` (sections numbered over the case's bodies).
-fn write_sections(report: &Report, dir: &Path) -> std::io::Result<()> {
+fn write_sections(report: &Report, dir: &mut ResultsDir) -> std::io::Result<()> {
     use std::fmt::Write;
     for (k, c) in report.cases.iter().enumerate() {
         let Some(sub) = &c.subsurface else {
@@ -518,8 +577,8 @@ fn write_sections(report: &Report, dir: &Path) -> std::io::Result<()> {
                     let [s1, _, s3] = t.principal();
                     let _ = writeln!(
                         csv,
-                        "\"{}\",{},{along},{},{position},{depth},{},{},{},{},{},{},{},{},{s1},{s3}",
-                        body.body.replace('"', "\"\""),
+                        "{},{},{along},{},{position},{depth},{},{},{},{},{},{},{},{},{s1},{s3}",
+                        csv_field(&body.body),
                         n + 1,
                         field.section.at,
                         t.xx,
@@ -555,10 +614,10 @@ fn write_sections(report: &Report, dir: &Path) -> std::io::Result<()> {
                 "MPa",
                 &points,
             );
-            std::fs::write(dir.join(format!("mises_{}_{}.svg", k + 1, n + 1)), svg)?;
+            dir.write(&format!("mises_{}_{}.svg", k + 1, n + 1), svg.as_bytes())?;
         }
         if sub.bodies.iter().any(|b| !b.sections.is_empty()) {
-            std::fs::write(dir.join(format!("subsurface_{}.csv", k + 1)), csv)?;
+            dir.write(&format!("subsurface_{}.csv", k + 1), csv.as_bytes())?;
         }
     }
     Ok(())

@@ -14,15 +14,19 @@ use contopt_optimise::{
 };
 
 use crate::envelope::LoadCase;
-use crate::report::{CaseReport, EnvelopeCaseReport, IterationRow, PointReport, TunedProfile};
+use crate::report::{
+    CaseReport, EnvelopeCaseReport, IterationRow, PointReport, TunedProfile, PENETRATION_WARNING,
+};
 use crate::spec::{
     AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, ModeSpec, Optimise, Problem, ProfileSpec,
     PunchLoadSpec, RigidLoad, SolverSpec,
 };
 use crate::{Case, SceneError};
 
-/// The initial gap of an open point, beyond a flat punch's rim \[mm\].
-const OPEN: f64 = 1e3;
+/// The initial gap of a point beyond a flat punch's rim, in sizes of the interface: out of
+/// reach, since the solvers refuse an elastic displacement larger than one size
+/// ([`contopt_contact::SMALL_STRAIN`]), and in the units of the scene.
+const OPEN_SIZES: f64 = 4.0;
 
 /// What a case designs.
 enum Design<'s> {
@@ -66,7 +70,8 @@ fn material(m: &MaterialSpec) -> Result<Material> {
     Material::new(m.e_mpa, m.nu)
 }
 
-/// The indenter's initial gap at a point at distance `r` from its axis (or `y` from a roller's).
+/// The indenter's initial gap at a point at distance `r` from its axis (or `y` from a roller's);
+/// infinite beyond a flat punch's rim.
 fn indenter_gap(indenter: &Indenter, r: f64, y: f64) -> Result<f64> {
     let positive = |name: &str, v: f64| {
         if v > 0.0 && v.is_finite() {
@@ -86,7 +91,7 @@ fn indenter_gap(indenter: &Indenter, r: f64, y: f64) -> Result<f64> {
             if r <= positive("indenter.radius_mm", radius_mm)? * (1.0 + 1e-12) {
                 0.0
             } else {
-                OPEN
+                f64::INFINITY
             }
         }
     })
@@ -107,6 +112,23 @@ fn rigid_on(
         .iter()
         .map(|&x| gap(x))
         .collect::<Result<Vec<_>>>()?;
+    if h.iter().all(|v| v.is_infinite()) {
+        let nearest = iface
+            .points
+            .iter()
+            .map(|x| x[0].hypot(x[1]))
+            .fold(f64::INFINITY, f64::min);
+        return Err(Error::invalid(
+            "indenter.radius_mm",
+            format!("less than {nearest:.4e}"),
+            "no interface point lies under the flat punch (that is the nearest point's distance \
+             from its axis): enlarge the punch, or refine the rings or cells",
+        ));
+    }
+    let open = OPEN_SIZES * iface.extent();
+    h.iter_mut()
+        .filter(|v| v.is_infinite())
+        .for_each(|v| *v = open);
     let second = match load {
         RigidLoad::ForceN(f) => RigidBody::pressed("indenter", iface, axis, f)?,
         RigidLoad::ApproachMm(a) => {
@@ -397,8 +419,15 @@ impl Case {
     /// Checks every value without solving: the bodies are built (a finite-element body is
     /// factorised), the solver and the controller constructed.
     pub fn check(&self) -> std::result::Result<(), SceneError> {
+        self.check_memory()?;
+        bodies(&self.spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
+        self.check_without_bodies()
+    }
+
+    /// The checks of [`Case::check`] that do not build the bodies (for a case whose problem
+    /// another case has checked).
+    pub(crate) fn check_without_bodies(&self) -> std::result::Result<(), SceneError> {
         let spec = &self.spec;
-        bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
         solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
         match &spec.problem {
             Problem::Roller { profile, .. } => {
@@ -436,6 +465,13 @@ impl Case {
         Ok(())
     }
 
+    /// The case's memory estimate against its limit, before anything is built.
+    pub(crate) fn check_memory(&self) -> std::result::Result<u64, SceneError> {
+        let limit = crate::budget::limit(self.spec.memory_limit_mb)
+            .map_err(|e| self.invalid("memory_limit_mb", e))?;
+        crate::budget::check(&self.spec, limit).map_err(|e| self.invalid("problem", e))
+    }
+
     /// The folder of the scene file, where the files it names are read.
     fn dir(&self) -> &std::path::Path {
         self.file.parent().unwrap_or(std::path::Path::new("."))
@@ -459,6 +495,7 @@ impl Case {
         let spec = &self.spec;
         let solver = solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
         let dense_limit = self.dense_limit()?;
+        self.check_memory()?;
         let mut report = CaseReport::new(&self.label, &self.params);
         let start = Instant::now();
         let built = bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
@@ -481,8 +518,7 @@ impl Case {
                     .map_err(|e| self.invalid("solver", e))?
                     .solved(solver.name());
                 report.time("solve", solved);
-                let report =
-                    contact_report(report, problem.interface(), crown.unwrap_or(&[]), outcome);
+                let report = contact_report(report, &problem, crown.unwrap_or(&[]), outcome);
                 (report, Envelope::Given(vec![0.0; problem.len()]))
             }
             Design::Optimised(opt) => {
@@ -512,6 +548,7 @@ impl Case {
                 (report, Envelope::Solved(cases, tuned))
             }
         };
+        report.settle();
         if let (Some(info), true) = (&built.roller, report.converged) {
             let mut roller = roller_report(&report, info);
             let outcome = match envelope {
@@ -542,6 +579,7 @@ impl Case {
                 }
             }
             report.roller = Some(roller);
+            report.settle();
         }
         if let (Some(sub), true) = (&spec.output.subsurface, report.converged) {
             let started = Instant::now();
@@ -639,9 +677,7 @@ impl Case {
         }
         let reports = crate::envelope::reports(cases, &pressures, &approaches, info.dy);
         let own = own.unwrap_or_else(|| optimum.clone());
-        let mut report = optimum_report(report, &cases[0].problem, &own);
-        report.p_max = Some(own.pressure.iter().fold(0.0, |m: f64, v| m.max(*v)));
-        Ok((report, reports))
+        Ok((optimum_report(report, &cases[0].problem, &own), reports))
     }
 
     /// The Fujiwara–Kawase profile tuned for the envelope `cases`: the report of the scene's
@@ -662,9 +698,8 @@ impl Case {
             Ok((tuned, drop, states)) => {
                 let reports = crate::envelope::state_reports(cases, &states, info.dy);
                 let own = states.into_iter().next();
-                let iface = cases[0].problem.interface();
                 let own = own.ok_or_else(|| Error::invalid("envelope", "no case", "one case"));
-                let report = contact_report(report, iface, &drop, own);
+                let report = contact_report(report, &cases[0].problem, &drop, own);
                 Ok((report, reports, Some(tuned)))
             }
             Err(e @ Error::NotConverged { .. }) => {
@@ -764,20 +799,37 @@ impl Case {
 /// crown, or nothing).
 fn contact_report(
     mut report: CaseReport,
-    interface: &contopt_core::Interface,
+    problem: &InterfaceProblem,
     dh: &[f64],
     outcome: Result<contopt_core::ContactState>,
 ) -> CaseReport {
     match outcome {
         Ok(state) => {
             report.converged = true;
-            report.p_max = Some(state.p_max());
             report.approach_um = state.rigid.first().map(|l| -1e3 * l);
-            report.interface = points(&interface.points, &state.pressure, &state.gap, dh);
+            let points_x = &problem.interface().points;
+            report.interface = points(points_x, &state.pressure, &state.gap, dh);
+            let elastic = problem.elastic_displacement(&state.gap, &state.rigid);
+            penetration(&mut report, elastic);
         }
         Err(e) => report.error = Some(e.to_string()),
     }
     report
+}
+
+/// The report's largest penetration, and a warning when it exceeds [`PENETRATION_WARNING`] of
+/// the largest elastic displacement `elastic` \[mm\].
+fn penetration(report: &mut CaseReport, elastic: f64) {
+    let largest = report.interface.iter().fold(0.0f64, |m, q| m.max(-q.d));
+    report.penetration_um = Some(1e3 * largest);
+    if largest > PENETRATION_WARNING * elastic {
+        report.warnings.push(format!(
+            "the solution penetrates by {largest:.3e} mm, {:.2} % of its largest elastic \
+             displacement ({elastic:.3e} mm): raise the penalty parameter solver.c (the paper \
+             takes E·10⁴) or use an exact solver",
+            100.0 * largest / elastic
+        ));
+    }
 }
 
 /// A roller's figures from a converged report.
@@ -805,7 +857,7 @@ fn optimum_report(
     optimum: &Optimum,
 ) -> CaseReport {
     report.converged = true;
-    report.p_max = Some(optimum.p_max);
+    report.bound_p_max = Some(optimum.p_max);
     report.approach_um = optimum.rigid.first().map(|l| -1e3 * l);
     report.dh_max_um = Some(1e3 * optimum.dh_max());
     report.iterations = optimum
@@ -813,7 +865,7 @@ fn optimum_report(
         .iter()
         .map(|r| IterationRow {
             k: r.k,
-            p_max: r.p_max,
+            bound_p_max: r.p_max,
             dh_max_um: 1e3 * r.dh_max,
             tolh: r.tolh,
             iterp: r.iterp,
@@ -825,6 +877,11 @@ fn optimum_report(
         &optimum.pressure,
         &optimum.gap,
         &optimum.gap_change,
+    );
+    let elastic_gap: Vec<f64> = report.interface.iter().map(|q| q.d - q.dh).collect();
+    penetration(
+        &mut report,
+        problem.elastic_displacement(&elastic_gap, &optimum.rigid),
     );
     report
 }

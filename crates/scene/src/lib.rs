@@ -6,6 +6,7 @@
 //! and [`Case::run`] solves one case into a [`CaseReport`], the unit of `result.json` (its
 //! schema is in the book's chapter "Scene files and the `contopt` command").
 
+mod budget;
 mod build;
 mod envelope;
 mod report;
@@ -24,6 +25,72 @@ pub use spec::{
 };
 
 use std::path::{Path, PathBuf};
+
+/// The largest scene file \[bytes\]: a scene is a page of settings, not data.
+pub const MAX_TEXT_BYTES: u64 = 1_000_000;
+/// The deepest nesting of tables and arrays in a scene (the parsers recurse on it).
+pub const MAX_NESTING: usize = 32;
+/// The most cases one scene may have (sweep values or `[[case]]`s).
+pub const MAX_CASES: usize = 10_000;
+
+/// Refuses text that is too long or nested too deeply to be a scene, before it is parsed.
+fn check_text(text: &str) -> Result<(), String> {
+    if text.len() as u64 > MAX_TEXT_BYTES {
+        return Err(format!(
+            "the scene is over {MAX_TEXT_BYTES} bytes: a scene holds settings, not data"
+        ));
+    }
+    let (mut depth, mut deepest, mut quote) = (0usize, 0usize, None);
+    let mut chars = text.chars();
+    while let Some(c) = chars.next() {
+        match (quote, c) {
+            (Some('"'), '\\') => {
+                chars.next();
+            }
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), _) => {}
+            (None, '"' | '\'') => quote = Some(c),
+            (None, '#') => {
+                chars.by_ref().find(|&c| c == '\n');
+            }
+            (None, '[' | '{') => {
+                depth += 1;
+                deepest = deepest.max(depth);
+            }
+            (None, ']' | '}') => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    if deepest > MAX_NESTING {
+        return Err(format!(
+            "tables and arrays are nested {deepest} deep, at most {MAX_NESTING}"
+        ));
+    }
+    Ok(())
+}
+
+/// The longest scene name \[bytes\] (a file name's limit on common file systems).
+pub const MAX_NAME_BYTES: usize = 255;
+
+/// A scene's name names its results folder: a plain file name, nothing that leads elsewhere.
+fn check_name(name: &str) -> Result<(), String> {
+    let reason = if name.is_empty() {
+        "is empty"
+    } else if name.len() > MAX_NAME_BYTES {
+        "is longer than 255 bytes"
+    } else if name == "." || name == ".." {
+        "is a reference to a folder"
+    } else if name.contains(['/', '\\']) {
+        "holds a path separator"
+    } else if name.chars().any(char::is_control) {
+        "holds a control character"
+    } else {
+        return Ok(());
+    };
+    Err(format!(
+        "{reason}; the name names the results folder and must be a plain file name"
+    ))
+}
 
 /// What can go wrong with a scene.
 #[derive(Debug, thiserror::Error)]
@@ -98,10 +165,16 @@ pub struct Case {
 impl Scene {
     /// Reads and checks a scene file (TOML, or JSON when the name ends in `.json`).
     pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let io = |source| SceneError::Io {
             file: path.to_owned(),
             source,
-        })?;
+        };
+        let mut text = String::new();
+        std::io::Read::read_to_string(
+            &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_TEXT_BYTES + 1),
+            &mut text,
+        )
+        .map_err(io)?;
         let format = if path.extension().is_some_and(|e| e == "json") {
             Format::Json
         } else {
@@ -116,6 +189,10 @@ impl Scene {
             file: file.to_owned(),
             message: locate_unknown(text, message),
         };
+        check_text(text).map_err(|message| SceneError::Parse {
+            file: file.to_owned(),
+            message,
+        })?;
         let (spec, tree) = match format {
             Format::Toml => {
                 let spec: spec::SceneSpec =
@@ -131,14 +208,27 @@ impl Scene {
                 (spec, tree)
             }
         };
+        check_name(&spec.name).map_err(|reason| SceneError::Parse {
+            file: file.to_owned(),
+            message: format!("name {:?}: {reason}", spec.name),
+        })?;
         let scene = Self {
             file: file.to_owned(),
             spec,
             tree,
             text: text.into(),
         };
+        // Cases that differ only outside the problem (a sweep over the controller) share its
+        // bodies: build them once.
+        let mut checked = std::collections::HashSet::new();
         for case in scene.cases()? {
-            case.check()?;
+            case.check_memory()?;
+            let problem = serde_json::to_string(&case.spec.problem).unwrap_or_default();
+            if checked.insert(problem) {
+                case.check()?;
+            } else {
+                case.check_without_bodies()?;
+            }
         }
         Ok(scene)
     }
@@ -164,11 +254,23 @@ impl Scene {
         if sweep.values.is_empty() {
             return Err(parse("sweep.values: give at least one value".into()));
         }
+        if sweep.values.len() > MAX_CASES {
+            return Err(parse(format!(
+                "sweep.values: {} values, at most {MAX_CASES} cases in one scene",
+                sweep.values.len()
+            )));
+        }
+        // Each case edits its own copy of the tree, without the sweep (whose values would make
+        // the copies grow with the square of their number).
+        let mut base = self.tree.clone();
+        if let Some(map) = base.as_object_mut() {
+            map.remove("sweep");
+        }
         sweep
             .values
             .iter()
             .map(|&value| {
-                let mut tree = self.tree.clone();
+                let mut tree = base.clone();
                 let mut node = &mut tree;
                 for part in sweep.key.split('.') {
                     node = node.get_mut(part).filter(|n| !n.is_null()).ok_or_else(|| {
@@ -210,6 +312,12 @@ impl Scene {
         };
         if self.spec.sweep.is_some() {
             return Err(parse("give either a [sweep] or [[case]]s, not both".into()));
+        }
+        if self.spec.case.len() > MAX_CASES {
+            return Err(parse(format!(
+                "case: {} cases, at most {MAX_CASES} in one scene",
+                self.spec.case.len()
+            )));
         }
         let mut base = self.tree.clone();
         if let Some(map) = base.as_object_mut() {

@@ -5,6 +5,10 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
+/// The penetration, as a fraction of the largest elastic displacement, above which a solution
+/// carries a warning: the paper's c = E·10⁴ penetrates by about 10⁻⁶ of it.
+pub const PENETRATION_WARNING: f64 = 1e-3;
+
 /// All cases of a scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Report {
@@ -21,8 +25,23 @@ pub struct CaseReport {
     pub label: String,
     /// The swept parameter and its value.
     pub params: BTreeMap<String, f64>,
-    /// Largest contact pressure (the optimised p_max) \[MPa\]; null when it did not converge.
+    /// The largest contact pressure at the interface points, maxᵢ pᵢ \[MPa\], in every case
+    /// (for a roller's envelope, under the scene's own load); null when it did not converge.
     pub p_max: Option<f64>,
+    /// The level p̂ of the bound p ≤ v·p̂ that the optimisation minimised, the paper's p_max in
+    /// Tables 1–3 \[MPa\]; null without optimisation. The pressure at a point reaches it only
+    /// where v = 1, so `p_max` may be lower (C1 with L1 = 0 has v = 1 at r = 0 alone) or, by
+    /// the discretisation's error between the design nodes, marginally higher.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bound_p_max: Option<f64>,
+    /// The largest penetration of the solution, maxᵢ(−dᵢ) \[µm\]: O(1/c) for the penalty
+    /// method, round-off for the others; null when it did not converge.
+    #[serde(default)]
+    pub penetration_um: Option<f64>,
+    /// What the user should know about an answer that stands: a penalty solution that
+    /// penetrates by more than [`PENETRATION_WARNING`] of its elastic displacement.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     /// Largest gap change \[µm\]; null without optimisation.
     pub dh_max_um: Option<f64>,
     /// The floating body's approach, −λ of its rigid mode \[µm\] (with an optimisation, at the
@@ -136,6 +155,9 @@ impl CaseReport {
             label: label.to_string(),
             params: params.clone(),
             p_max: None,
+            bound_p_max: None,
+            penetration_um: None,
+            warnings: vec![],
             dh_max_um: None,
             approach_um: None,
             converged: false,
@@ -146,6 +168,76 @@ impl CaseReport {
             roller: None,
             subsurface: None,
         }
+    }
+
+    /// Sets `p_max` to the largest pressure of the interface points (when converged), then
+    /// turns a report that holds a NaN or an infinity into an unconverged one that names the
+    /// field, with its numbers dropped: no non-finite value reaches `result.json`, the CSV or
+    /// the plots.
+    pub(crate) fn settle(&mut self) {
+        if self.converged {
+            self.p_max = Some(self.interface.iter().fold(0.0f64, |m, q| m.max(q.p)));
+        }
+        if let Some((field, value)) = self.first_non_finite() {
+            let error = format!(
+                "the result's {field} is not finite ({value}): the data overflow f64 \
+                 (check the load, the moduli and the units)"
+            );
+            *self = Self {
+                error: Some(error),
+                timings_ms: std::mem::take(&mut self.timings_ms),
+                ..Self::new(&self.label, &self.params)
+            };
+        }
+    }
+
+    /// The first field holding a NaN or an infinity, with its value.
+    fn first_non_finite(&self) -> Option<(&'static str, f64)> {
+        let scalars = [
+            ("p_max", self.p_max),
+            ("bound_p_max", self.bound_p_max),
+            ("dh_max_um", self.dh_max_um),
+            ("approach_um", self.approach_um),
+            ("penetration_um", self.penetration_um),
+        ];
+        let points = self.interface.iter().flat_map(|q| {
+            let [x, y, z] = q.x;
+            [("point", x), ("point", y), ("point", z), ("pressure", q.p)]
+                .into_iter()
+                .chain([("gap", q.d), ("gap change", q.dh)])
+        });
+        let rows = self.iterations.iter().flat_map(|r| {
+            [
+                ("iteration p_max", r.bound_p_max),
+                ("iteration Δh_max", r.dh_max_um),
+                ("TOLH", r.tolh),
+            ]
+        });
+        let roller = self.roller.iter().flat_map(|r| {
+            let envelope = r.envelope.iter().flat_map(|e| {
+                [
+                    ("envelope p_max", e.p_max),
+                    ("envelope approach", e.approach_um),
+                ]
+                .into_iter()
+                .chain(e.centre_line.iter().map(|c| ("envelope pressure", c[1])))
+            });
+            [
+                ("roller half-width", r.half_width_mm[0]),
+                ("roller half-width", r.half_width_mm[1]),
+                ("crown drop", r.crown_drop_end_um),
+                ("worst p_max", r.worst_p_max.unwrap_or(0.0)),
+            ]
+            .into_iter()
+            .chain(envelope)
+        });
+        scalars
+            .into_iter()
+            .filter_map(|(name, v)| v.map(|v| (name, v)))
+            .chain(points)
+            .chain(rows)
+            .chain(roller)
+            .find(|(_, v)| !v.is_finite())
     }
 
     pub(crate) fn time(&mut self, stage: &str, since: Instant) {
@@ -159,8 +251,8 @@ impl CaseReport {
 pub struct IterationRow {
     /// Outer iteration k (for the LP: its passes).
     pub k: usize,
-    /// p_max \[MPa\].
-    pub p_max: f64,
+    /// The level p̂ of the bound p ≤ v·p̂ (Table 2's p_max) \[MPa\].
+    pub bound_p_max: f64,
     /// Δh_max \[µm\].
     pub dh_max_um: f64,
     /// TOLH (4.2) \[mm²\].

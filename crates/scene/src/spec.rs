@@ -34,6 +34,10 @@ pub struct SceneSpec {
     /// solver or the linear programme refuses the case before allocating.
     #[serde(default)]
     pub dense_limit_mb: Option<f64>,
+    /// Memory the whole case may take by its estimate before anything is built \[MB\]
+    /// (default 4000): bodies, dense matrices, results.
+    #[serde(default)]
+    pub memory_limit_mb: Option<f64>,
     /// What the results gain beyond the contact pressure.
     #[serde(default)]
     pub output: OutputSpec,
