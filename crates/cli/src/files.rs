@@ -5,6 +5,9 @@ use std::fs::OpenOptions;
 use std::io::{Error, ErrorKind, Result, Write};
 use std::path::{Path, PathBuf};
 
+/// The list of the files a run wrote, kept in the folder for the next run.
+pub const MANIFEST: &str = ".contopt-results";
+
 /// The folder a scene's results go to, created (with `out`) when missing.
 pub struct ResultsDir {
     dir: PathBuf,
@@ -50,6 +53,32 @@ impl ResultsDir {
             dir,
             written: vec![],
         })
+    }
+
+    /// Ends a run: the files the last run wrote here (listed in [`MANIFEST`]) that this run
+    /// did not write are removed, so that no stale result survives, and nothing else is
+    /// touched; then the list is replaced by this run's.
+    pub fn finish(mut self) -> Result<Self> {
+        let manifest = self.dir.join(MANIFEST);
+        let regular = std::fs::symlink_metadata(&manifest).is_ok_and(|m| m.is_file());
+        let previous = if regular {
+            std::fs::read_to_string(&manifest)?
+        } else {
+            String::new()
+        };
+        for name in previous.lines() {
+            let plain = Path::new(name).file_name().is_some_and(|f| f == name);
+            if plain && name != MANIFEST && !self.written.iter().any(|w| w == name) {
+                let path = self.dir.join(name);
+                if std::fs::symlink_metadata(&path).is_ok_and(|m| !m.is_dir()) {
+                    std::fs::remove_file(path)?;
+                }
+            }
+        }
+        let list = self.written.join("\n") + "\n";
+        self.write(MANIFEST, list.as_bytes())?;
+        self.written.pop();
+        Ok(self)
     }
 
     /// The folder.
@@ -123,6 +152,16 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
         assert_eq!(std::fs::read(dir.path().join("p.svg")).unwrap(), b"<svg/>");
         assert_eq!(dir.written(), ["p.svg"]);
+        // A re-run that writes fewer files removes the stale one it wrote before, and nothing
+        // that is not its own.
+        dir.write("dh.svg", b"<svg/>").unwrap();
+        std::fs::write(dir.path().join("notes.txt"), "mine").unwrap();
+        let dir = dir.finish().unwrap();
+        let mut again = ResultsDir::create(&out, "scene").unwrap();
+        again.write("p.svg", b"<svg/>").unwrap();
+        again.finish().unwrap();
+        assert!(!dir.path().join("dh.svg").exists());
+        assert!(dir.path().join("p.svg").exists() && dir.path().join("notes.txt").exists());
         std::os::unix::fs::symlink(&root, out.join("linked")).unwrap();
         assert!(ResultsDir::create(&out, "linked").is_err());
         for name in ["..", ".", "a/b", "/abs", ""] {

@@ -195,7 +195,7 @@ fn run(scene: &Scene, json: bool, out: &Path) -> Result<u8, SceneError> {
     }
     let written = ResultsDir::create(out, &scene.spec.name).and_then(|mut dir| {
         write(&report, &mut dir)?;
-        Ok(dir)
+        dir.finish()
     });
     if json {
         emit(&(serde_json::to_string_pretty(&report).unwrap_or_default() + "\n"));

@@ -1,0 +1,496 @@
+//! The `contopt` command under careless or hostile input: each case gives the right answer or a
+//! clear error with its exit code, results stay in their folder, and no output file holds a NaN
+//! or an infinity. Also the numerical stress cases of whole scenes: units, no contact, full
+//! contact, zero and unbalanced loads.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Output, Stdio};
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn contopt() -> Command {
+    Command::cargo_bin("contopt").unwrap()
+}
+
+/// A fresh scratch folder of this test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("contopt-hostile-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A bundled scene's text with `changes` made (each must apply).
+fn bundled(scene: &str, changes: &[(&str, &str)]) -> String {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{scene}.toml"));
+    let mut text = std::fs::read_to_string(file).unwrap();
+    for (from, to) in changes {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+/// The Hertz scene without its stresses, on 16 × 16 cells of 0.05 mm (a = 0.324 mm).
+fn small_hertz(changes: &[(&str, &str)]) -> String {
+    let mut all = vec![
+        ("cells = [64, 64]", "cells = [16, 16]"),
+        ("cell_mm = [0.0125, 0.0125]", "cell_mm = [0.05, 0.05]"),
+    ];
+    all.extend_from_slice(changes);
+    let text = bundled("hertz", &all);
+    text[..text.find("# Stresses below").unwrap()].to_string()
+}
+
+/// Runs `text` as a scene in its own folder with `--json`: the output and the results folder.
+fn run(name: &str, text: &str) -> (Output, PathBuf) {
+    let dir = scratch(name);
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    let output = contopt()
+        .args(["run", "--json", "--out"])
+        .arg(dir.join("results"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    (output, dir.join("results"))
+}
+
+fn report(output: &Output) -> Value {
+    serde_json::from_slice(&output.stdout).unwrap_or_else(|e| {
+        panic!(
+            "{e}: {}\n{}",
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr)
+        )
+    })
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// No output under `dir` holds a NaN or an infinity: no CSV or SVG spells one, and no number
+/// of a JSON report is null (serde writes both as null) except the fields that are null by
+/// design (a value a case did not compute).
+fn assert_finite_outputs(dir: &Path) {
+    let mut files = 0;
+    for entry in walk(dir) {
+        let text = std::fs::read_to_string(&entry).unwrap();
+        if entry.extension().is_some_and(|e| e == "json") {
+            let report: Value = serde_json::from_str(&text).unwrap();
+            assert_no_null(&report, "", &entry);
+        } else {
+            for bad in ["NaN", "nan", "inf"] {
+                assert!(!text.contains(bad), "{bad} in {}", entry.display());
+            }
+        }
+        files += 1;
+    }
+    assert!(files > 0, "no outputs in {}", dir.display());
+}
+
+/// Fields that are null when a case has no such value.
+const NULL_BY_DESIGN: [&str; 6] = [
+    "p_max",
+    "bound_p_max",
+    "dh_max_um",
+    "approach_um",
+    "penetration_um",
+    "error",
+];
+
+fn assert_no_null(value: &Value, key: &str, file: &Path) {
+    match value {
+        Value::Null => assert!(
+            NULL_BY_DESIGN.contains(&key),
+            "`{key}` is null in {}",
+            file.display()
+        ),
+        Value::Array(items) => items.iter().for_each(|v| assert_no_null(v, key, file)),
+        Value::Object(map) => map.iter().for_each(|(k, v)| assert_no_null(v, k, file)),
+        _ => {}
+    }
+}
+
+fn walk(dir: &Path) -> Vec<PathBuf> {
+    let mut all = vec![];
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            all.extend(walk(&path));
+        } else {
+            all.push(path);
+        }
+    }
+    all
+}
+
+/// Exit codes: 1 for a bad scene, 2 for a usage error, 3 when a case did not converge, 4 when
+/// the results cannot be written; `--help` lists them.
+#[test]
+fn exit_codes_say_what_went_wrong() {
+    let (output, _) = run("bad", &small_hertz(&[("nu = 0.3", "nu = 0.7")]));
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    assert!(stderr(&output).contains("material.nu"));
+
+    let usage = contopt().args(["run", "--bogus"]).output().unwrap();
+    assert_eq!(usage.status.code(), Some(2));
+
+    let stopped = small_hertz(&[(
+        "kind = \"polonsky_keer\"",
+        "kind = \"polonsky_keer\"\nmax_steps = 1",
+    )]);
+    let (output, _) = run("stopped", &stopped);
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    assert_eq!(report(&output)["cases"][0]["converged"], false);
+
+    let (ok, dir) = run("unwritable", &small_hertz(&[]));
+    assert_eq!(ok.status.code(), Some(0), "{}", stderr(&ok));
+    let blocked = contopt()
+        .args(["run", "hertz", "--out"])
+        .arg(dir.join("hertz").join("result.json"))
+        .output()
+        .unwrap();
+    assert_eq!(blocked.status.code(), Some(4), "{}", stderr(&blocked));
+    assert!(stderr(&blocked).contains("could not write"));
+
+    let help = contopt().arg("--help").output().unwrap();
+    let text = String::from_utf8_lossy(&help.stdout);
+    for code in [
+        "1 bad scene",
+        "2 usage",
+        "3 some case did not converge",
+        "4 the results",
+    ] {
+        assert!(text.contains(code), "{code} not in --help");
+    }
+}
+
+/// A scene name that leads out of the results folder is refused; a symbolic link where the
+/// scene's folder should be is refused, and one at a result's name is replaced, its target
+/// untouched; a label with a quote and a comma stays one CSV field.
+#[test]
+fn results_stay_in_their_folder() {
+    for name in ["../../x", "/tmp/abs", "..", ".", "a\\u0000b", "tab\\there"] {
+        let text = small_hertz(&[("name = \"hertz\"", &format!("name = \"{name}\""))]);
+        let (output, dir) = run("escape", &text);
+        assert_eq!(output.status.code(), Some(1), "{name}: {}", stderr(&output));
+        assert!(stderr(&output).contains("plain file name"), "{name}");
+        assert!(!dir.exists(), "{name}: wrote {}", dir.display());
+    }
+
+    let dir = scratch("links");
+    let victim = dir.join("victim.txt");
+    std::fs::write(&victim, "keep").unwrap();
+    let out = dir.join("results");
+    std::fs::create_dir_all(out.join("hertz")).unwrap();
+    std::os::unix::fs::symlink(&victim, out.join("hertz").join("p.svg")).unwrap();
+    let output = contopt()
+        .args(["run", "hertz", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    assert!(std::fs::read_to_string(out.join("hertz").join("p.svg"))
+        .unwrap()
+        .starts_with("<svg"));
+
+    let linked = dir.join("linked");
+    std::fs::create_dir_all(&linked).unwrap();
+    std::os::unix::fs::symlink(&dir, linked.join("hertz")).unwrap();
+    let output = contopt()
+        .args(["run", "hertz", "--out"])
+        .arg(&linked)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(4));
+    assert!(stderr(&output).contains("symbolic link"));
+
+    let text = small_hertz(&[(
+        "[problem]",
+        "[[case]]\nlabel = 'say \"a, b\"'\nset = { \"problem.load.force_n\" = 900.0 }\n\n[problem]",
+    )]);
+    let (output, results) = run("quoted", &text);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let csv = std::fs::read_to_string(results.join("hertz").join("interface.csv")).unwrap();
+    let row = csv.lines().nth(1).unwrap();
+    assert!(row.starts_with("\"say \"\"a, b\"\"\","), "{row}");
+    assert_eq!(row.matches(',').count(), 6 + 1, "{row}");
+}
+
+/// `contopt run … --json | head`: the reader goes away, the command ends quietly.
+#[test]
+fn a_closed_pipe_is_not_a_panic() {
+    let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("contopt"))
+        .args(["run", "paper-table1", "--json", "--out"])
+        .arg(scratch("pipe"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+    let output = child.wait_with_output().unwrap();
+    assert!(!stderr(&output).contains("panicked"), "{}", stderr(&output));
+    assert_ne!(output.status.code(), Some(101));
+}
+
+/// The silent wrong answers of the issue, each now an answer or a clear error.
+#[test]
+fn hostile_values_give_answers_or_clear_errors() {
+    // A force that overflows f64 in the products: not converged, naming the non-finite value.
+    let (output, dir) = run(
+        "overflow",
+        &small_hertz(&[
+            ("kind = \"polonsky_keer\"", "kind = \"active_set\""),
+            ("force_n = 1000.0", "force_n = 1.7e308"),
+        ]),
+    );
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    let case = &report(&output)["cases"][0];
+    assert!(
+        case["error"].as_str().unwrap().contains("not finite"),
+        "{case}"
+    );
+    assert_finite_outputs(&dir);
+
+    // E = 1e-300: displacements of 1e303 mm are no small-strain answer.
+    let (output, dir) = run("soft", &small_hertz(&[("e_mpa = 2.0e5", "e_mpa = 1e-300")]));
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    let error = report(&output)["cases"][0]["error"].to_string();
+    assert!(
+        error.contains("exceeds the size of the interface"),
+        "{error}"
+    );
+    assert_finite_outputs(&dir);
+
+    // A flat punch smaller than the first ring has no point under it.
+    let text = bundled(
+        "flat-punch",
+        &[("radius_mm = 10.0 }", "radius_mm = 0.01 }")],
+    );
+    let (output, _) = run("small-punch", &text);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("no interface point lies under the flat punch"));
+
+    // A penalty c = E·10⁻³: the answer stands, with its penetration and a warning.
+    let text = bundled(
+        "paper-table1",
+        &[("c_mpa_per_mm = 2.0e9", "c_mpa_per_mm = 200.0")],
+    );
+    let text = &text[..text.find("[sweep]").unwrap()];
+    let (output, dir) = run("soft-penalty", text);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let case = &report(&output)["cases"][0];
+    let penetration = case["penetration_um"].as_f64().unwrap();
+    assert!(penetration > 100.0, "{penetration} µm");
+    assert!(case["warnings"][0].as_str().unwrap().contains("penetrates"));
+    assert!(stderr(&output).contains("warning: paper-table1: the solution penetrates"));
+    assert_finite_outputs(&dir);
+
+    // A controller of level 1e-12: the bound is 1e14 MPa, the largest pressure 100 MPa.
+    let text = bundled(
+        "paper-table1",
+        &[(
+            "controller = { kind = \"cubic\", l1_mm = 0.0, l2_mm = 50.0 }",
+            "controller = { kind = \"constant\", level = 1e-12 }",
+        )],
+    );
+    let (output, _) = run("level", &text[..text.find("[sweep]").unwrap()]);
+    let case = &report(&output)["cases"][0];
+    let (p_max, bound) = (
+        case["p_max"].as_f64().unwrap(),
+        case["bound_p_max"].as_f64().unwrap(),
+    );
+    assert!((p_max / 100.0 - 1.0).abs() < 1e-6, "{p_max}");
+    assert!((bound / 1e14 - 1.0).abs() < 1e-6, "{bound}");
+}
+
+/// Sizes that would abort or overflow are refused before anything is allocated, with the
+/// memory they would take.
+#[test]
+fn sizes_are_refused_with_their_memory() {
+    for (name, changes, needle) in [
+        (
+            "huge-grid",
+            vec![("cells = [16, 16]", "cells = [100000, 100000]")],
+            "10000000000 interface points",
+        ),
+        (
+            "wrapping-grid",
+            vec![("cells = [16, 16]", "cells = [4294967296, 4294967296]")],
+            "more bytes than 64 bits count",
+        ),
+        (
+            "dense-grid",
+            vec![
+                ("cells = [16, 16]", "cells = [128, 128]"),
+                ("kind = \"polonsky_keer\"", "kind = \"active_set\""),
+            ],
+            "5 dense 16384 × 16384 matrices",
+        ),
+    ] {
+        let text = small_hertz(&[]);
+        let mut text = text.clone();
+        for (from, to) in changes {
+            text = text.replacen(from, to, 1);
+        }
+        let (output, _) = run(name, &text);
+        assert_eq!(output.status.code(), Some(1), "{name}");
+        let message = stderr(&output);
+        assert!(
+            message.contains(needle) && message.contains("limit of 4000 MB"),
+            "{message}"
+        );
+    }
+    for (scene, from, to) in [
+        ("paper-table1", "elements = 18", "elements = 100000"),
+        ("flat-punch", "rings = 60", "rings = 100000"),
+    ] {
+        let (output, _) = run(scene, &bundled(scene, &[(from, to)]));
+        assert_eq!(output.status.code(), Some(1), "{scene}");
+        assert!(
+            stderr(&output).contains("over the limit"),
+            "{}",
+            stderr(&output)
+        );
+    }
+    let values: Vec<String> = (0..20_000).map(|k| k.to_string()).collect();
+    let sweep = format!(
+        "[sweep]\nkey = \"problem.load.force_n\"\nvalues = [{}]\n\n[problem]",
+        values.join(", ")
+    );
+    let (output, _) = run("long-sweep", &small_hertz(&[("[problem]", &sweep)]));
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("at most 10000 cases"),
+        "{}",
+        stderr(&output)
+    );
+    let deep = format!(
+        "name = \"deep\"\nx = {}1{}\n",
+        "[".repeat(200),
+        "]".repeat(200)
+    );
+    let (output, _) = run("deep", &deep);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("nested 200 deep"),
+        "{}",
+        stderr(&output)
+    );
+}
+
+/// Hertz in N-mm-MPa, N-m-Pa (lengths ×10⁻³, E ×10⁶) and N-µm-TPa (lengths ×10³, E ×10⁻⁶):
+/// one physical answer by Polonsky–Keer and by the active set (p in the scene's units scales
+/// as E); Table 1 alike in N-m-Pa.
+#[test]
+fn units_do_not_change_the_answer() {
+    let hertz = |solver: &str, length: f64, stress: f64| {
+        let text = small_hertz(&[
+            ("kind = \"polonsky_keer\"", &format!("kind = \"{solver}\"")),
+            ("e_mpa = 2.0e5", &format!("e_mpa = {:e}", 2.0e5 * stress)),
+            (
+                "cell_mm = [0.05, 0.05]",
+                &format!("cell_mm = [{0:e}, {0:e}]", 0.05 * length),
+            ),
+            (
+                "radius_mm = 10.0",
+                &format!("radius_mm = {:e}", 10.0 * length),
+            ),
+        ]);
+        let (output, dir) = run(&format!("units-{solver}-{length}"), &text);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        assert_finite_outputs(&dir);
+        report(&output)["cases"][0]["p_max"].as_f64().unwrap() / stress
+    };
+    for solver in ["polonsky_keer", "active_set"] {
+        let mm = hertz(solver, 1.0, 1.0);
+        for (length, stress) in [(1e-3, 1e6), (1e3, 1e-6)] {
+            let other = hertz(solver, length, stress);
+            assert!((other / mm - 1.0).abs() < 1e-8, "{solver}: {other} vs {mm}");
+        }
+    }
+    let metres = bundled(
+        "paper-table1",
+        &[
+            ("punch_radius_mm = 50.0", "punch_radius_mm = 0.05"),
+            ("height_mm = 50.0", "height_mm = 0.05"),
+            ("base_radius_mm = 100.0", "base_radius_mm = 0.1"),
+            ("e_mpa = 2.0e5", "e_mpa = 2.0e11"),
+            ("pressure_mpa = 100.0", "pressure_mpa = 1.0e8"),
+            ("c_mpa_per_mm = 2.0e9", "c_mpa_per_mm = 2.0e18"),
+            ("l1_mm = 0.0, l2_mm = 50.0", "l1_mm = 0.0, l2_mm = 0.05"),
+            ("tolh_mm2 = 0.5e-6", "tolh_mm2 = 0.5e-12"),
+        ],
+    );
+    let metres = &metres[..metres.find("[sweep]").unwrap()];
+    let text = bundled("paper-table1", &[]);
+    let (mm, _) = run("table1-mm", &text[..text.find("[sweep]").unwrap()]);
+    let (m, _) = run("table1-m", metres);
+    let (mm, m) = (&report(&mm)["cases"][0], &report(&m)["cases"][0]);
+    for (key, scale) in [("bound_p_max", 1e6), ("p_max", 1e6), ("dh_max_um", 1e-3)] {
+        let (a, b) = (mm[key].as_f64().unwrap(), m[key].as_f64().unwrap() / scale);
+        assert!((b / a - 1.0).abs() < 1e-6, "{key}: {b} vs {a}");
+    }
+}
+
+/// No contact (an approach short of the nearest point), full contact (a flat punch as wide as
+/// the zone: Sneddon's mean pressure), zero load and a load pulling the bodies apart.
+#[test]
+fn degenerate_contacts() {
+    let (output, dir) = run(
+        "no-contact",
+        &small_hertz(&[("force_n = 1000.0", "approach_mm = 1e-9")]),
+    );
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let case = &report(&output)["cases"][0];
+    assert_eq!(case["p_max"].as_f64(), Some(0.0));
+    assert_finite_outputs(&dir);
+
+    let (output, dir) = run("full-contact", &bundled("flat-punch", &[]));
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let case = &report(&output)["cases"][0];
+    let points = case["interface"].as_array().unwrap();
+    assert!(points.iter().all(|q| q["p"].as_f64().unwrap() > 0.0));
+    // Sneddon: p(r) = F/(2πa√(a² − r²)); at r = a/2, F/(√3 π a²).
+    let (f, a) = (31415.93, 10.0);
+    let half = points
+        .iter()
+        .min_by(|p, q| {
+            let d = |v: &Value| (v["x"][0].as_f64().unwrap() - 0.5 * a).abs();
+            d(p).total_cmp(&d(q))
+        })
+        .unwrap();
+    let sneddon = f / (3f64.sqrt() * std::f64::consts::PI * a * a);
+    let p = half["p"].as_f64().unwrap();
+    assert!((p / sneddon - 1.0).abs() < 0.02, "{p} vs {sneddon}");
+    assert_finite_outputs(&dir);
+
+    let (output, _) = run(
+        "zero-load",
+        &small_hertz(&[("force_n = 1000.0", "force_n = 0.0")]),
+    );
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("must be positive"));
+
+    let text = bundled(
+        "paper-table1",
+        &[("pressure_mpa = 100.0", "pressure_mpa = 0.0")],
+    );
+    let (output, _) = run("zero-punch-load", &text);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("not pressed into contact"));
+
+    let text = bundled(
+        "paper-table1",
+        &[("pressure_mpa = 100.0", "pressure_mpa = -100.0")],
+    );
+    let (output, _) = run("pulled", &text);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("pulls the bodies apart"));
+}
