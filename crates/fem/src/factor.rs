@@ -98,7 +98,11 @@ impl Factor {
             )
             .map_err(|e| Error::Singular {
                 body: body.into(),
-                detail: format!("{e:?}; check that the supports leave no mechanism"),
+                detail: format!(
+                    "{e:?}; check that the supports leave no mechanism, and that no element is \
+                     stretched past about 1:1000 (a slender body loses a digit per decade of \
+                     aspect ratio in bending, and double precision runs out near 1:10000)"
+                ),
             })?;
         Ok(())
     }
