@@ -265,7 +265,7 @@ fn case_table(report: &Report) -> String {
 fn significant(v: Option<f64>) -> String {
     match v {
         None => "-".into(),
-        Some(v) if v == 0.0 => "0".into(),
+        Some(0.0) => "0".into(),
         Some(v) if (1e-3..1e6).contains(&v.abs()) => {
             let decimals = (5 - v.abs().log10().floor() as i32).clamp(0, 8) as usize;
             format!("{v:.decimals$}")
@@ -454,13 +454,8 @@ fn write(report: &Report, dir: &mut ResultsDir) -> std::io::Result<()> {
         .cases
         .iter()
         .any(|c| c.interface.iter().any(|q| q.dh != 0.0));
-    let plots: [(
-        &str,
-        &str,
-        &str,
-        &dyn Fn(&contopt_scene::PointReport) -> f64,
-        bool,
-    ); 2] = [
+    type Field<'a> = &'a dyn Fn(&contopt_scene::PointReport) -> f64;
+    let plots: [(&str, &str, &str, Field, bool); 2] = [
         ("p.svg", "contact pressure", "p [MPa]", &|q| q.p, true),
         (
             "dh.svg",
