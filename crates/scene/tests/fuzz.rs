@@ -304,13 +304,7 @@ const SPECIAL_FLOATS: &[f64] = &[
 
 /// Counts past any sensible mesh or grid, and one large but sensible one (a thousand elements
 /// across a finite-element body is sensible too, but takes 20 s to check: slow, not wrong).
-const BIG_COUNTS: &[i64] = &[
-    100,
-    1_000_000,
-    1_000_000_000,
-    4_294_967_296,
-    i64::MAX,
-];
+const BIG_COUNTS: &[i64] = &[100, 1_000_000, 1_000_000_000, 4_294_967_296, i64::MAX];
 
 const HOSTILE_STRINGS: &[&str] = &[
     "",
@@ -776,7 +770,10 @@ fn named_cases() -> BoxedStrategy<Value> {
     )
         .prop_map(|(label, set)| {
             let set = set.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
-            table(vec![("label", Some(label)), ("set", Some(Value::Table(set)))])
+            table(vec![
+                ("label", Some(label)),
+                ("set", Some(Value::Table(set))),
+            ])
         });
     proptest::collection::vec(case, 0..4)
         .prop_map(Value::Array)
@@ -808,12 +805,7 @@ fn section() -> BoxedStrategy<(Vec<&'static str>, Value)> {
         "elements",
         "size_mm",
     ];
-    const LOADS: &[&str] = &[
-        "force_n",
-        "approach_mm",
-        "pressure_mpa",
-        "displacement_mm",
-    ];
+    const LOADS: &[&str] = &["force_n", "approach_mm", "pressure_mpa", "displacement_mm"];
     let mesh = (
         count(),
         opt(count()),
@@ -1146,7 +1138,11 @@ impl MutatedScene {
 impl std::fmt::Debug for MutatedScene {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (toml, json) = self.texts();
-        writeln!(f, "scene {} with {:?}", SCENES[self.scene].0, self.mutations)?;
+        writeln!(
+            f,
+            "scene {} with {:?}",
+            SCENES[self.scene].0, self.mutations
+        )?;
         match toml {
             Some(toml) => writeln!(f, "--- as TOML:\n{}", preview_block(&toml)),
             None => writeln!(f, "--- as JSON:\n{}", preview_block(&json)),
@@ -1164,10 +1160,7 @@ fn preview_block(text: &str) -> String {
 }
 
 fn mutated_scene() -> impl Strategy<Value = MutatedScene> {
-    (
-        0..SCENES.len(),
-        proptest::collection::vec(mutation(), 1..5),
-    )
+    (0..SCENES.len(), proptest::collection::vec(mutation(), 1..5))
         .prop_map(|(scene, mutations)| MutatedScene { scene, mutations })
 }
 
@@ -1186,7 +1179,10 @@ fn parse(text: String, format: Format) {
                 assert!(!cases.is_empty(), "a scene that parsed has no case");
                 for case in [cases.first(), cases.last()].into_iter().flatten() {
                     if let Err(e) = case.check() {
-                        panic!("case {} of a scene that parsed fails its check: {e}", case.label);
+                        panic!(
+                            "case {} of a scene that parsed fails its check: {e}",
+                            case.label
+                        );
                     }
                 }
             }
@@ -1261,7 +1257,11 @@ fn plausible_problem() -> BoxedStrategy<Value> {
     let punch = (
         one_of(&["axisymmetric", "plane_stress", "plane_strain"]),
         maybe(0.5, real_in(1.0, 20.0)),
-        (real_in(1.0, 100.0), real_in(1.0, 100.0), real_in(2.0, 200.0)),
+        (
+            real_in(1.0, 100.0),
+            real_in(1.0, 100.0),
+            real_in(2.0, 200.0),
+        ),
         plausible_material(),
         prop_oneof![
             real_in(1.0, 500.0).prop_map(|p| table(vec![("pressure_mpa", Some(p))])),
@@ -1386,10 +1386,13 @@ fn plausible_problem() -> BoxedStrategy<Value> {
         (plausible_material(), plausible_material()),
         real_in(10.0, 1e4),
         maybe(0.3, real_in(-10.0, 10.0)),
-        (count_in(1, 32), count_in(1, 15).prop_map(|n| match n {
-            Value::Integer(k) if (0..100).contains(&k) => int(2 * k + 1),
-            other => other,
-        })),
+        (
+            count_in(1, 32),
+            count_in(1, 15).prop_map(|n| match n {
+                Value::Integer(k) if (0..100).contains(&k) => int(2 * k + 1),
+                other => other,
+            }),
+        ),
         maybe(0.3, real_in(0.5, 5.0)),
         crown,
     )
@@ -1628,17 +1631,19 @@ fn generated_scene() -> impl Strategy<Value = GeneratedScene> {
             0.1,
             (
                 proptest::collection::vec(real_in(0.1, 2.0), 1..3),
-                proptest::collection::vec(real_in(-5.0, 5.0), 1..3)
+                proptest::collection::vec(real_in(-5.0, 5.0), 1..3),
             )
-                .prop_map(|(f, t)| table(vec![
-                    ("load_factors", Some(Value::Array(f))),
-                    ("tilts_arcmin", Some(Value::Array(t))),
-                ]))
-                .boxed()
+                .prop_map(|(f, t)| {
+                    table(vec![
+                        ("load_factors", Some(Value::Array(f))),
+                        ("tilts_arcmin", Some(Value::Array(t))),
+                    ])
+                })
+                .boxed(),
         ),
         (
             maybe(0.1, real_in(1.0, 5000.0)),
-            maybe(0.1, real_in(1.0, 5000.0))
+            maybe(0.1, real_in(1.0, 5000.0)),
         ),
     )
         .prop_map(
@@ -1699,13 +1704,70 @@ proptest! {
 // Strategy 2: arbitrary text.
 
 const TOKENS: &[&str] = &[
-    "[", "]", "[[", "]]", "{", "}", "=", ",", ":", ".", "\"", "'", "\"\"\"", "'''", "\n", " ",
-    "#", "\\", "\\u0000", "\\uD800", "a", "name", "kind", "problem", "solver", "\"x\"", "'x'",
-    "1", "-1", "0", "1e400", "-0", "1_000", "0x10", "0o7", "0b1", "nan", "+inf", "-inf", "1.",
-    ".5", "true", "false", "null", "1979-05-27T07:32:00Z", "07:32:00", "1979-05-27",
-    "18446744073709551616", "9223372036854775808", "\u{0}", "\u{feff}", "🦀", "\r",
-    "rigid_on_half_space", "punch_on_base", "roller", "elements", "cells", "[problem]",
-    "[solver]", "[[case]]", "[sweep]", "values", "key",
+    "[",
+    "]",
+    "[[",
+    "]]",
+    "{",
+    "}",
+    "=",
+    ",",
+    ":",
+    ".",
+    "\"",
+    "'",
+    "\"\"\"",
+    "'''",
+    "\n",
+    " ",
+    "#",
+    "\\",
+    "\\u0000",
+    "\\uD800",
+    "a",
+    "name",
+    "kind",
+    "problem",
+    "solver",
+    "\"x\"",
+    "'x'",
+    "1",
+    "-1",
+    "0",
+    "1e400",
+    "-0",
+    "1_000",
+    "0x10",
+    "0o7",
+    "0b1",
+    "nan",
+    "+inf",
+    "-inf",
+    "1.",
+    ".5",
+    "true",
+    "false",
+    "null",
+    "1979-05-27T07:32:00Z",
+    "07:32:00",
+    "1979-05-27",
+    "18446744073709551616",
+    "9223372036854775808",
+    "\u{0}",
+    "\u{feff}",
+    "🦀",
+    "\r",
+    "rigid_on_half_space",
+    "punch_on_base",
+    "roller",
+    "elements",
+    "cells",
+    "[problem]",
+    "[solver]",
+    "[[case]]",
+    "[sweep]",
+    "values",
+    "key",
 ];
 
 /// Deep nesting: opening, inner, closing, each repeated `depth` times around the inner.
