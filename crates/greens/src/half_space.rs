@@ -165,7 +165,7 @@ impl HalfSpace {
     }
 
     /// The memory an `nx` × `ny` grid takes \[bytes\]: its points, its kernel and the FFT's
-    /// zero-padded 2nx × 2ny spectra and buffers ([`GRID_BYTES_PER_CELL`] per cell); `None`
+    /// zero-padded 2nx × 2ny spectra and buffers (200 bytes per cell); `None`
     /// when the count overflows.
     pub fn grid_bytes(nx: usize, ny: usize) -> Option<u64> {
         memory::bytes(&[nx, ny], GRID_BYTES_PER_CELL)

@@ -16,7 +16,7 @@ mod subsurface;
 
 pub use report::{
     BodyStresses, CaseReport, EnvelopeCaseReport, IterationRow, PointReport, Report, RollerReport,
-    SubsurfaceReport, TunedProfile,
+    SubsurfaceReport, TunedProfile, PENETRATION_WARNING,
 };
 pub use spec::{
     AnalysisSpec, ControllerSpec, EnvelopeSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec,
