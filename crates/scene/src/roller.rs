@@ -87,13 +87,23 @@ fn crown(roller: &Roller, profile: &ProfileSpec, dir: &Path) -> Result<Crown> {
 /// A crown table from a CSV file of `x_mm, drop_mm` rows; a first line that is not numbers is
 /// a header.
 fn table(path: &Path) -> Result<Crown> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        Error::invalid(
-            "profile.file",
-            path.display(),
-            format!("cannot be read: {e}"),
-        )
-    })?;
+    let unreadable = |why: String| Error::invalid("profile.file", path.display(), why);
+    let file = std::fs::File::open(path).map_err(|e| unreadable(format!("cannot be read: {e}")))?;
+    if !file.metadata().is_ok_and(|m| m.is_file()) {
+        return Err(unreadable("is not a regular file".into()));
+    }
+    let mut text = String::new();
+    std::io::Read::read_to_string(
+        &mut std::io::Read::take(file, crate::MAX_TEXT_BYTES + 1),
+        &mut text,
+    )
+    .map_err(|e| unreadable(format!("cannot be read: {e}")))?;
+    if text.len() as u64 > crate::MAX_TEXT_BYTES {
+        return Err(unreadable(format!(
+            "is over {} bytes: a crown table is a page of numbers",
+            crate::MAX_TEXT_BYTES
+        )));
+    }
     let (mut x, mut drop) = (vec![], vec![]);
     for (k, line) in text.lines().enumerate() {
         let fields: Vec<&str> = line.split(',').map(str::trim).collect();
