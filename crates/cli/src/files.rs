@@ -15,18 +15,16 @@ pub struct ResultsDir {
 }
 
 impl ResultsDir {
-    /// `out/name`, where `name` is a plain file name (the scene checks it; checked again here)
-    /// and `out/name` is not a symbolic link.
+    /// `out/name`, where `name` passes the scene's own [`contopt_scene::check_name`] (checked
+    /// again here, for callers that did not parse a scene) and `out/name` is not a symbolic
+    /// link.
     pub fn create(out: &Path, name: &str) -> Result<Self> {
-        let plain = Path::new(name)
-            .file_name()
-            .is_some_and(|f| f == name && name != "." && name != "..");
-        if !plain {
-            return Err(Error::new(
+        contopt_scene::check_name(name).map_err(|reason| {
+            Error::new(
                 ErrorKind::InvalidInput,
-                format!("the scene name {name:?} is not a plain file name"),
-            ));
-        }
+                format!("the scene name {name:?} {reason}"),
+            )
+        })?;
         std::fs::create_dir_all(out)?;
         let dir = out.join(name);
         match std::fs::symlink_metadata(&dir) {

@@ -18,7 +18,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use contopt_scene::{CaseReport, Format, Report, Scene, SceneError};
+use contopt_scene::{CaseReport, Format, Report, Scene, SceneError, BUNDLED};
 use files::{csv_field, ResultsDir};
 
 /// A bad scene: unreadable, unknown or missing keys, values out of range, too large.
@@ -33,40 +33,6 @@ const EXIT_WRITE: u8 = 4;
 /// The exit codes, as `--help` shows them.
 const EXIT_CODES: &str = "Exit status: 0 success; 1 bad scene (unreadable, invalid or too large); \
 2 usage error; 3 some case did not converge; 4 the results could not be written.";
-
-/// The scenes in `scenes/`, built into the binary.
-const BUNDLED: &[(&str, &str)] = &[
-    (
-        "paper-table1",
-        include_str!("../../../scenes/paper-table1.toml"),
-    ),
-    (
-        "paper-table2",
-        include_str!("../../../scenes/paper-table2.toml"),
-    ),
-    (
-        "paper-table3",
-        include_str!("../../../scenes/paper-table3.toml"),
-    ),
-    ("roller", include_str!("../../../scenes/roller.toml")),
-    (
-        "roller-study",
-        include_str!("../../../scenes/roller-study.toml"),
-    ),
-    (
-        "roller-envelope",
-        include_str!("../../../scenes/roller-envelope.toml"),
-    ),
-    ("hertz", include_str!("../../../scenes/hertz.toml")),
-    (
-        "flat-punch",
-        include_str!("../../../scenes/flat-punch.toml"),
-    ),
-    (
-        "punch-on-block",
-        include_str!("../../../scenes/punch-on-block.toml"),
-    ),
-];
 
 #[derive(Parser)]
 #[command(

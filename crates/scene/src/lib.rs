@@ -8,12 +8,14 @@
 
 mod budget;
 mod build;
+mod bundled;
 mod envelope;
 mod report;
 mod roller;
 mod spec;
 mod subsurface;
 
+pub use bundled::BUNDLED;
 pub use report::{
     BodyStresses, CaseReport, EnvelopeCaseReport, IterationRow, PointReport, Report, RollerReport,
     SubsurfaceReport, TunedProfile, PENETRATION_WARNING,
@@ -32,6 +34,17 @@ pub const MAX_TEXT_BYTES: u64 = 1_000_000;
 pub const MAX_NESTING: usize = 32;
 /// The most cases one scene may have (sweep values or `[[case]]`s).
 pub const MAX_CASES: usize = 10_000;
+
+/// The text of `file`, read no further than one byte past [`MAX_TEXT_BYTES`] (so that
+/// `/dev/zero` ends): a caller refuses text longer than the limit.
+pub(crate) fn read_at_most(file: std::fs::File) -> std::io::Result<String> {
+    let mut text = String::new();
+    std::io::Read::read_to_string(
+        &mut std::io::Read::take(file, MAX_TEXT_BYTES + 1),
+        &mut text,
+    )?;
+    Ok(text)
+}
 
 /// Refuses text that is too long or nested too deeply to be a scene, before it is parsed.
 fn check_text(text: &str) -> Result<(), String> {
@@ -73,7 +86,7 @@ fn check_text(text: &str) -> Result<(), String> {
 pub const MAX_NAME_BYTES: usize = 255;
 
 /// A scene's name names its results folder: a plain file name, nothing that leads elsewhere.
-fn check_name(name: &str) -> Result<(), String> {
+pub fn check_name(name: &str) -> Result<(), String> {
     let reason = if name.is_empty() {
         "is empty"
     } else if name.len() > MAX_NAME_BYTES {
@@ -169,12 +182,7 @@ impl Scene {
             file: path.to_owned(),
             source,
         };
-        let mut text = String::new();
-        std::io::Read::read_to_string(
-            &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_TEXT_BYTES + 1),
-            &mut text,
-        )
-        .map_err(io)?;
+        let text = read_at_most(std::fs::File::open(path).map_err(io)?).map_err(io)?;
         let format = if path.extension().is_some_and(|e| e == "json") {
             Format::Json
         } else {
@@ -222,11 +230,11 @@ impl Scene {
         // bodies: build them once.
         let mut checked = std::collections::HashSet::new();
         for case in scene.cases()? {
-            case.check_memory()?;
             let problem = serde_json::to_string(&case.spec.problem).unwrap_or_default();
             if checked.insert(problem) {
                 case.check()?;
             } else {
+                case.check_memory()?;
                 case.check_without_bodies()?;
             }
         }

@@ -92,12 +92,7 @@ fn table(path: &Path) -> Result<Crown> {
     if !file.metadata().is_ok_and(|m| m.is_file()) {
         return Err(unreadable("is not a regular file".into()));
     }
-    let mut text = String::new();
-    std::io::Read::read_to_string(
-        &mut std::io::Read::take(file, crate::MAX_TEXT_BYTES + 1),
-        &mut text,
-    )
-    .map_err(|e| unreadable(format!("cannot be read: {e}")))?;
+    let text = crate::read_at_most(file).map_err(|e| unreadable(format!("cannot be read: {e}")))?;
     if text.len() as u64 > crate::MAX_TEXT_BYTES {
         return Err(unreadable(format!(
             "is over {} bytes: a crown table is a page of numbers",

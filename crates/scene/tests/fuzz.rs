@@ -881,38 +881,8 @@ fn section() -> BoxedStrategy<(Vec<&'static str>, Value)> {
 // ---------------------------------------------------------------------------------------------
 // Strategy 1: the bundled scenes, mutated.
 
-const SCENES: &[(&str, &str)] = &[
-    (
-        "flat-punch",
-        include_str!("../../../scenes/flat-punch.toml"),
-    ),
-    ("hertz", include_str!("../../../scenes/hertz.toml")),
-    (
-        "paper-table1",
-        include_str!("../../../scenes/paper-table1.toml"),
-    ),
-    (
-        "paper-table2",
-        include_str!("../../../scenes/paper-table2.toml"),
-    ),
-    (
-        "paper-table3",
-        include_str!("../../../scenes/paper-table3.toml"),
-    ),
-    (
-        "punch-on-block",
-        include_str!("../../../scenes/punch-on-block.toml"),
-    ),
-    (
-        "roller-envelope",
-        include_str!("../../../scenes/roller-envelope.toml"),
-    ),
-    (
-        "roller-study",
-        include_str!("../../../scenes/roller-study.toml"),
-    ),
-    ("roller", include_str!("../../../scenes/roller.toml")),
-];
+/// Every bundled scene.
+const SCENES: &[(&str, &str)] = contopt_scene::BUNDLED;
 
 /// A step into a tree of values.
 #[derive(Clone, Debug, PartialEq)]
@@ -1860,7 +1830,11 @@ impl Text {
 
 /// paper-table1 with its controller a product `depth` deep.
 fn deep_controller(depth: usize, json: bool) -> String {
-    let scene = SCENES[2].1;
+    let scene = SCENES
+        .iter()
+        .find(|(name, _)| *name == "paper-table1")
+        .expect("paper-table1 is bundled")
+        .1;
     let line = scene
         .lines()
         .find(|l| l.starts_with("controller"))
