@@ -823,11 +823,15 @@ fn penetration(report: &mut CaseReport, elastic: f64) {
     let largest = report.interface.iter().fold(0.0f64, |m, q| m.max(-q.d));
     report.penetration_um = Some(1e3 * largest);
     if largest > PENETRATION_WARNING * elastic {
+        let share = if elastic > 0.0 {
+            format!("{:.2} % of", 100.0 * largest / elastic)
+        } else {
+            "more than".to_string()
+        };
         report.warnings.push(format!(
-            "the solution penetrates by {largest:.3e} mm, {:.2} % of its largest elastic \
+            "the solution penetrates by {largest:.3e} mm, {share} its largest elastic \
              displacement ({elastic:.3e} mm): raise the penalty parameter solver.c (the paper \
-             takes E·10⁴) or use an exact solver",
-            100.0 * largest / elastic
+             takes E·10⁴) or use an exact solver"
         ));
     }
 }
