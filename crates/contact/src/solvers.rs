@@ -1,5 +1,6 @@
 //! The contact solvers behind [`ContactSolver`].
 
+use contopt_core::observe::Observer;
 use contopt_core::{ContactState, Error, Result};
 
 use crate::{kalker, InterfaceProblem};
@@ -19,6 +20,21 @@ pub trait ContactSolver {
     fn solve_from(&self, problem: &InterfaceProblem, start: &[f64]) -> Result<ContactState> {
         let _ = start;
         self.solve(problem)
+    }
+    /// Solves `problem` (from `start` when given), reporting each iteration to `observer`,
+    /// which may stop the method early ([`Flow::Stop`](contopt_core::observe::Flow::Stop)).
+    /// Methods without iterations of their own to report (the default) solve unobserved.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
+        let _ = observer;
+        match start {
+            Some(start) => self.solve_from(problem, start),
+            None => self.solve(problem),
+        }
     }
 }
 

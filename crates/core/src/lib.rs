@@ -10,6 +10,7 @@ mod gap_shape;
 mod interface;
 mod material;
 pub mod memory;
+pub mod observe;
 mod rigid;
 mod state;
 pub mod stress;

@@ -35,6 +35,7 @@ pub use load_split::EnvelopeOptimum;
 pub use simplex::{nelder_mead, Minimum};
 
 use contopt_contact::InterfaceProblem;
+use contopt_core::observe::{Observer, Silent};
 use contopt_core::{Error, GapShape, Region, Result};
 
 /// The result of an optimisation.
@@ -75,6 +76,8 @@ pub struct Optimisation<'a> {
     regions: Vec<Region>,
     /// The design node N of §3.2 step 6 where the gap does not change.
     reference: usize,
+    /// Receives each iteration of the loop and of the contact solves inside it.
+    observer: &'a dyn Observer,
 }
 
 impl<'a> Optimisation<'a> {
@@ -113,9 +116,18 @@ impl<'a> Optimisation<'a> {
             v,
             regions,
             reference: nearest,
+            observer: &Silent,
         };
         opt.check()?;
         Ok(opt)
+    }
+
+    /// Reports each iteration of the optimisation (method `"optimisation"`, measure TOLH or
+    /// the change of the LP's bound) and of its contact solves to `observer`, which may stop
+    /// the loop early.
+    pub fn with_observer(mut self, observer: &'a dyn Observer) -> Self {
+        self.observer = observer;
+        self
     }
 
     /// Sets the regions explicitly, one per interface point.

@@ -492,6 +492,16 @@ impl Case {
     /// Solves the case. A solver or an optimisation that does not converge gives a report with
     /// `converged: false` and the error; bad input is an error.
     pub fn run(&self) -> std::result::Result<CaseReport, SceneError> {
+        self.run_observed(&contopt_core::observe::Silent)
+    }
+
+    /// [`Case::run`], reporting each iteration of the contact solves and of the optimisation
+    /// to `observer`, which may stop them early (the case then reports `converged: false`).
+    pub fn run_observed(
+        &self,
+        observer: &dyn contopt_core::observe::Observer,
+    ) -> std::result::Result<CaseReport, SceneError> {
+        let _ = observer;
         let spec = &self.spec;
         let solver = solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
         let dense_limit = self.dense_limit()?;
