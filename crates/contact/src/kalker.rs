@@ -1,15 +1,144 @@
-//! The Kalker active-set iteration and the Uzawa loop shared by the penalty method, the
-//! augmented Lagrangian and the active-set QP solver.
+//! Kalker's active-set iteration, the one loop behind every method that solves on a contact
+//! set C: the penalty method and the active-set QP solver on the condensed interface, each
+//! Uzawa step of the augmented Lagrangian, and the penalty method on the full finite-element
+//! system (2.22, [`FullPenalty`](crate::FullPenalty)); and the Uzawa loop (2.19)–(2.20).
 
-use contopt_core::{ContactState, Error, Result, Status};
+use contopt_core::observe::Observer;
+use contopt_core::{ContactState, Error, Result};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
-use crate::InterfaceProblem;
+use crate::solvers::{Halt, Watch};
+use crate::{AugmentedLagrangian, ContactSolver, InterfaceProblem};
 
 /// The n × n matrices a Kalker solve holds at once: A, the contact-set matrix, its
 /// eigenvectors and a product.
 pub(crate) const DENSE_COPIES: u64 = 4;
+
+/// An eigenvalue of the contact-set matrix below this fraction of its eigenvector's own
+/// diagonal scale counts as null: the direction does not move the interface (round-off).
+const NULL_EIGENVALUE: f64 = 1e-9;
+/// A pressure in C below −`TENSION` times the largest |pᵢ| is tension (round-off).
+const TENSION: f64 = 1e-12;
+/// A gap outside C below −`PENETRATION` times the gap's largest term is a penetration
+/// (round-off).
+const PENETRATION: f64 = 1e-11;
+/// The round-off level of a solved gap, relative to its largest terms (the free gap and the
+/// rigid motion).
+const GAP_ROUND_OFF: f64 = 1e-13;
+/// c_stiff·maxᵢ(Aᵢᵢ wᵢ): the largest penalty parameter solved from scratch, whose proximal
+/// term 1/c is 10⁻⁶ of the stiffest compliance (conditioning of the Cholesky solve).
+const STIFF_RATIO: f64 = 1e6;
+/// Kalker's iteration gives up after `SOLVES_PER_POINT`·n + [`SOLVES_EXTRA`] solves
+/// (cycling: the pivot rule is finite, but a stuck iteration must still end).
+const SOLVES_PER_POINT: usize = 4;
+/// See [`SOLVES_PER_POINT`]: the allowance of a very small interface.
+const SOLVES_EXTRA: usize = 20;
+
+/// A system that Kalker's iteration solves on a contact set C: the condensed interface
+/// problem ([`Subproblem`]) or the full finite-element system with penalty springs.
+pub(crate) trait ContactSet {
+    /// Number of contact points.
+    fn points(&self) -> usize;
+    /// The point put in contact when C is empty and a floating body would not be held (the
+    /// point of least gap); `None` when nothing floats.
+    fn anchor(&self) -> Option<usize>;
+    /// Solves with the points of `active` in contact and zero pressure elsewhere; `Ok(Err)`
+    /// with the reason when the system is singular on C (the iterate then holds no solve).
+    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), String>>;
+    /// The pressure of the last solve.
+    fn pressure(&self) -> &[f64];
+    /// The gap of point i after the last solve less the proximal shift, dᵢ − ρ p̂ᵢ: negative
+    /// when the point, outside C, penetrates.
+    fn clearance(&self, i: usize) -> f64;
+    /// The largest term of the gap after the last solve, against which round-off is judged.
+    fn gap_scale(&self) -> f64;
+}
+
+/// How Kalker's iteration ended; the system holds its last iterate.
+pub(crate) struct Sweep {
+    /// Solves, each followed by the sign check of p (the paper's `iterp`).
+    pub iterp: usize,
+    /// Penetration checks: the solves whose pressure had no negative value (`iterd`).
+    pub iterd: usize,
+    /// Why it stopped short; `None` when solved.
+    pub halt: Option<Halt>,
+}
+
+/// Kalker's iteration: solve with the points of `active` in contact (one `iterp`); drop the
+/// points whose pressure came out negative, else check the gap (one `iterd`) and add the
+/// points that penetrate; repeat until neither occurs. Changes follow [`PivotRule`], so the
+/// iteration cannot cycle. Each solve is reported to `watch` with the number of points that
+/// break a sign condition as the measure (tolerance 0).
+pub(crate) fn iterate(
+    system: &mut impl ContactSet,
+    active: &mut [bool],
+    watch: Watch,
+) -> Result<Sweep> {
+    let max_solves = SOLVES_PER_POINT * system.points() + SOLVES_EXTRA;
+    let mut pivot = PivotRule::new();
+    let (mut negative, mut penetrating) = (Vec::new(), Vec::new());
+    let mut sweep = Sweep {
+        iterp: 0,
+        iterd: 0,
+        halt: None,
+    };
+    loop {
+        if !active.contains(&true) {
+            if let Some(i) = system.anchor() {
+                active[i] = true;
+            }
+        }
+        if let Err(reason) = system.solve_on(active)? {
+            sweep.halt = Some(Halt::Failed(reason));
+            return Ok(sweep);
+        }
+        sweep.iterp += 1;
+        infeasible(system, active, &mut negative, &mut penetrating);
+        if negative.is_empty() {
+            sweep.iterd += 1;
+        }
+        let infeasible = negative.len() + penetrating.len();
+        let stop = watch.report(sweep.iterp, infeasible as f64, 0.0);
+        if infeasible == 0 {
+            return Ok(sweep);
+        }
+        if stop.is_some() {
+            sweep.halt = stop;
+            return Ok(sweep);
+        }
+        if sweep.iterp >= max_solves {
+            sweep.halt = Some(Halt::Failed(format!(
+                "the contact set kept changing: {} points had negative pressure and {} penetrated \
+                 at the last of {} solves",
+                negative.len(),
+                penetrating.len(),
+                sweep.iterp
+            )));
+            return Ok(sweep);
+        }
+        match pivot.next(&negative, &penetrating) {
+            Pivot::Drop(points) => points.into_iter().for_each(|i| active[i] = false),
+            Pivot::Add(points) => points.into_iter().for_each(|i| active[i] = true),
+        }
+    }
+}
+
+/// The points of C in tension and the points outside C that penetrate, after the last solve.
+fn infeasible(
+    system: &impl ContactSet,
+    active: &[bool],
+    negative: &mut Vec<usize>,
+    penetrating: &mut Vec<usize>,
+) {
+    let p = system.pressure();
+    let p_scale = p.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    negative.clear();
+    negative.extend((0..p.len()).filter(|&i| active[i] && p[i] < -TENSION * p_scale));
+    let tol = PENETRATION * system.gap_scale();
+    penetrating.clear();
+    penetrating.extend((0..p.len()).filter(|&i| !active[i] && system.clearance(i) < -tol));
+}
 
 /// A pressure and rigid-mode amplitudes: an iterate, or the reference a solve starts from.
 #[derive(Clone, Debug)]
@@ -31,8 +160,8 @@ impl Iterate {
 enum ContactMatrix {
     Cholesky(Llt<f64>),
     /// With T = W^½ A W^½ = U Λ Uᵀ on the contact set, M⁺ = W^-½ U (Λ + ρ)⁺ Uᵀ W^-½, where an
-    /// eigenvector u counts as null when its eigenvalue is below 10⁻⁹ of its own diagonal
-    /// scale Σᵢ uᵢ² Tᵢᵢ (scale-invariant: points of small weight near an axis are not null):
+    /// eigenvector u counts as null when its eigenvalue is below [`NULL_EIGENVALUE`] of its own
+    /// diagonal scale Σᵢ uᵢ² Tᵢᵢ (scale-invariant: points of small weight near an axis are not null):
     /// no correction is made along the directions that do not move the interface, so
     /// c·(round-off) never enters.
     Spectral {
@@ -62,7 +191,7 @@ impl ContactMatrix {
             .map(|x| {
                 let l = eig.S()[x];
                 let scale: f64 = (0..k).map(|i| u[(i, x)] * u[(i, x)] * t[(i, i)]).sum();
-                if l > 1e-9 * scale {
+                if l > NULL_EIGENVALUE * scale {
                     1.0 / (l + rho)
                 } else {
                     0.0
@@ -99,7 +228,7 @@ struct Inner {
     solution: Iterate,
     /// Gap d of the solution.
     gap: Vec<f64>,
-    /// Round-off level of the gap: 10⁻¹³ of its largest terms.
+    /// Round-off level of the gap ([`GAP_ROUND_OFF`] of its largest terms); 0 when stopped.
     gap_floor: f64,
     /// Solves, each followed by the sign check of p (the paper's `iterp`).
     iterp: usize,
@@ -107,7 +236,7 @@ struct Inner {
     /// `iterd`).
     iterd: usize,
     /// Why the iteration stopped short, with `solution` its last iterate; `None` when solved.
-    stopped: Option<String>,
+    stopped: Option<Halt>,
 }
 
 impl Inner {
@@ -124,170 +253,191 @@ impl Inner {
 /// whose solution is p = ⟨p̂ − c d⟩ with c = 1/ρ: eq. (2.19) with the gap d of the new
 /// state, i.e. one augmented-Lagrangian step (2.18)–(2.20); with p̂ = 0 it is the penalty
 /// method.
+///
+/// Each solve on C is in residual form: the correction to `reference` (restricted to C) is
+/// driven by the reference's own residual −W(d + ρ(p − p̂)). Round-off in the data along the
+/// directions that do not move the interface (a semi-definite H) is amplified by c; in this
+/// form it multiplies the reference's residual instead of the whole gap, so a reference close
+/// to the answer keeps large c accurate.
 struct Subproblem<'a> {
     problem: &'a InterfaceProblem<'a>,
     rho: f64,
     shift: &'a [f64],
     /// Solve spectrally (for ρ below the stiff level; see [`ContactMatrix`]).
     spectral: bool,
+    reference: &'a Iterate,
+    /// The dense influence matrix A, the rigid modes R and their loads q.
+    a: &'a Mat<f64>,
+    r: Mat<f64>,
+    q: Vec<f64>,
+    /// The free gap g and its largest |gᵢ|.
+    free_gap: Vec<f64>,
+    free_scale: f64,
+    /// The last solve's iterate and its gap d.
+    current: Iterate,
+    gap: Vec<f64>,
 }
 
-impl Subproblem<'_> {
-    /// Kalker's iteration: solve with the points of `active` in contact (d + ρ(p − p̂) = 0
-    /// there, p = 0 elsewhere; one `iterp`); drop the points whose pressure came out negative,
-    /// else check the gap (one `iterd`) and add the points that penetrate; repeat until neither
-    /// occurs. Changes follow [`PivotRule`], so the iteration cannot cycle.
-    ///
-    /// Each solve is in residual form: the correction to `reference` (restricted to the
-    /// contact set) is driven by the reference's own residual −W(d + ρ(p − p̂)). Round-off in
-    /// the data along the directions that do not move the interface (a semi-definite H) is
-    /// amplified by c; in this form it multiplies the reference's residual instead of the whole
-    /// gap, so a reference close to the answer keeps large c accurate.
-    fn solve(&self, reference: &Iterate, active: &mut [bool]) -> Result<Inner> {
-        let problem = self.problem;
-        let (rho, shift) = (self.rho, self.shift);
-        let n = problem.len();
-        let m = problem.load().len();
-        let (w, a, r, q) = (
-            problem.weights(),
-            problem.dense_influence(DENSE_COPIES)?,
-            problem.rigid(),
-            problem.load(),
-        );
-        let g = problem.free_gap();
-        let gap_scale = g.iter().fold(0.0f64, |s, v| s.max(v.abs())).max(1e-300);
-        let (mut iterp, mut iterd) = (0, 0);
-        let max_solves = 4 * n + 20;
-        let mut pivot = PivotRule::new();
-        loop {
-            if !active.iter().any(|&c| c) && m > 0 {
-                // A floating body needs at least one contact point to be held.
-                let closest = (0..n).min_by(|&i, &j| g[i].total_cmp(&g[j])).unwrap_or(0);
-                active[closest] = true;
+impl<'a> Subproblem<'a> {
+    fn new(
+        problem: &'a InterfaceProblem<'a>,
+        rho: f64,
+        shift: &'a [f64],
+        spectral: bool,
+        reference: &'a Iterate,
+    ) -> Result<Self> {
+        let free_gap = problem.free_gap();
+        Ok(Self {
+            a: problem.dense_influence(DENSE_COPIES)?,
+            r: problem.rigid(),
+            q: problem.load(),
+            free_scale: free_gap.iter().fold(0.0f64, |s, v| s.max(v.abs())),
+            free_gap,
+            current: reference.clone(),
+            gap: vec![0.0; problem.len()],
+            problem,
+            rho,
+            shift,
+            spectral,
+            reference,
+        })
+    }
+
+    /// Kalker's iteration ([`iterate`]) from the contact set `active`, which it updates.
+    fn solve(mut self, active: &mut [bool], watch: Watch) -> Result<Inner> {
+        let sweep = iterate(&mut self, active, watch)?;
+        let gap_floor = if sweep.halt.is_none() {
+            for v in self.current.pressure.iter_mut() {
+                *v = v.max(0.0);
             }
-            let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
-            let k = idx.len();
-            let mut solution = Iterate {
-                pressure: vec![0.0; n],
-                rigid: reference.rigid.clone(),
-            };
-            for &i in &idx {
-                solution.pressure[i] = reference.pressure[i];
-            }
-            if k > 0 {
-                let stop = |detail: String, solution: Iterate| {
-                    let gap = problem.gap(&solution.pressure, &solution.rigid);
-                    Ok(Inner {
-                        solution,
-                        gap,
-                        gap_floor: 0.0,
-                        iterp,
-                        iterd,
-                        stopped: Some(detail),
-                    })
-                };
-                let Some(llt) = ContactMatrix::new(a, w, &idx, rho, self.spectral) else {
-                    return stop(format!(
-                        "the influence matrix is singular on the {k} contact points (penalty term rho = {rho:e}); \
-                         use a finite penalty parameter or the augmented Lagrangian"
-                    ), solution);
-                };
-                let d_ref = problem.gap(&solution.pressure, &solution.rigid);
-                let b = Mat::from_fn(k, 1, |a_, _| {
-                    let i = idx[a_];
-                    -w[i] * (d_ref[i] + rho * (solution.pressure[i] - shift[i]))
-                });
-                let y = llt.solve(&b);
-                let mut delta = y.clone();
-                if m > 0 {
-                    let bm = Mat::from_fn(k, m, |a_, c| w[idx[a_]] * r[(idx[a_], c)]);
-                    let z = llt.solve(&bm);
-                    let s = bm.transpose() * &z;
-                    // Equilibrium of the correction: Rᵀ W δ = −q − Rᵀ W p_ref.
-                    let rhs = Mat::from_fn(m, 1, |c, _| {
-                        let held: f64 = (0..k)
-                            .map(|a_| bm[(a_, c)] * solution.pressure[idx[a_]])
-                            .sum();
-                        (0..k).map(|a_| bm[(a_, c)] * y[(a_, 0)]).sum::<f64>() + q[c] + held
-                    });
-                    let Ok(gram) = Llt::new(s.as_ref(), Side::Lower) else {
-                        return stop(
-                            format!(
-                                "the {k} contact points do not hold the rigid modes {:?}",
-                                problem.mode_names()
-                            ),
-                            solution,
-                        );
-                    };
-                    let lambda = gram.solve(&rhs);
-                    delta = &y - &z * &lambda;
-                    for (c, l) in solution.rigid.iter_mut().enumerate() {
-                        *l += lambda[(c, 0)];
-                    }
-                }
-                for (a_, &i) in idx.iter().enumerate() {
-                    solution.pressure[i] += delta[(a_, 0)];
-                }
-            }
-            let p = &solution.pressure;
-            let p_scale = p.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-            let negative: Vec<usize> = idx
-                .iter()
-                .copied()
-                .filter(|&i| p[i] < -1e-12 * p_scale)
-                .collect();
-            let d = problem.gap(p, &solution.rigid);
-            let tol = 1e-11 * gap_scale.max(d.iter().fold(0.0f64, |s, v| s.max(v.abs())));
-            let penetrating: Vec<usize> = (0..n)
-                .filter(|&i| !active[i] && d[i] - rho * shift[i] < -tol)
-                .collect();
-            iterp += 1;
-            if negative.is_empty() {
-                iterd += 1;
-            }
-            if negative.is_empty() && penetrating.is_empty() {
-                for v in solution.pressure.iter_mut() {
-                    *v = v.max(0.0);
-                }
-                // d = g + A W p + R λ, with the elastic term balancing the others on C.
-                let motion = (0..n)
-                    .map(|i| {
-                        (0..m)
-                            .map(|c| r[(i, c)] * solution.rigid[c])
-                            .sum::<f64>()
-                            .abs()
-                    })
-                    .fold(0.0f64, f64::max);
-                let gap_floor = 1e-13 * (gap_scale + motion);
-                return Ok(Inner {
-                    solution,
-                    gap: d,
-                    gap_floor,
-                    iterp,
-                    iterd,
-                    stopped: None,
-                });
-            }
-            match pivot.next(&negative, &penetrating) {
-                Pivot::Drop(points) => points.into_iter().for_each(|i| active[i] = false),
-                Pivot::Add(points) => points.into_iter().for_each(|i| active[i] = true),
-            }
-            if iterp >= max_solves {
-                return Ok(Inner {
-                    stopped: Some(format!(
-                        "the contact set kept changing: {} points had negative pressure and {} penetrated \
-                         at the last of {iterp} solves",
-                        negative.len(),
-                        penetrating.len()
-                    )),
-                    solution,
-                    gap: d,
-                    gap_floor: 0.0,
-                    iterp,
-                    iterd,
-                });
-            }
+            // d = g + A W p + R λ, with the elastic term balancing the others on C.
+            GAP_ROUND_OFF * (self.free_scale + self.rigid_motion())
+        } else {
+            0.0
+        };
+        Ok(Inner {
+            solution: self.current,
+            gap: self.gap,
+            gap_floor,
+            iterp: sweep.iterp,
+            iterd: sweep.iterd,
+            stopped: sweep.halt,
+        })
+    }
+
+    /// The largest rigid motion |(R λ)ᵢ| of the current iterate.
+    fn rigid_motion(&self) -> f64 {
+        let lambda = &self.current.rigid;
+        (0..self.problem.len())
+            .map(|i| {
+                (0..lambda.len())
+                    .map(|c| self.r[(i, c)] * lambda[c])
+                    .sum::<f64>()
+                    .abs()
+            })
+            .fold(0.0f64, f64::max)
+    }
+
+    /// Corrects the current iterate (the reference restricted to C, whose points are `idx`)
+    /// by the solve on C.
+    fn correct(&mut self, idx: &[usize]) -> std::result::Result<(), String> {
+        let (problem, rho, shift) = (self.problem, self.rho, self.shift);
+        let w = problem.weights();
+        let k = idx.len();
+        let Some(llt) = ContactMatrix::new(self.a, w, idx, rho, self.spectral) else {
+            return Err(format!(
+                "the influence matrix is singular on the {k} contact points (penalty term rho = \
+                 {rho:e}); use a finite penalty parameter or the augmented Lagrangian"
+            ));
+        };
+        let p = &self.current.pressure;
+        let d_ref = problem.gap(p, &self.current.rigid);
+        let b = Mat::from_fn(k, 1, |a, _| {
+            let i = idx[a];
+            -w[i] * (d_ref[i] + rho * (p[i] - shift[i]))
+        });
+        let y = llt.solve(&b);
+        let delta = if self.q.is_empty() {
+            y
+        } else {
+            self.balance(&llt, idx, y)?
+        };
+        for (a, &i) in idx.iter().enumerate() {
+            self.current.pressure[i] += delta[(a, 0)];
         }
+        Ok(())
+    }
+
+    /// The correction `y` on C made to balance the rigid modes, Rᵀ W δ = −q − Rᵀ W p_ref
+    /// (eq. 2.10), with their amplitudes updated.
+    fn balance(
+        &mut self,
+        llt: &ContactMatrix,
+        idx: &[usize],
+        y: Mat<f64>,
+    ) -> std::result::Result<Mat<f64>, String> {
+        let (k, m) = (idx.len(), self.q.len());
+        let w = self.problem.weights();
+        let bm = Mat::from_fn(k, m, |a, c| w[idx[a]] * self.r[(idx[a], c)]);
+        let z = llt.solve(&bm);
+        let s = bm.transpose() * &z;
+        let p = &self.current.pressure;
+        let rhs = Mat::from_fn(m, 1, |c, _| {
+            let held: f64 = (0..k).map(|a| bm[(a, c)] * p[idx[a]]).sum();
+            (0..k).map(|a| bm[(a, c)] * y[(a, 0)]).sum::<f64>() + self.q[c] + held
+        });
+        let Ok(gram) = Llt::new(s.as_ref(), Side::Lower) else {
+            return Err(format!(
+                "the {k} contact points do not hold the rigid modes {:?}",
+                self.problem.mode_names()
+            ));
+        };
+        let lambda = gram.solve(&rhs);
+        for (c, l) in self.current.rigid.iter_mut().enumerate() {
+            *l += lambda[(c, 0)];
+        }
+        Ok(&y - &z * &lambda)
+    }
+}
+
+impl ContactSet for Subproblem<'_> {
+    fn points(&self) -> usize {
+        self.problem.len()
+    }
+
+    fn anchor(&self) -> Option<usize> {
+        let g = &self.free_gap;
+        (!self.q.is_empty()).then(|| (0..g.len()).min_by(|&i, &j| g[i].total_cmp(&g[j])))?
+    }
+
+    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), String>> {
+        let idx: Vec<usize> = (0..active.len()).filter(|&i| active[i]).collect();
+        self.current.pressure.fill(0.0);
+        for &i in &idx {
+            self.current.pressure[i] = self.reference.pressure[i];
+        }
+        self.current.rigid.clone_from(&self.reference.rigid);
+        let outcome = if idx.is_empty() {
+            Ok(())
+        } else {
+            self.correct(&idx)
+        };
+        self.gap = self
+            .problem
+            .gap(&self.current.pressure, &self.current.rigid);
+        Ok(outcome)
+    }
+
+    fn pressure(&self) -> &[f64] {
+        &self.current.pressure
+    }
+
+    fn clearance(&self, i: usize) -> f64 {
+        self.gap[i] - self.rho * self.shift[i]
+    }
+
+    fn gap_scale(&self) -> f64 {
+        self.gap.iter().fold(self.free_scale, |s, v| s.max(v.abs()))
     }
 }
 
@@ -373,8 +523,8 @@ fn finish(
         active,
         [steps, counts[0] + inner.iterp, counts[1] + inner.iterd],
     );
-    if let Some(reason) = inner.stopped {
-        state.status = Status::Stopped(format!("Kalker's active set: {reason}"));
+    if let Some(halt) = inner.stopped {
+        halt.stop("Kalker's active set", &mut state);
     }
     state
 }
@@ -386,20 +536,15 @@ fn solve_exact(
     problem: &InterfaceProblem,
     reference: &Iterate,
     active: &mut [bool],
+    watch: Watch,
 ) -> Result<Inner> {
     let zeros = vec![0.0; problem.len()];
-    Subproblem {
-        problem,
-        rho: 0.0,
-        shift: &zeros,
-        spectral: true,
-    }
-    .solve(reference, active)
+    Subproblem::new(problem, 0.0, &zeros, true, reference)?.solve(active, watch)
 }
 
 /// The largest penalty parameter at which a subproblem is solved from scratch:
-/// c_stiff = 10⁶ / maxᵢ(Aᵢᵢ wᵢ), where the proximal term is 10⁻⁶ of the stiffest compliance.
-/// Larger parameters start from a c_stiff solution (see [`Subproblem::solve`]).
+/// c_stiff = [`STIFF_RATIO`] / maxᵢ(Aᵢᵢ wᵢ). Larger parameters start from a c_stiff solution
+/// (see [`Subproblem`]).
 pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
     let a = problem.dense_influence(DENSE_COPIES)?;
     let scale = (0..problem.len())
@@ -412,30 +557,28 @@ pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
             "the bodies have no compliance at the interface (two rigid bodies?)",
         ));
     }
-    Ok(1e6 / scale)
+    Ok(STIFF_RATIO / scale)
 }
 
 /// A starting iterate for a subproblem with penalty `c`: zero, or for c above c_stiff the
-/// penalty solution at c_stiff (whose small gap keeps the large-c solve accurate).
+/// penalty solution at c_stiff (whose small gap keeps the large-c solve accurate), its solves
+/// added to `counts`; the stopped solve when it stopped short.
 fn start(
     problem: &InterfaceProblem,
     c: f64,
     active: &mut [bool],
     counts: &mut [usize; 2],
+    watch: Watch,
 ) -> Result<std::result::Result<Iterate, Inner>> {
     let (n, m) = (problem.len(), problem.load().len());
     let c_stiff = stiff_penalty(problem)?;
+    let zero = Iterate::zero(n, m);
     if c <= c_stiff {
-        return Ok(Ok(Iterate::zero(n, m)));
+        return Ok(Ok(zero));
     }
     let zeros = vec![0.0; n];
-    let pre = Subproblem {
-        problem,
-        rho: 1.0 / c_stiff,
-        shift: &zeros,
-        spectral: false,
-    }
-    .solve(&Iterate::zero(n, m), active)?;
+    let pre = Subproblem::new(problem, 1.0 / c_stiff, &zeros, false, &zero)?
+        .solve(active, watch.after(counts[0]))?;
     if pre.stopped.is_some() {
         return Ok(Err(pre));
     }
@@ -445,22 +588,18 @@ fn start(
 }
 
 /// The penalty method: one subproblem with ρ = 1/c and p̂ = 0, so p = c⟨−d⟩.
-pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState> {
+pub(crate) fn penalty(problem: &InterfaceProblem, c: f64, watch: Watch) -> Result<ContactState> {
     let n = problem.len();
     let mut active = vec![true; n];
     let mut counts = [0, 0];
-    let reference = match start(problem, c, &mut active, &mut counts)? {
+    let reference = match start(problem, c, &mut active, &mut counts, watch)? {
         Ok(reference) => reference,
         Err(stopped) => return Ok(finish(problem, stopped, active, 1, counts)),
     };
     let zeros = vec![0.0; n];
-    let inner = Subproblem {
-        problem,
-        rho: 1.0 / c,
-        shift: &zeros,
-        spectral: c > stiff_penalty(problem)?,
-    }
-    .solve(&reference, &mut active)?;
+    let spectral = c > stiff_penalty(problem)?;
+    let inner = Subproblem::new(problem, 1.0 / c, &zeros, spectral, &reference)?
+        .solve(&mut active, watch.after(counts[0]))?;
     Ok(finish(problem, inner, active, 1, counts))
 }
 
@@ -468,31 +607,28 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64) -> Result<ContactState
 /// from p = 0 with every point in contact, until the pressure changes by less than
 /// `tolerance`·p_max or the gap on the contact set is at round-off; with `accelerate`, until
 /// a step leaves the contact set unchanged, when the iteration's limit is solved for directly.
+/// Each step is reported to `observer` as the method's name, each Kalker solve as
+/// [`AugmentedLagrangian::KALKER`].
 pub(crate) fn uzawa(
     problem: &InterfaceProblem,
-    c: f64,
-    tolerance: f64,
-    max_steps: usize,
-    accelerate: bool,
+    al: &AugmentedLagrangian,
+    observer: &dyn Observer,
 ) -> Result<ContactState> {
-    let n = problem.len();
-    let mut active = vec![true; n];
+    let c = al.c;
+    let steps = Watch::new(observer, al.name());
+    let kalker = Watch::new(observer, AugmentedLagrangian::KALKER);
+    let mut active = vec![true; problem.len()];
     let mut counts = [0, 0];
-    let mut current = match start(problem, c, &mut active, &mut counts)? {
+    let mut current = match start(problem, c, &mut active, &mut counts, kalker)? {
         Ok(reference) => reference,
         Err(stopped) => return Ok(finish(problem, stopped, active, 0, counts)),
     };
     let spectral = c > stiff_penalty(problem)?;
     let mut change = f64::INFINITY;
-    for step in 1..=max_steps {
+    for step in 1..=al.max_steps {
         let shift = current.pressure.clone();
-        let inner = Subproblem {
-            problem,
-            rho: 1.0 / c,
-            shift: &shift,
-            spectral,
-        }
-        .solve(&current, &mut active)?;
+        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current)?
+            .solve(&mut active, kalker.after(counts[0]))?;
         if inner.stopped.is_some() {
             return Ok(finish(problem, inner, active, step, counts));
         }
@@ -503,83 +639,102 @@ pub(crate) fn uzawa(
             .pressure
             .iter()
             .fold(0.0f64, |s, v| s.max(*v));
-        change = inner
-            .solution
-            .pressure
-            .iter()
-            .zip(&shift)
-            .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()));
+        change = largest_difference(&inner.solution.pressure, &shift);
+        let relative = change / p_max.max(f64::MIN_POSITIVE);
+        // Converged when the pressure settles, or when the gap on the contact set is at
+        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
+        // directions that do not move the interface.
+        let converged =
+            relative <= al.tolerance || open_on_contact(&inner, &active) <= inner.gap_floor;
+        let halt = steps.report(step, relative, al.tolerance);
         let unchanged = inner.unchanged();
         current = inner.solution;
-        if accelerate && unchanged {
+        let counted = [step, counts[0], counts[1]];
+        if al.accelerate && unchanged && halt.is_none() {
             // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
             // and its fixed point is the exact solve on this set from the current iterate
             // (which keeps the iterate's components along directions that do not move the
             // interface, as the iteration would).
-            let jump = solve_exact(problem, &current, &mut active)?;
+            let jump = solve_exact(problem, &current, &mut active, kalker.after(counts[0]))?;
             return Ok(finish(problem, jump, active, step, counts));
         }
-        // Converged when the pressure settles, or when the gap on the contact set is at
-        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
-        // directions that do not move the interface.
-        let open_on_contact = (0..n)
-            .filter(|&i| active[i])
-            .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()));
-        if change <= tolerance * p_max.max(f64::MIN_POSITIVE) || open_on_contact <= inner.gap_floor
-        {
-            return Ok(problem.state(
-                current.pressure,
-                current.rigid,
-                active,
-                [step, counts[0], counts[1]],
-            ));
+        if converged || halt.is_some() {
+            let mut state = problem.state(current.pressure, current.rigid, active, counted);
+            if let Some(halt) = halt.filter(|_| !converged) {
+                halt.stop(al.name(), &mut state);
+            }
+            return Ok(state);
         }
     }
     let mut state = problem.state(
         current.pressure,
         current.rigid,
         active,
-        [max_steps, counts[0], counts[1]],
+        [al.max_steps, counts[0], counts[1]],
     );
-    state.status = Status::Stopped(format!(
-        "Uzawa's {max_steps} steps: last pressure change {change:.3e} MPa, p_max {:.6} MPa; raise the penalty parameter c = {c:e} or the step limit",
+    Halt::Failed(format!(
+        "Uzawa's {} steps: last pressure change {change:.3e} MPa, p_max {:.6} MPa; raise the \
+         penalty parameter c = {c:e} or the step limit",
+        al.max_steps,
         state.p_max(),
-    ));
+    ))
+    .stop(al.name(), &mut state);
     Ok(state)
 }
 
+/// maxᵢ |aᵢ − bᵢ|.
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()))
+}
+
+/// The largest |dᵢ| over the contact set of a subproblem's solution.
+fn open_on_contact(inner: &Inner, active: &[bool]) -> f64 {
+    (0..active.len())
+        .filter(|&i| active[i])
+        .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()))
+}
+
 /// The QP (2.14) itself: Kalker's iteration with ρ = 0, solving on each contact set with the
-/// pseudo-inverse (eigenvalues below 10⁻⁹ of the largest count as null), which gives the
-/// pressure of least Σ wᵢpᵢ² exactly, whatever the conditioning of H. Without `start_set`,
-/// one penalty solve at c_stiff (by Cholesky) first finds the contact set and a reference
-/// pressure, so that the spectral solves are few.
+/// pseudo-inverse (see [`ContactMatrix`]), which gives the pressure of least Σ wᵢpᵢ² exactly,
+/// whatever the conditioning of H. Without `start_set`, one penalty solve at c_stiff (by
+/// Cholesky) first finds the contact set and a reference pressure, so that the spectral solves
+/// are few.
 pub(crate) fn exact(
     problem: &InterfaceProblem,
     start_set: Option<&[bool]>,
 ) -> Result<ContactState> {
+    let silent = contopt_core::observe::Silent;
+    exact_observed(problem, start_set, Watch::new(&silent, "active set"))
+}
+
+/// [`exact`], reporting each of Kalker's solves to `watch`.
+pub(crate) fn exact_observed(
+    problem: &InterfaceProblem,
+    start_set: Option<&[bool]>,
+    watch: Watch,
+) -> Result<ContactState> {
     let (n, m) = (problem.len(), problem.load().len());
-    let zeros = vec![0.0; n];
+    let zero = Iterate::zero(n, m);
     let mut counts = [0, 0];
-    let (mut active, reference) = match start_set {
-        Some(set) => (set.to_vec(), Iterate::zero(n, m)),
+    let (mut active, pre) = match start_set {
+        Some(set) => (set.to_vec(), None),
         None => {
             let mut active = vec![true; n];
+            let zeros = vec![0.0; n];
             let rho = 1.0 / stiff_penalty(problem)?;
-            let pre = Subproblem {
-                problem,
-                rho,
-                shift: &zeros,
-                spectral: false,
-            }
-            .solve(&Iterate::zero(n, m), &mut active)?;
+            let pre =
+                Subproblem::new(problem, rho, &zeros, false, &zero)?.solve(&mut active, watch)?;
             if pre.stopped.is_some() {
                 return Ok(finish(problem, pre, active, 1, counts));
             }
             counts = [pre.iterp, pre.iterd];
-            (active, pre.solution)
+            (active, Some(pre.solution))
         }
     };
-    let inner = solve_exact(problem, &reference, &mut active)?;
+    let reference = pre.as_ref().unwrap_or(&zero);
+    let inner = solve_exact(problem, reference, &mut active, watch.after(counts[0]))?;
     Ok(finish(problem, inner, active, 1, counts))
 }
 

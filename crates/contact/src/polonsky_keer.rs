@@ -5,12 +5,18 @@
 // The iteration walks several parallel per-point arrays at once; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
+use contopt_core::observe::{Observer, Silent};
 use contopt_core::{ContactState, Error, Result, Status};
 
+use crate::solvers::{Halt, Watch};
 use crate::{ContactSolver, InterfaceProblem};
 
-/// Relative size of a penetration outside the solved part that makes the part grow.
+/// Relative size of a penetration outside the solved part that makes the part grow
+/// (round-off).
 const PENETRATION: f64 = 1e-12;
+/// A cold start looks for contact within this fraction of the free gap's range above its
+/// lowest point (a guess: the part grows until nothing outside it penetrates).
+const SEED_FRACTION: f64 = 0.25;
 
 /// Polonsky–Keer: conjugate gradients on the pressure restricted to the contact set, with
 /// the set updated every step (points that leave get p = 0, penetrating points re-enter and
@@ -39,11 +45,19 @@ pub struct PolonskyKeer {
     pub max_steps: usize,
 }
 
+impl PolonskyKeer {
+    /// The default tolerance on the relative pressure change of a step (convergence: near
+    /// round-off, the steps are cheap).
+    pub const TOLERANCE: f64 = 1e-12;
+    /// The default limit on steps: conjugate gradients take tens to hundreds.
+    pub const MAX_STEPS: usize = 10_000;
+}
+
 impl Default for PolonskyKeer {
     fn default() -> Self {
         Self {
-            tolerance: 1e-12,
-            max_steps: 10_000,
+            tolerance: Self::TOLERANCE,
+            max_steps: Self::MAX_STEPS,
         }
     }
 }
@@ -54,23 +68,36 @@ impl ContactSolver for PolonskyKeer {
     }
 
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
-        self.check()?;
-        self.solve_cropped(problem, None)
+        self.solve_observed(problem, None, &Silent)
     }
 
     fn solve_from(&self, problem: &InterfaceProblem, start: &[f64]) -> Result<ContactState> {
+        self.solve_observed(problem, Some(start), &Silent)
+    }
+
+    /// Reports each conjugate-gradient step (`iterations`, numbered on across the growing
+    /// parts of the interface) with the relative pressure change Σ wᵢ |Δpᵢ| / load as the
+    /// measure and `tolerance`.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
         self.check()?;
-        if start.len() != problem.len() || start.iter().any(|p| !p.is_finite()) {
-            return Err(Error::invalid(
-                "start",
-                format!("{} values", start.len()),
-                format!(
-                    "one finite pressure per interface point ({})",
-                    problem.len()
-                ),
-            ));
+        if let Some(start) = start {
+            if start.len() != problem.len() || start.iter().any(|p| !p.is_finite()) {
+                return Err(Error::invalid(
+                    "start",
+                    format!("{} values", start.len()),
+                    format!(
+                        "one finite pressure per interface point ({})",
+                        problem.len()
+                    ),
+                ));
+            }
         }
-        self.solve_cropped(problem, Some(start))
+        self.solve_cropped(problem, start, Watch::new(observer, self.name()))
     }
 }
 
@@ -91,6 +118,7 @@ impl PolonskyKeer {
         &self,
         problem: &InterfaceProblem,
         start: Option<&[f64]>,
+        watch: Watch,
     ) -> Result<ContactState> {
         let n = problem.len();
         let g = problem.free_gap();
@@ -102,13 +130,15 @@ impl PolonskyKeer {
                     .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
                         (a.min(h), b.max(h))
                     });
-                g.iter().map(|&h| h <= lo + 0.25 * (hi - lo)).collect()
+                g.iter()
+                    .map(|&h| h <= lo + SEED_FRACTION * (hi - lo))
+                    .collect()
             }
         };
         let mut steps = 0;
         while let Some((part, index)) = problem.restrict(&keep) {
             let part_start: Option<Vec<f64>> = start.map(|p| index.iter().map(|&k| p[k]).collect());
-            let state = self.solve_whole(&part, part_start.as_deref())?;
+            let state = self.solve_whole(&part, part_start.as_deref(), watch.after(steps))?;
             steps += state.iterations;
             let mut pressure = vec![0.0; n];
             for (a, &k) in index.iter().enumerate() {
@@ -141,17 +171,79 @@ impl PolonskyKeer {
                 keep[k] = true;
             }
         }
-        let mut state = self.solve_whole(problem, start)?;
+        let mut state = self.solve_whole(problem, start, watch.after(steps))?;
         state.iterations += steps;
         Ok(state)
     }
 
-    /// The iteration on the whole problem.
+    /// The iteration on the whole problem, each step reported to `watch`.
     fn solve_whole(
         &self,
         problem: &InterfaceProblem,
         start: Option<&[f64]>,
+        watch: Watch,
     ) -> Result<ContactState> {
+        let mut cg = Descent::new(problem, start)?;
+        let (mut steps, mut change, mut halt) = (0, f64::INFINITY, None);
+        while steps < self.max_steps && halt.is_none() {
+            steps += 1;
+            let entered = match cg.step(problem) {
+                Ok(entered) => entered,
+                Err(reason) => {
+                    halt = Some(Halt::Failed(reason));
+                    false
+                }
+            };
+            change = if halt.is_none() {
+                cg.change(problem)
+            } else {
+                f64::NAN
+            };
+            if halt.is_none() && !change.is_finite() {
+                cg.undo();
+                halt = Some(Halt::Failed(
+                    "a step gave non-finite pressures (overflowing data?)".into(),
+                ));
+            }
+            let stop = watch.report(steps, change, self.tolerance);
+            if halt.is_none() && change < self.tolerance && !entered {
+                break;
+            }
+            halt = halt.or(stop);
+        }
+        if halt.is_none() && !(change < self.tolerance) {
+            halt = Some(Halt::Failed(format!(
+                "{steps} steps: relative pressure change {change:.3e} (tolerance {:.1e})",
+                self.tolerance
+            )));
+        }
+        let Descent { mut groups, p, .. } = cg;
+        let gap_rigid = groups.final_gap(problem, &p);
+        let mut state = outcome(problem, p, gap_rigid, steps, Status::Solved);
+        if let Some(halt) = halt {
+            halt.stop(self.name(), &mut state);
+        }
+        Ok(state)
+    }
+}
+
+/// The state of Polonsky and Keer's iteration: the pressure, its previous value, the modes
+/// and the conjugate-gradient buffers.
+struct Descent {
+    groups: Groups,
+    cg: Buffers,
+    g: Vec<f64>,
+    kappa: f64,
+    p: Vec<f64>,
+    previous: Vec<f64>,
+    gz_old: f64,
+    conjugate: bool,
+}
+
+impl Descent {
+    /// The first pressure: `start` clipped at zero, or seeded from the gap, with each loaded
+    /// mode's pressure scaled to its load.
+    fn new(problem: &InterfaceProblem, start: Option<&[f64]>) -> Result<Self> {
         let mut groups = Groups::new(problem)?;
         let w = problem.weights();
         let n = w.len();
@@ -163,55 +255,50 @@ impl PolonskyKeer {
             None => groups.initial(w, &g, kappa),
         };
         groups.restore(w, &g, &mut p);
-        let mut previous = vec![0.0; n];
-        let (mut gz_old, mut conjugate, mut change) = (1.0, false, f64::INFINITY);
-        let mut stopped = None;
-        let mut steps = 0;
-        while steps < self.max_steps {
-            steps += 1;
-            cg.residual(problem, &mut groups, &g, &p);
-            cg.direction(problem, &mut groups, conjugate, &mut gz_old);
-            previous.copy_from_slice(&p);
-            let entered = match cg.step(problem, &groups, &mut p, kappa) {
-                Ok(entered) => entered,
-                Err(reason) => {
-                    stopped = Some(reason);
-                    break;
-                }
-            };
-            conjugate = !entered;
-            groups.restore(w, &cg.d, &mut p);
-            let scale = groups
-                .total_load()
-                .max(p.iter().zip(w).map(|(p, w)| p * w).sum::<f64>())
-                .max(f64::MIN_POSITIVE);
-            change = p
-                .iter()
-                .zip(&previous)
-                .zip(w)
-                .map(|((a, b), w)| w * (a - b).abs())
-                .sum::<f64>()
-                / scale;
-            if !change.is_finite() {
-                p.copy_from_slice(&previous);
-                stopped = Some("a step gave non-finite pressures (overflowing data?)".into());
-                break;
-            }
-            if change < self.tolerance && !entered {
-                break;
-            }
-        }
-        if stopped.is_none() && !(change < self.tolerance) {
-            stopped = Some(format!(
-                "{steps} steps: relative pressure change {change:.3e} (tolerance {:.1e})",
-                self.tolerance
-            ));
-        }
-        let gap_rigid = groups.final_gap(problem, &p);
-        let status = stopped.map_or(Status::Solved, |s| {
-            Status::Stopped(format!("Polonsky-Keer: {s}"))
-        });
-        Ok(outcome(problem, p, gap_rigid, steps, status))
+        Ok(Self {
+            groups,
+            cg,
+            g,
+            kappa,
+            p,
+            previous: vec![0.0; n],
+            gz_old: 1.0,
+            conjugate: false,
+        })
+    }
+
+    /// One step: the residual, the direction, the move along it and the points that enter;
+    /// returns whether any entered.
+    fn step(&mut self, problem: &InterfaceProblem) -> std::result::Result<bool, String> {
+        let (cg, groups) = (&mut self.cg, &mut self.groups);
+        cg.residual(problem, groups, &self.g, &self.p);
+        cg.direction(problem, groups, self.conjugate, &mut self.gz_old);
+        self.previous.copy_from_slice(&self.p);
+        let entered = cg.step(problem, groups, &mut self.p, self.kappa)?;
+        self.conjugate = !entered;
+        groups.restore(problem.weights(), &cg.d, &mut self.p);
+        Ok(entered)
+    }
+
+    /// The step's change of the pressure, Σ wᵢ |Δpᵢ| over the load (or the carried force).
+    fn change(&self, problem: &InterfaceProblem) -> f64 {
+        let (w, p) = (problem.weights(), &self.p);
+        let scale = self
+            .groups
+            .total_load()
+            .max(p.iter().zip(w).map(|(p, w)| p * w).sum::<f64>())
+            .max(f64::MIN_POSITIVE);
+        p.iter()
+            .zip(&self.previous)
+            .zip(w)
+            .map(|((a, b), w)| w * (a - b).abs())
+            .sum::<f64>()
+            / scale
+    }
+
+    /// Returns to the pressure before the last step.
+    fn undo(&mut self) {
+        self.p.copy_from_slice(&self.previous);
     }
 }
 
@@ -498,7 +585,7 @@ impl Groups {
             .collect()
     }
 
-    /// num[k] = Σ wᵢ rᵢ f(i), den[k] = Σ wᵢ rᵢ² over the points of mode k with `member(i)`.
+    /// num\[k\] = Σ wᵢ rᵢ f(i), den\[k\] = Σ wᵢ rᵢ² over the points of mode k with `member(i)`.
     fn sums(&mut self, w: &[f64], f: impl Fn(usize) -> f64, member: impl Fn(usize) -> bool) {
         self.num.fill(0.0);
         self.den.fill(0.0);

@@ -678,6 +678,12 @@ fn check_partners(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) ->
 /// Relative size below which a mode's interface displacement counts as zero (it does not move
 /// the interface) or of one sign.
 const MODE_ZERO: f64 = 1e-12;
+/// A load on a mode that does not move the interface counts as zero below this fraction of
+/// the mode's weighted size (at least 1 N): round-off of the load's work.
+const UNCARRIED_LOAD: f64 = 1e-9;
+/// Two modes move the interface alike when the Gram matrix's pivot falls below this fraction
+/// of its diagonal (round-off: the modes are numerically dependent).
+const MODE_INDEPENDENCE: f64 = 1e-10;
 
 /// The bodies' rigid modes in the first body's numbering, with the ones that do not move the
 /// interface dropped (and refused when loaded), loads that pull the bodies apart refused, and
@@ -695,7 +701,7 @@ fn free_modes(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Res
             let span = r.iter().fold(0.0f64, |s, v| s.max(v.abs()));
             let total = r.iter().zip(w).map(|(v, w)| (v * w).abs()).sum::<f64>();
             if span < MODE_ZERO {
-                if q.abs() > 1e-9 * total.max(1.0) {
+                if q.abs() > UNCARRIED_LOAD * total.max(1.0) {
                     return Err(Error::invalid(format!("load on {name}"), q, "cannot be equilibrated by normal contact: the mode does not move the interface"));
                 }
                 continue;
@@ -756,7 +762,7 @@ fn check_independent(modes: &[FreeMode], w: &[f64]) -> Result<()> {
             .sum::<f64>()
     });
     let independent = Llt::new(gram.as_ref(), Side::Lower)
-        .is_ok_and(|l| (0..m).all(|k| l.L()[(k, k)].powi(2) > 1e-10 * gram[(k, k)]));
+        .is_ok_and(|l| (0..m).all(|k| l.L()[(k, k)].powi(2) > MODE_INDEPENDENCE * gram[(k, k)]));
     if !independent {
         let names: Vec<&str> = modes.iter().map(|k| k.name.as_str()).collect();
         return Err(Error::invalid(

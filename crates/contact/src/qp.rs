@@ -1,12 +1,22 @@
 //! The complementary-energy QP (2.14) by the interior-point solver clarabel.
 
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
-};
 use contopt_core::{ContactState, Error, Result, Status};
 
+use crate::conic::{self, CscMatrix, Outcome, Solution};
 use crate::{kalker, ContactSolver, InterfaceProblem};
+
+/// The n × n arrays of a solve held at once: the upper triangle as triplets and CSC (three
+/// n²/2 arrays) and the factor's fill.
+const QP_COPIES: u64 = 5;
+
+/// Relative accuracy of the interior point's pressures and approaches at its tolerance: a
+/// pressure below it times p_max is out of contact, and the polish's approach must agree with
+/// clarabel's to it (convergence).
+const INTERIOR_POINT_ACCURACY: f64 = 1e-6;
+
+/// An approach below this \[mm\] counts as zero when the polish is compared with it
+/// (round-off).
+const ZERO_APPROACH: f64 = 1e-12;
 
 /// min ½ pᵀ H p − pᵀ t  subject to  p ≥ 0,  G_Rᵀ p = q  (2.14), with H = W A W, t = −W g,
 /// G_R = W R, by clarabel. The reference solver: exact to its tolerance, but its cost grows
@@ -27,7 +37,9 @@ pub struct Qp {
 
 impl Default for Qp {
     fn default() -> Self {
-        Self { tolerance: 1e-10 }
+        Self {
+            tolerance: conic::TOLERANCE,
+        }
     }
 }
 
@@ -37,17 +49,52 @@ impl ContactSolver for Qp {
     }
 
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
-        let n = problem.len();
+        let qp = ScaledQp::new(problem)?;
         let m = problem.load().len();
-        // The upper triangle as triplets and CSC (three n²/2 arrays) and the factor's fill.
-        const QP_COPIES: u64 = 5;
+        let sol = conic::solve(
+            &qp.hessian,
+            &qp.linear,
+            &qp.constraints,
+            &qp.b,
+            m,
+            self.tolerance,
+            "QP data",
+        )?;
+        match &sol.outcome {
+            Outcome::Solved => polish(problem, &sol),
+            Outcome::Infeasible => Err(Error::invalid(
+                "loads",
+                format!("{:?}", problem.load()),
+                "cannot be equilibrated by compressive contact",
+            )),
+            Outcome::Stopped(reason) => Ok(last_iterate(problem, &sol, qp.scale, reason)),
+        }
+    }
+}
+
+/// The QP (2.14) in clarabel's form, with the pressure scaled by `scale` so that the
+/// Hessian's diagonal is of order one: x = s·p.
+struct ScaledQp {
+    /// The upper triangle of W A W / s².
+    hessian: CscMatrix<f64>,
+    /// W g / s.
+    linear: Vec<f64>,
+    /// The equilibrium rows (W R)ᵀ / s (zero cone) above −I (p ≥ 0).
+    constraints: CscMatrix<f64>,
+    /// −q, then zeros.
+    b: Vec<f64>,
+    /// s = maxᵢ wᵢ √Aᵢᵢ.
+    scale: f64,
+}
+
+impl ScaledQp {
+    fn new(problem: &InterfaceProblem) -> Result<Self> {
+        let (n, m) = (problem.len(), problem.load().len());
         let (w, a, r) = (
             problem.weights(),
             problem.dense_influence(QP_COPIES)?,
             problem.rigid(),
         );
-        let g = problem.free_gap();
-        // Scale pressures so the Hessian's diagonal is of order one.
         let s = (0..n)
             .map(|i| w[i] * a[(i, i)] * w[i])
             .fold(0.0, f64::max)
@@ -67,8 +114,7 @@ impl ContactSolver for Qp {
             }
             colptr.push(rowval.len());
         }
-        let hess = CscMatrix::new(n, n, colptr, rowval, nzval);
-        let lin: Vec<f64> = (0..n).map(|i| w[i] * g[i] / s).collect();
+        let g = problem.free_gap();
         let (mut ii, mut jj, mut vv) = (vec![], vec![], vec![]);
         for j in 0..n {
             for k in 0..m {
@@ -80,64 +126,57 @@ impl ContactSolver for Qp {
             jj.push(j);
             vv.push(-1.0);
         }
-        let cons = CscMatrix::new_from_triplets(m + n, n, ii, jj, vv);
         let mut b = vec![0.0; m + n];
         for (k, q) in problem.load().iter().enumerate() {
             b[k] = -q;
         }
-        let mut cones = vec![];
-        if m > 0 {
-            cones.push(SupportedConeT::ZeroConeT(m));
-        }
-        cones.push(SupportedConeT::NonnegativeConeT(n));
-        let settings = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .tol_feas(self.tolerance)
-            .tol_gap_abs(self.tolerance)
-            .tol_gap_rel(self.tolerance)
-            .max_iter(200)
-            .build()
-            .map_err(|e| Error::invalid("solver.tolerance", self.tolerance, format!("{e:?}")))?;
-        let mut solver =
-            DefaultSolver::new(&hess, &lin, &cons, &b, &cones, settings).map_err(|e| {
-                Error::invalid("QP data", format!("{e:?}"), "clarabel rejected the problem")
-            })?;
-        solver.solve();
-        let sol = &solver.solution;
-        match sol.status {
-            SolverStatus::Solved | SolverStatus::AlmostSolved => {}
-            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
-                return Err(Error::invalid(
-                    "loads",
-                    format!("{:?}", problem.load()),
-                    "cannot be equilibrated by compressive contact",
-                ));
-            }
-            status => {
-                // clarabel's last iterate, with its own rigid amplitudes and the status.
-                let pressure = sol.x.iter().map(|&x| x.max(0.0) / s).collect::<Vec<_>>();
-                let active = pressure.iter().map(|&p| p > 0.0).collect();
-                let rigid = sol.z[..m].to_vec();
-                let mut state =
-                    problem.state(pressure, rigid, active, [sol.iterations as usize, 0, 0]);
-                state.status = Status::Stopped(format!(
-                    "clarabel status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
-                    sol.r_prim, sol.r_dual
-                ));
-                return Ok(state);
-            }
-        }
-        // Polish on clarabel's contact set (see the type's documentation).
-        let p_max = sol.x.iter().fold(0.0f64, |a, &b| a.max(b));
-        let contact: Vec<bool> = sol.x.iter().map(|&x| x > 1e-6 * p_max).collect();
-        let mut state = kalker::exact(problem, Some(&contact))?;
-        // The polish must reproduce clarabel's own rigid-body approach.
-        for (k, (&mine, &theirs)) in state.rigid.iter().zip(&sol.z[..m]).enumerate() {
-            if (mine - theirs).abs() > 1e-6 * theirs.abs().max(1e-12) {
-                state.status = Status::Stopped(format!("polished rigid amplitude {k} = {mine:e} disagrees with the interior point's {theirs:e}"));
-            }
-        }
-        state.iterations = sol.iterations as usize;
-        Ok(state)
+        Ok(Self {
+            hessian: CscMatrix::new(n, n, colptr, rowval, nzval),
+            linear: (0..n).map(|i| w[i] * g[i] / s).collect(),
+            constraints: CscMatrix::new_from_triplets(m + n, n, ii, jj, vv),
+            b,
+            scale: s,
+        })
     }
+}
+
+/// The polish on clarabel's contact set (see [`Qp`]): the exact QP on the points whose
+/// pressure exceeds [`INTERIOR_POINT_ACCURACY`]·p_max, checked against clarabel's own
+/// rigid-body approach.
+fn polish(problem: &InterfaceProblem, sol: &Solution) -> Result<ContactState> {
+    let m = problem.load().len();
+    let p_max = sol.x.iter().fold(0.0f64, |a, &b| a.max(b));
+    let contact: Vec<bool> = sol
+        .x
+        .iter()
+        .map(|&x| x > INTERIOR_POINT_ACCURACY * p_max)
+        .collect();
+    let mut state = kalker::exact(problem, Some(&contact))?;
+    for (k, (&mine, &theirs)) in state.rigid.iter().zip(&sol.z[..m]).enumerate() {
+        if (mine - theirs).abs() > INTERIOR_POINT_ACCURACY * theirs.abs().max(ZERO_APPROACH) {
+            state.status = Status::Stopped(format!(
+                "polished rigid amplitude {k} = {mine:e} disagrees with the interior point's \
+                 {theirs:e}"
+            ));
+        }
+    }
+    state.iterations = sol.iterations;
+    Ok(state)
+}
+
+/// clarabel's last iterate of a programme that stopped short, with its own rigid amplitudes
+/// and the reason.
+fn last_iterate(
+    problem: &InterfaceProblem,
+    sol: &Solution,
+    scale: f64,
+    reason: &str,
+) -> ContactState {
+    let m = problem.load().len();
+    let pressure: Vec<f64> = sol.x.iter().map(|&x| x.max(0.0) / scale).collect();
+    let active = pressure.iter().map(|&p| p > 0.0).collect();
+    let rigid = sol.z[..m].to_vec();
+    let mut state = problem.state(pressure, rigid, active, [sol.iterations, 0, 0]);
+    state.status = Status::Stopped(reason.to_string());
+    state
 }

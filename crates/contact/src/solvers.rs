@@ -1,13 +1,13 @@
-//! The contact solvers behind [`ContactSolver`].
+//! The contact solvers behind [`ContactSolver`], and how they report their iterations.
 
-use contopt_core::observe::Observer;
-use contopt_core::{ContactState, Error, Result};
+use contopt_core::observe::{stopped_by_observer, Flow, Iteration, Observer, Silent};
+use contopt_core::{ContactState, Error, Result, Status};
 
 use crate::{kalker, InterfaceProblem};
 
 /// A method that solves the interface problem: p ≥ 0, d ≥ 0, pᵀd = 0 and equilibrium (2.15).
 ///
-/// The outcome of a solve is a state with a [`Status`](contopt_core::Status): a method that
+/// The outcome of a solve is a state with a [`Status`]: a method that
 /// stops short returns its last iterate and residuals ([`ContactState::solved`] turns that into
 /// an error). Errors are for bad input, and for dense matrices past the problem's memory limit.
 pub trait ContactSolver {
@@ -21,9 +21,12 @@ pub trait ContactSolver {
         let _ = start;
         self.solve(problem)
     }
-    /// Solves `problem` (from `start` when given), reporting each iteration to `observer`,
-    /// which may stop the method early ([`Flow::Stop`](contopt_core::observe::Flow::Stop)).
-    /// Methods without iterations of their own to report (the default) solve unobserved.
+    /// Solves `problem` (from `start` when given), reporting each iteration to `observer` as
+    /// an [`Iteration`] named by [`ContactSolver::name`], which may stop the method early
+    /// ([`Flow::Stop`]): it then returns its last iterate, finite, with the status
+    /// [`Status::Stopped`] of [`stopped_by_observer`]. `solve` and `solve_from` are this with
+    /// the [`Silent`] observer. Methods without iterations of their own to report (the
+    /// default) solve unobserved.
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,
@@ -38,7 +41,69 @@ pub trait ContactSolver {
     }
 }
 
-fn check_penalty(c: f64) -> Result<()> {
+/// Where a method reports its iterations: the observer, the name they carry
+/// ([`Iteration::method`]) and how many came before in the same solve, so that the numbers run
+/// on across the loops of one solve (a penalty solve's start at c_stiff and its main solve).
+#[derive(Clone, Copy)]
+pub(crate) struct Watch<'a> {
+    observer: &'a dyn Observer,
+    method: &'a str,
+    before: usize,
+}
+
+impl<'a> Watch<'a> {
+    pub(crate) fn new(observer: &'a dyn Observer, method: &'a str) -> Self {
+        Self {
+            observer,
+            method,
+            before: 0,
+        }
+    }
+
+    /// The same watch for a loop that follows `before` iterations of the solve.
+    pub(crate) fn after(self, before: usize) -> Self {
+        Self { before, ..self }
+    }
+
+    /// Reports the loop's iteration `k` (from 1) with its convergence `measure` and the
+    /// `tolerance` it must reach; the halt to return when the observer asks to stop.
+    pub(crate) fn report(&self, k: usize, measure: f64, tolerance: f64) -> Option<Halt> {
+        let iteration = self.before + k;
+        let flow = self.observer.observe(&Iteration {
+            method: self.method,
+            iteration,
+            measure,
+            tolerance,
+        });
+        (flow == Flow::Stop).then_some(Halt::Observer(iteration))
+    }
+}
+
+/// Why an iteration stopped before its tolerance, its last iterate kept.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Halt {
+    /// The observer asked to stop after this iteration.
+    Observer(usize),
+    /// The method could not go on; the text says why.
+    Failed(String),
+}
+
+impl Halt {
+    /// Marks `state` stopped: by the observer ([`stopped_by_observer`]), or by the `method`
+    /// with its reason. A state with a non-finite value keeps the status that says so.
+    pub(crate) fn stop(self, method: &str, state: &mut ContactState) {
+        if state.non_finite().is_some() {
+            return;
+        }
+        state.status = Status::Stopped(match self {
+            Halt::Observer(k) => stopped_by_observer(k),
+            Halt::Failed(reason) => format!("{method}: {reason}"),
+        });
+    }
+}
+
+/// A penalty parameter c must be positive and finite.
+pub(crate) fn check_penalty(c: f64) -> Result<()> {
     if c.is_finite() && c > 0.0 {
         Ok(())
     } else {
@@ -65,8 +130,20 @@ impl ContactSolver for Penalty {
     }
 
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        self.solve_observed(problem, None, &Silent)
+    }
+
+    /// Reports each of Kalker's solves (`iterp`, the one at c_stiff that starts a large c
+    /// included) with the number of points that break a sign condition as the measure
+    /// (tolerance 0). Solves from scratch: a `start` is not used.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
         check_penalty(self.c)?;
-        kalker::penalty(problem, self.c)
+        kalker::penalty(problem, self.c, Watch::new(observer, self.name()))
     }
 }
 
@@ -89,12 +166,22 @@ pub struct AugmentedLagrangian {
 }
 
 impl AugmentedLagrangian {
-    /// Penalty parameter `c`, tolerance 10⁻¹⁰, at most 2000 steps, accelerated.
+    /// The default tolerance on the pressure change of a step, relative to p_max
+    /// (convergence: six orders above round-off, far below any engineering need).
+    pub const TOLERANCE: f64 = 1e-10;
+    /// The default limit on Uzawa steps: far more than an accelerated solve takes (a few).
+    pub const MAX_STEPS: usize = 2000;
+    /// The method its inner Kalker solves report to an observer; its Uzawa steps report as
+    /// [`ContactSolver::name`].
+    pub const KALKER: &'static str = "augmented Lagrangian: Kalker";
+
+    /// Penalty parameter `c`, tolerance [`Self::TOLERANCE`], at most [`Self::MAX_STEPS`]
+    /// steps, accelerated.
     pub fn new(c: f64) -> Self {
         Self {
             c,
-            tolerance: 1e-10,
-            max_steps: 2000,
+            tolerance: Self::TOLERANCE,
+            max_steps: Self::MAX_STEPS,
             accelerate: true,
         }
     }
@@ -106,6 +193,19 @@ impl ContactSolver for AugmentedLagrangian {
     }
 
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        self.solve_observed(problem, None, &Silent)
+    }
+
+    /// Reports each Uzawa step (`iterations`) with its largest pressure change relative to
+    /// p_max as the measure and `tolerance`; and each inner Kalker solve (`iterp`) as the
+    /// method [`Self::KALKER`], measured by the number of points that break a sign condition
+    /// (tolerance 0). Solves from scratch: a `start` is not used.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
         check_penalty(self.c)?;
         if !(self.tolerance > 0.0) {
             return Err(Error::invalid(
@@ -114,13 +214,7 @@ impl ContactSolver for AugmentedLagrangian {
                 "must be positive",
             ));
         }
-        kalker::uzawa(
-            problem,
-            self.c,
-            self.tolerance,
-            self.max_steps,
-            self.accelerate,
-        )
+        kalker::uzawa(problem, self, observer)
     }
 }
 
@@ -140,6 +234,18 @@ impl ContactSolver for ActiveSet {
     }
 
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
-        kalker::exact(problem, None)
+        self.solve_observed(problem, None, &Silent)
+    }
+
+    /// Reports each of Kalker's solves (`iterp`: the penalty solve's, then the exact ones)
+    /// with the number of points that break a sign condition as the measure (tolerance 0).
+    /// Solves from scratch: a `start` is not used.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
+        kalker::exact_observed(problem, None, Watch::new(observer, self.name()))
     }
 }

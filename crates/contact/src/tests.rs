@@ -1,10 +1,15 @@
 //! Small problems with exact solutions, on a body defined by its matrices (a user body).
 
-use contopt_core::{ElasticBody, Geometry, Interface, RigidBody, RigidMode};
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+
+use contopt_core::observe::{stopped_by_observer, Flow, Iteration, Observer};
+use contopt_core::{ContactState, ElasticBody, Geometry, Interface, RigidBody, RigidMode, Status};
 use faer::Mat;
 
 use crate::{
-    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, PolonskyKeer, Qp,
+    ActiveSet, AugmentedLagrangian, ContactSolver, FullPenalty, InterfaceProblem, Penalty,
+    PolonskyKeer, Qp,
 };
 
 /// A body given by its influence matrix, load displacement and rigid modes.
@@ -314,4 +319,236 @@ fn second_body_in_another_order_is_permuted() {
         .map(|i| (0..3).map(|j| dense[(i, j)] * f[j]).sum())
         .collect();
     assert_close(&from_dense, &expected, 1e-15, "dense A f");
+}
+
+/// n points on a line of a body with a smooth, positive-definite compliance
+/// Aᵢⱼ = 10⁻³ e^(−|i−j|/3), floating (one translation loaded by `load` N) over a wavy
+/// parabolic gap: the contact set changes several times before it settles.
+fn wavy_floating(n: usize, load: f64) -> InterfaceProblem<'static> {
+    let a = Mat::from_fn(n, n, |i, j| 1e-3 * (-(i.abs_diff(j) as f64) / 3.0).exp());
+    let mode = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; n],
+        load: -load,
+    };
+    let b = body(a, vec![mode]);
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let gap: Vec<f64> = (0..n)
+        .map(|i| {
+            let x = (i as f64 - n as f64 / 2.0) / (n as f64 / 2.0);
+            1e-3 * (x * x + 0.3 * (3.0 * i as f64).sin().abs())
+        })
+        .collect();
+    InterfaceProblem::owned(Box::new(b), Box::new(rigid), &gap).unwrap()
+}
+
+/// A body given by its stiffness matrix K on the interface displacements u (Lᵢ u = uᵢ), with
+/// the given forces f and no rigid mode, as a full system: (K + c W_C) u = f − c W_C h. Its
+/// condensed form is the influence A = K⁻¹ and the load displacement K⁻¹ f.
+struct StiffnessSystem {
+    k: Mat<f64>,
+    f: Vec<f64>,
+    h: Vec<f64>,
+    w: Vec<f64>,
+}
+
+impl crate::FullSystem for StiffnessSystem {
+    fn points(&self) -> usize {
+        self.h.len()
+    }
+    fn weights(&self) -> &[f64] {
+        &self.w
+    }
+    fn rest_gap(&self) -> &[f64] {
+        &self.h
+    }
+    fn free_modes(&self) -> usize {
+        0
+    }
+    fn solve_springs(
+        &mut self,
+        active: &[bool],
+        c: f64,
+        gap: &mut [f64],
+    ) -> contopt_core::Result<()> {
+        use faer::linalg::solvers::Solve;
+        let n = self.h.len();
+        let spring = |i: usize| if active[i] { c * self.w[i] } else { 0.0 };
+        let m = Mat::from_fn(n, n, |i, j| {
+            self.k[(i, j)] + if i == j { spring(i) } else { 0.0 }
+        });
+        let rhs = Mat::from_fn(n, 1, |i, _| self.f[i] - spring(i) * self.h[i]);
+        let u = m.llt(faer::Side::Lower).unwrap().solve(&rhs);
+        for (i, d) in gap.iter_mut().enumerate() {
+            *d = self.h[i] + u[(i, 0)];
+        }
+        Ok(())
+    }
+    fn rigid(&self) -> Vec<f64> {
+        vec![]
+    }
+    fn equilibrium(&self, _: &[f64]) -> f64 {
+        0.0
+    }
+}
+
+/// The stiffness system of n points with K = 10³·(tridiagonal 2, −1) + 10²·I, pushed into a
+/// rigid flat by forces that grow from the middle, over a wavy initial gap; with its condensed
+/// interface problem.
+fn stiffness_pair(n: usize) -> (StiffnessSystem, InterfaceProblem<'static>) {
+    let k = Mat::from_fn(n, n, |i, j| match i.abs_diff(j) {
+        0 => 2.1e3,
+        1 => -1e3,
+        _ => 0.0,
+    });
+    let f: Vec<f64> = (0..n)
+        .map(|i| -0.01 * (1.0 - 0.5 * (i as f64 - n as f64 / 2.0).abs() / n as f64))
+        .collect();
+    let h: Vec<f64> = (0..n)
+        .map(|i| 1e-4 * (2.0 * i as f64).sin().abs())
+        .collect();
+    let a = faer::linalg::solvers::DenseSolveCore::inverse(&k.llt(faer::Side::Lower).unwrap());
+    let load: Vec<f64> = (0..n)
+        .map(|i| (0..n).map(|j| a[(i, j)] * f[j]).sum())
+        .collect();
+    let mut b = body(a, vec![]);
+    b.f = load;
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let problem = InterfaceProblem::owned(Box::new(b), Box::new(rigid), &h).unwrap();
+    let w = vec![1.0; n];
+    (StiffnessSystem { k, f, h, w }, problem)
+}
+
+/// Runs `solve` with an observer that counts the iterations each method reports, checks that
+/// each method numbers them 1, 2, … with a finite measure, and asks to stop at `stop`
+/// (method, iteration).
+fn observed(
+    stop: Option<(&str, usize)>,
+    solve: impl FnOnce(&dyn Observer) -> contopt_core::Result<ContactState>,
+) -> (ContactState, BTreeMap<String, usize>) {
+    let counts = RefCell::new(BTreeMap::<String, usize>::new());
+    let observer = |it: &Iteration| {
+        let mut counts = counts.borrow_mut();
+        let k = counts.entry(it.method.to_string()).or_insert(0);
+        *k += 1;
+        assert_eq!(it.iteration, *k, "{} numbers its iterations", it.method);
+        assert!(it.measure.is_finite() && it.tolerance >= 0.0, "{it:?}");
+        if stop == Some((it.method, it.iteration)) {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
+    };
+    let state = solve(&observer).unwrap();
+    (state, counts.into_inner())
+}
+
+/// Every iterative solver reports each iteration it counts in its state: Kalker's solves
+/// (`iterp`) for the penalty method and the active set, the Uzawa steps (`iterations`) and the
+/// inner solves (`iterp`) for the augmented Lagrangian, the conjugate-gradient steps for
+/// Polonsky–Keer; and observing changes nothing.
+#[test]
+fn observers_see_every_iteration() {
+    let problem = wavy_floating(40, 1.0);
+    let al = AugmentedLagrangian {
+        accelerate: false,
+        ..AugmentedLagrangian::new(1e3)
+    };
+    let solvers: [&dyn ContactSolver; 5] = [
+        &Penalty { c: 1e4 },
+        &Penalty { c: 1e12 },
+        &ActiveSet,
+        &al,
+        &PolonskyKeer::default(),
+    ];
+    for s in solvers {
+        let silent = s.solve(&problem).unwrap();
+        let (st, counts) = observed(None, |o| s.solve_observed(&problem, None, o));
+        assert_eq!(st, silent, "{}: observing changes the answer", s.name());
+        assert_eq!(st.status, Status::Solved, "{}", s.name());
+        let own = counts.get(s.name()).copied().unwrap_or(0);
+        if s.name() == al.name() {
+            assert_eq!(own, st.iterations, "Uzawa steps");
+            assert_eq!(
+                counts[AugmentedLagrangian::KALKER],
+                st.iterp,
+                "inner solves"
+            );
+        } else if s.name() == "Polonsky-Keer" {
+            assert_eq!(own, st.iterations);
+        } else {
+            assert_eq!(own, st.iterp, "{}: Kalker's solves", s.name());
+        }
+        assert!(
+            own >= 3,
+            "{}: {own} iterations are too few for the test",
+            s.name()
+        );
+    }
+}
+
+/// A stop after two iterations returns the second iterate, finite, as stopped by the
+/// observer; `InterfaceProblem::verify` keeps it so.
+#[test]
+fn observers_stop_every_solver() {
+    let problem = wavy_floating(40, 1.0);
+    let al = AugmentedLagrangian {
+        accelerate: false,
+        ..AugmentedLagrangian::new(1e3)
+    };
+    let cases: [(&dyn ContactSolver, &str); 6] = [
+        (&Penalty { c: 1e4 }, "penalty"),
+        (&Penalty { c: 1e12 }, "penalty"),
+        (&ActiveSet, "active set"),
+        (&al, al.name()),
+        (&al, AugmentedLagrangian::KALKER),
+        (&PolonskyKeer::default(), "Polonsky-Keer"),
+    ];
+    for (s, method) in cases {
+        let (mut st, counts) = observed(Some((method, 2)), |o| s.solve_observed(&problem, None, o));
+        let expected = Status::Stopped(stopped_by_observer(2));
+        assert_eq!(st.status, expected, "{} ({method})", s.name());
+        assert_eq!(counts[method], 2, "{}: nothing after the stop", s.name());
+        assert_eq!(st.non_finite(), None, "{}", s.name());
+        problem.verify(&mut st);
+        assert_eq!(st.status, expected, "{}", s.name());
+    }
+}
+
+/// The penalty method on the full system and on its condensed interface agree to round-off,
+/// with the same contact set and counts; it reports each of Kalker's solves, and stops when
+/// asked.
+#[test]
+fn full_penalty_matches_the_condensed_one() {
+    let (mut system, problem) = stiffness_pair(30);
+    let c = 1e6;
+    let condensed = Penalty { c }.solve(&problem).unwrap();
+    let full = FullPenalty { c }.solve(&mut system).unwrap();
+    let p_max = condensed.p_max();
+    assert!(p_max > 0.0 && condensed.active.iter().any(|a| !a));
+    assert_close(&full.pressure, &condensed.pressure, 1e-9 * p_max, "p");
+    assert_close(&full.gap, &condensed.gap, 1e-12, "d");
+    assert_eq!(full.active, condensed.active);
+    assert_eq!([full.iterp, full.iterd], [condensed.iterp, condensed.iterd]);
+    let name = FullPenalty { c }.name().to_string();
+    let (st, counts) = observed(None, |o| FullPenalty { c }.solve_observed(&mut system, o));
+    assert_eq!(counts[&name], st.iterp);
+    assert!(
+        st.iterp >= 3,
+        "{} solves are too few for the test",
+        st.iterp
+    );
+    let (st, counts) = observed(Some((&name, 2)), |o| {
+        FullPenalty { c }.solve_observed(&mut system, o)
+    });
+    assert_eq!(st.status, Status::Stopped(stopped_by_observer(2)));
+    assert_eq!((counts[&name], st.iterp), (2, 2));
+    assert_eq!(st.non_finite(), None);
+    // A system whose weights do not match its points is refused.
+    system.w.pop();
+    let err = FullPenalty { c }
+        .solve(&mut system)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("full system weights"), "{err}");
 }

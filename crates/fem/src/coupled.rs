@@ -1,108 +1,126 @@
-//! The penalty method on the full finite-element system of two bodies (eq. 2.22), without
-//! condensation: the cross-check of the condensed interface problem.
+//! The joint finite-element system of two bodies with a penalty spring at each contact point
+//! (eq. 2.22), without condensation: the cross-check of the condensed interface problem.
+//! This module builds the system; [`contopt_contact::FullPenalty`] runs Kalker's iteration
+//! on it, the loop the condensed penalty method shares.
 
-use contopt_core::{ContactState, ElasticBody, Error, Residuals, Result, Status};
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use contopt_contact::FullSystem;
+use contopt_core::{ElasticBody, Error, Result};
+use faer::linalg::solvers::Solve;
+use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use faer::Mat;
-use nalgebra::{DMatrix, DVector};
 
 use crate::factor::Factor;
 use crate::system::{assemble, Dof, Numbering};
 use crate::FeBody;
 
-/// Solves the contact of `body1` and `body2` with initial gap `initial_gap` (at body 1's
-/// points) by the penalty method on their joint stiffness system (2.22):
+/// The joint stiffness system of two finite-element bodies with a penalty spring at each
+/// contact point (2.22):
 ///
 /// (K¹ ⊕ K² + Σ_{i ∈ C} c wᵢ Lᵢᵀ Lᵢ) u = b − Σ_{i ∈ C} c wᵢ hᵢ Lᵢᵀ,
 ///
-/// with Lᵢ u the closing of the gap at point i, and Kalker's loop over the contact set C
-/// (`iterp`, `iterd`). Neither body is condensed or pinned: the springs hold a floating body.
-/// The pattern holds every candidate spring, so the symbolic factorisation is done once and
-/// each change of C costs one numeric refactorisation.
+/// with Lᵢ u the closing of the gap at point i, dᵢ = hᵢ + Lᵢ u. Neither body is condensed or
+/// pinned: the springs hold a floating body. The pattern holds every candidate spring, so the
+/// symbolic factorisation is done at the first solve and each change of the contact set C
+/// costs one numeric refactorisation.
 ///
-/// The returned pressure is pᵢ = c⟨−dᵢ⟩; `rigid` holds each body's free-mode amplitudes
-/// (body 1's, then body 2's) relative to the reference that [`FeBody`] pins, as the condensed
-/// problem reports them.
-pub fn penalty_full(
-    body1: &FeBody,
-    body2: &FeBody,
-    initial_gap: &[f64],
-    c: f64,
-) -> Result<ContactState> {
-    if !(c.is_finite() && c > 0.0) {
-        return Err(Error::invalid(
-            "solver.c",
-            c,
-            "the penalty parameter must be positive and finite [MPa/mm]",
-        ));
-    }
-    let pair = body1
-        .interface()
-        .partners(body2.interface(), body1.name(), body2.name())?;
-    let n = pair.len();
-    if initial_gap.len() != n {
-        return Err(Error::invalid(
-            "initial_gap",
-            initial_gap.len(),
-            format!("one value per interface point ({n})"),
-        ));
-    }
-    let bodies = [body1, body2];
-    let numbering = [
-        Numbering::new(&body1.model, &[], false)?,
-        Numbering::new(&body2.model, &[], false)?,
-    ];
-    let offset = [0, numbering[0].n_free];
-    let n_total = numbering[0].n_free + numbering[1].n_free;
+/// Solve it with [`contopt_contact::FullPenalty`]: its pressure is pᵢ = c⟨−dᵢ⟩, and its
+/// `rigid` holds each body's free-mode amplitudes (body 1's, then body 2's) relative to the
+/// reference that [`FeBody`] pins, as the condensed problem reports them.
+pub struct JointSystem<'a> {
+    bodies: [&'a FeBody; 2],
+    /// `pair[i]`: point i of the first body is point `pair[i]` of the second.
+    pair: Vec<usize>,
+    /// Each body's numbering of its free unknowns, nothing pinned.
+    numbering: [Numbering; 2],
+    /// Each point's row of L: (joint unknown, coefficient) pairs, dᵢ = hᵢ + Σ coef·u.
+    springs: Vec<Vec<(usize, f64)>>,
+    /// hᵢ: the initial gap plus the share of prescribed displacements.
+    rest_gap: Vec<f64>,
+    /// The pattern of K¹ ⊕ K² and every spring (upper triangle), with the order that sums
+    /// the triplets into it.
+    pattern: SymbolicSparseColMat<usize>,
+    order: Argsort<usize>,
+    /// The bodies' stiffness triplets' values; the springs' follow them in the pattern.
+    stiffness: Vec<f64>,
+    /// b: the given loads less the prescribed displacements' share.
+    load: Vec<f64>,
+    factor: Option<Factor>,
+    /// The joint displacement u of the last solve.
+    solution: Mat<f64>,
+}
 
-    // Each point's gap: d = h + closing·u + fixed part from prescribed displacements.
-    let mut springs: Vec<Vec<(usize, f64)>> = Vec::with_capacity(n);
-    let mut fixed = vec![0.0; n];
-    for i in 0..n {
-        let mut entries = vec![];
-        for (b, &point) in [i, pair[i]].iter().enumerate() {
-            let row = &bodies[b].rows[point];
-            for (&g, &coef) in row.dofs.iter().zip(&row.coef) {
-                match numbering[b].dofs[g] {
-                    Dof::Free(j) => entries.push((offset[b] + j, -coef)),
-                    Dof::Prescribed(v) => fixed[i] -= coef * v,
-                    Dof::Pinned => unreachable!("no pins in the joint system"),
+impl<'a> JointSystem<'a> {
+    /// The joint system of `body1` and `body2` (their interfaces paired by position) with
+    /// initial gap `initial_gap` \[mm\] at body 1's points.
+    pub fn new(body1: &'a FeBody, body2: &'a FeBody, initial_gap: &[f64]) -> Result<Self> {
+        let pair = body1
+            .interface()
+            .partners(body2.interface(), body1.name(), body2.name())?;
+        let n = pair.len();
+        if initial_gap.len() != n {
+            return Err(Error::invalid(
+                "initial_gap",
+                initial_gap.len(),
+                format!("one value per interface point ({n})"),
+            ));
+        }
+        if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
+            return Err(Error::invalid(
+                format!("initial_gap[{i}]"),
+                initial_gap[i],
+                "must be finite",
+            ));
+        }
+        let bodies = [body1, body2];
+        let numbering = [
+            Numbering::new(&body1.model, &[], false)?,
+            Numbering::new(&body2.model, &[], false)?,
+        ];
+        let offset = [0, numbering[0].n_free];
+        let (springs, fixed) = closing_rows(bodies, &pair, &numbering, offset);
+        let rest_gap = initial_gap.iter().zip(&fixed).map(|(h, f)| h + f).collect();
+        let Assembled {
+            mut idx,
+            values: stiffness,
+            load,
+        } = assemble_joint(bodies, &numbering, offset)?;
+        for entries in &springs {
+            for &(a, _) in entries {
+                for &(b, _) in entries {
+                    if a <= b {
+                        idx.push(Pair::new(a, b));
+                    }
                 }
             }
         }
-        springs.push(entries);
+        let n_total = load.len();
+        let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(n_total, n_total, &idx)
+            .map_err(|e| Error::Mesh(format!("joint sparse pattern: {e:?}")))?;
+        Ok(Self {
+            bodies,
+            pair,
+            numbering,
+            springs,
+            rest_gap,
+            pattern,
+            order,
+            stiffness,
+            load,
+            factor: None,
+            solution: Mat::zeros(n_total, 1),
+        })
     }
 
-    let mut idx = vec![];
-    let mut base_values = vec![];
-    let mut rhs_base = vec![0.0; n_total];
-    for b in 0..2 {
-        let t = assemble(&bodies[b].model, &numbering[b].dofs, offset[b])?;
-        idx.extend(t.idx);
-        base_values.extend(t.val);
-        for (g, d) in numbering[b].dofs.iter().enumerate() {
-            if let Dof::Free(j) = d {
-                rhs_base[offset[b] + j] = bodies[b].model.forces[g] - t.prescribed_load[*j];
-            }
-        }
-    }
-    for entries in &springs {
-        for &(a, _) in entries {
-            for &(b, _) in entries {
-                if a <= b {
-                    idx.push(Pair::new(a, b));
-                }
-            }
-        }
-    }
-    let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(n_total, n_total, &idx)
-        .map_err(|e| Error::Mesh(format!("joint sparse pattern: {e:?}")))?;
-    let w = &body1.interface().weights;
-    let h: Vec<f64> = (0..n).map(|i| initial_gap[i] + fixed[i]).collect();
-    let system = |active: &[bool]| -> Result<(SparseColMat<usize, f64>, Mat<f64>)> {
-        let mut values = base_values.clone();
-        let mut rhs = Mat::from_fn(n_total, 1, |j, _| rhs_base[j]);
-        for (i, entries) in springs.iter().enumerate() {
+    /// The matrix and right-hand side of (2.22) with springs c·wᵢ at the points of `active`.
+    fn springs_system(
+        &self,
+        active: &[bool],
+        c: f64,
+    ) -> Result<(SparseColMat<usize, f64>, Mat<f64>)> {
+        let w = self.weights();
+        let mut values = self.stiffness.clone();
+        let mut rhs = Mat::from_fn(self.load.len(), 1, |j, _| self.load[j]);
+        for (i, entries) in self.springs.iter().enumerate() {
             let k = if active[i] { c * w[i] } else { 0.0 };
             for &(a, ca) in entries {
                 for &(b, cb) in entries {
@@ -110,106 +128,150 @@ pub fn penalty_full(
                         values.push(k * ca * cb);
                     }
                 }
-                rhs[(a, 0)] -= k * h[i] * ca;
+                rhs[(a, 0)] -= k * self.rest_gap[i] * ca;
             }
         }
-        debug_assert_eq!(values.len(), idx.len());
-        let matrix = SparseColMat::new_from_argsort(pattern.clone(), &order, &values)
+        let matrix = SparseColMat::new_from_argsort(self.pattern.clone(), &self.order, &values)
             .map_err(|e| Error::Mesh(format!("joint sparse values: {e:?}")))?;
         Ok((matrix, rhs))
-    };
+    }
 
-    let mut active = vec![true; n];
-    let (matrix, mut rhs) = system(&active)?;
-    let mut factor = Factor::new(matrix.as_ref(), 0, "joint system")?;
-    let (mut iterp, mut iterd, mut solves) = (0, 0, 0);
-    loop {
-        factor.solve_in_place(rhs.as_mut());
-        solves += 1;
-        let gap: Vec<f64> = (0..n)
-            .map(|i| {
-                h[i] + springs[i]
-                    .iter()
-                    .map(|&(j, cj)| cj * rhs[(j, 0)])
-                    .sum::<f64>()
+    /// Body `b`'s global nodal displacements in the last solve.
+    fn displacement(&self, b: usize) -> Vec<f64> {
+        let offset = if b == 0 { 0 } else { self.numbering[0].n_free };
+        self.numbering[b]
+            .dofs
+            .iter()
+            .map(|d| match *d {
+                Dof::Free(j) => self.solution[(offset + j, 0)],
+                Dof::Prescribed(v) => v,
+                Dof::Pinned => 0.0,
             })
-            .collect();
-        let scale = gap.iter().fold(0.0f64, |m, d| m.max(d.abs())).max(1e-300);
-        let opening: Vec<usize> = (0..n)
-            .filter(|&i| active[i] && gap[i] > 1e-12 * scale)
-            .collect();
-        let changed = if !opening.is_empty() {
-            for i in opening {
-                active[i] = false;
-            }
-            iterp += 1;
-            true
-        } else {
-            let closing: Vec<usize> = (0..n)
-                .filter(|&i| !active[i] && gap[i] < -1e-12 * scale)
-                .collect();
-            for &i in &closing {
-                active[i] = true;
-            }
-            iterd += usize::from(!closing.is_empty());
-            !closing.is_empty()
-        };
-        if !changed {
-            let pressure: Vec<f64> = (0..n)
-                .map(|i| {
-                    if active[i] {
-                        c * (-gap[i]).max(0.0)
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
-            let u: Vec<Vec<f64>> = (0..2)
-                .map(|b| {
-                    numbering[b]
-                        .dofs
-                        .iter()
-                        .map(|d| match *d {
-                            Dof::Free(j) => rhs[(offset[b] + j, 0)],
-                            Dof::Prescribed(v) => v,
-                            Dof::Pinned => 0.0,
-                        })
-                        .collect()
-                })
-                .collect();
-            let rigid = (0..2)
-                .flat_map(|b| pinned_amplitudes(bodies[b], &u[b]))
-                .collect();
-            let residuals = residuals(bodies, &pair, &pressure, &gap);
-            let mut state = ContactState {
-                pressure,
-                gap,
-                rigid,
-                active,
-                iterations: solves,
-                iterp,
-                iterd,
-                residuals,
-                status: Status::Solved,
-            };
-            state.stop_if_not_finite();
-            return Ok(state);
-        }
-        if iterp + iterd > 4 * n + 20 {
-            return Err(Error::NotConverged {
-                method: "penalty on the joint system (2.22)".into(),
-                iterations: solves,
-                detail: format!("the contact set kept changing ({iterp} for negative pressure, {iterd} for penetration)"),
-            });
-        }
-        let (matrix, new_rhs) = system(&active)?;
-        factor.refactor(matrix.as_ref(), "joint system")?;
-        rhs = new_rhs;
+            .collect()
     }
 }
 
+impl FullSystem for JointSystem<'_> {
+    fn points(&self) -> usize {
+        self.pair.len()
+    }
+
+    fn weights(&self) -> &[f64] {
+        &self.bodies[0].interface().weights
+    }
+
+    fn rest_gap(&self) -> &[f64] {
+        &self.rest_gap
+    }
+
+    fn free_modes(&self) -> usize {
+        self.bodies.iter().map(|b| b.rigid_modes().len()).sum()
+    }
+
+    fn solve_springs(&mut self, active: &[bool], c: f64, gap: &mut [f64]) -> Result<()> {
+        let (matrix, mut rhs) = self.springs_system(active, c)?;
+        match &mut self.factor {
+            Some(factor) => factor.refactor(matrix.as_ref(), "joint system")?,
+            None => self.factor = Some(Factor::new(matrix.as_ref(), 0, "joint system")?),
+        }
+        if let Some(factor) = &self.factor {
+            factor.solve_in_place(rhs.as_mut());
+        }
+        self.solution = rhs;
+        for ((d, h), entries) in gap.iter_mut().zip(&self.rest_gap).zip(&self.springs) {
+            *d = h + entries
+                .iter()
+                .map(|&(j, cj)| cj * self.solution[(j, 0)])
+                .sum::<f64>();
+        }
+        Ok(())
+    }
+
+    fn rigid(&self) -> Vec<f64> {
+        (0..2)
+            .flat_map(|b| pinned_amplitudes(self.bodies[b], &self.displacement(b)))
+            .collect()
+    }
+
+    fn equilibrium(&self, pressure: &[f64]) -> f64 {
+        let w = self.weights();
+        let mut equilibrium: f64 = 0.0;
+        for (b, body) in self.bodies.iter().enumerate() {
+            let point = |i: usize| if b == 0 { i } else { self.pair[i] };
+            for mode in body.rigid_modes() {
+                let work: f64 = (0..pressure.len())
+                    .map(|i| w[i] * pressure[i] * mode.interface_displacement[point(i)])
+                    .sum();
+                equilibrium = equilibrium.max((work + mode.load).abs());
+            }
+        }
+        equilibrium
+    }
+}
+
+/// Each point's row of L in the joint unknowns (the closing of its gap, −n·u of both bodies'
+/// face nodes), and the part of its gap that prescribed displacements fix.
+fn closing_rows(
+    bodies: [&FeBody; 2],
+    pair: &[usize],
+    numbering: &[Numbering; 2],
+    offset: [usize; 2],
+) -> (Vec<Vec<(usize, f64)>>, Vec<f64>) {
+    let n = pair.len();
+    let mut springs = Vec::with_capacity(n);
+    let mut fixed = vec![0.0; n];
+    for (i, fixed) in fixed.iter_mut().enumerate() {
+        let mut entries = vec![];
+        for (b, &point) in [i, pair[i]].iter().enumerate() {
+            let row = &bodies[b].rows[point];
+            for (&g, &coef) in row.dofs.iter().zip(&row.coef) {
+                match numbering[b].dofs[g] {
+                    Dof::Free(j) => entries.push((offset[b] + j, -coef)),
+                    Dof::Prescribed(v) => *fixed -= coef * v,
+                    // Nothing is pinned in the joint system (`Numbering::new(.., false)`).
+                    Dof::Pinned => {}
+                }
+            }
+        }
+        springs.push(entries);
+    }
+    (springs, fixed)
+}
+
+/// The bodies' stiffness K¹ ⊕ K² as triplets (upper triangle) in the joint unknowns, and the
+/// joint load b: the given forces less the prescribed displacements' share.
+struct Assembled {
+    idx: Vec<Pair<usize, usize>>,
+    values: Vec<f64>,
+    load: Vec<f64>,
+}
+
+fn assemble_joint(
+    bodies: [&FeBody; 2],
+    numbering: &[Numbering; 2],
+    offset: [usize; 2],
+) -> Result<Assembled> {
+    let mut joint = Assembled {
+        idx: vec![],
+        values: vec![],
+        load: vec![0.0; numbering[0].n_free + numbering[1].n_free],
+    };
+    for b in 0..2 {
+        let model = &bodies[b].model;
+        let t = assemble(model, &numbering[b].dofs, offset[b])?;
+        joint.idx.extend(t.idx);
+        joint.values.extend(t.val);
+        for (g, d) in numbering[b].dofs.iter().enumerate() {
+            if let Dof::Free(j) = *d {
+                joint.load[offset[b] + j] = model.forces[g] - t.prescribed_load[j];
+            }
+        }
+    }
+    Ok(joint)
+}
+
 /// Amplitudes λ of a body's free modes such that u = u_pinned + Σ λₖ φₖ, read at the DOFs the
-/// body pins (where u_pinned = 0).
+/// body pins (where u_pinned = 0); NaN when the pins do not determine them.
 fn pinned_amplitudes(body: &FeBody, u: &[f64]) -> Vec<f64> {
     let system = &body.system;
     let pins: Vec<usize> = (0..system.dofs.len())
@@ -219,27 +281,137 @@ fn pinned_amplitudes(body: &FeBody, u: &[f64]) -> Vec<f64> {
     if m == 0 {
         return vec![];
     }
-    let phi = DMatrix::from_fn(m, m, |r, k| system.modes[k].values[pins[r]]);
-    let at_pins = DVector::from_fn(m, |r, _| u[pins[r]]);
-    phi.lu()
-        .solve(&at_pins)
-        .map_or_else(|| vec![f64::NAN; m], |x| x.iter().copied().collect())
+    if pins.len() != m {
+        return vec![f64::NAN; m];
+    }
+    let phi = Mat::from_fn(m, m, |r, k| system.modes[k].values[pins[r]]);
+    let at_pins = Mat::from_fn(m, 1, |r, _| u[pins[r]]);
+    let lambda = phi.partial_piv_lu().solve(&at_pins);
+    (0..m).map(|k| lambda[(k, 0)]).collect()
 }
 
-/// Residuals of the joint solution, with the equilibrium of each free rigid mode.
-fn residuals(bodies: [&FeBody; 2], pair: &[usize], pressure: &[f64], gap: &[f64]) -> Residuals {
-    let w = &bodies[0].interface().weights;
-    let mut equilibrium: f64 = 0.0;
-    for (b, body) in bodies.iter().enumerate() {
-        for mode in body.rigid_modes() {
-            let work: f64 = (0..pressure.len())
-                .map(|i| {
-                    w[i] * pressure[i]
-                        * mode.interface_displacement[if b == 0 { i } else { pair[i] }]
-                })
-                .sum();
-            equilibrium = equilibrium.max((work + mode.load).abs());
-        }
+#[cfg(test)]
+mod tests {
+    use contopt_contact::{ContactSolver, FullPenalty, InterfaceProblem, Penalty};
+    use contopt_core::observe::{Flow, Iteration};
+
+    use super::*;
+    use crate::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
+
+    const E: f64 = 2.0e5;
+
+    /// A plane-stress punch, 10 × 5 mm, on a 20 × 10 mm base (half-models, x = 0 held in x;
+    /// the base's bottom clamped), pressed by 100 MPa on its top: the punch floats (one
+    /// vertical mode). Their contact faces, y = 0 for x ≤ 10, have matching nodes.
+    fn punch_and_base() -> (FeBody, FeBody) {
+        let analysis = Analysis::PlaneStress { thickness: 2.0 };
+        let material = Material::new(E, 0.3).unwrap();
+        let y = Spacing::uniform(-10.0, 0.0, 3).unwrap();
+        let x = Spacing::uniform(0.0, 20.0, 8).unwrap();
+        let mut base = FeModel::new(
+            Mesh::rectangle(ElementKind::Q8, &x, &y).unwrap(),
+            material,
+            analysis,
+        )
+        .unwrap();
+        let bottom = base.mesh().nodes_on_y(-10.0, 0.0, 20.0);
+        let axis = base.mesh().nodes_on_x(0.0, -10.0, 0.0);
+        base.fix(&bottom, Component::X).unwrap();
+        base.fix(&bottom, Component::Y).unwrap();
+        base.fix(&axis, Component::X).unwrap();
+        let top = base.mesh().faces_on_y(0.0, 0.0, 10.0);
+        let base = FeBody::new("base", base, &top).unwrap();
+        let (x, y) = (
+            Spacing::uniform(0.0, 10.0, 4).unwrap(),
+            Spacing::uniform(0.0, 5.0, 2).unwrap(),
+        );
+        let mut punch = FeModel::new(
+            Mesh::rectangle(ElementKind::Q8, &x, &y).unwrap(),
+            material,
+            analysis,
+        )
+        .unwrap();
+        let axis = punch.mesh().nodes_on_x(0.0, 0.0, 5.0);
+        let (loaded, contact) = (
+            punch.mesh().faces_on_y(5.0, 0.0, 10.0),
+            punch.mesh().faces_on_y(0.0, 0.0, 10.0),
+        );
+        punch.fix(&axis, Component::X).unwrap();
+        punch.pressure(&loaded, 100.0).unwrap();
+        (base, FeBody::new("punch", punch, &contact).unwrap())
     }
-    Residuals::new(equilibrium, pressure, gap)
+
+    /// The penalty method on the joint system (2.22) and on the condensed interface give the
+    /// same pressure, gap, contact set and approach of the floating punch, under a crowned
+    /// gap that opens the punch's edge; the joint system carries the punch's load.
+    #[test]
+    fn joint_system_matches_the_condensed_penalty() {
+        let (base, punch) = punch_and_base();
+        let gap: Vec<f64> = base
+            .interface()
+            .points
+            .iter()
+            .map(|x| 0.05 * (x[0] / 10.0).powi(2))
+            .collect();
+        let c = E * 1e4;
+        let condensed = Penalty { c }
+            .solve(&InterfaceProblem::new(&base, &punch, &gap).unwrap())
+            .unwrap();
+        let mut joint = JointSystem::new(&base, &punch, &gap).unwrap();
+        assert_eq!(joint.free_modes(), 1);
+        let solves = std::cell::Cell::new(0);
+        let count = |_: &Iteration| {
+            solves.set(solves.get() + 1);
+            Flow::Continue
+        };
+        let full = FullPenalty { c }
+            .solve_observed(&mut joint, &count)
+            .unwrap();
+        let p_max = condensed.p_max();
+        let dp = full
+            .pressure
+            .iter()
+            .zip(&condensed.pressure)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let dd = full
+            .gap
+            .iter()
+            .zip(&condensed.gap)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let touching = full.active.iter().filter(|&&a| a).count();
+        eprintln!(
+            "{touching} of {} points in contact after {} solves: dp {dp:.2e} MPa, dd {dd:.2e} mm",
+            full.active.len(),
+            full.iterp
+        );
+        assert!(touching < full.active.len(), "the edge must open");
+        assert!(dp < 1e-6 * p_max, "pressures differ by {dp:e} MPa");
+        assert!(dd < 1e-9, "gaps differ by {dd:e} mm");
+        assert_eq!(full.active, condensed.active);
+        assert_eq!(solves.get(), full.iterp);
+        assert!((full.rigid[0] - condensed.rigid[0]).abs() < 1e-9 * condensed.rigid[0].abs());
+        // The contact force carries the 100 MPa on the punch's top, 10 mm × 2 mm.
+        let force: f64 = full
+            .pressure
+            .iter()
+            .zip(&base.interface().weights)
+            .map(|(p, w)| p * w)
+            .sum();
+        assert!((force - 2000.0).abs() < 1e-6 * 2000.0, "{force} N");
+        assert!(full.residuals.equilibrium < 1e-9 * 2000.0);
+    }
+
+    #[test]
+    fn joint_system_refuses_a_wrong_gap() {
+        let (base, punch) = punch_and_base();
+        let n = base.interface().len();
+        let err = JointSystem::new(&base, &punch, &vec![0.0; n - 1])
+            .err()
+            .unwrap();
+        assert!(err.to_string().contains("initial_gap"), "{err}");
+        let mut gap = vec![0.0; n];
+        gap[1] = f64::NAN;
+        let err = JointSystem::new(&base, &punch, &gap).err().unwrap();
+        assert!(err.to_string().contains("initial_gap[1]"), "{err}");
+    }
 }

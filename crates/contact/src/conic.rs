@@ -1,0 +1,174 @@
+//! The one place clarabel is set up and read: its settings and the meaning of its status, for
+//! the contact QP (2.14) ([`crate::Qp`]) and the optimisation's linear programme (3.5).
+//!
+//! A programme is min ½ xᵀ P x + cᵀ x subject to A x + s = b, with the slack s in the zero
+//! cone on the first `zero_rows` rows (equalities A x = b) and non-negative on the others
+//! (inequalities A x ≤ b), clarabel's standard form.
+//!
+//! ```
+//! use contopt_contact::conic::{self, CscMatrix, Outcome};
+//!
+//! // min x₀ subject to x₀ + x₁ = 2 (the zero cone), x₀ ≥ 0.5 and x₁ ≥ 0.5 (as −x ≤ −0.5):
+//! // x = (0.5, 1.5).
+//! let (rows, columns) = (vec![0, 0, 1, 2], vec![0, 1, 0, 1]);
+//! let a = CscMatrix::new_from_triplets(3, 2, rows, columns, vec![1.0, 1.0, -1.0, -1.0]);
+//! let (p, b) = (CscMatrix::zeros((2, 2)), [2.0, -0.5, -0.5]);
+//! let solved = conic::solve(&p, &[1.0, 0.0], &a, &b, 1, conic::TOLERANCE, "demo")?;
+//! assert_eq!(solved.outcome, Outcome::Solved);
+//! assert!((solved.x[0] - 0.5).abs() < 1e-8 && (solved.x[1] - 1.5).abs() < 1e-8);
+//! # Ok::<(), contopt_core::Error>(())
+//! ```
+
+use clarabel::solver::{
+    DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+};
+use contopt_core::{Error, Result};
+
+pub use clarabel::algebra::CscMatrix;
+
+/// The default feasibility and duality-gap tolerance of a programme (clarabel's tol_feas,
+/// tol_gap_abs and tol_gap_rel): far tighter than the pressures need, so that the contact set
+/// read from the solution is exact (convergence).
+pub const TOLERANCE: f64 = 1e-10;
+
+/// Interior-point iterations before a programme counts as stopped: clarabel needs a few tens.
+pub const MAX_ITERATIONS: u32 = 200;
+
+/// How a programme ended, from clarabel's status.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    /// Solved to the tolerance (`Solved` or `AlmostSolved`).
+    Solved,
+    /// No x satisfies the constraints (`PrimalInfeasible` or `AlmostPrimalInfeasible`).
+    Infeasible,
+    /// Stopped short of the tolerance (the iteration limit, numerical trouble, an unbounded
+    /// objective): clarabel's status and its residuals in words. `x` and `z` hold the last
+    /// iterate.
+    Stopped(String),
+}
+
+/// The solution of a programme: the primal x and the dual z (one per constraint row), as
+/// clarabel left them.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// How the programme ended.
+    pub outcome: Outcome,
+    /// Primal variables.
+    pub x: Vec<f64>,
+    /// Dual variables, one per row of A: the multipliers of the equalities first.
+    pub z: Vec<f64>,
+    /// Interior-point iterations taken.
+    pub iterations: usize,
+}
+
+/// clarabel's settings for a programme: silent, `tolerance` on feasibility and both gaps,
+/// at most [`MAX_ITERATIONS`] iterations.
+pub fn settings(tolerance: f64) -> Result<DefaultSettings<f64>> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::invalid(
+            "solver.tolerance",
+            tolerance,
+            "must be positive and finite",
+        ));
+    }
+    DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_feas(tolerance)
+        .tol_gap_abs(tolerance)
+        .tol_gap_rel(tolerance)
+        .max_iter(MAX_ITERATIONS)
+        .build()
+        .map_err(|e| Error::invalid("solver.tolerance", tolerance, format!("{e:?}")))
+}
+
+/// Solves min ½ xᵀ P x + cᵀ x subject to A x = b on the first `zero_rows` rows of A and
+/// A x ≤ b on the others, with P = `hessian` (its upper triangle; zeros for a linear
+/// programme), c = `linear`, A = `constraints`. `what` names the programme in an error: an
+/// error is for data clarabel rejects, a programme that ends short is an [`Outcome`].
+pub fn solve(
+    hessian: &CscMatrix<f64>,
+    linear: &[f64],
+    constraints: &CscMatrix<f64>,
+    b: &[f64],
+    zero_rows: usize,
+    tolerance: f64,
+    what: &str,
+) -> Result<Solution> {
+    let rows = constraints.m;
+    if zero_rows > rows || b.len() != rows {
+        return Err(Error::invalid(
+            what,
+            format!(
+                "{rows} rows, {} right-hand sides, {zero_rows} equalities",
+                b.len()
+            ),
+            "one right-hand side per row, at most as many equalities as rows",
+        ));
+    }
+    let mut cones = vec![];
+    if zero_rows > 0 {
+        cones.push(SupportedConeT::ZeroConeT(zero_rows));
+    }
+    if rows > zero_rows {
+        cones.push(SupportedConeT::NonnegativeConeT(rows - zero_rows));
+    }
+    let settings = settings(tolerance)?;
+    let mut solver = DefaultSolver::new(hessian, linear, constraints, b, &cones, settings)
+        .map_err(|e| Error::invalid(what, format!("{e:?}"), "clarabel rejected the programme"))?;
+    solver.solve();
+    let sol = &solver.solution;
+    let outcome = match sol.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Outcome::Solved,
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+            Outcome::Infeasible
+        }
+        status => Outcome::Stopped(format!(
+            "clarabel status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
+            sol.r_prim, sol.r_dual
+        )),
+    };
+    Ok(Solution {
+        outcome,
+        x: sol.x.clone(),
+        z: sol.z.clone(),
+        iterations: sol.iterations as usize,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An infeasible programme is an outcome, not an error; bad data is an error.
+    #[test]
+    fn infeasible_and_bad_data() {
+        // x = 1 and x ≤ 0.
+        let a = CscMatrix::new_from_triplets(2, 1, vec![0, 1], vec![0, 0], vec![1.0, 1.0]);
+        let p = CscMatrix::zeros((1, 1));
+        let s = solve(&p, &[1.0], &a, &[1.0, 0.0], 1, TOLERANCE, "t").unwrap();
+        assert_eq!(s.outcome, Outcome::Infeasible);
+        let err = solve(&p, &[1.0], &a, &[1.0], 1, TOLERANCE, "t").unwrap_err();
+        assert!(
+            err.to_string().contains("one right-hand side per row"),
+            "{err}"
+        );
+        let err = settings(f64::NAN).unwrap_err();
+        assert!(err.to_string().contains("solver.tolerance"), "{err}");
+    }
+
+    /// A QP with a known minimiser: min ½(x₀² + x₁²) − x₀ − 2x₁ with x₀ + x₁ ≤ 1 is at
+    /// (0, 1), where the constraint's multiplier is 1.
+    #[test]
+    fn quadratic_programme() {
+        let p = CscMatrix::new_from_triplets(2, 2, vec![0, 1], vec![0, 1], vec![1.0, 1.0]);
+        let a = CscMatrix::new_from_triplets(1, 2, vec![0, 0], vec![0, 1], vec![1.0, 1.0]);
+        let s = solve(&p, &[-1.0, -2.0], &a, &[1.0], 0, TOLERANCE, "t").unwrap();
+        assert_eq!(s.outcome, Outcome::Solved);
+        assert!(
+            s.x[0].abs() < 1e-7 && (s.x[1] - 1.0).abs() < 1e-7,
+            "{:?}",
+            s.x
+        );
+        assert!((s.z[0] - 1.0).abs() < 1e-7, "{:?}", s.z);
+    }
+}
