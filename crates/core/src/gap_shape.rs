@@ -1,7 +1,7 @@
 //! The map Q of eq. (3.5): how a change of initial gap given at design nodes reaches the
 //! interface points.
 
-use crate::{Error, Interface, Result};
+use crate::{Error, Interface, Result, GEOMETRY_TOLERANCE};
 
 /// The gap change Δh(x) = L(x)·Δh (§4): Δh is given by its values at design `nodes`, and row i
 /// of Q lists the nodes that point i of the interface depends on, with their weights.
@@ -73,14 +73,14 @@ impl GapShape {
         let size = coordinate
             .iter()
             .fold(0.0f64, |m, c| m.max(c.abs()))
-            .max(1e-300);
+            .max(f64::MIN_POSITIVE);
         let mut distinct = coordinate.clone();
         distinct.sort_by(f64::total_cmp);
-        distinct.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * size);
+        distinct.dedup_by(|a, b| (*a - *b).abs() <= GEOMETRY_TOLERANCE * size);
         let rows = coordinate
             .iter()
             .map(|c| {
-                let k = distinct.partition_point(|d| *d < c - 1e-9 * size);
+                let k = distinct.partition_point(|d| *d < c - GEOMETRY_TOLERANCE * size);
                 vec![(k, 1.0)]
             })
             .collect();

@@ -16,17 +16,10 @@ pub enum Geometry {
     Surface,
 }
 
-/// Role of an interface point in the optimisation (§3.2).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Region {
-    /// In the proposed contact zone Ω but outside Ω_opt: only p ≥ 0, d ≥ 0, pd = 0.
-    #[default]
-    Contact,
-    /// Ω_v: d = 0 and χ = v·p_max − p = 0 are prescribed.
-    OmegaV,
-    /// Ω_nv = Ω_opt − Ω_v: only d ≥ 0 and χ ≥ 0; the gap change follows Ω_v (eq. 3.3).
-    OmegaNv,
-}
+/// Relative round-off below which two coordinates or lengths count as equal (geometry): points
+/// of an interface within 10⁻⁹ of its size are one place, a normal within 10⁻⁹ of unit
+/// length is a unit vector. Far above f64's ε, far below any mesh or grid spacing.
+pub const GEOMETRY_TOLERANCE: f64 = 1e-9;
 
 /// The points of a body's proposed contact zone Ω at which pressure and gap are evaluated.
 ///
@@ -44,8 +37,6 @@ pub struct Interface {
     pub weights: Vec<f64>,
     /// Unit outward normal of this body at each point.
     pub normals: Vec<[f64; 3]>,
-    /// Role of each point in the optimisation.
-    pub regions: Vec<Region>,
 }
 
 impl Interface {
@@ -88,7 +79,7 @@ impl Interface {
         }
         for (i, nrm) in normals.iter().enumerate() {
             let len = nrm.iter().map(|c| c * c).sum::<f64>().sqrt();
-            if (len - 1.0).abs() > 1e-9 {
+            if (len - 1.0).abs() > GEOMETRY_TOLERANCE {
                 return Err(Error::invalid(
                     format!("interface.normals[{i}]"),
                     format!("{nrm:?}"),
@@ -101,12 +92,11 @@ impl Interface {
             points,
             weights,
             normals,
-            regions: vec![Region::Contact; n],
         })
     }
 
     /// For each point of `self`, the index of the point of `other` at the same place (within
-    /// 10⁻⁹ of the interface's size): the identity when both list their points alike, else
+    /// [`GEOMETRY_TOLERANCE`] of the interface's size): the identity when both list their points alike, else
     /// found through a spatial hash of `other`'s points. `name`/`other_name` label the error, which
     /// names the first point without a partner.
     pub fn partners(&self, other: &Interface, name: &str, other_name: &str) -> Result<Vec<usize>> {
@@ -126,7 +116,7 @@ impl Interface {
             .flatten()
             .fold(0.0f64, |m, c| m.max(c.abs()))
             .max(1.0);
-        let tol = 1e-9 * scale;
+        let tol = GEOMETRY_TOLERANCE * scale;
         let close = |a: [f64; 3], b: [f64; 3]| {
             (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt() <= tol
         };
@@ -236,7 +226,7 @@ mod tests {
             .unwrap()
         };
         // Points straddling the hash's cell boundaries by round-off still pair.
-        let tol = 1e-9 * 3.0;
+        let tol = GEOMETRY_TOLERANCE * 3.0;
         let a = make(&[0.0, 1.0, 2.0, 3.0, 4.0 * tol]);
         let b = make(&[3.0, 2.0 + 1e-13, 4.0 * tol - 1e-13, 0.0, 1.0]);
         assert_eq!(a.partners(&b, "a", "b").unwrap(), vec![3, 4, 1, 0, 2]);

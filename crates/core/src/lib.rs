@@ -18,7 +18,7 @@ pub mod stress;
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
 pub use gap_shape::GapShape;
-pub use interface::{Geometry, Interface, Region};
+pub use interface::{Geometry, Interface, GEOMETRY_TOLERANCE};
 pub use material::Material;
 pub use rigid::RigidBody;
 pub use state::{ContactState, Residuals, Status};

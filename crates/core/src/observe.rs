@@ -21,8 +21,8 @@
 /// One iteration of an iterative method, as it reports it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Iteration<'a> {
-    /// The method: a contact solver's name (`"polonsky_keer"`,
-    /// `"augmented_lagrangian"`, …) or `"optimisation"` for the loop of §3.2.
+    /// The method: a contact solver's name (`"Polonsky-Keer"`, `"augmented Lagrangian"`,
+    /// `"active set"`, …) or `"optimisation"` for the loop of §3.2.
     pub method: &'a str,
     /// The iteration's number, from 1, counted by that method.
     pub iteration: usize,

@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{ElasticBody, Error, Interface, Result, RigidMode};
+use crate::{ElasticBody, Error, Interface, Result, RigidMode, GEOMETRY_TOLERANCE};
 
 /// A rigid body facing another body's contact surface: no compliance, and either held in
 /// place or free to translate along one axis under a given force (a punch, an indenter).
@@ -42,7 +42,7 @@ impl RigidBody {
         force: f64,
     ) -> Result<Self> {
         let len = axis.iter().map(|c| c * c).sum::<f64>().sqrt();
-        if (len - 1.0).abs() > 1e-9 {
+        if (len - 1.0).abs() > GEOMETRY_TOLERANCE {
             return Err(Error::invalid(
                 "rigid.axis",
                 format!("{axis:?}"),

@@ -5,6 +5,7 @@ use crate::Material;
 
 /// The two-dimensional idealisation of a body.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Analysis {
     /// Axisymmetric about the y axis: coordinates (r, z) = (x, y), strains (ε_r, ε_z, ε_θ, γ_rz),
     /// volume element 2πr dA.
@@ -12,11 +13,13 @@ pub enum Analysis {
     /// Plane stress (σ_zz = 0) with thickness b \[mm\].
     PlaneStress {
         /// Thickness b \[mm\].
+        #[serde(rename = "thickness_mm")]
         thickness: f64,
     },
     /// Plane strain (ε_zz = 0), with an out-of-plane length \[mm\] (1 for per-unit-length results).
     PlaneStrain {
         /// Out-of-plane length \[mm\].
+        #[serde(rename = "thickness_mm")]
         thickness: f64,
     },
 }

@@ -99,22 +99,7 @@ impl FeBody {
     /// Builds the body with contact zone `contact` (boundary faces of the model's mesh).
     pub fn new(name: impl Into<String>, model: FeModel, contact: &[Face]) -> Result<Self> {
         let name = name.into();
-        let boundary: std::collections::HashSet<Face> =
-            model.mesh.boundary_faces().into_iter().collect();
-        if contact.is_empty() {
-            return Err(Error::invalid(
-                format!("{name}.contact"),
-                "[]",
-                "select at least one face",
-            ));
-        }
-        if let Some(f) = contact.iter().find(|f| !boundary.contains(f)) {
-            return Err(Error::invalid(
-                format!("{name}.contact"),
-                format!("{f:?}"),
-                "is not a boundary face of the mesh",
-            ));
-        }
+        check_contact(&name, &model, contact)?;
         let mut face_nodes: Vec<usize> = contact
             .iter()
             .flat_map(|&f| model.mesh.face_nodes(f))
@@ -123,60 +108,12 @@ impl FeBody {
         face_nodes.dedup();
         let system = System::new(&model, &name, &face_nodes)?;
         let condensation_start = Instant::now();
-
-        let (mut points, mut weights, mut normals, mut rows) = (vec![], vec![], vec![], vec![]);
-        let mut shape_rows = vec![];
-        for &f in contact {
-            let nodes = model.mesh.face_nodes(f);
-            for &(s, w) in &GAUSS3 {
-                let fp = model.face_point(f, s);
-                points.push([fp.x[0], fp.x[1], 0.0]);
-                weights.push(w * fp.jacobian * model.analysis.measure(fp.x[0]));
-                normals.push([fp.normal[0], fp.normal[1], 0.0]);
-                rows.push(PointRow::new(&model, f, &fp));
-                shape_rows.push(
-                    (0..3)
-                        .map(|k| {
-                            (
-                                face_nodes
-                                    .binary_search(&nodes[k])
-                                    .expect("a contact face node"),
-                                fp.shape[k],
-                            )
-                        })
-                        .collect(),
-                );
-            }
-        }
-        let interface = Interface::new(model.analysis.geometry(), points, weights, normals)?;
-        let gap_shape = GapShape::new(
-            face_nodes
-                .iter()
-                .map(|&k| {
-                    let x = model.mesh.nodes()[k];
-                    [x[0], x[1], 0.0]
-                })
-                .collect(),
-            shape_rows,
-        )?;
-
-        // A = L K⁻¹ Lᵀ from the face block of K⁻¹.
-        let tail = system.factor.tail_inverse();
-        let first_tail = system.n_free - system.n_tail;
-        let local = |g: usize| match system.dofs[g] {
-            Dof::Free(i) if i >= first_tail => Some(i - first_tail),
-            _ => None,
-        };
-        let n = rows.len();
-        let mut l = Mat::<f64>::zeros(n, system.n_tail);
-        for (i, r) in rows.iter().enumerate() {
-            for (&g, &c) in r.dofs.iter().zip(&r.coef) {
-                if let Some(k) = local(g) {
-                    l[(i, k)] += c;
-                }
-            }
-        }
-        let influence = &l * &tail * l.transpose();
+        let Sampled {
+            interface,
+            gap_shape,
+            rows,
+        } = Sampled::new(&model, contact, &face_nodes)?;
+        let influence = condense(&system, &rows);
         let condensation = condensation_start.elapsed();
 
         let solve_start = Instant::now();
@@ -271,6 +208,87 @@ impl FeBody {
     pub fn stats(&self) -> &BuildStats {
         &self.stats
     }
+}
+
+/// The contact zone is a non-empty set of boundary faces of the mesh.
+fn check_contact(name: &str, model: &FeModel, contact: &[Face]) -> Result<()> {
+    if contact.is_empty() {
+        return Err(Error::invalid(
+            format!("{name}.contact"),
+            "[]",
+            "select at least one face",
+        ));
+    }
+    let boundary: std::collections::HashSet<Face> =
+        model.mesh.boundary_faces().into_iter().collect();
+    if let Some(f) = contact.iter().find(|f| !boundary.contains(f)) {
+        return Err(Error::invalid(
+            format!("{name}.contact"),
+            format!("{f:?}"),
+            "is not a boundary face of the mesh",
+        ));
+    }
+    Ok(())
+}
+
+/// The contact faces sampled at their three Gauss points (§2.2): the interface, the map Q
+/// from the face nodes to the points, and each point's normal-displacement row of L.
+struct Sampled {
+    interface: Interface,
+    gap_shape: GapShape,
+    rows: Vec<PointRow>,
+}
+
+impl Sampled {
+    /// Samples `contact`, whose nodes are `face_nodes` (sorted, distinct).
+    fn new(model: &FeModel, contact: &[Face], face_nodes: &[usize]) -> Result<Self> {
+        let (mut points, mut weights, mut normals, mut rows) = (vec![], vec![], vec![], vec![]);
+        let mut shape_rows = vec![];
+        for &f in contact {
+            let nodes = model.mesh.face_nodes(f);
+            // Every node of a contact face is in `face_nodes`, which was built from them.
+            let index = nodes.map(|k| face_nodes.partition_point(|&j| j < k));
+            for &(s, w) in &GAUSS3 {
+                let fp = model.face_point(f, s);
+                points.push([fp.x[0], fp.x[1], 0.0]);
+                weights.push(w * fp.jacobian * model.analysis.measure(fp.x[0]));
+                normals.push([fp.normal[0], fp.normal[1], 0.0]);
+                rows.push(PointRow::new(model, f, &fp));
+                shape_rows.push((0..3).map(|k| (index[k], fp.shape[k])).collect());
+            }
+        }
+        let interface = Interface::new(model.analysis.geometry(), points, weights, normals)?;
+        let nodes = face_nodes
+            .iter()
+            .map(|&k| {
+                let x = model.mesh.nodes()[k];
+                [x[0], x[1], 0.0]
+            })
+            .collect();
+        Ok(Self {
+            interface,
+            gap_shape: GapShape::new(nodes, shape_rows)?,
+            rows,
+        })
+    }
+}
+
+/// The influence matrix A = L K⁻¹ Lᵀ (eq. 2.22) from the face block of K⁻¹, the face
+/// unknowns being numbered last.
+fn condense(system: &System, rows: &[PointRow]) -> Mat<f64> {
+    let tail = system.factor.tail_inverse();
+    let first_tail = system.n_free - system.n_tail;
+    let mut l = Mat::<f64>::zeros(rows.len(), system.n_tail);
+    for (i, r) in rows.iter().enumerate() {
+        for (&g, &c) in r.dofs.iter().zip(&r.coef) {
+            if let Dof::Free(k) = system.dofs[g] {
+                if k >= first_tail {
+                    l[(i, k - first_tail)] += c;
+                }
+            }
+        }
+    }
+    &l * &tail * l.transpose()
 }
 
 impl ElasticBody for FeBody {

@@ -11,6 +11,7 @@ pub const MAX_NODES: usize = 9;
 
 /// Element type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum ElementKind {
     /// 8-node serendipity quadrilateral.
     Q8,

@@ -10,14 +10,12 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod analysis;
-pub mod block;
 mod body;
 pub mod coupled;
 pub mod element;
 mod factor;
 mod mesh;
 mod model;
-pub mod paper;
 mod recovery;
 mod solution;
 mod system;

@@ -1,12 +1,16 @@
 //! Meshes of quadratic quadrilaterals and a structured generator with grading.
 
-use contopt_core::{memory, Error, Result};
+use contopt_core::{memory, Error, Result, GEOMETRY_TOLERANCE};
 
 use crate::element::{ElementKind, FACE_NODES};
 
 /// The most elements a [`Spacing`] may have along one axis: far more than a two-dimensional
 /// mesh that can be factorised needs, few enough that the coordinates are cheap.
 pub const MAX_AXIS_ELEMENTS: usize = 100_000;
+
+/// Relative round-off of a sum of element sizes: spacings whose ends agree to it meet
+/// (round-off).
+const SPACING_ROUND_OFF: f64 = 1e-12;
 
 /// A generous estimate of the memory a body of `nx` × `ny` quadratic elements takes to build
 /// \[bytes\], `None` when it overflows: the sparse Cholesky factor of its 2 unknowns per node
@@ -127,7 +131,7 @@ impl Spacing {
             ));
         }
         let len = b - a;
-        if !(first > 0.0 && first * n as f64 <= len * (1.0 + 1e-12)) {
+        if !(first > 0.0 && first * n as f64 <= len * (1.0 + SPACING_ROUND_OFF)) {
             return Err(Error::invalid(
                 "spacing.first",
                 first,
@@ -136,7 +140,7 @@ impl Spacing {
         }
         // First size of a progression with factor q: len (q − 1)/(qⁿ − 1), decreasing in q.
         let first_of = |q: f64| {
-            if (q - 1.0).abs() < 1e-12 {
+            if (q - 1.0).abs() < SPACING_ROUND_OFF {
                 len / n as f64
             } else {
                 len * (q - 1.0) / (q.powi(n as i32) - 1.0)
@@ -210,7 +214,7 @@ impl Spacing {
     /// This spacing followed by `next`, which must start where this one ends.
     pub fn then(&self, next: &Spacing) -> Result<Self> {
         let end = *self.coords.last().unwrap();
-        if (next.coords[0] - end).abs() > 1e-12 * end.abs().max(1.0) {
+        if (next.coords[0] - end).abs() > SPACING_ROUND_OFF * end.abs().max(1.0) {
             return Err(Error::invalid(
                 "spacing.then.start",
                 next.coords[0],
@@ -239,7 +243,7 @@ impl Spacing {
 
     /// The sub-spacing on [a, b], whose ends must be element boundaries of `self`.
     pub fn restrict(&self, a: f64, b: f64) -> Result<Self> {
-        let tol = 1e-9 * (self.coords[self.len()] - self.coords[0]);
+        let tol = GEOMETRY_TOLERANCE * (self.coords[self.len()] - self.coords[0]);
         let find = |x: f64, field: &str| {
             self.coords
                 .iter()
@@ -411,7 +415,7 @@ impl Mesh {
     ) -> Result<(Self, Self)> {
         let top = *lower_y.coords().last().unwrap();
         let base = upper_y.coords()[0];
-        if (top - base).abs() > 1e-9 * top.abs().max(1.0) {
+        if (top - base).abs() > GEOMETRY_TOLERANCE * top.abs().max(1.0) {
             return Err(Error::invalid(
                 "stacked.upper_y.start",
                 base,
@@ -477,7 +481,7 @@ impl Mesh {
                 hi[c] = hi[c].max(p[c]);
             }
         }
-        1e-9 * ((hi[0] - lo[0]).hypot(hi[1] - lo[1]))
+        GEOMETRY_TOLERANCE * ((hi[0] - lo[0]).hypot(hi[1] - lo[1]))
     }
 
     /// Nodes whose coordinates satisfy `pred`.

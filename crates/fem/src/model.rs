@@ -2,7 +2,7 @@
 
 use std::collections::BTreeMap;
 
-use contopt_core::{Error, Result};
+use contopt_core::{Error, Result, GEOMETRY_TOLERANCE};
 
 use crate::element::{lagrange2, GAUSS3};
 use crate::{Analysis, Face, Material, Mesh};
@@ -60,7 +60,7 @@ impl FeModel {
                 .nodes()
                 .iter()
                 .fold(0.0f64, |m, p| m.max(p[0].abs()));
-            let tol = 1e-9 * scale;
+            let tol = GEOMETRY_TOLERANCE * scale;
             if let Some(i) = model.mesh.nodes().iter().position(|p| p[0] < -tol) {
                 return Err(Error::invalid(
                     format!("mesh.nodes[{i}].r"),

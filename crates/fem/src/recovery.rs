@@ -355,7 +355,6 @@ mod tests {
     use std::f64::consts::PI;
 
     use super::*;
-    use crate::paper::{self, PaperMesh, PunchLoad};
     use crate::{Analysis, Component, ElementKind, Material, Mesh, Spacing};
 
     const E: f64 = 2.0e5;
@@ -572,19 +571,20 @@ mod tests {
         assert!(errors[3][2] < 5e-3, "errors {errors:?}");
     }
 
-    /// The paper's floating punch under 100 MPa on its top, pressed by the same uniform
-    /// pressure from below, is in uniaxial compression: σ_z = −100 MPa at every node. Its
-    /// peaks say so, with the node's coordinates; a pressure that leaves the punch unbalanced
-    /// is refused.
+    /// A floating axisymmetric punch (radius and height 50 mm, 4 × 4 elements) under 100 MPa
+    /// on its top, pressed by the same uniform pressure from below, is in uniaxial compression:
+    /// σ_z = −100 MPa at every node. Its peaks say so, with the node's coordinates; a pressure
+    /// that leaves the punch unbalanced is refused.
     #[test]
     fn balanced_floating_punch_is_in_uniaxial_compression() {
-        let mesh = PaperMesh {
-            contact_elements: 4,
-            layers: 4,
-            ..PaperMesh::default()
-        };
-        let (_, punch) =
-            paper::bodies(Analysis::Axisymmetric, PunchLoad::Pressure(P), &mesh).unwrap();
+        const SIZE: f64 = 50.0;
+        let s = Spacing::uniform(0.0, SIZE, 4).unwrap();
+        let mesh = Mesh::rectangle(ElementKind::Q8, &s, &s).unwrap();
+        let mut model = FeModel::new(mesh, steel(), Analysis::Axisymmetric).unwrap();
+        let top = model.mesh().faces_on_y(SIZE, 0.0, SIZE);
+        model.pressure(&top, P).unwrap();
+        let bottom = model.mesh().faces_on_y(0.0, 0.0, SIZE);
+        let punch = FeBody::new("punch", model, &bottom).unwrap();
         let n = punch.interface().len();
         let got = punch.nodal_stresses(&vec![P; n]).unwrap();
         let err = largest_difference(&got, |_| uniaxial(Analysis::Axisymmetric)) / P;
@@ -597,7 +597,7 @@ mod tests {
         assert!((sub.peaks.von_mises.value - P).abs() < 1e-8 * P);
         assert!((sub.peaks.min_principal.value + P).abs() < 1e-8 * P);
         let peak = sub.peaks.min_principal;
-        assert!(peak.depth >= 0.0 && peak.depth <= paper::HEIGHT + paper::PUNCH_RADIUS);
+        assert!(peak.depth >= 0.0 && peak.depth <= 2.0 * SIZE);
         assert!(punch
             .model()
             .mesh()

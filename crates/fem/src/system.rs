@@ -4,12 +4,23 @@ use std::time::{Duration, Instant};
 
 use contopt_core::{Error, Result};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
-use faer::Mat;
-use nalgebra::{DMatrix, Matrix2};
+use faer::{Mat, Side};
 
 use crate::element::{GAUSS3, MAX_NODES};
 use crate::factor::Factor;
 use crate::{Analysis, FeModel};
+
+/// A candidate rigid mode whose Gram eigenvalue on the held DOFs (relative to its norm) is
+/// below this moves no support: it is free (round-off).
+const UNRESTRAINED: f64 = 1e-10;
+
+/// A free mode is one candidate alone when the others' coefficients are below this times its
+/// own (round-off).
+const ONE_CANDIDATE: f64 = 1e-12;
+
+/// A pinned unknown off the contact face is preferred when its mode residual is within this
+/// fraction of the largest (a heuristic: it keeps the face's unknowns free).
+const OFF_FACE: f64 = 0.1;
 
 /// Status of a global degree of freedom 2·node + component.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,7 +84,7 @@ impl Numbering {
         for &n in tail_nodes {
             on_tail[n] = true;
         }
-        let modes = free_rigid_modes(model, &dofs);
+        let modes = free_rigid_modes(model, &dofs)?;
         if pin {
             for d in pins(&modes, &dofs, &on_tail) {
                 dofs[d] = Dof::Pinned;
@@ -165,10 +176,13 @@ pub(crate) fn point_b(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> R
     let mesh = &model.mesh;
     let (j, det) = mesh.jacobian(e, xi, eta);
     let s = mesh.kind().shape(xi, eta);
-    let jinv = Matrix2::new(j[0][0], j[0][1], j[1][0], j[1][1])
-        .try_inverse()
-        .filter(|_| det > 0.0)
-        .ok_or_else(|| Error::Mesh(format!("element {e} has a singular Jacobian")))?;
+    if !(det > 0.0) {
+        return Err(Error::Mesh(format!("element {e} has a singular Jacobian")));
+    }
+    let jinv = [
+        [j[1][1] / det, -j[0][1] / det],
+        [-j[1][0] / det, j[0][0] / det],
+    ];
     let mut b = PointB {
         n: s.n,
         dx: [0.0; MAX_NODES],
@@ -177,8 +191,8 @@ pub(crate) fn point_b(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> R
         dv: 0.0,
     };
     for (a, &node) in mesh.elements()[e].iter().enumerate() {
-        b.dx[a] = jinv[(0, 0)] * s.dxi[a] + jinv[(0, 1)] * s.deta[a];
-        b.dy[a] = jinv[(1, 0)] * s.dxi[a] + jinv[(1, 1)] * s.deta[a];
+        b.dx[a] = jinv[0][0] * s.dxi[a] + jinv[0][1] * s.deta[a];
+        b.dy[a] = jinv[1][0] * s.dxi[a] + jinv[1][1] * s.deta[a];
         let p = mesh.nodes()[node];
         b.x[0] += s.n[a] * p[0];
         b.x[1] += s.n[a] * p[1];
@@ -221,9 +235,9 @@ fn element_stiffness(
     for &(xi, wx) in &GAUSS3 {
         for &(eta, wy) in &GAUSS3 {
             let b = point_b(model, e, xi, eta, wx * wy)?;
-            let rows: Vec<[[f64; 2]; 4]> = (0..nn)
-                .map(|a| strain_rows(model.analysis, &b, a))
-                .collect();
+            let rows: [[[f64; 2]; 4]; MAX_NODES] =
+                std::array::from_fn(|a| strain_rows(model.analysis, &b, a));
+            let rows = &rows[..nn];
             for a in 0..nn {
                 for ca in 0..2 {
                     // (D B)_{:, (a, ca)}
@@ -335,7 +349,7 @@ fn candidate_modes(model: &FeModel) -> Vec<Mode> {
 
 /// The rigid-body modes that no prescribed DOF restrains: the null space of the candidate
 /// modes restricted to the prescribed DOFs.
-fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Vec<Mode> {
+fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<Mode>> {
     let candidates = candidate_modes(model);
     let m = candidates.len();
     let held: Vec<usize> = (0..dofs.len())
@@ -346,23 +360,26 @@ fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Vec<Mode> {
         .iter()
         .map(|c| c.values.iter().map(|v| v * v).sum::<f64>().sqrt())
         .collect();
-    let gram = DMatrix::from_fn(m, m, |a, b| {
+    let gram = Mat::<f64>::from_fn(m, m, |a, b| {
         held.iter()
             .map(|&g| candidates[a].values[g] * candidates[b].values[g])
             .sum::<f64>()
             / (norm[a] * norm[b])
     });
-    let eig = gram.symmetric_eigen();
+    let eig = gram
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|e| Error::Mesh(format!("rigid modes of the supports: {e:?}")))?;
+    let (values, vectors) = (eig.S().column_vector(), eig.U());
     let mut modes = vec![];
     for k in 0..m {
-        if eig.eigenvalues[k] > 1e-10 {
+        if values[k] > UNRESTRAINED {
             continue;
         }
         let coef: Vec<f64> = (0..m)
-            .map(|a| eig.eigenvectors[(a, k)] / norm[a] * norm[0])
+            .map(|a| vectors[(a, k)] / norm[a] * norm[0])
             .collect();
-        let single =
-            (0..m).find(|&a| (0..m).all(|b| b == a || coef[b].abs() < 1e-12 * coef[a].abs()));
+        let single = (0..m)
+            .find(|&a| (0..m).all(|b| b == a || coef[b].abs() < ONE_CANDIDATE * coef[a].abs()));
         let mode = match single {
             Some(a) => candidates[a].clone(),
             None => Mode {
@@ -374,7 +391,7 @@ fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Vec<Mode> {
         };
         modes.push(mode);
     }
-    modes
+    Ok(modes)
 }
 
 /// One unknown per free mode to hold at zero, chosen by pivoted Gram–Schmidt on the mode
@@ -390,12 +407,11 @@ fn pins(modes: &[Mode], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
     for _ in 0..m {
         // Largest residual overall; an unknown off the face wins if it is within 10 % of it.
         let largest = rows.iter().map(|r| norm2(&r.1)).fold(0.0, f64::max);
+        let near = OFF_FACE * OFF_FACE * largest;
         let pick = |off_face_only: bool| {
             rows.iter()
                 .enumerate()
-                .filter(|(_, r)| {
-                    !off_face_only || (!on_tail[r.0 / 2] && norm2(&r.1) >= 0.01 * largest)
-                })
+                .filter(|(_, r)| !off_face_only || (!on_tail[r.0 / 2] && norm2(&r.1) >= near))
                 .max_by(|(_, a), (_, b)| norm2(&a.1).total_cmp(&norm2(&b.1)))
                 .map(|(i, _)| i)
         };

@@ -2,6 +2,10 @@
 
 use std::f64::consts::PI;
 
+/// The AGM stops when the half-difference c of its means falls below this: at round-off, as
+/// c squares each step (convergence).
+const AGM_CONVERGED: f64 = 1e-16;
+
 /// K(k) and E(k), complete elliptic integrals of the first and second kind with modulus
 /// 0 ≤ k ≤ 1 (K(1) = ∞, E(1) = 1). Accurate to round-off (the AGM converges quadratically).
 pub fn complete(k: f64) -> (f64, f64) {
@@ -10,7 +14,7 @@ pub fn complete(k: f64) -> (f64, f64) {
     }
     let (mut a, mut b, mut c) = (1.0, (1.0 - k * k).sqrt(), k);
     let (mut sum, mut pow) = (0.5 * c * c, 0.5);
-    while c.abs() > 1e-16 {
+    while c.abs() > AGM_CONVERGED {
         let next = 0.5 * (a + b);
         c = 0.5 * (a - b);
         b = (a * b).sqrt();

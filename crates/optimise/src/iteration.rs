@@ -3,11 +3,15 @@
 use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
-use contopt_core::{Error, Region, Result};
+use contopt_core::observe::Flow;
+use contopt_core::{ContactState, Error, Result};
 use faer::linalg::solvers::{ColPivQr, SolveLstsq};
 use faer::Mat;
 
-use crate::{Optimisation, Optimum};
+use crate::{Optimisation, Optimum, Region, ROUND_OFF};
+
+/// The loop's name in messages.
+const GAP_ITERATION: &str = "gap iteration (§3.2)";
 
 /// What is given on the bodies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,12 +43,13 @@ pub struct Iteration {
 impl Optimisation<'_> {
     /// The iteration of §3.2: solve the contact problem with the gap h₀ + QΔh⁽ᵏ⁻¹⁾ (step 3),
     /// take p_max (step 4: under a given displacement, the largest pressure on Ω_opt read as a
-    /// field, [`InterfaceProblem::recovered_pressure`], so that a sawtooth of Gauss-point values
-    /// that moves nothing cannot set it), prescribe p = v·p_max on Ω_v (step 5), and choose Δh⁽ᵏ⁾ so that the
-    /// gap closes on Ω_v under that pressure up to a uniform shift, Δh = 0 at the reference
-    /// node N: Δh = −(m − m_N) (step 6, through a least-squares fit of Q, exact when Q
-    /// interpolates like the displacements); stop
-    /// when TOLH (4.2) ≤ `tolh` \[mm²\] (the paper: 0.5·10⁻⁶), at most `max_iterations`.
+    /// field, [`InterfaceProblem::recovered_pressure`], so that a sawtooth of Gauss-point
+    /// values that moves nothing cannot set it), prescribe p = v·p_max on Ω_v (step 5), and
+    /// choose Δh⁽ᵏ⁾ so that the gap closes on Ω_v under that pressure up to a uniform shift,
+    /// Δh = 0 at the reference node N: Δh = −(m − m_N) (step 6, through a least-squares fit of
+    /// Q, exact when Q interpolates like the displacements); stop when TOLH (4.2) ≤ `tolh`
+    /// \[mm²\] (the paper: 0.5·10⁻⁶), at most `max_iterations` (step 7). Each pass is reported
+    /// to the observer ([`Optimisation::with_observer`]) with its TOLH.
     ///
     /// Under [`Mode::GivenLoad`] the loop closes in two passes when Ω_v is the whole region:
     /// the second contact solve, on the optimised gap, reproduces v·p_max and changes nothing.
@@ -58,66 +63,20 @@ impl Optimisation<'_> {
         if !(tolh > 0.0) {
             return Err(Error::invalid("tolh", tolh, "must be positive"));
         }
-        let problem = self.problem;
-        let (n, r) = (problem.len(), problem.load().len());
-        match (mode, r) {
-            (Mode::GivenLoad, 0) => {
-                return Err(Error::invalid(
-                    "mode",
-                    "given load",
-                    "no body floats, so no load is given: use the given displacement",
-                ))
-            }
-            (Mode::GivenDisplacement, r) if r > 0 => {
-                return Err(Error::invalid(
-                    "mode",
-                    "given displacement",
-                    format!("{r} rigid mode(s) float: support the bodies or give the load"),
-                ))
-            }
-            _ => {}
-        }
+        self.check_mode(mode)?;
         let omega_v = self.omega_v();
         let fit = StepSix::new(self, &omega_v)?;
-        let h0 = problem.initial_gap();
-        let in_opt = |i: usize| self.regions[i] != Region::Contact;
         let mut dh = vec![0.0; self.shape.nodes().len()];
         let mut rows: Vec<Iteration> = vec![];
         let mut warm: Option<Vec<f64>> = None;
         for k in 1..=max_iterations {
             // Steps 3–4, each contact solve starting from the previous pressure.
             let change = self.shape.apply(&dh);
-            let h: Vec<f64> = h0.iter().zip(&change).map(|(a, b)| a + b).collect();
-            let trial = problem.with_initial_gap(&h)?;
-            let state = match &warm {
-                Some(p) => solver.solve_from(&trial, p)?,
-                None => solver.solve(&trial)?,
-            }
-            .solved(solver.name())?;
-            warm = Some(state.pressure.clone());
-            let p_max = match mode {
-                Mode::GivenDisplacement => {
-                    let field = problem.recovered_pressure(&state.pressure)?;
-                    (0..n)
-                        .filter(|&i| in_opt(i))
-                        .map(|i| field[i])
-                        .fold(0.0, f64::max)
-                }
-                Mode::GivenLoad => self.equilibrium_p_max(&state.pressure)?,
-            };
-            // Step 5.
-            let mut p = state.pressure.clone();
-            for &i in &omega_v {
-                p[i] = self.v[i] * p_max;
-            }
-            // Step 6: the residual gap on Ω_v with the original initial gap h₀.
-            let m = problem.gap(&p, &state.rigid);
-            let fitted = fit.solve(&omega_v.iter().map(|&i| -m[i]).collect::<Vec<_>>());
-            // Q's rows sum to one, so subtracting Δh_N from every node moves the gap by −m_N
-            // everywhere: the uniform part of the residual (the approach, a rigid translation)
-            // is left to the contact solver and the gap does not change at N.
-            let at_n = fitted[self.reference];
-            let next: Vec<f64> = fitted.iter().map(|v| v - at_n).collect();
+            let state =
+                self.solve_with_gap_change(solver, self.problem, &change, warm.as_deref())?;
+            let p_max = self.step_four(mode, &state.pressure)?;
+            // Steps 5–6.
+            let next = self.steps_five_and_six(&fit, &omega_v, &state, p_max);
             let tolh_k: f64 = next.iter().zip(&dh).map(|(a, b)| (a - b).powi(2)).sum();
             dh = next;
             rows.push(Iteration {
@@ -128,27 +87,89 @@ impl Optimisation<'_> {
                 iterp: state.iterp,
                 iterd: state.iterd,
             });
+            let flow = self.report(k, tolh_k, tolh);
             // Step 7.
             if tolh_k <= tolh {
                 self.check_sign(&dh)?;
-                let gap_change = self.shape.apply(&dh);
                 return Ok(Optimum {
                     p_max,
+                    gap_change: self.shape.apply(&dh),
                     dh,
-                    gap_change,
                     pressure: state.pressure,
                     gap: state.gap,
                     rigid: state.rigid,
                     iterations: rows,
                 });
             }
+            if flow == Flow::Stop {
+                let detail = format!("TOLH = {tolh_k:.3e} mm² (tolerance {tolh:.1e})");
+                return Err(Self::stopped(GAP_ITERATION, k, detail));
+            }
+            warm = Some(state.pressure);
         }
         let last = rows.last().map_or(f64::NAN, |r| r.tolh);
         Err(Error::NotConverged {
-            method: "gap iteration (§3.2)".into(),
+            method: GAP_ITERATION.into(),
             iterations: max_iterations,
             detail: format!("TOLH = {last:.3e} mm² (tolerance {tolh:.1e})"),
         })
+    }
+
+    /// The mode fits the bodies: a given load needs a floating body, a given displacement
+    /// none.
+    fn check_mode(&self, mode: Mode) -> Result<()> {
+        match (mode, self.problem.load().len()) {
+            (Mode::GivenLoad, 0) => Err(Error::invalid(
+                "mode",
+                "given load",
+                "no body floats, so no load is given: use the given displacement",
+            )),
+            (Mode::GivenDisplacement, r) if r > 0 => Err(Error::invalid(
+                "mode",
+                "given displacement",
+                format!("{r} rigid mode(s) float: support the bodies or give the load"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// Step 4: p_max of the contact pressure. Under a given displacement, the largest
+    /// pressure on Ω_opt read as a field ([`InterfaceProblem::recovered_pressure`]); under a
+    /// given load, the value equilibrium asks of v·p_max
+    /// ([`Optimisation::equilibrium_p_max`]).
+    fn step_four(&self, mode: Mode, pressure: &[f64]) -> Result<f64> {
+        match mode {
+            Mode::GivenDisplacement => {
+                let field = self.problem.recovered_pressure(pressure)?;
+                Ok((0..field.len())
+                    .filter(|&i| self.regions[i] != Region::Contact)
+                    .map(|i| field[i])
+                    .fold(0.0, f64::max))
+            }
+            Mode::GivenLoad => self.equilibrium_p_max(pressure),
+        }
+    }
+
+    /// Steps 5–6: prescribe p = v·p_max on Ω_v, take the residual gap m on Ω_v with the
+    /// original initial gap h₀ and fit Δh = −(m − m_N) through Q.
+    fn steps_five_and_six(
+        &self,
+        fit: &StepSix,
+        omega_v: &[usize],
+        state: &ContactState,
+        p_max: f64,
+    ) -> Vec<f64> {
+        let mut p = state.pressure.clone();
+        for &i in omega_v {
+            p[i] = self.v[i] * p_max;
+        }
+        let m = self.problem.gap(&p, &state.rigid);
+        let fitted = fit.solve(&omega_v.iter().map(|&i| -m[i]).collect::<Vec<_>>());
+        // Q's rows sum to one, so subtracting Δh_N from every node moves the gap by −m_N
+        // everywhere: the uniform part of the residual (the approach, a rigid translation)
+        // is left to the contact solver and the gap does not change at N.
+        let at_n = fitted[self.reference];
+        fitted.iter().map(|v| v - at_n).collect()
     }
 
     /// p_max of a given load: the least-squares solution over the rigid modes of
@@ -171,7 +192,7 @@ impl Optimisation<'_> {
         let p_max = -(0..q.len()).map(|m| a[m] * (b[m] + q[m])).sum::<f64>() / aa;
         for m in 0..q.len() {
             let residual = p_max * a[m] + b[m] + q[m];
-            if residual.abs() > 1e-9 * q[m].abs().max(aa.sqrt() * p_max.abs()) {
+            if residual.abs() > ROUND_OFF * q[m].abs().max(aa.sqrt() * p_max.abs()) {
                 return Err(Error::invalid(
                     format!("load on {}", problem.mode_names()[m]),
                     q[m],

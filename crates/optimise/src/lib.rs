@@ -28,15 +28,37 @@ mod iteration;
 mod load_split;
 mod lp;
 mod simplex;
+#[cfg(test)]
+mod tests;
 
 pub use controller::{Constant, Controller, Product, Profile};
 pub use iteration::{Iteration, Mode};
 pub use load_split::EnvelopeOptimum;
 pub use simplex::{nelder_mead, Minimum};
 
-use contopt_contact::InterfaceProblem;
-use contopt_core::observe::{Observer, Silent};
-use contopt_core::{Error, GapShape, Region, Result};
+use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_core::observe::{self, stopped_by_observer, Flow, Observer, Silent};
+use contopt_core::{ContactState, Error, GapShape, Result};
+
+/// Relative round-off of a sum over points (a row of Q, a column's rigid displacement, the
+/// equilibrium of v·p_max): values that agree to it are equal (round-off).
+pub(crate) const ROUND_OFF: f64 = 1e-9;
+
+/// Relative accuracy of the pressures, gaps and gap changes that come out of a contact solve
+/// or an interior point: a value below it times its scale is noise (convergence).
+pub(crate) const SOLVER_ACCURACY: f64 = 1e-6;
+
+/// Role of an interface point in the optimisation (§3.2), one per point through
+/// [`Optimisation::with_regions`]; without it every point is Ω_v.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Region {
+    /// In the proposed contact zone Ω but outside Ω_opt: only p ≥ 0, d ≥ 0, pd = 0.
+    Contact,
+    /// Ω_v: d = 0 and χ = v·p_max − p = 0 are prescribed.
+    OmegaV,
+    /// Ω_nv = Ω_opt − Ω_v: only d ≥ 0 and χ ≥ 0; the gap change follows Ω_v (eq. 3.3).
+    OmegaNv,
+}
 
 /// The result of an optimisation.
 #[derive(Clone, Debug)]
@@ -82,8 +104,8 @@ pub struct Optimisation<'a> {
 
 impl<'a> Optimisation<'a> {
     /// The optimisation of `problem` with gap changes described by `shape` and pressures
-    /// controlled by `controller`. The regions are the problem interface's tags; when no point
-    /// is tagged Ω_v or Ω_nv, the whole interface is Ω_v (the one-dimensional case of §3.2).
+    /// controlled by `controller`. The whole interface is Ω_v (the one-dimensional case of
+    /// §3.2) until [`Optimisation::with_regions`] says otherwise.
     /// The reference node N, where the gap does not change, is the design node nearest the
     /// origin (the axis or the plane of symmetry); see [`Optimisation::with_reference`].
     pub fn new(
@@ -100,10 +122,7 @@ impl<'a> Optimisation<'a> {
             ));
         }
         let v: Vec<f64> = iface.points.iter().map(|&x| controller.value(x)).collect();
-        let mut regions = iface.regions.clone();
-        if regions.iter().all(|r| *r == Region::Contact) {
-            regions.fill(Region::OmegaV);
-        }
+        let regions = vec![Region::OmegaV; iface.len()];
         let nearest = (0..shape.nodes().len())
             .min_by(|&a, &b| {
                 let r = |k: usize| shape.nodes()[k].iter().map(|c| c * c).sum::<f64>();
@@ -122,9 +141,13 @@ impl<'a> Optimisation<'a> {
         Ok(opt)
     }
 
-    /// Reports each iteration of the optimisation (method `"optimisation"`, measure TOLH or
-    /// the change of the LP's bound) and of its contact solves to `observer`, which may stop
-    /// the loop early.
+    /// Reports each iteration of the optimisation and of its contact solves to `observer`,
+    /// which may stop the loop early. The loop reports as method `"optimisation"`, with the
+    /// measure it compares with its tolerance: TOLH (4.2) in [`Optimisation::iterate`], the
+    /// number of points that carry pressure across an open gap (tolerance 0) in
+    /// [`Optimisation::linear_programme`], the miss of v·p_max on Ω_v in
+    /// [`Optimisation::load_split`] and [`Optimisation::envelope_split`]. Stopped, the loop
+    /// fails with [`Error::NotConverged`] saying that an observer stopped it.
     pub fn with_observer(mut self, observer: &'a dyn Observer) -> Self {
         self.observer = observer;
         self
@@ -187,7 +210,7 @@ impl<'a> Optimisation<'a> {
         }
         for i in 0..self.v.len() {
             let sum: f64 = self.shape.row(i).iter().map(|(_, w)| w).sum();
-            if (sum - 1.0).abs() > 1e-9 {
+            if (sum - 1.0).abs() > ROUND_OFF {
                 return Err(Error::invalid(
                     format!("gap_shape.rows[{i}]"),
                     sum,
@@ -225,11 +248,51 @@ impl<'a> Optimisation<'a> {
             .collect()
     }
 
+    /// Reports pass `k` of the loop to the observer (see [`Optimisation::with_observer`]).
+    fn report(&self, k: usize, measure: f64, tolerance: f64) -> Flow {
+        self.observer.observe(&observe::Iteration {
+            method: "optimisation",
+            iteration: k,
+            measure,
+            tolerance,
+        })
+    }
+
+    /// The error of a loop (`method`) that an observer stopped after `k` passes, `detail`
+    /// saying how far it got.
+    fn stopped(method: &str, k: usize, detail: String) -> Error {
+        Error::NotConverged {
+            method: method.into(),
+            iterations: k,
+            detail: format!("{}; {detail}", stopped_by_observer(k)),
+        }
+    }
+
+    /// Solves `problem` with its initial gap changed by `gap_change` (from the pressure
+    /// `start` when given), the contact solver reporting to the observer.
+    fn solve_with_gap_change(
+        &self,
+        solver: &dyn ContactSolver,
+        problem: &InterfaceProblem,
+        gap_change: &[f64],
+        start: Option<&[f64]>,
+    ) -> Result<ContactState> {
+        let gap: Vec<f64> = problem
+            .initial_gap()
+            .iter()
+            .zip(gap_change)
+            .map(|(h, d)| h + d)
+            .collect();
+        solver
+            .solve_observed(&problem.with_initial_gap(&gap)?, start, self.observer)?
+            .solved(solver.name())
+    }
+
     /// Fails when Δh is negative beyond round-off at some node: the reference node is not
     /// where the gap change is least, and (3.5) requires Δh ≥ 0.
     fn check_sign(&self, dh: &[f64]) -> Result<()> {
         let top = dh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if let Some(k) = dh.iter().position(|&v| v < -1e-6 * top) {
+        if let Some(k) = dh.iter().position(|&v| v < -SOLVER_ACCURACY * top) {
             return Err(Error::invalid(
                 "reference",
                 format!("{:?}", self.shape.nodes()[self.reference]),

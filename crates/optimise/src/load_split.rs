@@ -1,11 +1,12 @@
 //! The optimum of (3.5) without a dense matrix: the load carried by each design column.
 
 use contopt_contact::{ContactSolver, FreeMode, InterfaceProblem};
-use contopt_core::{ContactState, Error, Region, Result};
+use contopt_core::observe::Flow;
+use contopt_core::{ContactState, Error, Result};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
-use crate::{Iteration, Optimisation, Optimum};
+use crate::{Iteration, Optimisation, Optimum, Region, ROUND_OFF, SOLVER_ACCURACY};
 
 /// Bounds of the exponent α in p̄ ∝ F^α that a column's update assumes: ½ for a Hertzian line
 /// contact, 1 for a single point; secant estimates outside are noise from the coupling.
@@ -17,8 +18,13 @@ const SECANT_STEP: f64 = 1e-3;
 const SECANT_UPDATES: usize = 3;
 /// How many past iterates Anderson mixing combines.
 const ANDERSON_DEPTH: usize = 5;
-/// How far above v·p_max, as a fraction of p_max, an Ω_nv pressure may lie (round-off).
-const OMEGA_NV_SLACK: f64 = 1e-6;
+/// Tikhonov term of Anderson mixing's normal equations, relative to their trace: keeps nearly
+/// parallel residual differences from making them singular (round-off).
+const ANDERSON_REGULARISATION: f64 = 1e-12;
+/// Newton steps in ln P of the share update: it converges in a few.
+const NEWTON_STEPS: usize = 50;
+/// A Newton step in ln P below this ends the share update's solve (convergence).
+const NEWTON_STEP: f64 = 1e-14;
 
 /// The design columns of a gap shape whose rows each reach one node: the points of each node,
 /// their rigid-mode displacement r (one value per column), and the column's Ω_v measure and mean
@@ -56,7 +62,8 @@ impl Optimisation<'_> {
     /// ([`contopt_contact::PolonskyKeer`]) takes a few steps after the first; a dense one works
     /// too, for small problems. Stops when every column's Ω_v pressure is within
     /// `tolerance`·p_max of v·p_max, after at most `max_iterations` solves; each solve is a row
-    /// of the result (its `iterp` counts the contact solver's steps). Needs a floating body
+    /// of the result (its `iterp` counts the contact solver's steps), reported to the observer
+    /// ([`Optimisation::with_observer`]) with its miss. Needs a floating body
     /// with one rigid mode (the given load) and a gap shape whose rows each reach one node
     /// (pointwise, or extruded along an axis).
     pub fn load_split(
@@ -103,23 +110,19 @@ impl Optimisation<'_> {
         let mut case_warm: Vec<Option<Vec<f64>>> = vec![None; cases.len()];
         let mut rows: Vec<Iteration> = vec![];
         let mut dh_last = vec![0.0; self.shape.nodes().len()];
+        let method = if cases.is_empty() {
+            "load split (3.5)"
+        } else {
+            "envelope load split (3.5)"
+        };
         let mut miss = f64::NAN;
         for k in 1..=max_iterations {
             let state =
                 self.column_solve(solver, &columns, &update.share, total, warm.as_deref())?;
             let dh = self.column_crown(&columns, &state.rigid);
             let mut envelope = columns.omega_v_pressure(self, &state.pressure);
-            let mut states = Vec::with_capacity(cases.len());
-            let gap_change = self.shape.apply(&dh);
-            for (case, start) in cases.iter().zip(&case_warm) {
-                let solved = case_solve(solver, case, &gap_change, start.as_deref())?;
-                let mean = columns.omega_v_pressure(self, &solved.pressure);
-                envelope
-                    .iter_mut()
-                    .zip(mean)
-                    .for_each(|(e, m)| *e = e.max(m));
-                states.push(solved);
-            }
+            let states =
+                self.case_solves(solver, cases, &case_warm, &dh, &columns, &mut envelope)?;
             let p_max = columns.fitted_p_max(&envelope);
             miss = (0..envelope.len())
                 .map(|j| (envelope[j] - columns.v[j] * p_max).abs())
@@ -136,27 +139,48 @@ impl Optimisation<'_> {
                     .sum(),
                 iterd: state.iterd,
             });
-
+            let flow = self.report(k, miss, tolerance);
             if miss <= tolerance {
                 return self.column_optimum(state, states, p_max, dh, rows);
+            }
+            if flow == Flow::Stop {
+                return Err(Self::stopped(method, k, miss_detail(miss, tolerance)));
             }
             update.next(k, &envelope, &columns.v, p_max);
             warm = Some(state.pressure);
             case_warm = states.into_iter().map(|s| Some(s.pressure)).collect();
             dh_last = dh;
         }
-        let method = if cases.is_empty() {
-            "load split (3.5)"
-        } else {
-            "envelope load split (3.5)"
-        };
         Err(Error::NotConverged {
             method: method.into(),
             iterations: max_iterations,
-            detail: format!(
-                "the Ω_v pressure misses v·p_max by {miss:.3e} of p_max (tolerance {tolerance:e})"
-            ),
+            detail: miss_detail(miss, tolerance),
         })
+    }
+
+    /// Solves every case of the envelope under the gap change of `dh`, each from its last
+    /// pressure, and raises `envelope` to each case's Ω_v pressures.
+    fn case_solves(
+        &self,
+        solver: &dyn ContactSolver,
+        cases: &[InterfaceProblem],
+        starts: &[Option<Vec<f64>>],
+        dh: &[f64],
+        columns: &Columns,
+        envelope: &mut [f64],
+    ) -> Result<Vec<ContactState>> {
+        let gap_change = self.shape.apply(dh);
+        let mut states = Vec::with_capacity(cases.len());
+        for (case, start) in cases.iter().zip(starts) {
+            let solved = self.solve_with_gap_change(solver, case, &gap_change, start.as_deref())?;
+            let mean = columns.omega_v_pressure(self, &solved.pressure);
+            envelope
+                .iter_mut()
+                .zip(mean)
+                .for_each(|(e, m)| *e = e.max(m));
+            states.push(solved);
+        }
+        Ok(states)
     }
 
     /// The envelope's cases share the design case's interface.
@@ -222,7 +246,7 @@ impl Optimisation<'_> {
             column_r[k] = r[members[0]];
             if let Some(&i) = members
                 .iter()
-                .find(|&&i| (r[i] - column_r[k]).abs() > 1e-9 * column_r[k].abs())
+                .find(|&&i| (r[i] - column_r[k]).abs() > ROUND_OFF * column_r[k].abs())
             {
                 return Err(Error::invalid(
                     format!("rigid mode at point {i}"),
@@ -272,11 +296,9 @@ impl Optimisation<'_> {
             })
             .collect();
         let problem: InterfaceProblem = self.problem.with_modes(modes)?;
-        match warm {
-            Some(p) => solver.solve_from(&problem, p),
-            None => solver.solve(&problem),
-        }?
-        .solved(solver.name())
+        solver
+            .solve_observed(&problem, warm, self.observer)?
+            .solved(solver.name())
     }
 
     /// Δh_j = r (λ_j − λ_N) from the column approaches.
@@ -308,7 +330,8 @@ impl Optimisation<'_> {
                     .map(|i| s.pressure[i] - self.v[i] * p_max)
             })
             .fold(f64::NEG_INFINITY, f64::max);
-        if excess > OMEGA_NV_SLACK * p_max {
+        // An Ω_nv pressure may lie above v·p_max by the contact solve's accuracy.
+        if excess > SOLVER_ACCURACY * p_max {
             return Err(Error::invalid(
                 "omega_v",
                 format!("{excess:.4e} MPa above v·p_max on Ω_nv"),
@@ -340,25 +363,9 @@ pub struct EnvelopeOptimum {
     pub cases: Vec<ContactState>,
 }
 
-/// Solves `case` with its initial gap changed by `gap_change`, from `start` if given.
-fn case_solve(
-    solver: &dyn ContactSolver,
-    case: &InterfaceProblem,
-    gap_change: &[f64],
-    start: Option<&[f64]>,
-) -> Result<ContactState> {
-    let gap: Vec<f64> = case
-        .initial_gap()
-        .iter()
-        .zip(gap_change)
-        .map(|(h, d)| h + d)
-        .collect();
-    let problem = case.with_initial_gap(&gap)?;
-    match start {
-        Some(p) => solver.solve_from(&problem, p),
-        None => solver.solve(&problem),
-    }?
-    .solved(solver.name())
+/// How far the Ω_v pressure is from v·p_max, for a loop that stopped short.
+fn miss_detail(miss: f64, tolerance: f64) -> String {
+    format!("the Ω_v pressure misses v·p_max by {miss:.3e} of p_max (tolerance {tolerance:e})")
 }
 
 impl Columns {
@@ -414,7 +421,7 @@ fn next_shares(share: &[f64], mean: &[f64], v: &[f64], exponent: &[f64], p_max: 
             .collect()
     };
     let mut x = p_max.ln();
-    for _ in 0..50 {
+    for _ in 0..NEWTON_STEPS {
         let next = grown(x);
         let sum: f64 = next.iter().sum();
         let slope: f64 = next
@@ -426,7 +433,7 @@ fn next_shares(share: &[f64], mean: &[f64], v: &[f64], exponent: &[f64], p_max: 
             .sum();
         let step = (sum - 1.0) / slope.max(f64::MIN_POSITIVE);
         x -= step.clamp(-1.0, 1.0);
-        if step.abs() < 1e-14 {
+        if step.abs() < NEWTON_STEP {
             break;
         }
     }
@@ -524,7 +531,12 @@ impl Anderson {
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
         let trace: f64 = df.iter().map(|d| dot(d, d)).sum();
         let gram = Mat::from_fn(k, k, |a, b| {
-            dot(&df[a], &df[b]) + if a == b { 1e-12 * trace } else { 0.0 }
+            dot(&df[a], &df[b])
+                + if a == b {
+                    ANDERSON_REGULARISATION * trace
+                } else {
+                    0.0
+                }
         });
         let rhs = Mat::from_fn(k, 1, |a, _| dot(&df[a], &f));
         let Ok(llt) = Llt::new(gram.as_ref(), Side::Lower) else {
