@@ -13,8 +13,8 @@ use std::time::{Duration, Instant};
 use contopt::contact::{
     ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
 };
-use contopt::fem::block::half_space_block;
 use contopt::fem::{FeBody, Material};
+use contopt::scene::geometry::half_space_block;
 use contopt::{ElasticBody, RigidBody};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 

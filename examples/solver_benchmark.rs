@@ -1,8 +1,8 @@
 //! Run time against error for every contact solver — the QP (clarabel), the active set, the
 //! penalty, the augmented Lagrangian and Polonsky–Keer — on two problems at several
 //! resolutions. Writes `book/src/solver_benchmark.csv` and the chart
-//! `book/src/solver_benchmark.svg` (error against time, log–log, one curve per solver, one panel
-//! per problem) and prints the table of the book's performance section.
+//! `book/src/solver_benchmark.{svg,png}` (error against time, log–log, one curve per solver, one
+//! panel per problem) and prints the table of the book's performance section.
 //!
 //! **Hertz.** A rigid sphere, R = 10 mm, pressed by F = 1000 N into a half-space grid
 //! (E = 2·10⁵ MPa, ν = 0.3): a = 0.3244 mm, p₀ = 4538 MPa. The resolution is the number of
@@ -42,7 +42,8 @@
 //! to exceed 30 s, or when it fails; the CSV's `note` says which.
 //!
 //! `cargo run --release --example solver_benchmark` (add `quick` for the two smallest
-//! resolutions of each problem only; the files are then not written).
+//! resolutions of each problem only; the files are then not written; or `chart` to redraw the
+//! chart from the CSV without solving).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -52,10 +53,10 @@ use contopt::contact::{
     ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, PolonskyKeer, Qp,
 };
 use contopt::core::Status;
-use contopt::fem::paper::{self, PaperMesh, PunchLoad};
-use contopt::fem::{Analysis, FeBody};
+use contopt::fem::{ElementKind, FeBody};
 use contopt::greens::HalfSpace;
-use contopt::plot::{log_log_plot, Panel};
+use contopt::report::{log_log, Panel};
+use contopt::scene::geometry::{PunchMesh, PunchOnBase};
 use contopt::{ContactState, ElasticBody, Material, Result, RigidBody};
 
 const E: f64 = 2.0e5;
@@ -359,7 +360,7 @@ impl Field {
     /// The field at `r`, on the face that holds it.
     fn at(&self, r: f64) -> f64 {
         let faces = self.points.len() / 3;
-        let face = ((r / paper::PUNCH_RADIUS * faces as f64) as usize).min(faces - 1);
+        let face = ((r / paper().punch.radius * faces as f64) as usize).min(faces - 1);
         let q = &self.points[3 * face..3 * face + 3];
         (0..3)
             .map(|i| {
@@ -420,6 +421,11 @@ impl Reference {
     }
 }
 
+/// The paper's axisymmetric punch on its base under 100 MPa: the bundled scene `paper-table1`.
+fn paper() -> PunchOnBase {
+    PunchOnBase::bundled("paper-table1").expect("the bundled scene paper-table1 is valid")
+}
+
 /// Table 1 without optimisation.
 struct Table1<'r> {
     base: FeBody,
@@ -430,13 +436,8 @@ struct Table1<'r> {
 impl<'r> Table1<'r> {
     /// `elements` contact elements and as many layers in each body.
     fn new(elements: usize, reference: Option<&'r Reference>) -> Result<Self> {
-        let mesh = PaperMesh {
-            contact_elements: elements,
-            layers: elements,
-            ..PaperMesh::default()
-        };
-        let (base, punch) =
-            paper::bodies(Analysis::Axisymmetric, PunchLoad::Pressure(100.0), &mesh)?;
+        let mesh = PunchMesh::uniform(ElementKind::Q8, elements);
+        let (base, punch) = PunchOnBase { mesh, ..paper() }.bodies()?;
         Ok(Self {
             base,
             punch,
@@ -521,7 +522,80 @@ fn curves(rows: &[Row], problem: &str) -> Vec<(String, Vec<(f64, f64)>)> {
         .collect()
 }
 
+/// The table the book's performance section shows; `chart` redraws its chart from it.
+const CSV: &str = "book/src/solver_benchmark.csv";
+
+/// The chart of `rows`: `book/src/solver_benchmark.{svg,png}`.
+fn chart(rows: &[Row]) -> std::io::Result<()> {
+    let (hertz, table1) = (curves(rows, "Hertz"), curves(rows, "Table 1"));
+    fn series(c: &[(String, Vec<(f64, f64)>)]) -> Vec<(&str, &[(f64, f64)])> {
+        c.iter().map(|(n, p)| (n.as_str(), p.as_slice())).collect()
+    }
+    let (hs, ts) = (series(&hertz), series(&table1));
+    let figure = log_log(
+        "Contact solvers: error against run time (one thread)",
+        &[
+            Panel {
+                title: "Hertz, half-space grid: L2 error of p",
+                x_label: "run time [s]",
+                y_label: "relative error",
+                series: &hs,
+            },
+            Panel {
+                title: "Table 1, no optimisation: p at the centre",
+                x_label: "run time [s]",
+                y_label: "relative error",
+                series: &ts,
+            },
+        ],
+    )?;
+    for (name, bytes) in figure.files("book/src/solver_benchmark")? {
+        std::fs::write(name, bytes)?;
+    }
+    Ok(())
+}
+
+/// The rows of a CSV this example wrote: the fields the chart needs (problem, solver,
+/// resolution, points, time, error, converged), the others left empty.
+fn read_rows(csv: &str) -> Vec<Row> {
+    let fields = |line: &str| -> Vec<String> {
+        let (mut out, mut field, mut quoted) = (vec![], String::new(), false);
+        for c in line.chars() {
+            match c {
+                '"' => quoted = !quoted,
+                ',' if !quoted => out.push(std::mem::take(&mut field)),
+                c => field.push(c),
+            }
+        }
+        out.push(field);
+        out
+    };
+    csv.lines()
+        .skip(1)
+        .map(fields)
+        .filter(|f| f.len() >= 10)
+        .map(|f| Row {
+            problem: if f[0] == "Hertz" { "Hertz" } else { "Table 1" },
+            solver: f[1].clone(),
+            resolution: f[2].parse().unwrap_or(0),
+            points: f[3].parse().unwrap_or(0),
+            time: f[4].parse().ok(),
+            error: f[5].parse().ok(),
+            error2: None,
+            vs_active_set: None,
+            iterations: None,
+            converged: f[9].parse().ok(),
+            note: String::new(),
+        })
+        .collect()
+}
+
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    if std::env::args().any(|a| a == "chart") {
+        chart(&read_rows(&std::fs::read_to_string(CSV)?))?;
+        eprintln!("written: book/src/solver_benchmark.{{svg,png}} from {CSV}");
+        return Ok(());
+    }
     let quick = std::env::args().any(|a| a == "quick");
     let hertz_cells: &[usize] = if quick {
         &[4, 6]
@@ -583,30 +657,8 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     if quick {
         return Ok(());
     }
-    let (hertz, table1) = (curves(&rows, "Hertz"), curves(&rows, "Table 1"));
-    fn series(c: &[(String, Vec<(f64, f64)>)]) -> Vec<(&str, &[(f64, f64)])> {
-        c.iter().map(|(n, p)| (n.as_str(), p.as_slice())).collect()
-    }
-    let (hs, ts) = (series(&hertz), series(&table1));
-    let svg = log_log_plot(
-        "Contact solvers: error against run time (one thread)",
-        &[
-            Panel {
-                title: "Hertz, half-space grid: L2 error of p",
-                xlabel: "run time [s]",
-                ylabel: "relative error",
-                series: &hs,
-            },
-            Panel {
-                title: "Table 1, no optimisation: p at the centre",
-                xlabel: "run time [s]",
-                ylabel: "relative error",
-                series: &ts,
-            },
-        ],
-    );
-    std::fs::write("book/src/solver_benchmark.csv", csv)?;
-    std::fs::write("book/src/solver_benchmark.svg", svg)?;
-    eprintln!("written: book/src/solver_benchmark.{{csv,svg}}");
+    std::fs::write(CSV, csv)?;
+    chart(&rows)?;
+    eprintln!("written: book/src/solver_benchmark.{{csv,svg,png}}");
     Ok(())
 }

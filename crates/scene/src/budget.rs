@@ -4,6 +4,7 @@
 use contopt_core::{memory, Error, Result};
 use contopt_greens::{dense_surface_bytes, HalfSpace};
 
+use crate::geometry::{BLOCK_DEPTH_ELEMENTS, BLOCK_OUTER_ELEMENTS, MAX_OUTER_ELEMENTS};
 use crate::spec::{ModeSpec, Problem, SceneSpec, SolverSpec};
 
 /// The memory limit of a case unless the scene sets `memory_limit_mb` \[bytes\]: a sixth of
@@ -17,8 +18,6 @@ const OPTIMISER_COPIES: usize = 10;
 /// Memory per interface point that every case holds: the problem's vectors, the solver's
 /// buffers and the reports (values, and their JSON text) \[bytes\].
 const POINT_BYTES: u64 = 2_000;
-/// Elements a punch-on-base mesh may add outside the punch (`fem::paper`).
-const OUTER_ELEMENTS: usize = 40;
 
 /// The case's estimate \[bytes\] when it is within `limit`, else [`Error::TooLarge`]
 /// naming what dominates it.
@@ -70,19 +69,21 @@ fn bodies(problem: &Problem) -> (Option<u64>, Option<usize>) {
         }
         Problem::RigidOnAxisymmetricHalfSpace { rings: n, .. }
         | Problem::RigidOnHalfPlane { strips: n, .. } => (dense_surface_bytes(*n), Some(*n)),
-        Problem::PunchOnBase { mesh, .. } => {
-            let layers = mesh.layers.unwrap_or(mesh.elements);
+        Problem::PunchOnBase(spec) => {
+            let mesh = &spec.mesh;
+            let layers = mesh.layers();
             let base = mesh
                 .elements
-                .checked_add(OUTER_ELEMENTS)
+                .checked_add(MAX_OUTER_ELEMENTS)
                 .and_then(|e| contopt_fem::body_bytes(e, layers));
             let punch = contopt_fem::body_bytes(mesh.elements, layers);
             (memory::sum(&[base, punch]), mesh.elements.checked_mul(3))
         }
         Problem::RigidOnBlock { elements, .. } => {
-            let block = elements
-                .checked_add(OUTER_ELEMENTS)
-                .and_then(|e| contopt_fem::body_bytes(e, e.min(OUTER_ELEMENTS) * 2 + 24));
+            let block = elements.checked_add(BLOCK_OUTER_ELEMENTS).and_then(|e| {
+                let depth = e.min(BLOCK_OUTER_ELEMENTS) * 2 + BLOCK_DEPTH_ELEMENTS;
+                contopt_fem::body_bytes(e, depth)
+            });
             (block, elements.checked_mul(3))
         }
     }

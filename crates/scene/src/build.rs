@@ -5,21 +5,21 @@ use std::time::Instant;
 use contopt_contact::{
     ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, PolonskyKeer, Qp,
 };
-use contopt_core::{ElasticBody, Error, GapShape, Material, Region, Result, RigidBody};
-use contopt_fem::paper::{self as fe_paper, PaperMesh, PunchGeometry, PunchLoad};
-use contopt_fem::{Analysis, ElementKind, FeBody};
+use contopt_core::{ElasticBody, Error, GapShape, Material, Result, RigidBody};
+use contopt_fem::{Analysis, FeBody};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
 use contopt_optimise::{
-    Constant, Controller, EnvelopeOptimum, Mode, Optimisation, Optimum, Profile,
+    Constant, Controller, EnvelopeOptimum, Mode, Optimisation, Optimum, Profile, Region,
 };
 
 use crate::envelope::LoadCase;
+use crate::geometry::{block_spacings, half_space_block};
 use crate::report::{
     CaseReport, EnvelopeCaseReport, IterationRow, PointReport, TunedProfile, PENETRATION_WARNING,
 };
 use crate::spec::{
-    AnalysisSpec, ControllerSpec, Indenter, MaterialSpec, ModeSpec, Optimise, Problem, ProfileSpec,
-    PunchLoadSpec, RigidLoad, SolverSpec,
+    ControllerSpec, Indenter, MaterialSpec, ModeSpec, OmegaVSpec, Optimise, Problem, ProfileSpec,
+    RigidLoad, SolverSpec,
 };
 use crate::{Case, SceneError};
 
@@ -27,6 +27,10 @@ use crate::{Case, SceneError};
 /// reach, since the solvers refuse an elastic displacement larger than one size
 /// ([`contopt_contact::SMALL_STRAIN`]), and in the units of the scene.
 const OPEN_SIZES: f64 = 4.0;
+
+/// A point this far beyond a flat punch's rim, relative to its radius, is under it: the
+/// round-off of the points' coordinates.
+const RIM_ROUND_OFF: f64 = 1e-12;
 
 /// What a case designs.
 enum Design<'s> {
@@ -45,6 +49,33 @@ enum Design<'s> {
 enum Envelope {
     Given(Vec<f64>),
     Solved(Vec<EnvelopeCaseReport>, Option<TunedProfile>),
+}
+
+/// A case's bodies, built once for every case of a scene that shares its problem.
+pub(crate) struct Built {
+    bodies: Bodies,
+    /// The time their build took.
+    took: std::time::Duration,
+}
+
+impl Built {
+    /// The same bodies for a later case, which does not pay for their build.
+    pub(crate) fn reused(self) -> Self {
+        Self {
+            took: std::time::Duration::ZERO,
+            ..self
+        }
+    }
+}
+
+/// What a case's design and solves work on.
+struct Solve<'p, 'o> {
+    problem: &'p InterfaceProblem<'p>,
+    bodies: &'p Bodies,
+    /// A roller's envelope of load cases (empty otherwise).
+    cases: &'p [LoadCase<'p>],
+    solver: &'p dyn ContactSolver,
+    observer: &'o dyn contopt_core::observe::Observer,
 }
 
 /// The elastic body, its rigid or elastic partner, and the initial gap.
@@ -88,7 +119,7 @@ fn indenter_gap(indenter: &Indenter, r: f64, y: f64) -> Result<f64> {
             y * y / (2.0 * positive("indenter.radius_mm", radius_mm)?)
         }
         Indenter::FlatPunch { radius_mm } => {
-            if r <= positive("indenter.radius_mm", radius_mm)? * (1.0 + 1e-12) {
+            if r <= positive("indenter.radius_mm", radius_mm)? * (1.0 + RIM_ROUND_OFF) {
                 0.0
             } else {
                 f64::INFINITY
@@ -147,105 +178,12 @@ fn rigid_on(
     })
 }
 
-fn analysis(spec: AnalysisSpec, thickness: Option<f64>) -> Result<Analysis> {
-    Ok(match (spec, thickness) {
-        (AnalysisSpec::Axisymmetric, None) => Analysis::Axisymmetric,
-        (AnalysisSpec::Axisymmetric, Some(t)) => {
-            return Err(Error::invalid(
-                "thickness_mm",
-                t,
-                "an axisymmetric analysis has no thickness",
-            ))
-        }
-        (AnalysisSpec::PlaneStress, None) => {
-            return Err(Error::invalid(
-                "thickness_mm",
-                "missing",
-                "plane stress needs the thickness",
-            ))
-        }
-        (AnalysisSpec::PlaneStress, Some(thickness)) => Analysis::PlaneStress { thickness },
-        (AnalysisSpec::PlaneStrain, t) => Analysis::PlaneStrain {
-            thickness: t.unwrap_or(1.0),
-        },
-    })
-}
-
 /// The bodies of `problem`; files it names are read from `dir`, the scene file's folder.
 fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
     match problem {
-        Problem::Roller {
-            diameter_mm,
-            length_mm,
-            raceway_diameter_mm,
-            roller,
-            raceway,
-            load_n,
-            tilt_arcmin,
-            cells,
-            reach_b,
-            profile,
-        } => {
-            let built = crate::roller::build(
-                *diameter_mm,
-                *length_mm,
-                *raceway_diameter_mm,
-                [material(roller)?, material(raceway)?],
-                *load_n,
-                *tilt_arcmin,
-                *cells,
-                *reach_b,
-                profile,
-                dir,
-            )?;
-            Ok(Bodies {
-                first: built.raceway,
-                second: built.roller,
-                gap: built.gap,
-                roller: Some(built.info),
-            })
-        }
-        Problem::PunchOnBase {
-            analysis: a,
-            thickness_mm,
-            punch_radius_mm,
-            height_mm,
-            base_radius_mm,
-            material: m,
-            load,
-            mesh,
-        } => {
-            let steel = material(m)?;
-            let geometry = PunchGeometry {
-                punch_radius: *punch_radius_mm,
-                height: *height_mm,
-                base_radius: *base_radius_mm,
-                punch: steel,
-                base: steel,
-            };
-            let kind = match mesh.element.as_str() {
-                "q8" => ElementKind::Q8,
-                "q9" => ElementKind::Q9,
-                other => {
-                    return Err(Error::invalid(
-                        "mesh.element",
-                        other,
-                        "must be \"q8\" or \"q9\"",
-                    ))
-                }
-            };
-            let paper_mesh = PaperMesh {
-                kind,
-                contact_elements: mesh.elements,
-                grading: mesh.grading,
-                layers: mesh.layers.unwrap_or(mesh.elements),
-            };
-            let load = match *load {
-                PunchLoadSpec::PressureMpa(p) => PunchLoad::Pressure(p),
-                PunchLoadSpec::DisplacementMm(w) => PunchLoad::Displacement(w),
-            };
-            let (base, punch) =
-                fe_paper::bodies_with(&geometry, analysis(*a, *thickness_mm)?, load, &paper_mesh)?;
+        Problem::Roller { .. } => roller_bodies(problem, dir),
+        Problem::PunchOnBase(spec) => {
+            let (base, punch) = spec.geometry()?.bodies()?;
             let n = base.interface().len();
             Ok(Bodies {
                 first: Box::new(base),
@@ -292,40 +230,7 @@ fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
                 indenter_gap(indenter, x[0], 0.0)
             })
         }
-        Problem::RigidOnHalfPlane {
-            material: m,
-            analysis: a,
-            thickness_mm,
-            strips,
-            half_width_mm,
-            datum_mm,
-            indenter,
-            load,
-        } => {
-            let state = match a {
-                AnalysisSpec::PlaneStress => PlaneState::Stress,
-                AnalysisSpec::PlaneStrain => PlaneState::Strain,
-                AnalysisSpec::Axisymmetric => {
-                    return Err(Error::invalid(
-                        "analysis",
-                        "axisymmetric",
-                        "a half-plane is plane_stress or plane_strain",
-                    ))
-                }
-            };
-            let edges = clustered(*strips, *half_width_mm, "strips", |t| -t.cos(), 1.0)?;
-            let body = HalfPlane::new(
-                "half-plane",
-                material(m)?,
-                state,
-                *thickness_mm,
-                &edges,
-                *datum_mm,
-            )?;
-            rigid_on(Box::new(body), [0.0, 1.0, 0.0], *load, |x| {
-                indenter_gap(indenter, x[0].abs(), x[0])
-            })
-        }
+        Problem::RigidOnHalfPlane { .. } => half_plane_bodies(problem),
         Problem::RigidOnBlock {
             material: m,
             zone_mm,
@@ -334,8 +239,7 @@ fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
             indenter,
             load,
         } => {
-            let (model, contact) =
-                contopt_fem::block::half_space_block(*zone_mm, *elements, *size_mm, material(m)?)?;
+            let (model, contact) = half_space_block(*zone_mm, *elements, *size_mm, material(m)?)?;
             let body = FeBody::new("block", model, &contact)?;
             rigid_on(Box::new(body), [0.0, 1.0, 0.0], *load, |x| {
                 no_roller(indenter)?;
@@ -343,6 +247,86 @@ fn bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
             })
         }
     }
+}
+
+/// A roller on its raceway, both half-spaces (the `roller` kind).
+fn roller_bodies(problem: &Problem, dir: &std::path::Path) -> Result<Bodies> {
+    let Problem::Roller {
+        diameter_mm,
+        length_mm,
+        raceway_diameter_mm,
+        roller,
+        raceway,
+        load_n,
+        tilt_arcmin,
+        cells,
+        reach_b,
+        profile,
+    } = problem
+    else {
+        return Err(Error::invalid("problem.kind", "not a roller", "a roller"));
+    };
+    let built = crate::roller::build(
+        *diameter_mm,
+        *length_mm,
+        *raceway_diameter_mm,
+        [material(roller)?, material(raceway)?],
+        *load_n,
+        *tilt_arcmin,
+        *cells,
+        *reach_b,
+        profile,
+        dir,
+    )?;
+    Ok(Bodies {
+        first: built.raceway,
+        second: built.roller,
+        gap: built.gap,
+        roller: Some(built.info),
+    })
+}
+
+/// A rigid indenter on a half-plane (the `rigid_on_half_plane` kind).
+fn half_plane_bodies(problem: &Problem) -> Result<Bodies> {
+    let Problem::RigidOnHalfPlane {
+        material: m,
+        analysis,
+        strips,
+        half_width_mm,
+        datum_mm,
+        indenter,
+        load,
+    } = problem
+    else {
+        return Err(Error::invalid(
+            "problem.kind",
+            "not a half-plane",
+            "a half-plane",
+        ));
+    };
+    let (state, thickness) = match *analysis {
+        Analysis::PlaneStress { thickness } => (PlaneState::Stress, thickness),
+        Analysis::PlaneStrain { thickness } => (PlaneState::Strain, thickness),
+        Analysis::Axisymmetric => {
+            return Err(Error::invalid(
+                "analysis",
+                "axisymmetric",
+                "a half-plane is plane_stress or plane_strain",
+            ))
+        }
+    };
+    let edges = clustered(*strips, *half_width_mm, "strips", |t| -t.cos(), 1.0)?;
+    let body = HalfPlane::new(
+        "half-plane",
+        material(m)?,
+        state,
+        thickness,
+        &edges,
+        *datum_mm,
+    )?;
+    rigid_on(Box::new(body), [0.0, 1.0, 0.0], *load, |x| {
+        indenter_gap(indenter, x[0].abs(), x[0])
+    })
 }
 
 fn no_roller(indenter: &Indenter) -> Result<()> {
@@ -415,13 +399,68 @@ fn controller(spec: &ControllerSpec) -> Result<Box<dyn Controller>> {
     })
 }
 
+/// Checks `problem` without factorising anything: a finite-element body by its dimensions,
+/// materials, supports, load and mesh; the other kinds, which factorise nothing, are built.
+fn check_problem(problem: &Problem, dir: &std::path::Path) -> Result<()> {
+    match problem {
+        Problem::PunchOnBase(spec) => spec.geometry()?.check(),
+        Problem::RigidOnBlock {
+            material: m,
+            zone_mm,
+            elements,
+            size_mm,
+            indenter,
+            load,
+        } => {
+            material(m)?;
+            block_spacings(*zone_mm, *elements, *size_mm)?;
+            no_roller(indenter)?;
+            indenter_gap(indenter, 0.0, 0.0)?;
+            check_rigid_load(*load)
+        }
+        _ => bodies(problem, dir).map(|_| ()),
+    }
+}
+
+/// A rigid indenter's force or approach: positive and finite.
+fn check_rigid_load(load: RigidLoad) -> Result<()> {
+    let (field, value) = match load {
+        RigidLoad::ForceN(f) => ("load.force_n", f),
+        RigidLoad::ApproachMm(a) => ("load.approach_mm", a),
+    };
+    if value > 0.0 && value.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, value, "must be positive and finite"))
+    }
+}
+
 impl Case {
-    /// Checks every value without solving: the bodies are built (a finite-element body is
-    /// factorised), the solver and the controller constructed.
+    /// Checks every value without solving and without factorising: the problem's dimensions,
+    /// mesh and memory estimate (bodies that factorise nothing are built), the solver and the
+    /// controller.
     pub fn check(&self) -> std::result::Result<(), SceneError> {
         self.check_memory()?;
-        bodies(&self.spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
+        check_problem(&self.spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
         self.check_without_bodies()
+    }
+
+    /// The key of the case's bodies: the canonical form of its problem (the `Debug` form,
+    /// exact in every number). Cases with one key share their bodies.
+    pub(crate) fn problem_key(&self) -> String {
+        format!("{:?}", self.spec.problem)
+    }
+
+    /// Builds the case's bodies: assembled, factorised and condensed.
+    pub(crate) fn build(&self) -> std::result::Result<Built, SceneError> {
+        self.check_memory()?;
+        let start = Instant::now();
+        let bodies =
+            bodies(&self.spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
+        Ok(Built {
+            bodies,
+            took: start.elapsed(),
+        })
     }
 
     /// The checks of [`Case::check`] that do not build the bodies (for a case whose problem
@@ -461,6 +500,11 @@ impl Case {
         }
         if let Some(opt) = &spec.optimisation {
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
+            if let Some(omega_v) = &opt.omega_v {
+                omega_v
+                    .check()
+                    .map_err(|e| self.invalid("optimisation.omega_v", e))?;
+            }
         }
         Ok(())
     }
@@ -501,44 +545,93 @@ impl Case {
         &self,
         observer: &dyn contopt_core::observe::Observer,
     ) -> std::result::Result<CaseReport, SceneError> {
-        let _ = observer;
+        self.run_on(&self.build()?, observer)
+    }
+
+    /// Runs the case on bodies built for its problem (by this case, or by an earlier case of
+    /// the scene with the same problem: its `build` time is then only the interface's).
+    pub(crate) fn run_on(
+        &self,
+        built: &Built,
+        observer: &dyn contopt_core::observe::Observer,
+    ) -> std::result::Result<CaseReport, SceneError> {
         let spec = &self.spec;
         let solver = solver(&spec.solver).map_err(|e| self.invalid("solver", e))?;
         let dense_limit = self.dense_limit()?;
         self.check_memory()?;
         let mut report = CaseReport::new(&self.label, &self.params);
         let start = Instant::now();
-        let built = bodies(&spec.problem, self.dir()).map_err(|e| self.invalid("problem", e))?;
+        let bodies = &built.bodies;
         let problem =
-            InterfaceProblem::new(built.first.as_ref(), built.second.as_ref(), &built.gap)
+            InterfaceProblem::new(bodies.first.as_ref(), bodies.second.as_ref(), &bodies.gap)
                 .map_err(|e| self.invalid("problem", e))?
                 .with_dense_limit(dense_limit);
-        report.time("build", start);
-        let solved = Instant::now();
-        let cases = match &built.roller {
+        report.timings_ms.insert(
+            "build".into(),
+            1e3 * (built.took + start.elapsed()).as_secs_f64(),
+        );
+        let cases = match &bodies.roller {
             Some(info) => crate::envelope::load_cases(&problem, info, spec.envelope.as_ref())
                 .map_err(|e| self.invalid("envelope", e))?,
             None => vec![],
         };
-        let crown = built.roller.as_ref().map(|r| r.crown.as_slice());
-        let (mut report, envelope) = match self.design() {
+        let context = Solve {
+            problem: &problem,
+            bodies,
+            cases: &cases,
+            solver: solver.as_ref(),
+            observer,
+        };
+        let (mut report, envelope) = self.design_and_solve(report, &context)?;
+        report.settle();
+        if let (Some(info), true) = (&bodies.roller, report.converged) {
+            self.roller_figures(&mut report, envelope, &context, info);
+        }
+        if let (Some(sub), true) = (&spec.output.subsurface, report.converged) {
+            let started = Instant::now();
+            let pressure: Vec<f64> = report.interface.iter().map(|q| q.p).collect();
+            report.subsurface = crate::subsurface::compute(
+                sub,
+                [bodies.first.as_ref(), bodies.second.as_ref()],
+                bodies.shared_stresses(),
+                &pressure,
+                bodies.roller.is_some(),
+            )
+            .map_err(|e| self.invalid("output.subsurface", e))?;
+            report.time("subsurface", started);
+        }
+        report.reference = crate::reference::curve(spec, &report);
+        Ok(report)
+    }
+
+    /// The design of [`Case::design`] and the contact under it: the report, and the gap change
+    /// a roller's envelope is solved under (or its cases solved already).
+    fn design_and_solve(
+        &self,
+        mut report: CaseReport,
+        c: &Solve<'_, '_>,
+    ) -> std::result::Result<(CaseReport, Envelope), SceneError> {
+        let started = Instant::now();
+        let roller = c.bodies.roller.as_ref();
+        Ok(match self.design() {
             Design::Contact => {
-                let outcome = solver
-                    .solve(&problem)
+                let outcome = c
+                    .solver
+                    .solve_observed(c.problem, None, c.observer)
                     .map_err(|e| self.invalid("solver", e))?
-                    .solved(solver.name());
-                report.time("solve", solved);
-                let report = contact_report(report, &problem, crown.unwrap_or(&[]), outcome);
-                (report, Envelope::Given(vec![0.0; problem.len()]))
+                    .solved(c.solver.name());
+                report.time("solve", started);
+                let crown = roller.map_or(&[][..], |r| r.crown.as_slice());
+                let report = contact_report(report, c.problem, crown, outcome);
+                (report, Envelope::Given(vec![0.0; c.problem.len()]))
             }
             Design::Optimised(opt) => {
-                let outcome =
-                    self.optimise(&problem, opt, solver.as_ref(), built.roller.as_ref(), None)?;
-                report.time("optimise", solved);
+                let outcome = self.optimise(c.problem, opt, c, None)?;
+                report.time("optimise", started);
                 match outcome {
                     Ok(found) => {
                         let change = found.optimum.gap_change.clone();
-                        let report = optimum_report(report, &problem, &found.optimum);
+                        let report = optimum_report(report, c.problem, &found.optimum);
                         (report, Envelope::Given(change))
                     }
                     Err(e) => {
@@ -548,63 +641,58 @@ impl Case {
                 }
             }
             Design::Robust(opt) => {
-                let info = built.roller.as_ref().ok_or_else(|| self.not_a_roller())?;
-                let (report, cases) = self.robust(report, &cases, opt, solver.as_ref(), info)?;
+                let info = roller.ok_or_else(|| self.not_a_roller())?;
+                let (report, cases) = self.robust(report, opt, c, info)?;
                 (report, Envelope::Solved(cases, None))
             }
             Design::Tuned => {
-                let info = built.roller.as_ref().ok_or_else(|| self.not_a_roller())?;
-                let (report, cases, tuned) = self.tuned(report, &cases, solver.as_ref(), info)?;
+                let info = roller.ok_or_else(|| self.not_a_roller())?;
+                let (report, cases, tuned) = self.tuned(report, c, info)?;
                 (report, Envelope::Solved(cases, tuned))
             }
-        };
-        report.settle();
-        if let (Some(info), true) = (&built.roller, report.converged) {
-            let mut roller = roller_report(&report, info);
-            let outcome = match envelope {
-                Envelope::Given(change) if spec.envelope.is_some() => {
-                    let started = Instant::now();
-                    let states =
-                        crate::envelope::solve_cases(&cases, &change, solver.as_ref(), None);
-                    report.time("envelope", started);
-                    states.map(|s| crate::envelope::state_reports(&cases, &s, info.dy))
-                }
-                Envelope::Given(_) => Ok(vec![]),
-                Envelope::Solved(reports, tuned) => {
-                    roller.tuned = tuned;
-                    Ok(reports)
-                }
-            };
-            match outcome {
-                Ok(reports) => {
-                    roller.worst_p_max = spec
-                        .envelope
-                        .is_some()
-                        .then(|| reports.iter().map(|c| c.p_max).fold(0.0, f64::max));
-                    roller.envelope = reports;
-                }
-                Err(e) => {
-                    report.converged = false;
-                    report.error = Some(format!("a case of the envelope: {e}"));
-                }
+        })
+    }
+
+    /// A converged roller case's figures, with its envelope solved under the gap change
+    /// (unless the design solved it already).
+    fn roller_figures(
+        &self,
+        report: &mut CaseReport,
+        envelope: Envelope,
+        c: &Solve<'_, '_>,
+        info: &crate::roller::Info,
+    ) {
+        let mut roller = roller_report(report, info);
+        let outcome = match envelope {
+            Envelope::Given(change) if self.spec.envelope.is_some() => {
+                let started = Instant::now();
+                let states =
+                    crate::envelope::solve_cases(c.cases, &change, c.solver, None, c.observer);
+                report.time("envelope", started);
+                states.map(|s| crate::envelope::state_reports(c.cases, &s, info.dy))
             }
-            report.roller = Some(roller);
-            report.settle();
+            Envelope::Given(_) => Ok(vec![]),
+            Envelope::Solved(reports, tuned) => {
+                roller.tuned = tuned;
+                Ok(reports)
+            }
+        };
+        match outcome {
+            Ok(reports) => {
+                roller.worst_p_max = self
+                    .spec
+                    .envelope
+                    .is_some()
+                    .then(|| reports.iter().map(|c| c.p_max).fold(0.0, f64::max));
+                roller.envelope = reports;
+            }
+            Err(e) => {
+                report.converged = false;
+                report.error = Some(format!("a case of the envelope: {e}"));
+            }
         }
-        if let (Some(sub), true) = (&spec.output.subsurface, report.converged) {
-            let started = Instant::now();
-            let pressure: Vec<f64> = report.interface.iter().map(|q| q.p).collect();
-            report.subsurface = crate::subsurface::compute(
-                sub,
-                [built.first.as_ref(), built.second.as_ref()],
-                built.shared_stresses(),
-                &pressure,
-                built.roller.is_some(),
-            )
-            .map_err(|e| self.invalid("output.subsurface", e))?;
-            report.time("subsurface", started);
-        }
-        Ok(report)
+        report.roller = Some(roller);
+        report.settle();
     }
 
     /// What the case designs: nothing (a contact solve), a gap for the scene's load, or a
@@ -635,24 +723,18 @@ impl Case {
     fn robust(
         &self,
         mut report: CaseReport,
-        cases: &[LoadCase],
         opt: &Optimise,
-        solver: &dyn ContactSolver,
+        c: &Solve<'_, '_>,
         info: &crate::roller::Info,
     ) -> std::result::Result<(CaseReport, Vec<EnvelopeCaseReport>), SceneError> {
+        let cases = c.cases;
         let started = Instant::now();
         let design = crate::envelope::design_case(cases);
         let others: Vec<InterfaceProblem> = (0..cases.len())
             .filter(|&k| k != design)
             .map(|k| cases[k].problem.clone())
             .collect();
-        let outcome = self.optimise(
-            &cases[design].problem,
-            opt,
-            solver,
-            Some(info),
-            Some(&others),
-        )?;
+        let outcome = self.optimise(&cases[design].problem, opt, c, Some(&others))?;
         report.time("optimise", started);
         let found = match outcome {
             Ok(found) => found,
@@ -696,13 +778,13 @@ impl Case {
     fn tuned(
         &self,
         mut report: CaseReport,
-        cases: &[LoadCase],
-        solver: &dyn ContactSolver,
+        c: &Solve<'_, '_>,
         info: &crate::roller::Info,
     ) -> std::result::Result<(CaseReport, Vec<EnvelopeCaseReport>, Option<TunedProfile>), SceneError>
     {
+        let cases = c.cases;
         let started = Instant::now();
-        let outcome = crate::envelope::tune_fujiwara_kawase(cases, info, solver);
+        let outcome = crate::envelope::tune_fujiwara_kawase(cases, info, c.solver, c.observer);
         report.time("tune", started);
         match outcome {
             Ok((tuned, drop, states)) => {
@@ -728,10 +810,10 @@ impl Case {
         &self,
         problem: &InterfaceProblem,
         opt: &Optimise,
-        solver: &dyn ContactSolver,
-        roller: Option<&crate::roller::Info>,
+        c: &Solve<'_, '_>,
         envelope: Option<&[InterfaceProblem]>,
     ) -> std::result::Result<std::result::Result<EnvelopeOptimum, Error>, SceneError> {
+        let (solver, roller) = (c.solver, c.bodies.roller.as_ref());
         let v =
             controller(&opt.controller).map_err(|e| self.invalid("optimisation.controller", e))?;
         let iface = problem.interface();
@@ -744,63 +826,76 @@ impl Case {
         }
         .map_err(|e| self.invalid("optimisation.profile_axis", e))?;
         let mut optimisation = Optimisation::new(problem, &shape, v.as_ref())
-            .map_err(|e| self.invalid("optimisation", e))?;
-        let half_width = opt
-            .omega_v
-            .map(|o| o.half_width_mm)
-            .or(roller.map(|r| 0.5 * r.dy));
-        if let Some(half_width) = half_width {
-            let regions = iface
-                .points
-                .iter()
-                .map(|x| {
-                    if x[1].abs() <= half_width {
-                        Region::OmegaV
-                    } else {
-                        Region::OmegaNv
-                    }
-                })
-                .collect();
+            .map_err(|e| self.invalid("optimisation", e))?
+            .with_observer(c.observer);
+        let omega_v = opt.omega_v.or(roller.map(|r| OmegaVSpec::Strip {
+            axis: 1,
+            from_mm: -0.5 * r.dy,
+            to_mm: 0.5 * r.dy,
+        }));
+        if let Some(omega_v) = omega_v {
+            omega_v
+                .check()
+                .map_err(|e| self.invalid("optimisation.omega_v", e))?;
             optimisation = optimisation
-                .with_regions(regions)
+                .with_regions(regions(&omega_v, iface))
                 .map_err(|e| self.invalid("optimisation.omega_v", e))?;
         }
-        let single = |outcome: Result<Optimum>| {
-            outcome.map(|optimum| EnvelopeOptimum {
-                optimum,
-                cases: vec![],
-            })
-        };
-        let outcome = match (opt.mode, envelope) {
-            (ModeSpec::LoadSplit, Some(cases)) => {
-                optimisation.envelope_split(cases, solver, opt.tolerance, opt.max_iterations)
-            }
-            (mode, Some(_)) => Err(Error::invalid(
-                "optimisation.mode",
-                format!("{mode:?}"),
-                "a robust crown is found by the load split: mode = \"load_split\"",
-            )),
-            (ModeSpec::GivenLoad, None) => single(optimisation.iterate(
-                Mode::GivenLoad,
-                solver,
-                opt.tolh_mm2,
-                opt.max_iterations,
-            )),
-            (ModeSpec::GivenDisplacement, None) => single(optimisation.iterate(
-                Mode::GivenDisplacement,
-                solver,
-                opt.tolh_mm2,
-                opt.max_iterations,
-            )),
-            (ModeSpec::LinearProgramme, None) => single(optimisation.linear_programme(solver)),
-            (ModeSpec::LoadSplit, None) => {
-                single(optimisation.load_split(solver, opt.tolerance, opt.max_iterations))
-            }
-        };
-        match outcome {
+        match run_mode(&optimisation, opt, solver, envelope) {
             Err(e @ Error::NotConverged { .. }) => Ok(Err(e)),
             Err(e) => Err(self.invalid("optimisation", e)),
             Ok(optimum) => Ok(Ok(optimum)),
+        }
+    }
+}
+
+/// Each interface point's region: Ω_v inside `omega_v`, Ω_nv outside.
+fn regions(omega_v: &OmegaVSpec, iface: &contopt_core::Interface) -> Vec<Region> {
+    (iface.points.iter().zip(&iface.normals))
+        .map(|(&x, &normal)| {
+            if omega_v.contains(x, normal) {
+                Region::OmegaV
+            } else {
+                Region::OmegaNv
+            }
+        })
+        .collect()
+}
+
+/// Runs the optimisation's mode (with `envelope`, a robust crown's load split).
+fn run_mode(
+    optimisation: &Optimisation,
+    opt: &Optimise,
+    solver: &dyn ContactSolver,
+    envelope: Option<&[InterfaceProblem]>,
+) -> Result<EnvelopeOptimum> {
+    let single = |outcome: Result<Optimum>| {
+        outcome.map(|optimum| EnvelopeOptimum {
+            optimum,
+            cases: vec![],
+        })
+    };
+    match (opt.mode, envelope) {
+        (ModeSpec::LoadSplit, Some(cases)) => {
+            optimisation.envelope_split(cases, solver, opt.tolerance, opt.max_iterations)
+        }
+        (mode, Some(_)) => Err(Error::invalid(
+            "optimisation.mode",
+            format!("{mode:?}"),
+            "a robust crown is found by the load split: mode = \"load_split\"",
+        )),
+        (ModeSpec::GivenLoad, None) => {
+            single(optimisation.iterate(Mode::GivenLoad, solver, opt.tolh_mm2, opt.max_iterations))
+        }
+        (ModeSpec::GivenDisplacement, None) => single(optimisation.iterate(
+            Mode::GivenDisplacement,
+            solver,
+            opt.tolh_mm2,
+            opt.max_iterations,
+        )),
+        (ModeSpec::LinearProgramme, None) => single(optimisation.linear_programme(solver)),
+        (ModeSpec::LoadSplit, None) => {
+            single(optimisation.load_split(solver, opt.tolerance, opt.max_iterations))
         }
     }
 }

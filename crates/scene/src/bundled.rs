@@ -32,4 +32,8 @@ pub const BUNDLED: &[(&str, &str)] = &[
         "punch-on-block",
         include_str!("../../../scenes/punch-on-block.toml"),
     ),
+    (
+        "steel-on-aluminium",
+        include_str!("../../../scenes/steel-on-aluminium.toml"),
+    ),
 ];

@@ -3,6 +3,7 @@
 //! Fujiwara–Kawase profile (a Nelder–Mead search over K1, K2, z_m).
 
 use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_core::observe::Observer;
 use contopt_core::{ContactState, Error, Result};
 use contopt_optimise::nelder_mead;
 use contopt_roller::Crown;
@@ -15,6 +16,9 @@ use crate::spec::EnvelopeSpec;
 /// it stops \[MPa\], and its budget of crowns.
 const TUNE_TOLERANCE_MPA: f64 = 0.05;
 const TUNE_EVALUATIONS: usize = 150;
+/// A load factor this close to 1 and a tilt this close to the scene's \[arc-minutes\] are
+/// the scene's own case, listed first already (round-off).
+const SAME_CASE: f64 = 1e-12;
 
 /// One load case: its load \[N\], tilt \[arc-minutes\] and contact problem.
 pub(crate) struct LoadCase<'a> {
@@ -49,7 +53,7 @@ pub(crate) fn load_cases<'a>(
     check("envelope.tilts_arcmin", &spec.tilts_arcmin, |_| true)?;
     for &factor in &spec.load_factors {
         for &t in &spec.tilts_arcmin {
-            if (factor - 1.0).abs() < 1e-12 && (t - tilt).abs() < 1e-12 {
+            if (factor - 1.0).abs() < SAME_CASE && (t - tilt).abs() < SAME_CASE {
                 continue;
             }
             let mut modes = nominal.modes().to_vec();
@@ -101,12 +105,13 @@ pub(crate) fn design_case(cases: &[LoadCase]) -> usize {
 }
 
 /// Every case solved with its initial gap changed by `gap_change`, each from its pressure in
-/// `start` when given.
+/// `start` when given, reporting its iterations to `observer`.
 pub(crate) fn solve_cases(
     cases: &[LoadCase],
     gap_change: &[f64],
     solver: &dyn ContactSolver,
     start: Option<&[ContactState]>,
+    observer: &dyn Observer,
 ) -> Result<Vec<ContactState>> {
     cases
         .iter()
@@ -120,11 +125,10 @@ pub(crate) fn solve_cases(
                 .map(|(h, d)| h + d)
                 .collect();
             let problem = case.problem.with_initial_gap(&gap)?;
-            match start {
-                Some(s) => solver.solve_from(&problem, &s[k].pressure),
-                None => solver.solve(&problem),
-            }?
-            .solved(solver.name())
+            let start = start.map(|s| s[k].pressure.as_slice());
+            solver
+                .solve_observed(&problem, start, observer)?
+                .solved(solver.name())
         })
         .collect()
 }
@@ -174,6 +178,7 @@ pub(crate) fn tune_fujiwara_kawase(
     cases: &[LoadCase],
     info: &Info,
     solver: &dyn ContactSolver,
+    observer: &dyn Observer,
 ) -> Result<(TunedProfile, Vec<f64>, Vec<ContactState>)> {
     let roller = &info.roller;
     let (load, length, e_star) = (roller.load, roller.length, roller.e_star());
@@ -190,7 +195,7 @@ pub(crate) fn tune_fujiwara_kawase(
     let mut warm: Option<Vec<ContactState>> = None;
     let minimum = nelder_mead(
         |u| {
-            let states = solve_cases(cases, &drops(u)?, solver, warm.as_deref())?;
+            let states = solve_cases(cases, &drops(u)?, solver, warm.as_deref(), observer)?;
             let value = penalised_worst(points, &states);
             warm = Some(states);
             Ok(value)
@@ -201,7 +206,7 @@ pub(crate) fn tune_fujiwara_kawase(
         TUNE_EVALUATIONS,
     )?;
     let drop = drops(&minimum.x)?;
-    let states = solve_cases(cases, &drop, solver, warm.as_deref())?;
+    let states = solve_cases(cases, &drop, solver, warm.as_deref(), observer)?;
     let (k1, k2, z_m_mm) = parameters(&minimum.x);
     let tuned = TunedProfile {
         k1,

@@ -2,27 +2,33 @@
 //! gap, written in TOML or JSON, with a sweep over one parameter (L₁ in the paper's tables).
 //!
 //! [`Scene::load`] reads and checks a file: unknown or missing keys and impossible values are
-//! [`SceneError`]s that name the file, the line and the key. [`Scene::cases`] expands the sweep
-//! and [`Case::run`] solves one case into a [`CaseReport`], the unit of `result.json` (its
-//! schema is in the book's chapter "Scene files and the `contopt` command").
+//! [`SceneError`]s that name the file, the line and the key; reading builds no finite-element
+//! body. [`Scene::cases`] expands the sweep, [`Case::run`] solves one case into a
+//! [`CaseReport`], the unit of `result.json` (its schema is in the book's chapter "Scene files
+//! and the `contopt` command"), and [`Scene::run`] runs them all, building each distinct set
+//! of bodies once. [`geometry`] builds the finite-element bodies of a punch on a base.
 
 mod budget;
 mod build;
 mod bundled;
 mod envelope;
+pub mod geometry;
+mod reference;
 mod report;
 mod roller;
+mod run;
 mod spec;
 mod subsurface;
 
 pub use bundled::BUNDLED;
 pub use report::{
-    BodyStresses, CaseReport, EnvelopeCaseReport, IterationRow, PointReport, Report, RollerReport,
-    SubsurfaceReport, TunedProfile, PENETRATION_WARNING,
+    BodyStresses, CaseReport, EnvelopeCaseReport, IterationRow, PointReport, ReferenceCurve,
+    Report, RollerReport, SubsurfaceReport, TunedProfile, PENETRATION_WARNING,
 };
+pub use run::Run;
 pub use spec::{
-    AnalysisSpec, ControllerSpec, EnvelopeSpec, Indenter, MaterialSpec, MeshSpec, ModeSpec,
-    OmegaVSpec, Optimise, OutputSpec, Problem, PunchLoadSpec, RigidLoad, SectionSpec, SolverSpec,
+    BaseSpec, BodySpec, ControllerSpec, EnvelopeSpec, Indenter, MaterialSpec, ModeSpec, OmegaVSpec,
+    Optimise, OutputSpec, Problem, PunchOnBaseSpec, RigidLoad, SectionSpec, SolverSpec,
     SubsurfaceSpec, Sweep,
 };
 
@@ -34,6 +40,9 @@ pub const MAX_TEXT_BYTES: u64 = 1_000_000;
 pub const MAX_NESTING: usize = 32;
 /// The most cases one scene may have (sweep values or `[[case]]`s).
 pub const MAX_CASES: usize = 10_000;
+/// 2⁵³: below it an f64 holds every whole number exactly, so a swept float becomes an integer
+/// key's value without loss.
+const MAX_EXACT_INTEGER: f64 = 9_007_199_254_740_992.0;
 
 /// The text of `file`, read no further than one byte past [`MAX_TEXT_BYTES`] (so that
 /// `/dev/zero` ends): a caller refuses text longer than the limit.
@@ -191,6 +200,25 @@ impl Scene {
         Self::parse(&text, format, path)
     }
 
+    /// The bundled scene `name` (one of [`BUNDLED`]), as if read from `scenes/<name>.toml`.
+    pub fn bundled(name: &str) -> Result<Self, SceneError> {
+        let file = Path::new("scenes").join(format!("{name}.toml"));
+        match BUNDLED.iter().find(|(n, _)| *n == name) {
+            Some((_, text)) => Self::parse(text, Format::Toml, &file),
+            None => Err(SceneError::Parse {
+                file,
+                message: format!(
+                    "no bundled scene {name:?}; the bundled scenes are {}",
+                    BUNDLED
+                        .iter()
+                        .map(|(n, _)| *n)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            }),
+        }
+    }
+
     /// Parses and checks scene text; `file` names it in messages.
     pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
         let parse = |message: String| SceneError::Parse {
@@ -226,12 +254,11 @@ impl Scene {
             tree,
             text: text.into(),
         };
-        // Cases that differ only outside the problem (a sweep over the controller) share its
-        // bodies: build them once.
+        // Each distinct problem is checked once (without building a finite-element body);
+        // cases that differ only outside it check the rest.
         let mut checked = std::collections::HashSet::new();
         for case in scene.cases()? {
-            let problem = serde_json::to_string(&case.spec.problem).unwrap_or_default();
-            if checked.insert(problem) {
+            if checked.insert(case.problem_key()) {
                 case.check()?;
             } else {
                 case.check_memory()?;
@@ -246,15 +273,21 @@ impl Scene {
         if !self.spec.case.is_empty() {
             return self.named_cases();
         }
-        let Some(sweep) = &self.spec.sweep else {
-            return Ok(vec![Case {
+        match &self.spec.sweep {
+            Some(sweep) => self.swept_cases(sweep),
+            None => Ok(vec![Case {
                 label: self.spec.name.clone(),
                 params: Default::default(),
                 spec: self.spec.clone(),
                 file: self.file.clone(),
                 text: self.text.clone(),
-            }]);
-        };
+            }]),
+        }
+    }
+
+    /// One case per value of the sweep: the scene with `sweep.key` set to it (an integer where
+    /// the scene has one there, a mesh's `elements`; the value must then be whole).
+    fn swept_cases(&self, sweep: &Sweep) -> Result<Vec<Case>, SceneError> {
         let parse = |message: String| SceneError::Parse {
             file: self.file.clone(),
             message,
@@ -274,33 +307,20 @@ impl Scene {
         if let Some(map) = base.as_object_mut() {
             map.remove("sweep");
         }
+        let name = short_name(&base, &sweep.key);
+        let name = name.as_str();
         sweep
             .values
             .iter()
-            .map(|&value| {
+            .map(|value| {
                 let mut tree = base.clone();
-                let mut node = &mut tree;
-                for part in sweep.key.split('.') {
-                    node = node.get_mut(part).filter(|n| !n.is_null()).ok_or_else(|| {
-                        parse(format!(
-                            "sweep.key `{}`: the scene has no `{part}` there",
-                            sweep.key
-                        ))
-                    })?;
-                }
-                if !node.is_number() {
-                    return Err(parse(format!(
-                        "sweep.key `{}` is not a number in the scene",
-                        sweep.key
-                    )));
-                }
-                *node = serde_json::json!(value);
+                set_number(&mut tree, &sweep.key, value).map_err(parse)?;
                 let spec: spec::SceneSpec = serde_json::from_value(tree)
                     .map_err(|e| parse(format!("sweep value {value} for `{}`: {e}", sweep.key)))?;
-                let name = sweep.key.rsplit('.').next().unwrap_or(&sweep.key);
+                let number = value.as_f64().unwrap_or(f64::NAN);
                 Ok(Case {
-                    label: format!("{name} = {value}"),
-                    params: [(name.to_string(), value)].into_iter().collect(),
+                    label: format!("{name} = {number}"),
+                    params: [(name.to_string(), number)].into_iter().collect(),
                     spec,
                     file: self.file.clone(),
                     text: self.text.clone(),
@@ -308,6 +328,65 @@ impl Scene {
             })
             .collect()
     }
+}
+
+/// The name of the dotted `key` in labels and parameters: its last part, or as many of its last
+/// parts as tell it from the other keys of `tree` (`l1_mm`; `punch.radius_mm` where the base
+/// and Ω_v have a `radius_mm` too).
+fn short_name(tree: &serde_json::Value, key: &str) -> String {
+    fn leaves(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
+        match v {
+            serde_json::Value::Object(map) => {
+                for (k, child) in map {
+                    leaves(child, &format!("{path}.{k}"), out);
+                }
+            }
+            _ => out.push(path.to_string()),
+        }
+    }
+    let mut all = vec![];
+    leaves(tree, "", &mut all);
+    let parts: Vec<&str> = key.split('.').collect();
+    (1..parts.len())
+        .map(|k| parts[parts.len() - k..].join("."))
+        .find(|name| {
+            let suffix = format!(".{name}");
+            all.iter().filter(|leaf| leaf.ends_with(&suffix)).count() <= 1
+        })
+        .unwrap_or_else(|| key.to_string())
+}
+
+/// Sets the number at the dotted `key` of `tree` to `value`: as an integer where the scene has
+/// an integer (a whole value only), else as it is.
+fn set_number(
+    tree: &mut serde_json::Value,
+    key: &str,
+    value: &serde_json::Number,
+) -> Result<(), String> {
+    let mut node = tree;
+    for part in key.split('.') {
+        node = node
+            .get_mut(part)
+            .filter(|n| !n.is_null())
+            .ok_or_else(|| format!("sweep.key `{key}`: the scene has no `{part}` there"))?;
+    }
+    if !node.is_number() {
+        return Err(format!("sweep.key `{key}` is not a number in the scene"));
+    }
+    let whole = value
+        .as_f64()
+        .filter(|v| v.fract() == 0.0 && v.abs() < MAX_EXACT_INTEGER);
+    *node = match (node.is_f64(), value.is_f64(), whole) {
+        (false, true, Some(v)) => serde_json::json!(v as i64),
+        (false, true, None) => {
+            return Err(format!(
+                "sweep value {value} for `{key}`: the scene has an integer there, so give whole \
+                 numbers"
+            ))
+        }
+        _ => serde_json::Value::Number(value.clone()),
+    };
+    Ok(())
 }
 
 impl Scene {
@@ -349,7 +428,7 @@ impl Scene {
                     }
                     *node = value.clone();
                     if let Some(v) = value.as_f64() {
-                        params.insert(key.rsplit('.').next().unwrap_or(key).to_string(), v);
+                        params.insert(short_name(&base, key), v);
                     }
                 }
                 let spec: spec::SceneSpec = serde_json::from_value(tree)
@@ -392,8 +471,14 @@ impl Case {
 /// The first line (from 1) that sets a key named `name` or `name_<unit>` (`nu`, `e` → `e_mpa`),
 /// in TOML (`name =`) or JSON (`"name":`).
 fn line_of(text: &str, name: &str) -> Option<usize> {
+    line_of_from(text, name, 1)
+}
+
+/// [`line_of`] from line `first` (from 1) on.
+fn line_of_from(text: &str, name: &str, first: usize) -> Option<usize> {
     let is_key_char = |c: char| c.is_ascii_alphanumeric() || c == '_';
     text.lines()
+        .skip(first.saturating_sub(1))
         .position(|line| {
             line.match_indices(name).any(|(at, _)| {
                 let before = line[..at].chars().next_back();
@@ -408,17 +493,29 @@ fn line_of(text: &str, name: &str) -> Option<usize> {
                 rest.starts_with('=') || rest.starts_with(':')
             })
         })
-        .map(|i| i + 1)
+        .map(|i| i + first.max(1))
 }
 
 /// Adds the line of an unknown key to a parser message that gives only its table's line (a
 /// tagged section such as `[problem]` is read as a whole).
 fn locate_unknown(text: &str, message: String) -> String {
+    // The parser's line: the table's, or the inline table's that holds the key.
+    let reported = message
+        .split("at line ")
+        .nth(1)
+        .and_then(|rest| {
+            rest.split(|c: char| !c.is_ascii_digit())
+                .next()?
+                .parse()
+                .ok()
+        })
+        .unwrap_or(1);
     let key = message
         .split("unknown field `")
         .nth(1)
         .and_then(|rest| rest.split('`').next());
-    if let Some((k, line)) = key.and_then(|k| line_of(text, k).map(|l| (k, l))) {
+    let line = |k| line_of_from(text, k, reported).or_else(|| line_of(text, k));
+    if let Some((k, line)) = key.and_then(|k| line(k).map(|l| (k, l))) {
         return format!("{message}\n(`{k}` is set at line {line})");
     }
     // `invalid type: string "stiff", expected f64`: find the value's line and key.
@@ -442,6 +539,18 @@ fn locate_unknown(text: &str, message: String) -> String {
     });
     match found {
         Some((k, line)) => format!("{message}\n(`{k}` is set at line {line})"),
+        None if message.contains("expected struct variant") => {
+            // `analysis = "plane_stress"`: a plane analysis is a table with its thickness.
+            let line = line_of(text, "analysis").map_or(String::new(), |l| format!(" at line {l}"));
+            format!(
+                "{message}\n(`analysis`{line}: a plane analysis gives its thickness, \
+                 `analysis = {{ plane_stress = {{ thickness_mm = 10.0 }} }}`)"
+            )
+        }
+        None if message.contains("expected map with a single key") => format!(
+            "{message}\n(a choice takes one key: `load = {{ pressure_mpa = 100.0 }}`, \
+             `analysis = {{ plane_stress = {{ thickness_mm = 10.0 }} }}`)"
+        ),
         None => message,
     }
 }

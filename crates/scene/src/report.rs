@@ -65,6 +65,23 @@ pub struct CaseReport {
     /// nothing is in contact.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subsurface: Option<SubsurfaceReport>,
+    /// The closed-form pressure of a validation case (a rigid sphere, cylinder or flat punch
+    /// on a half-space, a half-plane or a large block, without optimisation), along the line
+    /// the pressure plot draws; absent where none exists.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceCurve>,
+}
+
+/// A closed-form contact pressure beside a computed one.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct ReferenceCurve {
+    /// The closed form and its figures (`Hertz: p₀ = 4539 MPa, a = 0.3244 mm`).
+    pub label: String,
+    /// (x \[mm\], p \[MPa\]) along the row of interface points nearest the x axis (on an
+    /// axisymmetric or plane body: along r or x), within the computed points' range; a flat
+    /// punch's curve stops at the outermost point under the punch (p grows without bound at
+    /// its rim).
+    pub points: Vec<[f64; 2]>,
 }
 
 /// Stresses below the surface under a case's contact pressure.
@@ -167,6 +184,7 @@ impl CaseReport {
             timings_ms: BTreeMap::new(),
             roller: None,
             subsurface: None,
+            reference: None,
         }
     }
 

@@ -135,11 +135,15 @@ struct Columns<'a> {
     middle: f64,
 }
 
+/// Points closer than this along the axis \[mm\] are one column (geometry: far below any
+/// cell).
+const SAME_COLUMN: f64 = 1e-9;
+
 impl<'a> Columns<'a> {
     fn new(points: &'a [[f64; 3]]) -> Self {
         let mut xs: Vec<f64> = points.iter().map(|x| x[0]).collect();
         xs.sort_by(f64::total_cmp);
-        xs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        xs.dedup_by(|a, b| (*a - *b).abs() < SAME_COLUMN);
         let middle = xs
             .iter()
             .copied()
@@ -155,7 +159,7 @@ impl<'a> Columns<'a> {
 
     /// The points of the column at `c`.
     fn column(&self, c: f64) -> impl Iterator<Item = usize> + '_ {
-        (0..self.points.len()).filter(move |&i| (self.points[i][0] - c).abs() < 1e-9)
+        (0..self.points.len()).filter(move |&i| (self.points[i][0] - c).abs() < SAME_COLUMN)
     }
 
     fn peak(&self, c: f64, pressure: &[f64]) -> f64 {

@@ -1,7 +1,11 @@
 //! The scene schema: what a scene file may say. Keys carry their units (`_mm`, `_mpa`, `_n`);
 //! unknown keys are errors.
 
+use contopt_core::{Error, Material, Result};
+use contopt_fem::Analysis;
 use serde::{Deserialize, Serialize};
+
+use crate::geometry::{Cylinder, PunchLoad, PunchMesh, PunchOnBase, Support};
 
 /// A whole scene.
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -94,8 +98,8 @@ pub struct SectionSpec {
 pub struct Sweep {
     /// Dotted path of the swept number.
     pub key: String,
-    /// Its values.
-    pub values: Vec<f64>,
+    /// Its values: integers where the scene has an integer (`problem.mesh.elements`).
+    pub values: Vec<serde_json::Number>,
 }
 
 /// A named case of a study: the dotted keys of the scene it replaces, with their values
@@ -130,26 +134,111 @@ pub struct MaterialSpec {
     pub nu: f64,
 }
 
-/// The two-dimensional or axisymmetric analysis of finite-element bodies.
-#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
-#[serde(rename_all = "snake_case")]
-pub enum AnalysisSpec {
-    /// Axisymmetric about the y axis.
-    Axisymmetric,
-    /// Plane stress; needs `thickness_mm`.
-    PlaneStress,
-    /// Plane strain; `thickness_mm` (default 1) is the out-of-plane length.
-    PlaneStrain,
+/// A punch on a base (`kind = "punch_on_base"`): the scene's form of
+/// [`PunchOnBase`](crate::geometry::PunchOnBase), with its materials in the scene's units and a
+/// shorthand for one material shared by both bodies.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PunchOnBaseSpec {
+    /// `"axisymmetric"`, `{ plane_stress = { thickness_mm } }` or
+    /// `{ plane_strain = { thickness_mm } }` (the out-of-plane length).
+    pub analysis: Analysis,
+    /// The material of each body that names none of its own.
+    #[serde(default)]
+    pub material: Option<MaterialSpec>,
+    /// The punch, whose radius is the contact zone's.
+    pub punch: BodySpec,
+    /// The base and its supports.
+    pub base: BaseSpec,
+    /// Load on the punch's top face: `{ pressure_mpa }` or `{ displacement_mm }`.
+    pub load: PunchLoad,
+    /// The mesh.
+    pub mesh: PunchMesh,
 }
 
-/// How a punch is driven from its top face.
+/// The punch of a punch on a base.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum PunchLoadSpec {
-    /// A uniform pressure \[MPa\]; the punch floats.
-    PressureMpa(f64),
-    /// A prescribed axial displacement \[mm\] (negative: downwards).
-    DisplacementMm(f64),
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Radius (plane: half-width) \[mm\].
+    pub radius_mm: f64,
+    /// Height \[mm\].
+    pub height_mm: f64,
+    /// Its material (default: the problem's `material`).
+    #[serde(default)]
+    pub material: Option<MaterialSpec>,
+}
+
+/// The base of a punch on a base.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BaseSpec {
+    /// Radius (plane: half-width) \[mm\], larger than the punch's.
+    pub radius_mm: f64,
+    /// Height \[mm\].
+    pub height_mm: f64,
+    /// Its material (default: the problem's `material`).
+    #[serde(default)]
+    pub material: Option<MaterialSpec>,
+    /// `"clamped"` or `"axial"` for the bottom face, and `"symmetry"` for a plane model's
+    /// line x = 0.
+    pub supports: Vec<Support>,
+}
+
+impl PunchOnBaseSpec {
+    /// The geometry, its materials checked; the rest is checked by
+    /// [`PunchOnBase::check`].
+    pub fn geometry(&self) -> Result<PunchOnBase> {
+        let material = |own: Option<MaterialSpec>, body: &str| -> Result<Material> {
+            let m = own.or(self.material).ok_or_else(|| {
+                Error::invalid(
+                    format!("{body}.material"),
+                    "missing",
+                    "give each body a material, or one `material` for both",
+                )
+            })?;
+            // A body's own material is named by its body.
+            Material::new(m.e_mpa, m.nu).map_err(|e| match (own, e) {
+                (
+                    Some(_),
+                    Error::InvalidInput {
+                        field,
+                        value,
+                        reason,
+                    },
+                ) => Error::InvalidInput {
+                    field: format!("{body}.{field}"),
+                    value,
+                    reason,
+                },
+                (_, e) => e,
+            })
+        };
+        if self.material.is_some() && self.punch.material.is_some() && self.base.material.is_some()
+        {
+            return Err(Error::invalid(
+                "material",
+                "given",
+                "both bodies name their own material: remove the shared one",
+            ));
+        }
+        Ok(PunchOnBase {
+            analysis: self.analysis,
+            punch: Cylinder {
+                radius: self.punch.radius_mm,
+                height: self.punch.height_mm,
+                material: material(self.punch.material, "punch")?,
+            },
+            base: Cylinder {
+                radius: self.base.radius_mm,
+                height: self.base.height_mm,
+                material: material(self.base.material, "base")?,
+            },
+            supports: self.base.supports.clone(),
+            load: self.load,
+            mesh: self.mesh,
+        })
+    }
 }
 
 /// How a rigid indenter is driven.
@@ -160,31 +249,6 @@ pub enum RigidLoad {
     ForceN(f64),
     /// Pushed in by a given approach \[mm\].
     ApproachMm(f64),
-}
-
-/// The finite-element mesh of a punch on a base.
-#[derive(Clone, Debug, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct MeshSpec {
-    /// Quadratic elements across the contact zone.
-    pub elements: usize,
-    /// Elements through each body's height (default: `elements`).
-    #[serde(default)]
-    pub layers: Option<usize>,
-    /// Size ratio innermost / outermost contact element (default 1, uniform).
-    #[serde(default = "one")]
-    pub grading: f64,
-    /// `"q8"` (default) or `"q9"`.
-    #[serde(default = "q8")]
-    pub element: String,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-fn q8() -> String {
-    "q8".into()
 }
 
 /// The shape of a rigid indenter: its initial gap h(x) to the flat surface.
@@ -214,25 +278,7 @@ pub enum Indenter {
 pub enum Problem {
     /// Two finite-element bodies: a punch on a base (the paper's Fig. 1), in contact over the
     /// punch's face with zero initial gap.
-    PunchOnBase {
-        /// The analysis.
-        analysis: AnalysisSpec,
-        /// Thickness (plane stress) or out-of-plane length (plane strain) \[mm\].
-        #[serde(default)]
-        thickness_mm: Option<f64>,
-        /// Punch radius (plane: half-width) \[mm\].
-        punch_radius_mm: f64,
-        /// Height of each body \[mm\].
-        height_mm: f64,
-        /// Base radius (plane: half-width) \[mm\].
-        base_radius_mm: f64,
-        /// Material of both bodies.
-        material: MaterialSpec,
-        /// Load on the punch's top face.
-        load: PunchLoadSpec,
-        /// The mesh.
-        mesh: MeshSpec,
-    },
+    PunchOnBase(PunchOnBaseSpec),
     /// A rigid indenter on an elastic half-space: a grid of `cells` cells of `cell_mm`,
     /// centred on the origin.
     RigidOnHalfSpace {
@@ -266,10 +312,8 @@ pub enum Problem {
     RigidOnHalfPlane {
         /// The half-plane's material.
         material: MaterialSpec,
-        /// `"plane_stress"` or `"plane_strain"`.
-        analysis: AnalysisSpec,
-        /// Thickness \[mm\].
-        thickness_mm: f64,
+        /// `{ plane_stress = { thickness_mm } }` or `{ plane_strain = { thickness_mm } }`.
+        analysis: Analysis,
         /// Number of strips.
         strips: usize,
         /// Half-width of the contact zone \[mm\].
@@ -427,7 +471,8 @@ pub struct Optimise {
     /// v·p_max (default 1e-8).
     #[serde(default = "split_tolerance")]
     pub tolerance: f64,
-    /// Ω_v as a strip |y| ≤ half-width (the rest of the zone is Ω_nv); default: all of it.
+    /// Ω_v as a region of the contact surface (the rest of the zone is Ω_nv); default: all of
+    /// it (a roller: its centre row).
     #[serde(default)]
     pub omega_v: Option<OmegaVSpec>,
     /// Change the profile along this axis only (0, 1, 2; the roller's eq. 3.3); default: at
@@ -448,12 +493,120 @@ fn split_tolerance() -> f64 {
     1e-8
 }
 
-/// Ω_v of a two-dimensional zone.
-#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct OmegaVSpec {
-    /// Points with |y| below this are Ω_v \[mm\].
-    pub half_width_mm: f64,
+/// Ω_v, the part of the zone where the pressure is prescribed (d = 0, p = v·p_max; §3.1), as
+/// a region of the contact surface; the zone's other points are Ω_nv. A point is placed by its
+/// surface coordinates: its position less its component along its normal (a grid's (x, y); a
+/// finite-element face's or a half-plane's x, or r, with the second coordinate 0).
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum OmegaVSpec {
+    /// The points whose surface coordinate `axis` (0 or 1) lies in [from, to].
+    Strip {
+        /// The coordinate: 0 (x or r) or 1 (y).
+        axis: usize,
+        /// Lower end \[mm\].
+        from_mm: f64,
+        /// Upper end \[mm\].
+        to_mm: f64,
+    },
+    /// The points within `radius_mm` of `centre_mm` on the surface.
+    Disc {
+        /// Centre (x, y) \[mm\].
+        centre_mm: [f64; 2],
+        /// Radius \[mm\].
+        radius_mm: f64,
+    },
+    /// The points whose surface coordinates lie in [from, to] along both axes.
+    Box {
+        /// Lower corner (x, y) \[mm\].
+        from_mm: [f64; 2],
+        /// Upper corner (x, y) \[mm\].
+        to_mm: [f64; 2],
+    },
+}
+
+impl OmegaVSpec {
+    /// Refuses a region that is not one: ends out of order, a radius not positive, an axis
+    /// off the surface, a coordinate not finite.
+    pub fn check(&self) -> Result<()> {
+        let finite = |field: &str, v: f64| {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(Error::invalid(field, v, "must be finite"))
+            }
+        };
+        let ordered = |field: &str, from: f64, to: f64| {
+            finite(field, from)?;
+            finite(field, to)?;
+            if from <= to {
+                Ok(())
+            } else {
+                Err(Error::invalid(
+                    field,
+                    to,
+                    format!("must be at least from_mm = {from}"),
+                ))
+            }
+        };
+        match *self {
+            OmegaVSpec::Strip {
+                axis,
+                from_mm,
+                to_mm,
+            } => {
+                if axis > 1 {
+                    return Err(Error::invalid(
+                        "omega_v.axis",
+                        axis,
+                        "a surface coordinate: 0 (x or r) or 1 (y)",
+                    ));
+                }
+                ordered("omega_v.to_mm", from_mm, to_mm)
+            }
+            OmegaVSpec::Disc {
+                centre_mm,
+                radius_mm,
+            } => {
+                centre_mm
+                    .iter()
+                    .try_for_each(|&c| finite("omega_v.centre_mm", c))?;
+                if radius_mm > 0.0 && radius_mm.is_finite() {
+                    Ok(())
+                } else {
+                    Err(Error::invalid(
+                        "omega_v.radius_mm",
+                        radius_mm,
+                        "must be positive and finite",
+                    ))
+                }
+            }
+            OmegaVSpec::Box { from_mm, to_mm } => {
+                (0..2).try_for_each(|k| ordered("omega_v.to_mm", from_mm[k], to_mm[k]))
+            }
+        }
+    }
+
+    /// Whether a point at `x` with unit normal `normal` lies in the region.
+    pub fn contains(&self, x: [f64; 3], normal: [f64; 3]) -> bool {
+        let along: f64 = (0..3).map(|k| x[k] * normal[k]).sum();
+        let s: [f64; 3] = std::array::from_fn(|k| x[k] - along * normal[k]);
+        let within = |v: f64, from: f64, to: f64| from <= v && v <= to;
+        match *self {
+            OmegaVSpec::Strip {
+                axis,
+                from_mm,
+                to_mm,
+            } => within(s[axis.min(1)], from_mm, to_mm),
+            OmegaVSpec::Disc {
+                centre_mm,
+                radius_mm,
+            } => (s[0] - centre_mm[0]).hypot(s[1] - centre_mm[1]).hypot(s[2]) <= radius_mm,
+            OmegaVSpec::Box { from_mm, to_mm } => {
+                (0..2).all(|k| within(s[k], from_mm[k], to_mm[k]))
+            }
+        }
+    }
 }
 
 /// The optimisation modes.

@@ -17,6 +17,8 @@ const DEFAULT_DEPTH_HALF_WIDTHS: f64 = 2.0;
 
 /// Two positions closer than this fraction of a cell are one section.
 const SAME_SECTION: f64 = 0.5;
+/// Coordinates closer than this \[mm\] are one (round-off).
+const DISTINCT_MM: f64 = 1e-12;
 
 /// Checks the scene's values before anything is solved.
 pub(crate) fn check(spec: &SubsurfaceSpec) -> Result<()> {
@@ -152,7 +154,7 @@ fn spacing(interface: &Interface, axis: usize) -> f64 {
     v.sort_by(f64::total_cmp);
     v.windows(2)
         .map(|w| w[1] - w[0])
-        .filter(|d| *d > 1e-12)
+        .filter(|d| *d > DISTINCT_MM)
         .fold(0.0, |m: f64, d| if m == 0.0 { d } else { m.min(d) })
 }
 

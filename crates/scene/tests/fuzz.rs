@@ -6,12 +6,13 @@
 //! 1. `mutated_scenes`: each bundled scene (`scenes/*.toml`) with leaves replaced by hostile
 //!    numbers and strings, keys deleted or added, whole sections replaced, values nested deeply
 //!    and arrays resized, written back as TOML and as JSON and parsed by [`Scene::parse`] (which
-//!    checks every case: the bodies are built, a finite-element body factorised). A scene that
-//!    parses must expand into cases, whose first and last check again.
+//!    checks every case: a finite-element body by its dimensions and mesh, the other bodies
+//!    built). A scene that parses must expand into cases, whose first and last check again.
 //!
 //!    `generated_scenes`: scenes made from the schema, every value plausible or (one time in
 //!    eight) hostile, so that most get past the parser to the bodies; the tiny ones (a few
-//!    hundred points, few steps, no tuned or robust crown) are run too, every case.
+//!    hundred points, few steps, no tuned or robust crown) are run too, every case, by
+//!    [`Scene::run`] (which builds each distinct problem once).
 //! 2. `arbitrary_text`: bytes, Unicode, token soup, spliced scene lines, deep nesting and huge
 //!    arrays, parsed as TOML and as JSON.
 //! 3. `constructors_*`: the public constructors of the greens, fem, core, optimise and roller
@@ -50,9 +51,12 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{mpsc, Arc};
 use std::time::Duration;
 
-use contopt_core::{ElasticBody, Geometry, Interface, Material, Region, RigidBody};
+use contopt_core::{ElasticBody, Geometry, Interface, Material, RigidBody};
 use contopt_fem::{Analysis, Component, ElementKind, FeBody, FeModel, Mesh, Spacing};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
+use contopt_scene::geometry::{
+    half_space_block, Cylinder, PunchLoad, PunchMesh, PunchOnBase, Support,
+};
 use contopt_scene::{Format, Scene};
 use proptest::prelude::*;
 use proptest::sample::{select, Index};
@@ -62,8 +66,8 @@ use toml::Value;
 // ---------------------------------------------------------------------------------------------
 // Guards: time, memory, stack.
 
-/// The longest one case may take (a scene's parse builds its bodies: the bundled scenes take
-/// well under a second each in the test profile).
+/// The longest one case may take (a tiny scene's run builds its bodies: the bundled scenes
+/// parse in well under a second each in the test profile).
 const CASE_LIMIT: Duration = Duration::from_secs(10);
 
 /// The most this test binary may hold at once \[bytes\]: above a scene's default memory limit
@@ -309,7 +313,7 @@ const SPECIAL_FLOATS: &[f64] = &[
 ];
 
 /// Counts past any sensible mesh or grid, and one large but sensible one (a thousand elements
-/// across a finite-element body is sensible too, but takes 20 s to check: slow, not wrong).
+/// across a finite-element body is sensible too, but takes 20 s to build: slow, not wrong).
 const BIG_COUNTS: &[i64] = &[100, 1_000_000, 1_000_000_000, 4_294_967_296, i64::MAX];
 
 const HOSTILE_STRINGS: &[&str] = &[
@@ -360,6 +364,12 @@ const VARIANTS: &[&str] = &[
     "axisymmetric",
     "plane_stress",
     "plane_strain",
+    "clamped",
+    "axial",
+    "symmetry",
+    "strip",
+    "disc",
+    "box",
     "punch_on_base",
     "rigid_on_half_space",
     "rigid_on_axisymmetric_half_space",
@@ -401,6 +411,13 @@ const DOTTED: &[&str] = &[
     "problem.mesh.elements",
     "problem.mesh.layers",
     "problem.mesh.grading",
+    "problem.punch.radius_mm",
+    "problem.base.height_mm",
+    "problem.base.supports",
+    "problem.base.material.e_mpa",
+    "problem.analysis.plane_stress.thickness_mm",
+    "optimisation.omega_v.radius_mm",
+    "optimisation.omega_v.from_mm",
     "problem.cells",
     "problem.cells.0",
     "problem.rings",
@@ -468,9 +485,13 @@ const KEYS: &[&str] = &[
     "kind",
     "analysis",
     "thickness_mm",
-    "punch_radius_mm",
+    "punch",
+    "base",
+    "supports",
     "height_mm",
-    "base_radius_mm",
+    "centre_mm",
+    "from_mm",
+    "to_mm",
     "material",
     "load",
     "mesh",
@@ -699,7 +720,7 @@ fn optimisation() -> BoxedStrategy<Value> {
         opt(number()),
         opt(count()),
         opt(number()),
-        proptest::option::weighted(0.4, number()),
+        proptest::option::weighted(0.4, omega_v()),
         proptest::option::weighted(0.4, count()),
     )
         .prop_map(|(mode, c, tolh, iterations, tolerance, omega_v, axis)| {
@@ -709,10 +730,7 @@ fn optimisation() -> BoxedStrategy<Value> {
                 ("tolh_mm2", tolh),
                 ("max_iterations", iterations),
                 ("tolerance", tolerance),
-                (
-                    "omega_v",
-                    omega_v.map(|h| table(vec![("half_width_mm", Some(h))])),
-                ),
+                ("omega_v", omega_v),
                 ("profile_axis", axis),
             ])
         })
@@ -788,14 +806,20 @@ fn named_cases() -> BoxedStrategy<Value> {
 
 /// A section or value of the schema, with hostile leaves, and where it goes.
 fn section() -> BoxedStrategy<(Vec<&'static str>, Value)> {
-    let at = |path: &'static [&'static str], s: BoxedStrategy<Value>| {
-        s.prop_map(move |v| (path.to_vec(), v)).boxed()
-    };
+    proptest::strategy::Union::new(problem_sections().into_iter().chain(other_sections())).boxed()
+}
+
+/// A section of the schema at `path`.
+fn at(
+    path: &'static [&'static str],
+    s: BoxedStrategy<Value>,
+) -> BoxedStrategy<(Vec<&'static str>, Value)> {
+    s.prop_map(move |v| (path.to_vec(), v)).boxed()
+}
+
+/// The parts of a `[problem]`, with hostile leaves.
+fn problem_sections() -> Vec<BoxedStrategy<(Vec<&'static str>, Value)>> {
     const PROBLEM_NUMBERS: &[&str] = &[
-        "thickness_mm",
-        "punch_radius_mm",
-        "height_mm",
-        "base_radius_mm",
         "rings",
         "radius_mm",
         "strips",
@@ -836,22 +860,13 @@ fn section() -> BoxedStrategy<(Vec<&'static str>, Value)> {
     let load = (select(LOADS), number())
         .prop_map(|(k, v)| table(vec![(k, Some(v))]))
         .boxed();
-    let envelope = (numbers(6), numbers(6))
-        .prop_map(|(f, t)| table(vec![("load_factors", Some(f)), ("tilts_arcmin", Some(t))]))
-        .boxed();
-    let sweep = (
-        prop_oneof![3 => select(DOTTED).prop_map(text), 1 => string()],
-        numbers(8),
-    )
-        .prop_map(|(key, values)| table(vec![("key", Some(key)), ("values", Some(values))]))
-        .boxed();
     let cells = proptest::collection::vec(count(), 0..4)
         .prop_map(Value::Array)
         .boxed();
     let problem_number = (select(PROBLEM_NUMBERS), prop_oneof![count(), number()])
         .prop_map(|(k, v)| (vec!["problem", k], v))
         .boxed();
-    prop_oneof![
+    vec![
         at(&["problem", "profile"], profile()),
         at(&["problem", "mesh"], mesh),
         at(&["problem", "cells"], cells),
@@ -862,11 +877,96 @@ fn section() -> BoxedStrategy<(Vec<&'static str>, Value)> {
         at(&["problem", "roller"], material()),
         at(&["problem", "raceway"], material()),
         at(&["problem", "kind"], kind_name(VARIANTS)),
-        at(&["problem", "analysis"], kind_name(VARIANTS)),
+        at(&["problem", "analysis"], analysis()),
+        at(&["problem", "punch"], body(false)),
+        at(&["problem", "base"], body(true)),
+        at(&["problem", "base", "supports"], supports()),
         problem_number,
+    ]
+}
+
+/// A finite-element analysis: a name, or a plane analysis with its thickness.
+fn analysis() -> BoxedStrategy<Value> {
+    prop_oneof![
+        kind_name(VARIANTS),
+        (kind_name(&["plane_stress", "plane_strain"]), opt(number())).prop_map(
+            |(name, thickness)| {
+                let inner = table(vec![("thickness_mm", thickness)]);
+                match name {
+                    Value::String(name) => Value::Table([(name, inner)].into_iter().collect()),
+                    other => other,
+                }
+            }
+        ),
+    ]
+    .boxed()
+}
+
+/// A punch's or (with `supports`) a base's dimensions, material and supports.
+fn body(supported: bool) -> BoxedStrategy<Value> {
+    (
+        opt(number()),
+        opt(number()),
+        proptest::option::weighted(0.3, material()),
+        proptest::option::weighted(if supported { 0.8 } else { 0.1 }, supports()),
+    )
+        .prop_map(|(radius, height, material, supports)| {
+            table(vec![
+                ("radius_mm", radius),
+                ("height_mm", height),
+                ("material", material),
+                ("supports", supports),
+            ])
+        })
+        .boxed()
+}
+
+/// A base's supports: names, some not supports, repeated or missing.
+fn supports() -> BoxedStrategy<Value> {
+    proptest::collection::vec(kind_name(&["clamped", "axial", "symmetry"]), 0..4)
+        .prop_map(Value::Array)
+        .boxed()
+}
+
+/// Ω_v: a strip, a disc or a box, with hostile numbers.
+fn omega_v() -> BoxedStrategy<Value> {
+    (
+        kind_name(&["strip", "disc", "box"]),
+        proptest::option::weighted(0.4, count()),
+        proptest::option::weighted(0.5, prop_oneof![number(), numbers(3)]),
+        proptest::option::weighted(0.5, prop_oneof![number(), numbers(3)]),
+        proptest::option::weighted(0.3, numbers(3)),
+        proptest::option::weighted(0.3, number()),
+    )
+        .prop_map(|(shape, axis, from, to, centre, radius)| {
+            table(vec![
+                ("shape", Some(shape)),
+                ("axis", axis),
+                ("from_mm", from),
+                ("to_mm", to),
+                ("centre_mm", centre),
+                ("radius_mm", radius),
+            ])
+        })
+        .boxed()
+}
+
+/// The sections other than the problem's.
+fn other_sections() -> Vec<BoxedStrategy<(Vec<&'static str>, Value)>> {
+    let envelope = (numbers(6), numbers(6))
+        .prop_map(|(f, t)| table(vec![("load_factors", Some(f)), ("tilts_arcmin", Some(t))]))
+        .boxed();
+    let sweep = (
+        prop_oneof![3 => select(DOTTED).prop_map(text), 1 => string()],
+        numbers(8),
+    )
+        .prop_map(|(key, values)| table(vec![("key", Some(key)), ("values", Some(values))]))
+        .boxed();
+    vec![
         at(&["solver"], solver()),
         at(&["optimisation"], optimisation()),
         at(&["optimisation", "controller"], controller()),
+        at(&["optimisation", "omega_v"], omega_v()),
         at(&["output"], subsurface()),
         at(&["envelope"], envelope),
         at(&["sweep"], sweep),
@@ -875,7 +975,6 @@ fn section() -> BoxedStrategy<(Vec<&'static str>, Value)> {
         at(&["memory_limit_mb"], number()),
         at(&["name"], string()),
     ]
-    .boxed()
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -980,6 +1079,40 @@ fn node_mut<'a>(root: &'a mut Value, path: &[Step]) -> Option<&'a mut Value> {
     })
 }
 
+/// Puts `value` at `path` of `root`, making the tables on the way (replacing what is not one).
+fn set_section(root: &mut Value, path: &[&str], value: Value) {
+    let mut node = root;
+    for (k, key) in path.iter().enumerate() {
+        if !matches!(node, Value::Table(_)) {
+            *node = Value::Table(Default::default());
+        }
+        let Value::Table(t) = node else {
+            unreachable!()
+        };
+        let last = k + 1 == path.len();
+        node = t.entry(key.to_string()).or_insert_with(|| {
+            if last {
+                Value::Boolean(false)
+            } else {
+                Value::Table(Default::default())
+            }
+        });
+    }
+    *node = value;
+}
+
+/// `v` wrapped in `depth` arrays or tables.
+fn nested(mut v: Value, depth: usize, array: bool) -> Value {
+    for _ in 0..depth {
+        v = if array {
+            Value::Array(vec![v])
+        } else {
+            Value::Table([("a".to_string(), v)].into_iter().collect())
+        };
+    }
+    v
+}
+
 /// Applies `m` to `root`; a mutation with no node to act on does nothing.
 fn apply(root: &mut Value, m: &Mutation) {
     let mut all = vec![(vec![], root.clone())];
@@ -1029,38 +1162,11 @@ fn apply(root: &mut Value, m: &Mutation) {
                 t.insert(key.to_string(), value.clone());
             }
         }
-        Mutation::Set { path, value } => {
-            let mut node = root;
-            for (k, key) in path.iter().enumerate() {
-                if !matches!(node, Value::Table(_)) {
-                    *node = Value::Table(Default::default());
-                }
-                let Value::Table(t) = node else {
-                    unreachable!()
-                };
-                let last = k + 1 == path.len();
-                node = t.entry(key.to_string()).or_insert_with(|| {
-                    if last {
-                        Value::Boolean(false)
-                    } else {
-                        Value::Table(Default::default())
-                    }
-                });
-            }
-            *node = value.clone();
-        }
+        Mutation::Set { path, value } => set_section(root, path, value.clone()),
         Mutation::Nest { at, depth, array } => {
             let path = pick(at, &|p, _| not_root(p));
             if let Some(node) = path.and_then(|p| node_mut(root, &p)) {
-                let mut v = node.clone();
-                for _ in 0..*depth {
-                    v = if *array {
-                        Value::Array(vec![v])
-                    } else {
-                        Value::Table([("a".to_string(), v)].into_iter().collect())
-                    };
-                }
-                *node = v;
+                *node = nested(node.clone(), *depth, *array);
             }
         }
         Mutation::Resize { at, len, item } => {
@@ -1141,8 +1247,8 @@ fn mutated_scene() -> impl Strategy<Value = MutatedScene> {
 }
 
 /// Parses `text`: `Ok` or `Err`, within the case limit; a scene that parses expands into cases,
-/// and its first and last case check again (each check builds the bodies: all of them would
-/// rebuild a sweep's shared bodies once per value).
+/// and its first and last case check again (each check builds the bodies that factorise
+/// nothing: all of them would rebuild a sweep's shared bodies once per value).
 fn parse(text: String, format: Format) {
     let text: Arc<str> = text.into();
     let input = text.clone();
@@ -1230,15 +1336,60 @@ fn rigid_load() -> BoxedStrategy<Value> {
 }
 
 fn plausible_problem() -> BoxedStrategy<Value> {
-    let punch = (
-        one_of(&["axisymmetric", "plane_stress", "plane_strain"]),
-        maybe(0.5, real_in(1.0, 20.0)),
-        (
-            real_in(1.0, 100.0),
-            real_in(1.0, 100.0),
-            real_in(2.0, 200.0),
-        ),
-        plausible_material(),
+    prop_oneof![
+        plausible_punch_on_base(),
+        plausible_half_space(),
+        plausible_rings(),
+        plausible_strips(),
+        plausible_roller(),
+        plausible_block(),
+    ]
+    .boxed()
+}
+
+/// A plane analysis with a thickness, or (one time in eight) a hostile value.
+fn plausible_analysis(names: &'static [&'static str]) -> BoxedStrategy<Value> {
+    (one_of(names), real_in(1.0, 20.0))
+        .prop_map(|(name, thickness)| match name {
+            Value::String(name) if name != "axisymmetric" => {
+                let inner = table(vec![("thickness_mm", Some(thickness))]);
+                Value::Table([(name, inner)].into_iter().collect())
+            }
+            other => other,
+        })
+        .boxed()
+}
+
+/// A punch's or a base's radius, height and (sometimes) its own material.
+fn plausible_body(radius: (f64, f64)) -> BoxedStrategy<Value> {
+    (
+        real_in(radius.0, radius.1),
+        real_in(1.0, 100.0),
+        maybe(0.3, plausible_material()),
+    )
+        .prop_map(|(r, h, m)| {
+            table(vec![
+                ("radius_mm", Some(r)),
+                ("height_mm", Some(h)),
+                ("material", m),
+            ])
+        })
+        .boxed()
+}
+
+fn plausible_punch_on_base() -> BoxedStrategy<Value> {
+    const SUPPORTS: &[&[&str]] = &[
+        &["clamped"],
+        &["axial"],
+        &["axial", "symmetry"],
+        &["clamped", "symmetry"],
+        &[],
+    ];
+    (
+        plausible_analysis(&["axisymmetric", "plane_stress", "plane_strain"]),
+        maybe(0.8, plausible_material()),
+        (plausible_body((1.0, 100.0)), plausible_body((2.0, 200.0))),
+        select(SUPPORTS),
         prop_oneof![
             real_in(1.0, 500.0).prop_map(|p| table(vec![("pressure_mpa", Some(p))])),
             real_in(-0.1, -1e-4).prop_map(|w| table(vec![("displacement_mm", Some(w))])),
@@ -1250,15 +1401,17 @@ fn plausible_problem() -> BoxedStrategy<Value> {
             maybe(0.3, one_of(&["q8", "q9"])),
         ),
     )
-        .prop_map(|(analysis, thickness, (r, h, base), m, load, mesh)| {
+        .prop_map(|(analysis, m, (punch, mut base), supports, load, mesh)| {
+            if let Value::Table(t) = &mut base {
+                let names = supports.iter().map(|s| text(s)).collect();
+                t.insert("supports".into(), Value::Array(names));
+            }
             table(vec![
                 ("kind", Some(text("punch_on_base"))),
                 ("analysis", Some(analysis)),
-                ("thickness_mm", thickness),
-                ("punch_radius_mm", Some(r)),
-                ("height_mm", Some(h)),
-                ("base_radius_mm", Some(base)),
-                ("material", Some(m)),
+                ("material", m),
+                ("punch", Some(punch)),
+                ("base", Some(base)),
                 ("load", Some(load)),
                 (
                     "mesh",
@@ -1270,8 +1423,12 @@ fn plausible_problem() -> BoxedStrategy<Value> {
                     ])),
                 ),
             ])
-        });
-    let half_space = (
+        })
+        .boxed()
+}
+
+fn plausible_half_space() -> BoxedStrategy<Value> {
+    (
         plausible_material(),
         (count_in(1, 32), count_in(1, 32)),
         (real_in(1e-3, 1.0), real_in(1e-3, 1.0)),
@@ -1287,8 +1444,12 @@ fn plausible_problem() -> BoxedStrategy<Value> {
                 ("indenter", Some(indenter)),
                 ("load", Some(load)),
             ])
-        });
-    let rings = (
+        })
+        .boxed()
+}
+
+fn plausible_rings() -> BoxedStrategy<Value> {
+    (
         plausible_material(),
         count_in(1, 60),
         real_in(0.1, 20.0),
@@ -1304,32 +1465,36 @@ fn plausible_problem() -> BoxedStrategy<Value> {
                 ("indenter", Some(indenter)),
                 ("load", Some(load)),
             ])
-        });
-    let strips = (
+        })
+        .boxed()
+}
+
+fn plausible_strips() -> BoxedStrategy<Value> {
+    (
         plausible_material(),
-        one_of(&["plane_stress", "plane_strain"]),
-        real_in(0.1, 20.0),
+        plausible_analysis(&["plane_stress", "plane_strain"]),
         count_in(1, 60),
         real_in(0.1, 20.0),
         maybe(0.3, real_in(1.0, 1000.0)),
         plausible_indenter(),
         rigid_load(),
     )
-        .prop_map(
-            |(m, analysis, thickness, strips, half_width, datum, indenter, load)| {
-                table(vec![
-                    ("kind", Some(text("rigid_on_half_plane"))),
-                    ("material", Some(m)),
-                    ("analysis", Some(analysis)),
-                    ("thickness_mm", Some(thickness)),
-                    ("strips", Some(strips)),
-                    ("half_width_mm", Some(half_width)),
-                    ("datum_mm", datum),
-                    ("indenter", Some(indenter)),
-                    ("load", Some(load)),
-                ])
-            },
-        );
+        .prop_map(|(m, analysis, strips, half_width, datum, indenter, load)| {
+            table(vec![
+                ("kind", Some(text("rigid_on_half_plane"))),
+                ("material", Some(m)),
+                ("analysis", Some(analysis)),
+                ("strips", Some(strips)),
+                ("half_width_mm", Some(half_width)),
+                ("datum_mm", datum),
+                ("indenter", Some(indenter)),
+                ("load", Some(load)),
+            ])
+        })
+        .boxed()
+}
+
+fn plausible_roller() -> BoxedStrategy<Value> {
     const PROFILES: &[&str] = &[
         "straight",
         "iso",
@@ -1356,7 +1521,7 @@ fn plausible_problem() -> BoxedStrategy<Value> {
                 ("file", (name == "table").then_some(file)),
             ])
         });
-    let roller = (
+    (
         (real_in(1.0, 50.0), real_in(1.0, 50.0)),
         maybe(0.3, real_in(-200.0, 200.0)),
         (plausible_material(), plausible_material()),
@@ -1388,8 +1553,12 @@ fn plausible_problem() -> BoxedStrategy<Value> {
                     ("profile", Some(profile)),
                 ])
             },
-        );
-    let block = (
+        )
+        .boxed()
+}
+
+fn plausible_block() -> BoxedStrategy<Value> {
+    (
         plausible_material(),
         real_in(0.5, 20.0),
         count_in(1, 6),
@@ -1407,8 +1576,8 @@ fn plausible_problem() -> BoxedStrategy<Value> {
                 ("indenter", Some(indenter)),
                 ("load", Some(load)),
             ])
-        });
-    prop_oneof![punch, half_space, rings, strips, roller, block].boxed()
+        })
+        .boxed()
 }
 
 fn plausible_solver() -> BoxedStrategy<Value> {
@@ -1486,7 +1655,7 @@ fn plausible_optimisation() -> BoxedStrategy<Value> {
         maybe(0.3, real_in(1e-9, 1e-3)),
         maybe(0.7, count_in(1, 20)),
         maybe(0.3, real_in(1e-10, 1e-3)),
-        maybe(0.3, real_in(0.0, 10.0)),
+        maybe(0.3, plausible_omega_v()),
         maybe(0.3, count_in(0, 2)),
     )
         .prop_map(|(mode, c, tolh, iterations, tolerance, omega_v, axis)| {
@@ -1496,14 +1665,39 @@ fn plausible_optimisation() -> BoxedStrategy<Value> {
                 ("tolh_mm2", tolh),
                 ("max_iterations", iterations),
                 ("tolerance", tolerance),
-                (
-                    "omega_v",
-                    omega_v.map(|h| table(vec![("half_width_mm", Some(h))])),
-                ),
+                ("omega_v", omega_v),
                 ("profile_axis", axis),
             ])
         })
         .boxed()
+}
+
+/// Ω_v: a strip along x or y, a disc about the origin or a box around it.
+fn plausible_omega_v() -> BoxedStrategy<Value> {
+    let pair = |v: Value| Value::Array(vec![v.clone(), v]);
+    let negative = |v: &Value| match v {
+        Value::Float(x) => Value::Float(-x),
+        other => other.clone(),
+    };
+    prop_oneof![
+        (count_in(0, 1), real_in(0.0, 10.0)).prop_map(move |(axis, h)| table(vec![
+            ("shape", Some(text("strip"))),
+            ("axis", Some(axis)),
+            ("from_mm", Some(negative(&h))),
+            ("to_mm", Some(h)),
+        ])),
+        real_in(0.0, 20.0).prop_map(move |r| table(vec![
+            ("shape", Some(text("disc"))),
+            ("centre_mm", Some(pair(Value::Float(0.0)))),
+            ("radius_mm", Some(r)),
+        ])),
+        real_in(0.0, 10.0).prop_map(move |h| table(vec![
+            ("shape", Some(text("box"))),
+            ("from_mm", Some(pair(negative(&h)))),
+            ("to_mm", Some(pair(h))),
+        ])),
+    ]
+    .boxed()
 }
 
 fn plausible_subsurface() -> BoxedStrategy<Value> {
@@ -1604,7 +1798,10 @@ fn generated_scene() -> impl Strategy<Value = GeneratedScene> {
         maybe(0.4, plausible_optimisation()),
         prop_oneof![
             6 => Just(None),
-            1 => (select(DOTTED), proptest::collection::vec(real_in(0.0, 50.0), 1..4))
+            1 => (
+                select(DOTTED),
+                proptest::collection::vec(prop_oneof![real_in(0.0, 50.0), count_in(1, 8)], 1..4),
+            )
                 .prop_map(|(key, values)| Some(table(vec![
                     ("key", Some(text(key))),
                     ("values", Some(Value::Array(values))),
@@ -1656,14 +1853,10 @@ fn parse_and_run(text: String, format: Format, run: bool) {
         let Ok(scene) = Scene::parse(&text, format, Path::new("fuzz.toml")) else {
             return;
         };
-        let cases = scene
-            .cases()
-            .expect("a scene that parsed expands into cases");
+        let run_all = scene.run().expect("a scene that parsed expands into cases");
         if run {
-            for case in &cases {
-                if let Ok(report) = case.run() {
-                    let _ = serde_json::to_string(&report);
-                }
+            for report in run_all.flatten() {
+                let _ = serde_json::to_string(&report);
             }
         }
     })
@@ -2124,7 +2317,7 @@ proptest! {
             move || {
                 use contopt_contact::InterfaceProblem;
                 use contopt_core::GapShape;
-                use contopt_optimise::{Constant, Optimisation};
+                use contopt_optimise::{Constant, Optimisation, Region};
                 let geometry = match geometry {
                     0 => Geometry::Axisymmetric,
                     1 => Geometry::Plane { thickness: 1.0 },
@@ -2245,13 +2438,17 @@ proptest! {
         );
     }
 
-    /// `paper::bodies_with` and `block::half_space_block` (with `FeBody::new`).
+    /// `geometry::PunchOnBase::bodies` and `geometry::half_space_block` (with `FeBody::new`).
     #[test]
     fn constructors_fe_bodies(
-        geometry in (real(), real(), real()),
+        geometry in (real(), real(), real(), real()),
         m in material_args(),
         analysis in 0..3usize,
         thickness in real(),
+        supports in proptest::collection::vec(
+            select(&[Support::Clamped, Support::Axial, Support::Symmetry][..]),
+            0..4,
+        ),
         pressure in any::<bool>(),
         load in real(),
         q9 in any::<bool>(),
@@ -2261,36 +2458,35 @@ proptest! {
         block in (real(), size(), real()),
     ) {
         construct(
-            format!("paper::bodies_with(radius/height/base {geometry:?}, material {m:?}, analysis {analysis} thickness {thickness:?}, \
+            format!("PunchOnBase::bodies(punch radius/height, base radius/height {geometry:?}, material {m:?}, \
+                     analysis {analysis} thickness {thickness:?}, supports {supports:?}, \
                      {} {load:?}, q9 {q9}, elements {elements}, grading {grading:?}, layers {layers}); \
-                     block::half_space_block(zone {:?}, elements {}, size {:?})",
+                     half_space_block(zone {:?}, elements {}, size {:?})",
                 if pressure { "pressure" } else { "displacement" }, block.0, block.1, block.2),
             move || {
-                use contopt_fem::paper::{bodies_with, PaperMesh, PunchGeometry, PunchLoad};
                 let material = material_or_steel(m);
                 let analysis = match analysis {
                     0 => Analysis::Axisymmetric,
                     1 => Analysis::PlaneStress { thickness },
                     _ => Analysis::PlaneStrain { thickness },
                 };
-                let geometry = PunchGeometry {
-                    punch_radius: geometry.0,
-                    height: geometry.1,
-                    base_radius: geometry.2,
-                    punch: material,
-                    base: material,
+                let cylinder = |radius, height| Cylinder { radius, height, material };
+                let geometry = PunchOnBase {
+                    analysis,
+                    punch: cylinder(geometry.0, geometry.1),
+                    base: cylinder(geometry.2, geometry.3),
+                    supports,
+                    load: if pressure { PunchLoad::Pressure(load) } else { PunchLoad::Displacement(load) },
+                    mesh: PunchMesh {
+                        element: if q9 { ElementKind::Q9 } else { ElementKind::Q8 },
+                        elements,
+                        grading,
+                        layers: Some(layers),
+                    },
                 };
-                let load = if pressure { PunchLoad::Pressure(load) } else { PunchLoad::Displacement(load) };
-                let mesh = PaperMesh {
-                    kind: if q9 { ElementKind::Q9 } else { ElementKind::Q8 },
-                    contact_elements: elements,
-                    grading,
-                    layers,
-                };
-                let _ = bodies_with(&geometry, analysis, load, &mesh);
-                if let Ok((model, contact)) =
-                    contopt_fem::block::half_space_block(block.0, block.1, block.2, material)
-                {
+                let _ = geometry.check();
+                let _ = geometry.bodies();
+                if let Ok((model, contact)) = half_space_block(block.0, block.1, block.2, material) {
                     let _ = FeBody::new("block", model, &contact);
                 }
             },
