@@ -1,6 +1,6 @@
 //! A uniform pressure p on r < a of a large axisymmetric block, against the elastic
 //! half-space (Timoshenko & Goodier §138): the surface deflection profile relative to the
-//! centre, w(0) − w(r), in a CSV and an SVG plot under `results/circular_load/`.
+//! centre, w(0) − w(r), in a CSV and a chart (SVG and PNG) under `results/circular_load/`.
 //!
 //! `cargo run --release --example circular_load`
 
@@ -10,6 +10,7 @@ use std::fs;
 
 use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
 use contopt::greens::elliptic;
+use contopt::report::LineChart;
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
@@ -67,20 +68,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = "results/circular_load";
     fs::create_dir_all(dir)?;
     fs::write(format!("{dir}/surface.csv"), csv)?;
-    fs::write(
-        format!("{dir}/surface.svg"),
-        contopt::plot::line_plot(
-            "Surface under p on r < a: w(0) − w(r)",
-            "r [mm]",
-            "µm",
-            &[("finite elements", &fe_curve), ("half-space", &exact_curve)],
-        ),
-    )?;
+    let chart = LineChart::new(
+        "Surface under p on r < a: w(0) − w(r)",
+        "r [mm]",
+        "w(0) − w(r) [µm]",
+    )
+    .line("finite elements", &fe_curve)
+    .reference("half-space (Timoshenko & Goodier §138)", &exact_curve);
+    for (name, bytes) in chart.draw()?.files("surface")? {
+        fs::write(format!("{dir}/{name}"), bytes)?;
+    }
     let summary = format!(
         "uniform pressure {P} MPa on r < {A} mm of a {size} x {size} mm axisymmetric block (E = {E} MPa, nu = {NU})\n\
          {} unknowns, solved in {:.1} ms\n\
          w(0) - w(a): finite elements {fe_edge:.4} um, half-space {exact_edge:.4} um ({:+.2} %)\n\
-         wrote {dir}/surface.csv and {dir}/surface.svg\n",
+         wrote {dir}/surface.csv and {dir}/surface.{{svg,png}}\n",
         2 * model.mesh().nodes().len(),
         elapsed.as_secs_f64() * 1e3,
         100.0 * (fe_edge / exact_edge - 1.0)

@@ -1,7 +1,8 @@
 //! The bearing roller at production size: the crown optimised by the load split with the
 //! matrix-free Polonsky–Keer solver, one core, each case in its own process so that its peak
 //! memory is its own. Prints the tables of the book's performance section and writes
-//! `results/roller_scaling/{scaling.csv,scaling.svg}`.
+//! `results/roller_scaling/{scaling.csv,scaling.svg,scaling.png}` (`chart` redraws the chart
+//! from that CSV without solving).
 //!
 //! The roller: D = 10 mm, l = 10 mm, Q = 5446 N, steel on steel as a rigid cylinder (R = 5 mm)
 //! on one half-space of the pair's modulus (E = 1.05·10⁵ MPa, ν = 0.3); the C¹ controller along
@@ -18,7 +19,8 @@ use std::time::Instant;
 use contopt::contact::{ActiveSet, ContactSolver, InterfaceProblem, PolonskyKeer};
 use contopt::greens::HalfSpace;
 use contopt::optimise::{Constant, Controller, Optimisation, Optimum, Profile};
-use contopt::{plot, ElasticBody, GapShape, Material, Region, RigidBody};
+use contopt::report::{log_log, Panel};
+use contopt::{ElasticBody, GapShape, Material, Region, RigidBody};
 
 const E: f64 = 1.05e5;
 const NU: f64 = 0.3;
@@ -329,7 +331,43 @@ fn straight(grids: &[(usize, usize)]) {
     }
 }
 
-/// The solve against the number of points (L1 = 3 mm): the CSV and the log-log plot.
+/// The chart of run time against points (from the scaling's rows): `dir/scaling.{svg,png}`.
+fn chart(points: &[(f64, f64)], dir: &std::path::Path) -> std::io::Result<()> {
+    let Some(&(n0, t0)) = points.first() else {
+        return Ok(());
+    };
+    let linear: Vec<(f64, f64)> = points.iter().map(|&(n, _)| (n, t0 * n / n0)).collect();
+    let series: [(&str, &[(f64, f64)]); 2] = [
+        ("load split, Polonsky-Keer", points),
+        ("slope 1 (time ∝ points)", &linear),
+    ];
+    let figure = log_log(
+        "Optimised roller crown: run time against grid size",
+        &[Panel {
+            title: "L1 = 3 mm, one thread",
+            x_label: "interface points",
+            y_label: "run time [s]",
+            series: &series,
+        }],
+    )?;
+    for (name, bytes) in figure.files("scaling")? {
+        std::fs::write(dir.join(name), bytes)?;
+    }
+    Ok(())
+}
+
+/// (points, seconds) of each row of a `scaling.csv` this example wrote.
+fn read_scaling(csv: &str) -> Vec<(f64, f64)> {
+    csv.lines()
+        .skip(1)
+        .filter_map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            Some((fields.get(2)?.parse().ok()?, fields.get(4)?.parse().ok()?))
+        })
+        .collect()
+}
+
+/// The solve against the number of points (L1 = 3 mm): the CSV and the log-log chart.
 fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
     println!("\n## Scaling (L1 = 3 mm)\n");
     println!("| grid | points | solves | time s | time per solve ms | peak MB |");
@@ -350,26 +388,25 @@ fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
             "{nx},{ny},{n},{},{},{},{}\n",
             r.solves, r.seconds, r.peak_mb, r.p_max
         ));
-        points.push(((n as f64).log10(), r.seconds.log10()));
+        points.push((n as f64, r.seconds));
     }
     let dir = std::path::Path::new("results/roller_scaling");
     std::fs::create_dir_all(dir)?;
     std::fs::write(dir.join("scaling.csv"), csv)?;
-    let (n0, t0) = points[0];
-    let linear: Vec<(f64, f64)> = points.iter().map(|&(n, _)| (n, t0 + (n - n0))).collect();
-    let svg = plot::line_plot(
-        "Optimised roller crown: run time against grid size (log-log)",
-        "log10 (interface points)",
-        "log10 (run time / s)",
-        &[("load split, Polonsky-Keer", &points), ("slope 1", &linear)],
-    );
-    std::fs::write(dir.join("scaling.svg"), svg)?;
-    println!("\nwritten: results/roller_scaling/{{scaling.csv,scaling.svg}}");
+    chart(&points, dir)?;
+    println!("\nwritten: results/roller_scaling/{{scaling.csv,scaling.svg,scaling.png}}");
     Ok(())
 }
 
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("chart") {
+        let dir = std::path::Path::new("results/roller_scaling");
+        let rows = read_scaling(&std::fs::read_to_string(dir.join("scaling.csv"))?);
+        chart(&rows, dir)?;
+        println!("written: results/roller_scaling/scaling.{{svg,png}} from scaling.csv");
+        return Ok(());
+    }
     if args.first().map(String::as_str) == Some("case") {
         let num = |k: usize| args[k].parse::<f64>().expect("case NX NY L1");
         case(num(1) as usize, num(2) as usize, num(3));

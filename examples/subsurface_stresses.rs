@@ -1,6 +1,7 @@
 //! Stresses below a half-space grid: accuracy against Hertz's closed forms on the axis, and
 //! run time at the roller's production size. Prints the tables of the book's "Below the
-//! surface" section.
+//! surface" section and charts the finest grids' stresses along the axis against the closed
+//! forms, `results/subsurface_stresses/axis_{line,sphere}.{svg,png}`.
 //!
 //! `cargo run --release --example subsurface_stresses` (or `-- speed N` for the run-time
 //! table alone at N depths, to compare peak memory across depth counts).
@@ -8,6 +9,7 @@
 use std::time::Instant;
 
 use contopt::greens::HalfSpace;
+use contopt::report::LineChart;
 use contopt::{
     ElasticBody, Material, Section, SectionAxis, StressTensor, Subsurface, SubsurfaceRequest,
 };
@@ -61,6 +63,35 @@ fn axis_peak(sub: &Subsurface, criterion: fn(&StressTensor) -> f64) -> (f64, f64
     (0..s.depths.len())
         .map(|k| (criterion(s.at(k, centre)), s.depths[k]))
         .fold((f64::MIN, 0.0), |m, v| if v.0 > m.0 { v } else { m })
+}
+
+/// The chart of the criteria along the axis of a computed field against the closed form
+/// `exact` (p₀ = 1, depths in b or a): `results/subsurface_stresses/axis_<name>.{svg,png}`.
+fn axis_chart(name: &str, sub: &Subsurface, exact: fn(f64) -> StressTensor) -> std::io::Result<()> {
+    let s = &sub.sections[0];
+    let centre = s.positions.len() / 2;
+    let title = format!("Hertz {name} contact: stresses below the axis, ν = {NU}");
+    let depth = if name == "line" {
+        "depth z / b"
+    } else {
+        "depth z / a"
+    };
+    let mut chart = LineChart::new(&title, depth, "stress / p₀");
+    for (criterion, f) in CRITERIA {
+        let computed: Vec<(f64, f64)> = (0..s.depths.len())
+            .map(|k| (s.depths[k], f(s.at(k, centre))))
+            .collect();
+        let closed: Vec<(f64, f64)> = s.depths.iter().map(|&z| (z, f(&exact(z)))).collect();
+        chart = chart
+            .line(&format!("{criterion}, grid"), &computed)
+            .reference(&format!("{criterion}, closed form"), &closed);
+    }
+    let dir = std::path::Path::new("results/subsurface_stresses");
+    std::fs::create_dir_all(dir)?;
+    for (file, bytes) in chart.draw()?.files(&format!("axis_{name}"))? {
+        std::fs::write(dir.join(file), bytes)?;
+    }
+    Ok(())
 }
 
 /// McEwen's line-contact stresses on the axis (p₀ = b = 1), plane strain.
@@ -128,6 +159,9 @@ fn validation() {
             let start = Instant::now();
             let sub = body.stresses_below(&p, &request).expect("a valid request");
             let time = start.elapsed().as_secs_f64();
+            if per == 64 {
+                axis_chart(name, &sub, exact).expect("results/subsurface_stresses is writable");
+            }
             for (criterion, f) in CRITERIA {
                 let (value, depth) = axis_peak(&sub, f);
                 let (want, want_depth) = profile_peak(&fine, exact, f);

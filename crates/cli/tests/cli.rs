@@ -40,8 +40,9 @@ fn run_json_into(scene: &std::ffi::OsStr, out: &std::path::Path) -> Value {
 fn run_json(scene: &str) -> Value {
     let out = scratch(scene);
     let report = run_json_into(scene.as_ref(), &out);
-    assert!(out.join(scene).join("result.json").exists());
-    assert!(out.join(scene).join("p.svg").exists());
+    for file in ["result.json", "interface.csv", "p.svg", "p.png"] {
+        assert!(out.join(scene).join(file).exists(), "{file}");
+    }
     report
 }
 
@@ -77,6 +78,54 @@ fn hertz_scene_matches_hertz() {
     assert_eq!(csv.lines().count(), 1 + 2 * 64 * 60);
     let map = std::fs::read_to_string(out.join("mises_1_1.svg")).unwrap();
     assert!(map.contains("depth below the surface [mm]") && !map.contains("NaN"));
+    assert!(out.join("mises_1_1.png").exists() && out.join("p_map_1.png").exists());
+    // The closed form beside the computed pressure, dashed in the chart.
+    let reference = case["reference"]["label"].as_str().unwrap();
+    assert!(reference.starts_with("Hertz: p₀ = 4538 MPa"), "{reference}");
+    let chart = std::fs::read_to_string(out.join("p.svg")).unwrap();
+    assert!(
+        chart.contains(reference),
+        "the legend names the closed form"
+    );
+}
+
+/// `--quiet` prints nothing, on stdout or stderr, and writes the files; without it the table
+/// names the case.
+#[test]
+fn quiet_prints_nothing_and_writes_the_files() {
+    let out = scratch("quiet");
+    let quiet = contopt()
+        .args(["run", "flat-punch", "--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        quiet.status.success(),
+        "{}",
+        String::from_utf8_lossy(&quiet.stderr)
+    );
+    assert!(quiet.stdout.is_empty() && quiet.stderr.is_empty());
+    let report: Value =
+        serde_json::from_slice(&std::fs::read(out.join("flat-punch/result.json")).unwrap())
+            .unwrap();
+    let label = report["cases"][0]["reference"]["label"].as_str().unwrap();
+    assert!(label.contains("p(0) = 50.0 MPa"), "{label}");
+    for file in ["p.svg", "p.png", "interface.csv"] {
+        assert!(out.join("flat-punch").join(file).exists(), "{file}");
+    }
+    let loud = contopt()
+        .args(["run", "flat-punch", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let table = String::from_utf8(loud.stdout).unwrap();
+    assert!(
+        table.starts_with("case ") && table.contains("\nflat-punch "),
+        "{table}"
+    );
+    assert!(table.contains("results: "), "{table}");
+    let help = contopt().args(["run", "--help"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&help.stdout).contains("--quiet"));
 }
 
 /// Stresses below an axisymmetric half-space and a half-plane through a scene: Hertz's sphere
@@ -100,8 +149,8 @@ fn subsurface_of_rings_and_strips() {
     let plane = scene_file(
         "strips",
         "name = \"strips\"\n[problem]\nkind = \"rigid_on_half_plane\"\n\
-         material = { e_mpa = 2.0e5, nu = 0.3 }\nanalysis = \"plane_strain\"\n\
-         thickness_mm = 1.0\nstrips = 120\nhalf_width_mm = 0.3\n\
+         material = { e_mpa = 2.0e5, nu = 0.3 }\n\
+         analysis = { plane_strain = { thickness_mm = 1.0 } }\nstrips = 120\nhalf_width_mm = 0.3\n\
          indenter = { shape = \"sphere\", radius_mm = 10.0 }\nload = { force_n = 500.0 }\n\
          [solver]\nkind = \"active_set\"\n[output.subsurface]\ndepths = 200\n",
     );
@@ -270,15 +319,15 @@ fn fails_with(args: &[&str], path: &PathBuf, needles: &[&str]) {
 fn malformed_scene_names_file_line_and_key() {
     let path = variant(
         "malformed",
-        "height_mm = 50.0",
-        "height_mm = 50.0\nheigth_mm = 50.0",
+        "height_mm = 50.0 }",
+        "height_mm = 50.0, heigth_mm = 50.0 }",
     );
     fails_with(
         &["check"],
         &path,
-        &["malformed.toml", "heigth_mm` is set at line 9"],
+        &["malformed.toml", "heigth_mm` is set at line 10"],
     );
-    let path = variant("missing", "height_mm = 50.0\n", "");
+    let path = variant("missing", ", height_mm = 50.0 }", " }");
     fails_with(&["check"], &path, &["missing.toml", "height_mm"]);
     let path = variant(
         "wrong-type",
@@ -288,7 +337,7 @@ fn malformed_scene_names_file_line_and_key() {
     fails_with(
         &["run"],
         &path,
-        &["wrong-type.toml", "`c_mpa_per_mm` is set at line 17"],
+        &["wrong-type.toml", "`c_mpa_per_mm` is set at line 18"],
     );
 }
 
@@ -299,7 +348,7 @@ fn impossible_value_names_the_line() {
     fails_with(
         &["check"],
         &path,
-        &["incompressible.toml:10", "material.nu", "0.5"],
+        &["incompressible.toml:9", "material.nu", "0.5"],
     );
 }
 
