@@ -1,16 +1,12 @@
 //! Table 2 of the paper: the axisymmetric punch pressed down by w = −0.05 mm, the C¹
-//! controller with L1 ∈ {50, 40, 30, 20, 0} mm; every row of the iteration of §3.2
-//! (k, p_max, Δh_max, TOLH, iterp, iterd) beside the paper's, and the converged values on
-//! refined meshes. Writes the plots of Δh(r) and p(r) to `results/paper_table2/`.
+//! controller with L1 ∈ {0, 20, 30, 40, 50} mm. Runs the bundled scene `paper-table2`: every
+//! row of the iteration of §3.2 (k, p_max, Δh_max, TOLH, iterp, iterd) beside the paper's, and
+//! the linear programme (3.5) on refined meshes. `contopt run paper-table2` draws the plots.
 //!
 //! `cargo run --release --example paper_table2`
 
-use contopt::paper;
-
-fn main() -> Result<(), contopt::Error> {
-    let dir = std::path::Path::new("results/paper_table2");
+fn main() -> Result<(), contopt::scene::SceneError> {
     println!("Table 2: axisymmetric punch, given displacement w = -0.05 mm, TOLH <= 0.5e-6 mm²");
-    print!("{}", paper::given_displacement_report(dir)?);
-    println!("plots: {}/dh.svg, {}/p.svg", dir.display(), dir.display());
+    print!("{}", contopt_validation::paper::given_displacement_table()?);
     Ok(())
 }

@@ -15,7 +15,15 @@
 //!   and the matrix-free Polonsky–Keer;
 //! - [`optimise`]: pressure [`Controller`](optimise::Controller)s and the
 //!   [`Optimisation`](optimise::Optimisation) of the initial gap (§3): the iteration, the LP
-//!   (3.5) and the load split.
+//!   (3.5) and the load split;
+//! - [`roller`]: bearing-roller geometry and crown profiles;
+//! - [`scene`]: scene files (TOML/JSON) that build the bodies, solve and optimise, the one
+//!   path to the paper's Tables 1–3, and the [`Report`](scene::Report) of a run;
+//! - [`report`]: what users see of a run: tables, CSV and the plots (SVG and PNG).
+//!
+//! The paper's printed tables and the closed forms the code is checked against live outside
+//! the library, in the `contopt-validation` crate (`validation/`), used by the tests, the
+//! examples and `cargo xtask book`.
 //!
 //! ```
 //! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
@@ -37,12 +45,14 @@
 pub use contopt_contact as contact;
 pub use contopt_core as core;
 pub use contopt_core::{
-    ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Peak, Region,
-    Residuals, Result, RigidBody, RigidMode, Section, SectionAxis, SectionField, StressPeaks,
-    StressTensor, Subsurface, SubsurfaceRequest,
+    ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Peak, Residuals,
+    Result, RigidBody, RigidMode, Section, SectionAxis, SectionField, StressPeaks, StressTensor,
+    Subsurface, SubsurfaceRequest,
 };
 pub use contopt_fem as fem;
 pub use contopt_greens as greens;
 pub use contopt_optimise as optimise;
-pub mod paper;
-pub mod plot;
+pub use contopt_optimise::Region;
+pub use contopt_report as report;
+pub use contopt_roller as roller;
+pub use contopt_scene as scene;
