@@ -8,14 +8,22 @@
 //! (`<time>`) before comparing, since they are the machine's, not the code's. The slow
 //! benchmarks are regenerated only without `--check`, in the release profile.
 
+mod mask;
 mod sources;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-use sources::{Source, SOURCES};
+use mask::mask_times;
+use sources::{Folder, Source, SOURCES};
 
-/// Where the generated files go, relative to the workspace root.
+/// The book's sources, relative to the workspace root: the plots go here.
+const BOOK: &str = "book/src";
+
+/// The scenes' results folder while the book is generated, relative to the workspace root.
+const SCRATCH: &str = "target/book-results";
+
+/// Where the printed outputs go, relative to the workspace root.
 const GENERATED: &str = "book/src/generated";
 
 fn main() -> ExitCode {
@@ -61,10 +69,11 @@ fn book(check: bool, only: Option<&str>) -> Result<usize, String> {
             continue;
         }
         eprintln!("run  {}", source.name);
-        let out = std::env::temp_dir().join(format!("contopt-book-{}", std::process::id()));
-        let printed = run(&root, source, !check, &out)?;
+        // Relative to the workspace, so that what the command prints does not depend on it.
+        let out = Path::new(SCRATCH);
+        let printed = run(&root, source, !check, out)?;
         if !check {
-            copy_plots(source, &out, &generated)?;
+            copy_plots(source, &root, &root.join(out))?;
         }
         let file = generated.join(format!("{}.txt", source.name));
         if check {
@@ -84,16 +93,16 @@ fn book(check: bool, only: Option<&str>) -> Result<usize, String> {
     Ok(drifted)
 }
 
-/// Copies the plots `source` wrote below `out` into `generated/<source>/`.
-fn copy_plots(source: &Source, out: &Path, generated: &Path) -> Result<(), String> {
-    if source.plots.is_empty() {
-        return Ok(());
-    }
-    let to = generated.join(source.name);
-    std::fs::create_dir_all(&to).map_err(|e| format!("{}: {e}", to.display()))?;
-    for plot in source.plots {
-        let from = out.join(source.name).join(plot);
-        std::fs::copy(&from, to.join(plot)).map_err(|e| format!("{}: {e}", from.display()))?;
+/// Copies the plots `source` wrote into `book/src/` under the names the chapters use.
+fn copy_plots(source: &Source, root: &Path, out: &Path) -> Result<(), String> {
+    let folder = match source.folder {
+        Folder::Results => out.join(source.name),
+        Folder::Workspace => root.to_path_buf(),
+    };
+    for (from, to) in source.plots {
+        let (from, to) = (folder.join(from), root.join(BOOK).join(to));
+        std::fs::copy(&from, &to)
+            .map_err(|e| format!("{} → {}: {e}", from.display(), to.display()))?;
     }
     Ok(())
 }
@@ -132,56 +141,6 @@ fn workspace_root() -> Result<PathBuf, String> {
         .ok_or_else(|| "the xtask crate has no parent folder".into())
 }
 
-/// `text` with every duration (a number followed by ns, µs, us, ms, s or min) replaced by
-/// `<time>`, and every "N.N×" speed ratio by `<ratio>`.
-fn mask_times(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for word in text.split_inclusive(|c: char| c.is_whitespace() || c == ',' || c == '|') {
-        let trimmed = word.trim_end_matches(|c: char| c.is_whitespace() || c == ',' || c == '|');
-        let tail = &word[trimmed.len()..];
-        out.push_str(&mask_word(trimmed));
-        out.push_str(tail);
-    }
-    mask_unit_words(&out)
-}
-
-/// A number glued to a time unit (`12.5ms`, `3.3s`) or a ratio (`4.5×`) masked.
-fn mask_word(word: &str) -> String {
-    for (unit, mask) in [
-        ("ms", "<time>"),
-        ("µs", "<time>"),
-        ("us", "<time>"),
-        ("ns", "<time>"),
-        ("s", "<time>"),
-        ("×", "<ratio>"),
-    ] {
-        if let Some(number) = word.strip_suffix(unit) {
-            if !number.is_empty() && number.parse::<f64>().is_ok() {
-                return mask.into();
-            }
-        }
-    }
-    word.into()
-}
-
-/// A number followed by a separate time unit word (`12.5 ms`) masked.
-fn mask_unit_words(text: &str) -> String {
-    let words: Vec<&str> = text.split(' ').collect();
-    let mut out: Vec<String> = Vec::with_capacity(words.len());
-    for (k, word) in words.iter().enumerate() {
-        let unit = words
-            .get(k + 1)
-            .map(|w| w.trim_end_matches([',', ')', ';', '\n']));
-        let timed = matches!(unit, Some("ns" | "µs" | "us" | "ms" | "s" | "min"));
-        if timed && word.parse::<f64>().is_ok() {
-            out.push("<time>".into());
-        } else {
-            out.push((*word).into());
-        }
-    }
-    out.join(" ")
-}
-
 /// The first line where `kept` and `printed` differ (after masking), for the message.
 fn first_difference(kept: &str, printed: &str) -> String {
     let (kept, printed) = (mask_times(kept), mask_times(printed));
@@ -195,18 +154,4 @@ fn first_difference(kept: &str, printed: &str) -> String {
         kept.lines().count(),
         printed.lines().count()
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn timings_are_masked_and_numbers_are_not() {
-        let a = "PK 33.8 ms, QP 10.5 s | 4.5× faster, p_max 333.298 MPa, 12ms";
-        let b = "PK 40.1 ms, QP 9.7 s | 5.0× faster, p_max 333.298 MPa, 15ms";
-        assert_eq!(mask_times(a), mask_times(b));
-        let c = "PK 40.1 ms, QP 9.7 s | 5.0× faster, p_max 333.299 MPa, 15ms";
-        assert_ne!(mask_times(a), mask_times(c));
-    }
 }

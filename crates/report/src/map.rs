@@ -179,6 +179,7 @@ impl Grid {
             chart.draw_series(self.cells(j0, j1))?;
             bar.draw(&right, m.top, m.bottom)
         })
+        .map(Figure::crisp)
     }
 
     /// The cells of rows `j0..=j1` as rectangles, runs of one colour level merged along x.
