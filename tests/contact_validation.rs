@@ -1,18 +1,23 @@
 //! Contact solvers on finite-element bodies against closed forms (Boussinesq/Sneddon flat
 //! punch, Hertz), against each other, and over a sweep of the penalty parameter.
 
-use std::f64::consts::PI;
-
 use contopt::contact::{
     ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
 };
-use contopt::fem::block::half_space_block;
-use contopt::fem::paper::{self, PaperMesh, PunchLoad};
-use contopt::fem::{Analysis, FeBody, Material};
+use contopt::fem::{ElementKind, FeBody, Material};
+use contopt::scene::geometry::{half_space_block, PunchMesh, PunchOnBase};
 use contopt::{ContactState, ElasticBody, RigidBody};
+use contopt_validation::closed_form::{contact_modulus, FlatPunch, HertzSphere};
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
+
+/// The paper's punch on its base as the bundled scene `name` defines it: `paper-table1`
+/// (axisymmetric, 100 MPa), `paper-table2` (axisymmetric, pressed down by 0.05 mm) or
+/// `paper-table3` (plane stress, 100 MPa).
+fn paper(name: &str) -> PunchOnBase {
+    PunchOnBase::bundled(name).unwrap()
+}
 
 /// The half-space stand-in block with a clamped bottom at depth `size`.
 fn block(zone: f64, nz: usize, size: f64) -> FeBody {
@@ -33,7 +38,11 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn flat_punch_matches_sneddon() {
     let (a, f) = (10.0, 1e4);
-    let half_space = f * (1.0 - NU * NU) / (2.0 * a * E);
+    let sneddon = FlatPunch {
+        radius: a,
+        modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
+    };
+    let half_space = sneddon.approach(f);
     let mut ratios = vec![];
     for size in [20.0 * a, 40.0 * a] {
         let b = block(a, 40, size);
@@ -43,7 +52,7 @@ fn flat_punch_matches_sneddon() {
         let mut worst: f64 = 0.0;
         for (i, x) in b.interface().points.iter().enumerate() {
             if x[0] < 0.8 * a {
-                let exact = f / (2.0 * PI * a * (a * a - x[0] * x[0]).sqrt());
+                let exact = sneddon.pressure(f, x[0]);
                 worst = worst.max((st.pressure[i] / exact - 1.0).abs());
             }
         }
@@ -61,17 +70,24 @@ fn flat_punch_matches_sneddon() {
     );
 }
 
+/// Hertz's rigid sphere of radius R = 100 mm on the steel block.
+fn steel_sphere() -> HertzSphere {
+    HertzSphere {
+        radius: 100.0,
+        modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
+    }
+}
+
 /// Hertz: a rigid sphere of radius R = 100 mm pressed into the block with the force that
 /// gives a = 1 mm. p₀ and a are fitted from p² = p₀²(1 − r²/a²) on r < 0.8a.
 fn hertz() -> (FeBody, RigidBody, Vec<f64>, f64) {
-    let rs = 100.0;
-    let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * rs);
+    let force = steel_sphere().force(1.0);
     let b = block(1.5, 45, 30.0);
     let h: Vec<f64> = b
         .interface()
         .points
         .iter()
-        .map(|x| x[0] * x[0] / (2.0 * rs))
+        .map(|x| steel_sphere().gap(x[0]))
         .collect();
     let sphere = RigidBody::pressed("sphere", b.interface(), [0.0, 1.0, 0.0], force).unwrap();
     (b, sphere, h, force)
@@ -98,7 +114,7 @@ fn fit_hertz(b: &FeBody, st: &ContactState) -> (f64, f64) {
 fn hertz_sphere_and_solver_agreement() {
     let (b, sphere, h, force) = hertz();
     let problem = InterfaceProblem::new(&b, &sphere, &h).unwrap();
-    let p0 = 3.0 * force / (2.0 * PI);
+    let p0 = steel_sphere().peak_pressure(1.0);
     let reference = Qp::default().solve(&problem).unwrap();
     // Tolerances: the active set and the QP solve the same QP from different starts (1e-7);
     // the augmented Lagrangian to the 1e-6; the penalty within its O(1/c) error.
@@ -134,12 +150,7 @@ fn hertz_sphere_and_solver_agreement() {
 /// is printed (`cargo test --release --test contact_validation -- --nocapture`).
 #[test]
 fn penalty_parameter_sweep() {
-    let (base, punch) = paper::bodies(
-        Analysis::Axisymmetric,
-        PunchLoad::Pressure(100.0),
-        &PaperMesh::default(),
-    )
-    .unwrap();
+    let (base, punch) = paper("paper-table1").bodies().unwrap();
     let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()]).unwrap();
     let reference = Qp::default().solve(&problem).unwrap();
     let rel = |st: &ContactState| max_diff(&st.pressure, &reference.pressure) / reference.p_max();
@@ -149,7 +160,7 @@ fn penalty_parameter_sweep() {
     );
     let mut penalty = vec![];
     for k in 0..=12 {
-        let c = paper::E * 10f64.powi(k);
+        let c = E * 10f64.powi(k);
         let al = AugmentedLagrangian {
             max_steps: 5000,
             accelerate: false,
@@ -191,38 +202,38 @@ fn penalty_parameter_sweep() {
 /// (2.22) give the same pressure and gap, axisymmetric and in plane stress.
 #[test]
 fn condensed_penalty_matches_the_full_system() {
-    for analysis in [
-        Analysis::Axisymmetric,
-        Analysis::PlaneStress { thickness: 10.0 },
-    ] {
-        let mesh = PaperMesh {
-            contact_elements: 9,
-            layers: 9,
-            ..PaperMesh::default()
+    for scene in ["paper-table1", "paper-table3"] {
+        let geometry = PunchOnBase {
+            mesh: PunchMesh::uniform(ElementKind::Q8, 9),
+            ..paper(scene)
         };
-        let (base, punch) = paper::bodies(analysis, PunchLoad::Pressure(100.0), &mesh).unwrap();
+        let (analysis, radius) = (geometry.analysis, geometry.punch.radius);
+        let (base, punch) = geometry.bodies().unwrap();
         // A crowned punch, h = 0.1 mm (r/R)², so the contact set shrinks and the joint
         // system is refactorised as it changes.
         let gap: Vec<f64> = base
             .interface()
             .points
             .iter()
-            .map(|x| 0.1 * (x[0] / paper::PUNCH_RADIUS).powi(2))
+            .map(|x| 0.1 * (x[0] / radius).powi(2))
             .collect();
-        let c = paper::E * 1e4;
+        let c = E * 1e4;
         let condensed = Penalty { c }
             .solve(&InterfaceProblem::new(&base, &punch, &gap).unwrap())
             .unwrap();
-        let full = contopt::fem::coupled::penalty_full(&base, &punch, &gap, c).unwrap();
+        let mut joint = contopt::fem::coupled::JointSystem::new(&base, &punch, &gap).unwrap();
+        let full = contopt::contact::FullPenalty { c }
+            .solve(&mut joint)
+            .unwrap();
         assert!(
-            full.iterations > 1 && full.active.iter().any(|a| !a),
+            full.iterp > 1 && full.active.iter().any(|a| !a),
             "{analysis:?}: the contact set must change"
         );
         let dp = max_diff(&full.pressure, &condensed.pressure) / condensed.p_max();
         let dd = max_diff(&full.gap, &condensed.gap);
         eprintln!(
             "{analysis:?}: dp {dp:e}, dd {dd:e} mm, lambda {:?} vs {:?}, solves {}",
-            full.rigid, condensed.rigid, full.iterations
+            full.rigid, condensed.rigid, full.iterp
         );
         assert!(
             dp < 1e-6,
@@ -231,7 +242,7 @@ fn condensed_penalty_matches_the_full_system() {
         assert!(dd < 1e-9, "{analysis:?}: gaps differ by {dd:e} mm");
         assert_eq!(full.active, condensed.active);
         assert!((full.rigid[0] - condensed.rigid[0]).abs() < 1e-9 * condensed.rigid[0].abs());
-        assert!(full.residuals.equilibrium < 1e-6 * 100.0 * paper::PUNCH_RADIUS.powi(2));
+        assert!(full.residuals.equilibrium < 1e-6 * 100.0 * radius.powi(2));
     }
 }
 
@@ -240,12 +251,7 @@ fn condensed_penalty_matches_the_full_system() {
 /// the uniform pressure), and reading the pressure as a field removes it exactly.
 #[test]
 fn gauss_point_sawtooth_moves_nothing_and_is_recovered() {
-    let (base, punch) = paper::bodies(
-        Analysis::Axisymmetric,
-        PunchLoad::Displacement(-0.05),
-        &PaperMesh::default(),
-    )
-    .unwrap();
+    let (base, punch) = paper("paper-table2").bodies().unwrap();
     let n = base.interface().len();
     let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; n]).unwrap();
     // A sawtooth of 50 MPa: the part of (0, 0, 1) on every face outside the field's span.

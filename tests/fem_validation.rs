@@ -8,6 +8,7 @@ use contopt::fem::{
     Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Solution, Spacing,
 };
 use contopt::ElasticBody;
+use contopt_validation::closed_form::{contact_modulus, Cantilever, ThickCylinder, UniformCircle};
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
@@ -104,22 +105,16 @@ const A_IN: f64 = 10.0;
 const B_OUT: f64 = 20.0;
 const P_IN: f64 = 100.0;
 
-/// Plane-strain Lamé solution: radial displacement and (σ_r, σ_θ) at radius r.
-fn lame(r: f64) -> (f64, f64, f64) {
-    let (k, c) = lame_constants();
-    let u = (1.0 + NU) / E * ((1.0 - 2.0 * NU) * k * r + c / r);
-    (u, k - c / (r * r), k + c / (r * r))
-}
+/// Lamé's thick cylinder: a = 10, b = 20 mm, internal pressure 100 MPa.
+const CYLINDER: ThickCylinder = ThickCylinder {
+    inner: A_IN,
+    outer: B_OUT,
+    pressure: P_IN,
+};
 
-fn lame_constants() -> (f64, f64) {
-    let k = P_IN * A_IN * A_IN / (B_OUT * B_OUT - A_IN * A_IN);
-    (k, k * B_OUT * B_OUT)
-}
-
-/// Radial displacement of the Lamé ring in plane stress (σ_z = 0).
-fn lame_plane_stress(r: f64) -> f64 {
-    let (k, c) = lame_constants();
-    ((1.0 - NU) * k * r + (1.0 + NU) * c / r) / E
+/// Lamé's radial displacement of the steel cylinder in plane strain at radius r \[mm\].
+fn lame_u(r: f64) -> f64 {
+    CYLINDER.plane_strain_displacement(&steel(), r)
 }
 
 /// Axisymmetric slice of the cylinder with ε_z = 0 (u_z held on both ends).
@@ -180,15 +175,15 @@ fn lame_quarter_ring(
 #[test]
 fn lame_cylinder_axisymmetric_and_plane_strain() {
     let (m, s) = lame_axisymmetric(ElementKind::Q8, 8);
-    let u_scale = lame(A_IN).0;
+    let u_scale = lame_u(A_IN);
     for (n, p) in m.mesh().nodes().iter().enumerate() {
         let u = s.at(n);
         assert!(
-            (u[0] - lame(p[0]).0).abs() < 2e-5 * u_scale,
+            (u[0] - lame_u(p[0])).abs() < 2e-5 * u_scale,
             "axisymmetric u_r at r = {}: {} vs {}",
             p[0],
             u[0],
-            lame(p[0]).0
+            lame_u(p[0])
         );
         assert!(u[1].abs() < 1e-12 * u_scale);
     }
@@ -196,12 +191,11 @@ fn lame_cylinder_axisymmetric_and_plane_strain() {
     // next to the bore, is 0.6 % of p (measured), so 1 % catches any wrong constitutive term.
     let mut worst: f64 = 0.0;
     for st in m.stresses(&s).unwrap() {
-        let (_, sr, st_exact) = lame(st.x[0]);
-        // plane strain: σ_z = ν (σ_r + σ_θ)
+        let r = st.x[0];
         for d in [
-            st.xx - sr,
-            st.zz - st_exact,
-            st.yy - NU * (sr + st_exact),
+            st.xx - CYLINDER.radial_stress(r),
+            st.zz - CYLINDER.hoop_stress(r),
+            st.yy - CYLINDER.plane_strain_axial_stress(NU),
             st.xy,
         ] {
             worst = worst.max(d.abs() / P_IN);
@@ -219,9 +213,9 @@ fn lame_cylinder_axisymmetric_and_plane_strain() {
         let u = s.at(n);
         let ur = (u[0] * p[0] + u[1] * p[1]) / r;
         assert!(
-            (ur - lame(r).0).abs() < 1e-4 * u_scale,
+            (ur - lame_u(r)).abs() < 1e-4 * u_scale,
             "plane strain u_r at r = {r}: {ur} vs {}",
-            lame(r).0
+            lame_u(r)
         );
     }
 }
@@ -233,16 +227,16 @@ const D: f64 = 10.0;
 const T: f64 = 2.0;
 const P: f64 = 500.0;
 
-/// Timoshenko & Goodier's plane-stress cantilever, fixed at x = 0 and loaded by a parabolic
-/// shear resultant P at x = L; the displacement field is exact elasticity.
-fn cantilever_exact(p: [f64; 2]) -> [f64; 2] {
-    let (x, y) = (p[0], p[1]);
-    let i = T * D.powi(3) / 12.0;
-    let ux =
-        -P * y / (6.0 * E * i) * ((6.0 * L - 3.0 * x) * x + (2.0 + NU) * (y * y - D * D / 4.0));
-    let uy = P / (6.0 * E * i)
-        * (3.0 * NU * y * y * (L - x) + (4.0 + 5.0 * NU) * D * D * x / 4.0 + (3.0 * L - x) * x * x);
-    [ux, uy]
+/// Timoshenko & Goodier's plane-stress steel cantilever, fixed at x = 0 and loaded by a
+/// parabolic shear resultant P at x = L; the displacement field is exact elasticity.
+fn beam() -> Cantilever {
+    Cantilever {
+        length: L,
+        depth: D,
+        thickness: T,
+        load: P,
+        material: steel(),
+    }
 }
 
 fn cantilever(kind: ElementKind, nx: usize, ny: usize) -> (FeModel, Solution) {
@@ -254,15 +248,14 @@ fn cantilever(kind: ElementKind, nx: usize, ny: usize) -> (FeModel, Solution) {
     .unwrap();
     let mut m = FeModel::new(mesh, steel(), Analysis::PlaneStress { thickness: T }).unwrap();
     for n in m.mesh().nodes_on_x(0.0, -D, D) {
-        let u = cantilever_exact(m.mesh().nodes()[n]);
+        let u = beam().displacement(m.mesh().nodes()[n]);
         m.prescribe(&[n], Component::X, u[0])
             .unwrap()
             .prescribe(&[n], Component::Y, u[1])
             .unwrap();
     }
-    let i = T * D.powi(3) / 12.0;
     let tip = m.mesh().faces_on_x(L, -D, D);
-    m.traction_with(&tip, |p| [0.0, P / (2.0 * i) * (D * D / 4.0 - p[1] * p[1])])
+    m.traction_with(&tip, |p| [0.0, beam().end_traction(p[1])])
         .unwrap();
     let s = m.solve().unwrap();
     (m, s)
@@ -272,9 +265,8 @@ fn cantilever(kind: ElementKind, nx: usize, ny: usize) -> (FeModel, Solution) {
 fn cantilever_matches_beam_theory_with_shear() {
     let (m, s) = cantilever(ElementKind::Q8, 20, 2);
     let tip = m.mesh().nodes_on_x(L, 0.0, 0.0)[0];
-    let exact = cantilever_exact([L, 0.0])[1];
-    let i = T * D.powi(3) / 12.0;
-    let bernoulli = P * L.powi(3) / (3.0 * E * i);
+    let exact = beam().displacement([L, 0.0])[1];
+    let bernoulli = beam().bernoulli_tip_deflection();
     // The shear term (4 + 5ν) D² / (8 L²) = 0.69 % is resolved: the FE tip deflection is
     // within 0.01 % of exact elasticity (measured: 0.0012 %), and Euler–Bernoulli alone is
     // visibly short of it.
@@ -312,7 +304,7 @@ fn quadratic_elements_converge_at_third_order_in_l2() {
                 "axisymmetric",
                 Box::new(move |k| {
                     let (m, s) = lame_axisymmetric(kind, k);
-                    m.l2_error(&s, |p| [lame(p[0]).0, 0.0]).unwrap()
+                    m.l2_error(&s, |p| [lame_u(p[0]), 0.0]).unwrap()
                 }),
             ),
             (
@@ -320,7 +312,7 @@ fn quadratic_elements_converge_at_third_order_in_l2() {
                 Box::new(move |k| {
                     let (m, s) =
                         lame_quarter_ring(kind, Analysis::PlaneStrain { thickness: 1.0 }, k, 2 * k);
-                    m.l2_error(&s, |p| radial(p, lame(p[0].hypot(p[1])).0))
+                    m.l2_error(&s, |p| radial(p, lame_u(p[0].hypot(p[1]))))
                         .unwrap()
                 }),
             ),
@@ -329,8 +321,8 @@ fn quadratic_elements_converge_at_third_order_in_l2() {
                 Box::new(move |k| {
                     let (m, s) =
                         lame_quarter_ring(kind, Analysis::PlaneStress { thickness: 1.0 }, k, 2 * k);
-                    m.l2_error(&s, |p| radial(p, lame_plane_stress(p[0].hypot(p[1]))))
-                        .unwrap()
+                    let u = |r| CYLINDER.plane_stress_displacement(&steel(), r);
+                    m.l2_error(&s, |p| radial(p, u(p[0].hypot(p[1])))).unwrap()
                 }),
             ),
         ];
@@ -372,7 +364,12 @@ fn circular_load_on_large_block_matches_half_space() {
     let s = m.solve().unwrap();
     let w = |x: f64| -s.at(m.mesh().nodes_on_y(0.0, x, x)[0])[1];
     let fe = w(0.0) - w(a);
-    let exact = (1.0 - NU * NU) * p * a * (2.0 - 4.0 / PI) / E;
+    let exact = UniformCircle {
+        radius: a,
+        pressure: p,
+        modulus: contact_modulus(&[steel()]),
+    }
+    .centre_minus_edge();
     assert!(
         (fe / exact - 1.0).abs() < 0.02,
         "w(0) - w(a) = {fe:e}, half-space {exact:e}"

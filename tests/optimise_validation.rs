@@ -8,31 +8,68 @@ use std::f64::consts::PI;
 use contopt::contact::{
     ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, PolonskyKeer, Qp,
 };
-use contopt::fem::paper::{PaperMesh, PunchLoad};
-use contopt::fem::Analysis;
-use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
-use contopt::optimise::{Constant, Controller, Mode, Optimisation, Profile};
-use contopt::paper::{self, Method};
-use contopt::{ElasticBody, GapShape, Material, RigidBody};
+use contopt::fem::FeBody;
+use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
+use contopt::optimise::{Constant, Controller, Mode, Optimisation, Optimum, Profile};
+use contopt::scene::geometry::PunchOnBase;
+use contopt::scene::CaseReport;
+use contopt::{ElasticBody, GapShape, Interface, Material, Region, RigidBody};
+use contopt_validation::closed_form::{contact_modulus, FlamantStrip, HertzLine, UniformCircle};
+use contopt_validation::paper;
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
+
+/// One L1 of a bundled paper scene, run through the scene on 18 elements, with its bodies.
+struct PaperCase {
+    l1: f64,
+    report: CaseReport,
+    base: FeBody,
+    punch: FeBody,
+}
+
+impl PaperCase {
+    /// The scene `name` at `l1`, by its own method or by the linear programme when `lp`.
+    fn run(name: &str, l1: f64, lp: bool) -> Self {
+        let report = paper::case(name, 18, l1, lp).unwrap();
+        assert!(report.converged, "{name}, L1 = {l1}: {:?}", report.error);
+        let (base, punch) = PunchOnBase::bundled(name).unwrap().bodies().unwrap();
+        assert_eq!(report.interface.len(), base.interface().len());
+        Self {
+            l1,
+            report,
+            base,
+            punch,
+        }
+    }
+
+    /// The level p_max of p ≤ v·p_max \[MPa\].
+    fn p_max(&self) -> f64 {
+        self.report.bound_p_max.unwrap()
+    }
+
+    /// The optimised pressure at the interface points.
+    fn pressure(&self) -> Vec<f64> {
+        self.report.interface.iter().map(|q| q.p).collect()
+    }
+}
 
 /// Puts the optimised gap change back into the contact problem and solves it from scratch with
 /// every solver: the pressure follows v·p_max within 1 % of p_max and peaks at p_max within
 /// 0.5 %. The pressure is read as a field ([`InterfaceProblem::recovered_pressure`]): three
 /// Gauss points per quadratic face leave a part of the point values that moves nothing, which
 /// the interior-point QP does not set to zero.
-fn close_the_loop(case: &paper::Case) {
-    let opt = &case.optimum;
-    let problem = InterfaceProblem::new(&case.base, &case.punch, &opt.gap_change).unwrap();
-    let controller = Profile::cubic(case.l1, 50.0).unwrap();
+fn close_the_loop(case: &PaperCase) {
+    let p_max = case.p_max();
+    let gap: Vec<f64> = case.report.interface.iter().map(|q| q.dh).collect();
+    let problem = InterfaceProblem::new(&case.base, &case.punch, &gap).unwrap();
+    let controller = Profile::cubic(case.l1, paper::PUNCH_RADIUS).unwrap();
     let target: Vec<f64> = case
         .base
         .interface()
         .points
         .iter()
-        .map(|&x| controller.value(x) * opt.p_max)
+        .map(|&x| controller.value(x) * p_max)
         .collect();
     for solver in [
         &Qp::default() as &dyn ContactSolver,
@@ -46,107 +83,82 @@ fn close_the_loop(case: &paper::Case) {
             .zip(&target)
             .map(|(p, t)| (p - t).abs())
             .fold(0.0, f64::max)
-            / opt.p_max;
+            / p_max;
         eprintln!(
             "L1 = {}: {}: deviation {:.2e} of p_max, peak {:+.4} %",
             case.l1,
             solver.name(),
             deviation,
-            100.0 * (st.p_max() / opt.p_max - 1.0)
+            100.0 * (st.p_max() / p_max - 1.0)
         );
         assert!(deviation < 0.01, "{}: deviation {deviation}", solver.name());
         assert!(
-            (st.p_max() / opt.p_max - 1.0).abs() < 0.005,
-            "{}: peak {} vs {}",
+            (st.p_max() / p_max - 1.0).abs() < 0.005,
+            "{}: peak {} vs {p_max}",
             solver.name(),
-            st.p_max(),
-            opt.p_max
+            st.p_max()
         );
     }
 }
 
-/// Table 1 (given load): v·p_max carries the punch's load exactly on the mesh, p_max is the
-/// equilibrium value of the continuous controller to four significant figures (the Gauss
-/// points integrate v to 1e-5), and the loop closes.
+/// Table 1 (given load, the scene `paper-table1`): v·p_max carries the punch's load exactly on
+/// the mesh, p_max is the equilibrium value of the continuous controller to four significant
+/// figures (the Gauss points integrate v to 1e-5), and the loop closes.
 #[test]
 fn given_load_closes_the_loop() {
     for l1 in [0.0, 30.0, 50.0] {
-        let case = paper::case(
-            Analysis::Axisymmetric,
-            PunchLoad::Pressure(100.0),
-            &PaperMesh::default(),
-            l1,
-            Method::Iteration,
-        )
-        .unwrap();
-        let carried = case.base.interface().resultant(&case.optimum.pressure);
+        let case = PaperCase::run("paper-table1", l1, false);
+        let carried = case.base.interface().resultant(&case.pressure());
         assert!(
             (carried / (100.0 * PI * 2500.0) - 1.0).abs() < 1e-9,
             "L1 = {l1}: {carried}"
         );
-        let expected = paper::equilibrium_p_max(Analysis::Axisymmetric, 100.0, l1).unwrap();
+        let expected = paper::equilibrium_p_max(true, 100.0, l1);
         assert!(
-            (case.optimum.p_max / expected - 1.0).abs() < 5e-5,
+            (case.p_max() / expected - 1.0).abs() < 5e-5,
             "L1 = {l1}: {} vs {expected}",
-            case.optimum.p_max
+            case.p_max()
         );
         // The second pass changes nothing: the loop is closed.
-        assert_eq!(case.optimum.iterations.len(), 2, "L1 = {l1}");
+        assert_eq!(case.report.iterations.len(), 2, "L1 = {l1}");
         close_the_loop(&case);
     }
 }
 
-/// Table 3's L1 = 0 (plane stress): equilibrium gives p_max = 200 MPa, not the printed 283.3.
+/// Table 3's L1 = 0 (plane stress, the scene `paper-table3`): equilibrium gives p_max = 200 MPa,
+/// not the printed 283.3.
 #[test]
 fn plane_stress_given_load_is_equilibrium() {
-    let case = paper::case(
-        Analysis::PlaneStress { thickness: 10.0 },
-        PunchLoad::Pressure(100.0),
-        &PaperMesh::default(),
-        0.0,
-        Method::Iteration,
-    )
-    .unwrap();
-    assert!(
-        (case.optimum.p_max - 200.0).abs() < 1e-4,
-        "{}",
-        case.optimum.p_max
-    );
+    let case = PaperCase::run("paper-table3", 0.0, false);
+    assert!((case.p_max() - 200.0).abs() < 1e-4, "{}", case.p_max());
     close_the_loop(&case);
 }
 
-/// Table 2 (given displacement), every L1: the iteration of §3.2 (penalty contact, as the
-/// paper) stops on TOLH within the paper's number of steps and agrees with the linear programme
-/// on p_max and Δh_max within 0.5 %; the loop closes. L1 ≤ 40 needs both Kalker's safeguard
-/// against cycling and step 4's pressure read as a field (a receding contact edge leaves a
-/// Gauss-point sawtooth that moves nothing).
+/// Table 2 (given displacement, the scene `paper-table2`), every L1: the iteration of §3.2
+/// (penalty contact, as the paper) stops on TOLH within the paper's number of steps and agrees
+/// with the linear programme on p_max and Δh_max within 0.5 %; the loop closes. L1 ≤ 40 needs
+/// both Kalker's safeguard against cycling and step 4's pressure read as a field (a receding
+/// contact edge leaves a Gauss-point sawtooth that moves nothing).
 #[test]
 fn given_displacement_iteration_matches_the_lp() {
     for (l1, paper_steps) in [(50.0, 4), (40.0, 5), (30.0, 6), (20.0, 6), (0.0, 7)] {
-        let run = |method| {
-            paper::case(
-                Analysis::Axisymmetric,
-                PunchLoad::Displacement(-0.05),
-                &PaperMesh::default(),
-                l1,
-                method,
-            )
-            .unwrap()
-        };
-        let (iterated, lp) = (run(Method::Iteration), run(Method::LinearProgramme));
-        let (a, b) = (&iterated.optimum, &lp.optimum);
+        let iterated = PaperCase::run("paper-table2", l1, false);
+        let lp = PaperCase::run("paper-table2", l1, true);
+        let (a, b) = (&iterated.report, &lp.report);
+        let (dh_a, dh_b) = (a.dh_max_um.unwrap(), b.dh_max_um.unwrap());
         eprintln!(
-            "L1 = {l1}: iteration p_max {:.3} Δh_max {:.3} µm in {} steps; LP {:.3}, {:.3} µm",
-            a.p_max,
-            1e3 * a.dh_max(),
+            "L1 = {l1}: iteration p_max {:.3} Δh_max {dh_a:.3} µm in {} steps; LP {:.3}, {dh_b:.3} µm",
+            iterated.p_max(),
             a.iterations.len(),
-            b.p_max,
-            1e3 * b.dh_max()
+            lp.p_max(),
         );
         assert!(a.iterations.last().unwrap().tolh <= paper::TOLH);
         assert!(a.iterations.len() <= paper_steps, "L1 = {l1}");
-        assert!((a.p_max / b.p_max - 1.0).abs() < 0.005, "L1 = {l1}");
-        assert!((a.dh_max() / b.dh_max() - 1.0).abs() < 0.005, "L1 = {l1}");
+        assert!(
+            (iterated.p_max() / lp.p_max() - 1.0).abs() < 0.005,
+            "L1 = {l1}"
+        );
+        assert!((dh_a / dh_b - 1.0).abs() < 0.005, "L1 = {l1}");
         close_the_loop(&iterated);
     }
 }
@@ -171,7 +183,12 @@ fn constant_pressure_on_a_half_space() {
     let optimisation = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap()).unwrap();
     // The closed form at the outermost ring's centre, whose average deflection the Galerkin
     // rings give.
-    let exact = 4.0 * (1.0 - NU * NU) * p * a * (PI / 2.0 - 1.0) / (PI * E);
+    let exact = UniformCircle {
+        radius: a,
+        pressure: p,
+        modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
+    }
+    .centre_minus_edge();
     let iterated = optimisation
         .iterate(Mode::GivenLoad, &ActiveSet, 1e-20, 10)
         .unwrap();
@@ -214,7 +231,13 @@ fn constant_pressure_on_a_half_plane() {
     let problem = InterfaceProblem::new(&body, &strip, &vec![0.0; n]).unwrap();
     let shape = GapShape::pointwise(body.interface());
     let optimisation = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap()).unwrap();
-    let exact = 4.0 * p * a * 2f64.ln() / (PI * E);
+    // Plane stress: the half-plane's modulus is E.
+    let exact = FlamantStrip {
+        half_width: a,
+        pressure: p,
+        modulus: E,
+    }
+    .centre_minus_edge();
     for (name, opt) in [
         (
             "iteration",
@@ -239,12 +262,10 @@ fn constant_pressure_on_a_half_plane() {
 /// Bad input is named: a controller above 1, a given load without a floating body.
 #[test]
 fn optimisation_errors_are_named() {
-    let (base, punch) = contopt::fem::paper::bodies(
-        Analysis::Axisymmetric,
-        PunchLoad::Displacement(-0.05),
-        &PaperMesh::default(),
-    )
-    .unwrap();
+    let (base, punch) = PunchOnBase::bundled("paper-table2")
+        .unwrap()
+        .bodies()
+        .unwrap();
     let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()]).unwrap();
     let too_high = |_: [f64; 3]| 1.5;
     let e = Optimisation::new(&problem, base.gap_shape(), &too_high)
@@ -260,22 +281,18 @@ fn optimisation_errors_are_named() {
     assert!(e.contains("no body floats"), "{e}");
 }
 
-/// The bearing roller (§3.2, the two-dimensional region): a rigid cylinder of radius R and
-/// length L pressed by W into an elastic half-space (a grid of cells), the profile changed
-/// along the axis only (Δh_nv = f(Δh), [`GapShape::extruded`]). Ω_v is the centre line,
-/// where p = p_max is prescribed; the rest of the strip is Ω_nv (d ≥ 0, p ≤ p_max). The crowned
-/// roller carries a uniform line load W/L with Hertz's half-width along its whole length, so
-/// p_max is the line-contact value p₀ = √(W E* / (π L R)) (within 2 %: the grid samples the
-/// ellipse at 0.04 mm against b ≈ 0.26 mm), far below the uncrowned roller's end peak; the
-/// iteration and the LP agree on p_max and the crown within 0.5 %, and p ≤ p_max on Ω_nv.
-#[test]
-fn crowned_roller_on_a_half_space() {
-    use contopt::greens::HalfSpace;
-    use contopt::Region;
-    let (radius, length, load) = (10.0, 10.0, 12_000.0);
+/// The length of the crowned roller \[mm\].
+const CROWNED_LENGTH: f64 = 10.0;
+
+/// The crowned roller's half-space: 20 × 21 cells of 0.5 × 0.04 mm over the roller's length
+/// and ±0.4 mm across it, centred on the roller, the centre row on y = 0.
+fn crowned_roller_grid() -> HalfSpace {
     let (nx, ny, dx, dy) = (20, 21, 0.5, 0.04);
-    let origin = [-0.5 * length + 0.5 * dx, -0.5 * (ny - 1) as f64 * dy];
-    let body = HalfSpace::grid(
+    let origin = [
+        -0.5 * CROWNED_LENGTH + 0.5 * dx,
+        -0.5 * (ny - 1) as f64 * dy,
+    ];
+    HalfSpace::grid(
         "half-space",
         Material::new(E, NU).unwrap(),
         nx,
@@ -284,59 +301,39 @@ fn crowned_roller_on_a_half_space() {
         dy,
         origin,
     )
-    .unwrap();
-    let iface = body.interface();
-    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], load).unwrap();
-    let h: Vec<f64> = iface
-        .points
+    .unwrap()
+}
+
+/// A crown of the roller against Hertz's line contact: p_max is Hertz's p₀ within 2 %, and
+/// p ≤ p_max on Ω_nv.
+fn assert_hertzian_crown(
+    name: &str,
+    opt: &Optimum,
+    regions: &[Region],
+    hertz: f64,
+    uncrowned: f64,
+) {
+    let over = regions
         .iter()
-        .map(|x| x[1] * x[1] / (2.0 * radius))
-        .collect();
-    let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let regions: Vec<Region> = iface
-        .points
-        .iter()
-        .map(|x| {
-            if x[1].abs() < 0.5 * dy {
-                Region::OmegaV
-            } else {
-                Region::OmegaNv
-            }
-        })
-        .collect();
-    let shape = GapShape::extruded(iface, 0).unwrap();
-    let optimisation = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap())
-        .unwrap()
-        .with_regions(regions.clone())
-        .unwrap();
-    let e_star = E / (1.0 - NU * NU);
-    let hertz = (load * e_star / (PI * length * radius)).sqrt();
-    let uncrowned = ActiveSet.solve(&problem).unwrap().p_max();
-    let iterated = optimisation
-        .iterate(Mode::GivenLoad, &ActiveSet, 1e-12, 100)
-        .unwrap();
-    let lp = optimisation.linear_programme(&ActiveSet).unwrap();
-    for (name, opt) in [("iteration", &iterated), ("LP", &lp)] {
-        let over = (0..problem.len())
-            .filter(|&i| regions[i] == Region::OmegaNv)
-            .map(|i| opt.pressure[i] / opt.p_max - 1.0)
-            .fold(f64::NEG_INFINITY, f64::max);
-        eprintln!(
-            "roller, {name}: p_max {:.1} MPa ({:+.2} % from Hertz's {hertz:.1}; uncrowned peak {uncrowned:.1}), \
-             crown {:.3} µm, {} steps, largest p/p_max − 1 on Ω_nv {over:.2e}",
-            opt.p_max,
-            100.0 * (opt.p_max / hertz - 1.0),
-            1e3 * opt.dh_max(),
-            opt.iterations.last().map_or(0, |r| r.k),
-        );
-        assert!((opt.p_max / hertz - 1.0).abs() < 0.02, "{name}");
-        assert!(over < 1e-6, "{name}: {over}");
-    }
-    assert!(uncrowned > 1.25 * hertz, "{uncrowned}");
-    assert!((iterated.p_max / lp.p_max - 1.0).abs() < 0.005);
-    assert!((iterated.dh_max() / lp.dh_max() - 1.0).abs() < 0.005);
-    // The load split reaches the LP's optimum itself, with the dense active set and with the
-    // matrix-free solver: p_max and every Δh within 1e-6.
+        .zip(&opt.pressure)
+        .filter(|(region, _)| **region == Region::OmegaNv)
+        .map(|(_, p)| p / opt.p_max - 1.0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    eprintln!(
+        "roller, {name}: p_max {:.1} MPa ({:+.2} % from Hertz's {hertz:.1}; uncrowned peak {uncrowned:.1}), \
+         crown {:.3} µm, {} steps, largest p/p_max − 1 on Ω_nv {over:.2e}",
+        opt.p_max,
+        100.0 * (opt.p_max / hertz - 1.0),
+        1e3 * opt.dh_max(),
+        opt.iterations.last().map_or(0, |r| r.k),
+    );
+    assert!((opt.p_max / hertz - 1.0).abs() < 0.02, "{name}");
+    assert!(over < 1e-6, "{name}: {over}");
+}
+
+/// The load split reaches the LP's optimum `lp` itself, with the dense active set and with the
+/// matrix-free solver: p_max and every Δh within 1e-6.
+fn assert_load_split_reaches(optimisation: &Optimisation, lp: &Optimum) {
     for solver in [&ActiveSet as &dyn ContactSolver, &PolonskyKeer::default()] {
         let split = optimisation.load_split(solver, 1e-10, 50).unwrap();
         let dh_error = split
@@ -362,15 +359,60 @@ fn crowned_roller_on_a_half_space() {
     }
 }
 
+/// The bearing roller (§3.2, the two-dimensional region): a rigid cylinder of radius R and
+/// length L pressed by W into an elastic half-space (a grid of cells), the profile changed
+/// along the axis only (Δh_nv = f(Δh), [`GapShape::extruded`]). Ω_v is the centre line,
+/// where p = p_max is prescribed; the rest of the strip is Ω_nv (d ≥ 0, p ≤ p_max). The crowned
+/// roller carries a uniform line load W/L with Hertz's half-width along its whole length, so
+/// p_max is the line-contact value p₀ = √(W E* / (π L R)) (within 2 %: the grid samples the
+/// ellipse at 0.04 mm against b ≈ 0.26 mm), far below the uncrowned roller's end peak; the
+/// iteration and the LP agree on p_max and the crown within 0.5 %, and p ≤ p_max on Ω_nv.
+#[test]
+fn crowned_roller_on_a_half_space() {
+    let (radius, load) = (10.0, 12_000.0);
+    let body = crowned_roller_grid();
+    let iface = body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], load).unwrap();
+    let line = HertzLine {
+        radius,
+        modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
+    };
+    let h: Vec<f64> = iface.points.iter().map(|x| line.gap(x[1])).collect();
+    let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
+    let regions = centre_row(iface);
+    let shape = GapShape::extruded(iface, 0).unwrap();
+    let optimisation = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap())
+        .unwrap()
+        .with_regions(regions.clone())
+        .unwrap();
+    let hertz = line.peak_pressure(load / CROWNED_LENGTH);
+    let uncrowned = ActiveSet.solve(&problem).unwrap().p_max();
+    let iterated = optimisation
+        .iterate(Mode::GivenLoad, &ActiveSet, 1e-12, 100)
+        .unwrap();
+    let lp = optimisation.linear_programme(&ActiveSet).unwrap();
+    for (name, opt) in [("iteration", &iterated), ("LP", &lp)] {
+        assert_hertzian_crown(name, opt, &regions, hertz, uncrowned);
+    }
+    assert!(uncrowned > 1.25 * hertz, "{uncrowned}");
+    assert!((iterated.p_max / lp.p_max - 1.0).abs() < 0.005);
+    assert!((iterated.dh_max() / lp.dh_max() - 1.0).abs() < 0.005);
+    assert_load_split_reaches(&optimisation, &lp);
+}
+
 /// The issue's roller (D = 10 mm, l = 10 mm, Q = 5446 N, a rigid cylinder R = 5 mm on the
 /// pair's half-space, E = 1.05·10⁵ MPa) on an `nx` × `ny` grid over the length and ±2.6 b.
-fn bearing_roller(nx: usize, ny: usize) -> (contopt::greens::HalfSpace, Vec<f64>, f64) {
+fn bearing_roller(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>, f64) {
     let (e, radius, length, load) = (1.05e5, 5.0, 10.0, 5446.0);
     let estar = e / (1.0 - NU * NU);
-    let b = (4.0 * load / length * radius / (PI * estar)).sqrt();
+    let line = HertzLine {
+        radius,
+        modulus: estar,
+    };
+    let b = line.half_width(load / length);
     let (dx, dy) = (length / nx as f64, 2.6 * b / ((ny - 1) / 2) as f64);
     let origin = [-0.5 * length + 0.5 * dx, -(((ny - 1) / 2) as f64) * dy];
-    let body = contopt::greens::HalfSpace::grid(
+    let body = HalfSpace::grid(
         "raceway",
         Material::new(e, NU).unwrap(),
         nx,
@@ -384,14 +426,13 @@ fn bearing_roller(nx: usize, ny: usize) -> (contopt::greens::HalfSpace, Vec<f64>
         .interface()
         .points
         .iter()
-        .map(|x| x[1] * x[1] / (2.0 * radius))
+        .map(|x| line.gap(x[1]))
         .collect();
     (body, h, estar)
 }
 
 /// Ω_v the centre row y = 0 of a roller grid, the rest Ω_nv.
-fn centre_row(iface: &contopt::Interface) -> Vec<contopt::Region> {
-    use contopt::Region;
+fn centre_row(iface: &Interface) -> Vec<Region> {
     let tag = |x: &[f64; 3]| {
         if x[1].abs() < 1e-9 {
             Region::OmegaV
@@ -427,7 +468,11 @@ fn straight_roller_against_local_line_contact() {
         .sum::<f64>()
         / (2.0 * dx);
     let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);
-    let p0 = (q * estar / (PI * 5.0)).sqrt();
+    let p0 = HertzLine {
+        radius: 5.0,
+        modulus: estar,
+    }
+    .peak_pressure(q);
     eprintln!(
         "straight roller: centre {q:.2} N/mm, p {p:.1} MPa against local Hertz {p0:.1} ({:+.3} %)",
         100.0 * (p / p0 - 1.0)
@@ -441,7 +486,6 @@ fn straight_roller_against_local_line_contact() {
 /// p_max is the 400 × 209 grid's 2316.94 MPa (examples/roller_scaling) within 0.05 %.
 #[test]
 fn optimised_roller_crown_by_the_load_split() {
-    use contopt::Region;
     let (body, h, _) = bearing_roller(100, 53);
     let iface = body.interface();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
@@ -476,6 +520,98 @@ fn optimised_roller_crown_by_the_load_split() {
     assert!((opt.p_max / 2316.94 - 1.0).abs() < 5e-4, "{}", opt.p_max);
 }
 
+/// One load case of the roller's envelope: the `nominal` problem with its load times `factor`
+/// and the roller tilted by `tilt` \[rad\] about the centre (the initial gap `h` plus tilt·x).
+fn roller_case<'a>(
+    nominal: &InterfaceProblem<'a>,
+    h: &[f64],
+    factor: f64,
+    tilt: f64,
+) -> InterfaceProblem<'a> {
+    let mut modes = nominal.modes().to_vec();
+    modes[0].load *= factor;
+    let gap: Vec<f64> = h
+        .iter()
+        .zip(&nominal.interface().points)
+        .map(|(h, x)| h + tilt * x[0])
+        .collect();
+    nominal
+        .with_modes(modes)
+        .unwrap()
+        .with_initial_gap(&gap)
+        .unwrap()
+}
+
+/// The worst case's peak pressure \[MPa\] over `cases` with `gap_change` added to each initial
+/// gap, by Polonsky–Keer.
+fn worst_case(cases: &[&InterfaceProblem], gap_change: &[f64]) -> f64 {
+    cases
+        .iter()
+        .map(|c| {
+            let gap: Vec<f64> = c
+                .initial_gap()
+                .iter()
+                .zip(gap_change)
+                .map(|(a, b)| a + b)
+                .collect();
+            PolonskyKeer::default()
+                .solve(&c.with_initial_gap(&gap).unwrap())
+                .unwrap()
+                .p_max()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// No case's pressure in `states` exceeds v·p_max anywhere, and their envelope closes on
+/// v·p_max on Ω_v within 1e-6 of p_max.
+fn assert_envelope_closes(
+    iface: &Interface,
+    v: &Profile,
+    regions: &[Region],
+    p_max: f64,
+    states: &[&[f64]],
+) {
+    let mut envelope = vec![0.0f64; iface.len()];
+    for p in states {
+        for i in 0..iface.len() {
+            let allowed = v.value(iface.points[i]) * p_max;
+            assert!(p[i] <= allowed + 1e-6 * p_max, "{} > {allowed}", p[i]);
+            envelope[i] = envelope[i].max(p[i]);
+        }
+    }
+    let miss = (0..iface.len())
+        .filter(|&i| regions[i] == Region::OmegaV)
+        .map(|i| (envelope[i] - v.value(iface.points[i]) * p_max).abs() / p_max)
+        .fold(0.0, f64::max);
+    assert!(miss < 1e-6, "{miss}");
+}
+
+/// The crown `gap_change` is a minimax optimum of `cases`: each of eight symmetric bumps of
+/// ±0.3 µm (at |x| = 0.5, 2, 3.5, 4.5 mm) raises the worst case above its `p_max`.
+fn assert_bumps_raise_the_worst_case(
+    cases: &[&InterfaceProblem],
+    iface: &Interface,
+    gap_change: &[f64],
+    p_max: f64,
+) {
+    for centre in [0.5, 2.0, 3.5, 4.5] {
+        for amplitude in [-3e-4, 3e-4] {
+            let bumped: Vec<f64> = iface
+                .points
+                .iter()
+                .zip(gap_change)
+                .map(|(x, d)| d + amplitude * (-((x[0].abs() - centre) / 0.5).powi(2)).exp())
+                .collect();
+            let w = worst_case(cases, &bumped);
+            eprintln!("bump {amplitude:+.0e} mm at |x| = {centre}: worst {w:.2} MPa vs {p_max:.2}");
+            assert!(
+                w > p_max,
+                "a bump at {centre} lowers the worst case: {w} < {p_max}"
+            );
+        }
+    }
+}
+
 /// The robust crown of the roller on 80 × 41 cells for the envelope {1.5 Q tilted ±2′, Q,
 /// ½ Q} by the envelope load split (symmetric crown, design case 1.5 Q at +2′, flat
 /// controller up to L1 = 4.5 mm): no case exceeds v·p_max anywhere, the envelope of the cases'
@@ -484,28 +620,17 @@ fn optimised_roller_crown_by_the_load_split() {
 /// crown at Q, the comparison, has a worst case 7.5 % higher (2861.5 against 2661.4 MPa).
 #[test]
 fn robust_roller_crown_over_an_envelope() {
-    use contopt::Region;
     let (body, h, _) = bearing_roller(80, 41);
     let iface = body.interface();
     let gamma = (2.0f64 / 60.0).to_radians();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
     let nominal = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let case = |factor: f64, tilt: f64| {
-        let mut modes = nominal.modes().to_vec();
-        modes[0].load *= factor;
-        let gap: Vec<f64> = h
-            .iter()
-            .zip(&iface.points)
-            .map(|(h, x)| h + tilt * x[0])
-            .collect();
-        nominal
-            .with_modes(modes)
-            .unwrap()
-            .with_initial_gap(&gap)
-            .unwrap()
-    };
-    let design = case(1.5, gamma);
-    let others = [case(1.5, -gamma), case(1.0, 0.0), case(0.5, 0.0)];
+    let design = roller_case(&nominal, &h, 1.5, gamma);
+    let others = [
+        roller_case(&nominal, &h, 1.5, -gamma),
+        roller_case(&nominal, &h, 1.0, 0.0),
+        roller_case(&nominal, &h, 0.5, 0.0),
+    ];
     let regions = centre_row(iface);
     let v = Profile::cubic(4.5, 5.0).unwrap();
     let shape = GapShape::symmetric(iface, 0).unwrap();
@@ -520,63 +645,21 @@ fn robust_roller_crown_over_an_envelope() {
     let states: Vec<&[f64]> = std::iter::once(robust.optimum.pressure.as_slice())
         .chain(robust.cases.iter().map(|s| s.pressure.as_slice()))
         .collect();
-    let mut envelope = vec![0.0f64; iface.len()];
-    for p in &states {
-        for i in 0..iface.len() {
-            let allowed = v.value(iface.points[i]) * p_max;
-            assert!(p[i] <= allowed + 1e-6 * p_max, "{} > {allowed}", p[i]);
-            envelope[i] = envelope[i].max(p[i]);
-        }
-    }
-    let miss = (0..iface.len())
-        .filter(|&i| regions[i] == Region::OmegaV)
-        .map(|i| (envelope[i] - v.value(iface.points[i]) * p_max).abs() / p_max)
-        .fold(0.0, f64::max);
-    assert!(miss < 1e-6, "{miss}");
+    assert_envelope_closes(iface, &v, &regions, p_max, &states);
     let all: Vec<&InterfaceProblem> = std::iter::once(&design).chain(&others).collect();
-    let worst = |gap_change: &[f64]| -> f64 {
-        all.iter()
-            .map(|c| {
-                let gap: Vec<f64> = c
-                    .initial_gap()
-                    .iter()
-                    .zip(gap_change)
-                    .map(|(a, b)| a + b)
-                    .collect();
-                pk.solve(&c.with_initial_gap(&gap).unwrap())
-                    .unwrap()
-                    .p_max()
-            })
-            .fold(0.0, f64::max)
-    };
-    let at_optimum = worst(&robust.optimum.gap_change);
+    let at_optimum = worst_case(&all, &robust.optimum.gap_change);
     assert!(
         (at_optimum / p_max - 1.0).abs() < 1e-6,
         "{at_optimum} vs {p_max}"
     );
-    for centre in [0.5, 2.0, 3.5, 4.5] {
-        for amplitude in [-3e-4, 3e-4] {
-            let bumped: Vec<f64> = iface
-                .points
-                .iter()
-                .zip(&robust.optimum.gap_change)
-                .map(|(x, d)| d + amplitude * (-((x[0].abs() - centre) / 0.5).powi(2)).exp())
-                .collect();
-            let w = worst(&bumped);
-            eprintln!("bump {amplitude:+.0e} mm at |x| = {centre}: worst {w:.2} MPa vs {p_max:.2}");
-            assert!(
-                w > p_max,
-                "a bump at {centre} lowers the worst case: {w} < {p_max}"
-            );
-        }
-    }
+    assert_bumps_raise_the_worst_case(&all, iface, &robust.optimum.gap_change, p_max);
     let single = Optimisation::new(&nominal, &GapShape::extruded(iface, 0).unwrap(), &v)
         .unwrap()
         .with_regions(regions)
         .unwrap()
         .load_split(&pk, 1e-8, 50)
         .unwrap();
-    let single_worst = worst(&single.gap_change);
+    let single_worst = worst_case(&all, &single.gap_change);
     eprintln!(
         "robust crown 80 × 41: worst {p_max:.2} MPa in {} updates; single-load crown {:.2} at Q, \
          worst {single_worst:.2}",

@@ -406,9 +406,9 @@ fn omega_v_regions_contain_their_points() {
 }
 
 /// The bundled steel punch on an aluminium base: with Ω_v the whole face the bound is the
-/// equilibrium value p̃·πR²/∫v dA of the C¹ controller, whatever the support, and a base held
-/// axially only needs a larger gap change; with the outermost Gauss point left in Ω_nv the
-/// pressure follows v·p̂ on Ω_v only, and the rim carries an edge peak above p̂.
+/// equilibrium value p̃·πR²/∫v dA of the C¹ controller, whatever the support or the materials;
+/// a base held axially only needs a larger gap change, and swapping the materials (the stiff
+/// body below) a smaller one.
 #[test]
 fn steel_on_aluminium() {
     let scene = Scene::bundled("steel-on-aluminium").unwrap();
@@ -429,7 +429,7 @@ fn steel_on_aluminium() {
         carried += w * controller.value([r, 0.0, 0.0]);
     }
     let equilibrium = 50.0 * area / carried;
-    for r in &reports[..2] {
+    for r in &reports {
         let bound = r.bound_p_max.unwrap();
         assert!(
             (bound / equilibrium - 1.0).abs() < 1e-3,
@@ -437,24 +437,14 @@ fn steel_on_aluminium() {
             r.label
         );
     }
-    assert!(reports[1].dh_max_um.unwrap() > reports[0].dh_max_um.unwrap());
-    // Measured: within 8e-5 p̂ everywhere with Ω_v the whole face; with the rim in Ω_nv within
-    // 2e-4 p̂ up to r = 15 mm, and off by up to 2 % of p̂ on the two faces next to the rim,
-    // whose shared node's gap change also serves the rim.
-    let follows = |r: &contopt_scene::CaseReport, reach: f64| {
+    let dh = |k: usize| reports[k].dh_max_um.unwrap();
+    assert!(dh(1) > dh(0) && dh(2) < dh(1), "{} {} {}", dh(0), dh(1), dh(2));
+    // Measured: within 8e-5 p̂ everywhere.
+    for r in &reports {
         let bound = r.bound_p_max.unwrap();
-        r.interface
-            .iter()
-            .filter(|q| q.x[0] <= reach)
-            .all(|q| (q.p - controller.value(q.x) * bound).abs() < 1e-3 * bound)
-    };
-    assert!(follows(&reports[0], 20.0) && follows(&reports[1], 20.0));
-    let rim = &reports[2];
-    assert!(follows(rim, 15.0));
-    let bound = rim.bound_p_max.unwrap();
-    let outer = rim.interface.iter().filter(|q| q.x[0] > 19.8);
-    assert!(outer.clone().count() == 1 && outer.clone().all(|q| q.p > 2.0 * bound));
-    assert!(bound < 0.9 * equilibrium, "{bound} vs {equilibrium}");
+        let off = |q: &contopt_scene::PointReport| (q.p - controller.value(q.x) * bound).abs();
+        assert!(r.interface.iter().all(|q| off(q) < 1e-3 * bound), "{}", r.label);
+    }
 }
 
 /// The observer of a run sees the contact solves' iterations, and a stop ends the case

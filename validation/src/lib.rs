@@ -1,0 +1,7 @@
+//! Fixtures outside the library crates: the paper's printed Tables 1–3 and the runs of the
+//! bundled scenes that reproduce them ([`paper`]). The scenes in `scenes/` are the one path to
+//! the paper's cases: the tests, the examples and the book's generator use them through here.
+//! The closed forms of elasticity the tests compare with are written once, in [`closed_form`].
+
+pub mod closed_form;
+pub mod paper;
