@@ -54,7 +54,8 @@ impl Figure {
     /// the rows when rendered. Text keeps its smoothing.
     pub(crate) fn crisp(mut self) -> Self {
         if let Some(at) = self.svg.find("<svg ") {
-            self.svg.insert_str(at + 5, "shape-rendering=\"crispEdges\" ");
+            self.svg
+                .insert_str(at + 5, "shape-rendering=\"crispEdges\" ");
         }
         self
     }

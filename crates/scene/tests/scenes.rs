@@ -438,12 +438,22 @@ fn steel_on_aluminium() {
         );
     }
     let dh = |k: usize| reports[k].dh_max_um.unwrap();
-    assert!(dh(1) > dh(0) && dh(2) < dh(1), "{} {} {}", dh(0), dh(1), dh(2));
+    assert!(
+        dh(1) > dh(0) && dh(2) < dh(1),
+        "{} {} {}",
+        dh(0),
+        dh(1),
+        dh(2)
+    );
     // Measured: within 8e-5 p̂ everywhere.
     for r in &reports {
         let bound = r.bound_p_max.unwrap();
         let off = |q: &contopt_scene::PointReport| (q.p - controller.value(q.x) * bound).abs();
-        assert!(r.interface.iter().all(|q| off(q) < 1e-3 * bound), "{}", r.label);
+        assert!(
+            r.interface.iter().all(|q| off(q) < 1e-3 * bound),
+            "{}",
+            r.label
+        );
     }
 }
 
