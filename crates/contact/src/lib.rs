@@ -21,6 +21,6 @@ mod tests;
 
 pub use full::{FullPenalty, FullSystem};
 pub use polonsky_keer::PolonskyKeer;
-pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
+pub use problem::{check_gap, FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
 pub use qp::Qp;
 pub use solvers::{ActiveSet, AugmentedLagrangian, ContactSolver, Penalty};

@@ -774,8 +774,9 @@ fn check_independent(modes: &[FreeMode], w: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// Checks an initial gap: one finite value per interface point.
-pub(crate) fn check_gap(initial_gap: &[f64], n: usize) -> Result<()> {
+/// Checks an initial gap: one finite value per interface point (an error names the field
+/// `initial_gap` and the offending value).
+pub fn check_gap(initial_gap: &[f64], n: usize) -> Result<()> {
     if initial_gap.len() != n {
         return Err(Error::invalid(
             "initial_gap",

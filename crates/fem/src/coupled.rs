@@ -57,20 +57,7 @@ impl<'a> JointSystem<'a> {
             .interface()
             .partners(body2.interface(), body1.name(), body2.name())?;
         let n = pair.len();
-        if initial_gap.len() != n {
-            return Err(Error::invalid(
-                "initial_gap",
-                initial_gap.len(),
-                format!("one value per interface point ({n})"),
-            ));
-        }
-        if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
-            return Err(Error::invalid(
-                format!("initial_gap[{i}]"),
-                initial_gap[i],
-                "must be finite",
-            ));
-        }
+        contopt_contact::check_gap(initial_gap, n)?;
         let bodies = [body1, body2];
         let numbering = [
             Numbering::new(&body1.model, &[], false)?,
