@@ -401,15 +401,6 @@ fn roller_scene(name: &str, profile: &str, optimisation: &str) -> PathBuf {
 /// follows v·p_max; an optimised crown without `[optimisation]` is refused.
 #[test]
 fn roller_scenes() {
-    let centre_row = |case: &Value| -> Vec<(f64, f64)> {
-        case["interface"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .filter(|p| p["x"][1].as_f64().unwrap().abs() < 1e-9)
-            .map(|p| (p["x"][0].as_f64().unwrap(), p["p"].as_f64().unwrap()))
-            .collect()
-    };
     // Lundberg's profile is the one of a uniform line load: along the centre row the pressure
     // stays within 3 % of its middle value, where the straight roller's end cell carries 30 %
     // more (57 % with 0.25 mm cells: the edge singularity, finer cells give more).
@@ -427,15 +418,7 @@ fn roller_scenes() {
         // at once (one Poisson's ratio).
         let sub = &report["cases"][0]["subsurface"];
         assert_eq!(sub["bodies"][0]["body"], "raceway and roller");
-        let csv =
-            std::fs::read_to_string(path.with_file_name(profile).join("subsurface_1.csv")).unwrap();
-        let mises = csv
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').collect::<Vec<_>>())
-            .filter(|f| f[1] == "1")
-            .map(|f| f[12].parse::<f64>().unwrap())
-            .fold(0.0, f64::max);
+        let mises = first_section_mises(&path.with_file_name(profile).join("subsurface_1.csv"));
         assert!(
             (mises / (0.5575 * middle) - 1.0).abs() < 0.03,
             "{profile}: {mises} vs {middle}"
@@ -456,7 +439,35 @@ fn roller_scenes() {
             );
         }
     }
+}
 
+/// The pressure along a roller case's centre row: (x, p).
+fn centre_row(case: &Value) -> Vec<(f64, f64)> {
+    case["interface"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["x"][1].as_f64().unwrap().abs() < 1e-9)
+        .map(|p| (p["x"][0].as_f64().unwrap(), p["p"].as_f64().unwrap()))
+        .collect()
+}
+
+/// The largest von Mises stress on the first section of a `subsurface_<case>.csv`.
+fn first_section_mises(csv: &std::path::Path) -> f64 {
+    std::fs::read_to_string(csv)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|f| f[1] == "1")
+        .map(|f| f[12].parse::<f64>().unwrap())
+        .fold(0.0, f64::max)
+}
+
+/// A crown from a table runs; the optimised crown keeps the centre row at p_max where v = 1;
+/// an optimised crown without `[optimisation]` is refused at check.
+#[test]
+fn roller_crowns_from_a_table_and_optimised() {
     let path = roller_scene("table", "{ kind = \"table\", file = \"crown.csv\" }", "");
     std::fs::write(
         path.parent().unwrap().join("crown.csv"),
@@ -525,12 +536,29 @@ fn roller_envelope_study() {
         .iter()
         .find(|c| c["label"] == "robust, L1 = 5 mm")
         .unwrap();
-    let envelope = case["roller"]["envelope"].as_array().unwrap();
+    robust_envelope_is_symmetric_and_bounded(
+        case["roller"]["envelope"].as_array().unwrap(),
+        robust,
+    );
+    let tuned = cases
+        .iter()
+        .find(|c| c["label"] == "Fujiwara-Kawase tuned")
+        .unwrap();
+    assert!(tuned["roller"]["tuned"]["k2"].as_f64().unwrap() <= 1.0);
+    assert!(path
+        .parent()
+        .unwrap()
+        .join("roller-envelope/envelope_7.svg")
+        .exists());
+}
+
+/// Every case of the robust crown's envelope stays below its worst case without edge loading,
+/// and the crown is symmetric: a tilt and its mirror give one p_max, each reported under its own
+/// case (the design case, 1.5 Q at +2′, is not the last one here).
+fn robust_envelope_is_symmetric_and_bounded(envelope: &[Value], robust: f64) {
     for e in envelope {
         assert_eq!(e["edge_loading"], false, "{e}");
         assert!(e["p_max"].as_f64().unwrap() <= robust * (1.0 + 1e-6));
-        // The crown is symmetric: a tilt and its mirror give one p_max, each reported under
-        // its own case (the design case, 1.5 Q at +2′, is not the last one here).
         let mirror = envelope
             .iter()
             .find(|m| {
@@ -547,17 +575,12 @@ fn roller_envelope_study() {
             "{e} against its mirror {mirror}"
         );
     }
-    let tuned = cases
-        .iter()
-        .find(|c| c["label"] == "Fujiwara-Kawase tuned")
-        .unwrap();
-    assert!(tuned["roller"]["tuned"]["k2"].as_f64().unwrap() <= 1.0);
-    assert!(path
-        .parent()
-        .unwrap()
-        .join("roller-envelope/envelope_7.svg")
-        .exists());
+}
 
+/// An optimised roller crown asks for an envelope when robust, and an envelope's load factors
+/// must be positive.
+#[test]
+fn roller_envelope_errors_are_named() {
     fails_with(
         &["check"],
         &roller_scene(
