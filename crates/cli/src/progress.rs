@@ -21,7 +21,8 @@ const TEMPLATE: &str = "[{elapsed_precise}] {bar:24} {pos}/{len} cases  {wide_ms
 pub struct Progress {
     bar: ProgressBar,
     case: RefCell<String>,
-    step: Cell<usize>,
+    /// The outer method (the optimisation, a roller's crown search) and its step.
+    step: Cell<(&'static str, usize)>,
     /// The contact solver that reported last, and its iteration.
     solver: RefCell<(String, usize)>,
 }
@@ -40,7 +41,7 @@ impl Progress {
         Self {
             bar,
             case: Default::default(),
-            step: Cell::new(0),
+            step: Cell::new(("", 0)),
             solver: Default::default(),
         }
     }
@@ -48,7 +49,7 @@ impl Progress {
     /// A case begins.
     pub fn start(&self, case: &Case) {
         *self.case.borrow_mut() = contopt_report::words::legend(&case.label, &case.params);
-        self.step.set(0);
+        self.step.set(("", 0));
         *self.solver.borrow_mut() = Default::default();
         self.show();
         self.bar.enable_steady_tick(TICK);
@@ -61,8 +62,9 @@ impl Progress {
 
     fn show(&self) {
         let mut message = self.case.borrow().clone();
-        if self.step.get() > 0 {
-            message += &format!(" · optimisation step {}", self.step.get());
+        let (outer, step) = self.step.get();
+        if step > 0 {
+            message += &format!(" · {outer} step {step}");
         }
         let (method, k) = &*self.solver.borrow();
         if *k > 0 {
@@ -74,8 +76,11 @@ impl Progress {
 
 impl Observer for Progress {
     fn observe(&self, iteration: &Iteration) -> Flow {
-        if iteration.method == "optimisation" {
-            self.step.set(iteration.iteration);
+        let outer = contopt_scene::OUTER_METHODS
+            .iter()
+            .find(|m| **m == iteration.method);
+        if let Some(outer) = outer {
+            self.step.set((outer, iteration.iteration));
         } else {
             let mut solver = self.solver.borrow_mut();
             if solver.0 != iteration.method {

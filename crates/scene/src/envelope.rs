@@ -3,7 +3,7 @@
 //! Fujiwara–Kawase profile (a Nelder–Mead search over K1, K2, z_m).
 
 use contopt_contact::{ContactSolver, InterfaceProblem};
-use contopt_core::observe::Observer;
+use contopt_core::observe::{stopped_by_observer, Flow, Iteration, Observer};
 use contopt_core::{ContactState, Error, Result};
 use contopt_optimise::nelder_mead;
 use contopt_roller::Crown;
@@ -172,6 +172,28 @@ fn penalised_worst(points: &[[f64; 3]], states: &[ContactState]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Reports the search's `crowns`-th crown, whose worst case is `worst` \[MPa\], to `observer`
+/// (method [`TUNE_METHOD`]); a stop ends the search with an error.
+fn report_crown(observer: &dyn Observer, crowns: usize, worst: f64) -> Result<()> {
+    let iteration = Iteration {
+        method: TUNE_METHOD,
+        iteration: crowns,
+        measure: worst,
+        tolerance: TUNE_TOLERANCE_MPA,
+    };
+    match observer.observe(&iteration) {
+        Flow::Continue => Ok(()),
+        Flow::Stop => Err(Error::NotConverged {
+            method: TUNE_METHOD.into(),
+            iterations: crowns,
+            detail: format!("{}; worst case {worst:.1} MPa", stopped_by_observer(crowns)),
+        }),
+    }
+}
+
+/// The name the Fujiwara–Kawase search reports its crowns under.
+pub const TUNE_METHOD: &str = "Fujiwara-Kawase search";
+
 /// The Fujiwara–Kawase profile tuned for `cases`: the parameters, the crown's drop at each
 /// point \[mm\] and the cases' contact under it.
 pub(crate) fn tune_fujiwara_kawase(
@@ -193,11 +215,14 @@ pub(crate) fn tune_fujiwara_kawase(
         points.iter().map(|x| crown.drop(x[0], length)).collect()
     };
     let mut warm: Option<Vec<ContactState>> = None;
+    let mut crowns = 0;
     let minimum = nelder_mead(
         |u| {
             let states = solve_cases(cases, &drops(u)?, solver, warm.as_deref(), observer)?;
             let value = penalised_worst(points, &states);
             warm = Some(states);
+            crowns += 1;
+            report_crown(observer, crowns, value)?;
             Ok(value)
         },
         &[0.0, 0.0, 5f64.ln()],

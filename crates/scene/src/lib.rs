@@ -21,6 +21,11 @@ mod spec;
 mod subsurface;
 
 pub use bundled::BUNDLED;
+
+/// The methods of a case that contain contact solves, as they report to an observer: the
+/// optimisation loop of §3.2 and the Fujiwara–Kawase search of a roller's envelope. Every other
+/// method an observer sees is a contact solver.
+pub const OUTER_METHODS: [&str; 2] = ["optimisation", envelope::TUNE_METHOD];
 pub use report::{
     BodyStresses, CaseReport, EnvelopeCaseReport, IterationRow, PointReport, ReferenceCurve,
     Report, RollerReport, SubsurfaceReport, TunedProfile, PENETRATION_WARNING,
