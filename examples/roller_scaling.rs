@@ -207,7 +207,7 @@ fn child(nx: usize, ny: usize, l1: f64) -> Row {
 
 /// Item 4's table: both grids, every L1.
 fn production(grids: &[(usize, usize)]) -> Vec<Row> {
-    println!("\n## The optimised roller (load split, Polonsky–Keer, one core)\n");
+    eprintln!("\n## The optimised roller (load split, Polonsky–Keer, one core)\n");
     println!("| grid | L1 mm | time s | peak MB | solves | p_max MPa | Δp_max to the finer grid | largest miss of v·p_max on Ω_v | Δh_max µm | min Δh µm | Δh at x = 0 µm |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let l1s = [0.0, 2.0, 3.0, 4.0, 5.0];
@@ -244,8 +244,8 @@ fn production(grids: &[(usize, usize)]) -> Vec<Row> {
 /// E = 2·10⁵ MPa, v = 1, cells 0.5 or 0.25 × 0.04 mm): the LP (3.5) on the dense matrix, and
 /// the load split with the dense active set in place of Polonsky–Keer.
 fn dense_agreement() {
-    println!("\n## Against the dense paths\n");
-    println!("| grid | dense path | its time s | split (Polonsky–Keer) s | p_max MPa | p_max split / dense − 1 | max |ΔΔh| / Δh_max |");
+    eprintln!("\n## Against the dense paths\n");
+    println!("| grid | dense path | its time s | split (Polonsky–Keer) s | p_max MPa | p_max split / dense − 1 | largest Δh difference / Δh_max |");
     println!("| --- | --- | --- | --- | --- | --- | --- |");
     for nx in [20, 40] {
         let (ny, dx, dy) = (21, 10.0 / nx as f64, 0.04);
@@ -295,7 +295,7 @@ fn dense_agreement() {
 
 /// The straight roller against Hertz's line contact with the local centre line load.
 fn straight(grids: &[(usize, usize)]) {
-    println!("\n## The straight roller against Hertz (local centre line load)\n");
+    eprintln!("\n## The straight roller against Hertz (local centre line load)\n");
     println!("| grid | cell mm | centre line load N/mm | p at the centre MPa | Hertz local p₀ | error | / nominal p₀ 2000.1 | end pressure MPa (cell-dependent) | time s |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for &(nx, ny) in grids {
@@ -369,7 +369,7 @@ fn read_scaling(csv: &str) -> Vec<(f64, f64)> {
 
 /// The solve against the number of points (L1 = 3 mm): the CSV and the log-log chart.
 fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
-    println!("\n## Scaling (L1 = 3 mm)\n");
+    eprintln!("\n## Scaling (L1 = 3 mm)\n");
     println!("| grid | points | solves | time s | time per solve ms | peak MB |");
     println!("| --- | --- | --- | --- | --- | --- |");
     let mut csv = String::from("nx,ny,points,solves,seconds,peak_mb,p_max_mpa\n");
@@ -394,7 +394,7 @@ fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     std::fs::write(dir.join("scaling.csv"), csv)?;
     chart(&points, dir)?;
-    println!("\nwritten: results/roller_scaling/{{scaling.csv,scaling.svg,scaling.png}}");
+    eprintln!("\nwritten: results/roller_scaling/{{scaling.csv,scaling.svg,scaling.png}}");
     Ok(())
 }
 

@@ -409,9 +409,10 @@ impl Reference {
         // Richardson: the differences fall by a ratio 2^q from one mesh to the next.
         let ratio = (p1 - p0) / (p2 - p1);
         let centre = p2 + (p2 - p1) / (ratio - 1.0);
-        eprintln!(
-            "Table 1 reference: centre pressure {centres:?} MPa on {REFERENCE_ELEMENTS:?} elements, \
-             order {:.2}, extrapolated {centre:.6} MPa",
+        println!(
+            "Table 1 reference: the active set's centre pressure on {REFERENCE_ELEMENTS:?} elements, \
+             {} MPa, Richardson-extrapolated (order {:.2}): {centre:.4} MPa\n",
+            centres.iter().map(|p| format!("{p:.4}")).collect::<Vec<_>>().join(", "),
             ratio.log2()
         );
         Ok(Self {
@@ -522,6 +523,102 @@ fn curves(rows: &[Row], problem: &str) -> Vec<(String, Vec<(f64, f64)>)> {
         .collect()
 }
 
+/// Three significant digits of a time in milliseconds.
+fn milliseconds(seconds: f64) -> String {
+    let ms = 1e3 * seconds;
+    match ms {
+        ms if ms >= 100.0 => format!("{ms:.0}"),
+        ms if ms >= 10.0 => format!("{ms:.1}"),
+        ms if ms >= 1.0 => format!("{ms:.2}"),
+        ms => format!("{ms:.3}"),
+    }
+}
+
+/// A leading column of a [`pivot`]: its name and its value from the rows of one resolution.
+type Lead<'a> = (&'a str, &'a dyn Fn(&[&Row]) -> String);
+
+/// One markdown table of `problem`: a row per resolution, the columns `lead` (name, value of
+/// the resolution's rows) and then one per solver with `cell` of its row ("—" when not run).
+fn pivot(
+    rows: &[Row],
+    (problem, resolution_name): (&str, &str),
+    lead: &[Lead],
+    cell: &dyn Fn(&Row) -> Option<String>,
+) {
+    let mine: Vec<&Row> = rows.iter().filter(|r| r.problem == problem).collect();
+    let mut solvers: Vec<&str> = vec![];
+    let mut resolutions: Vec<usize> = vec![];
+    for r in &mine {
+        if !solvers.contains(&r.solver.as_str()) {
+            solvers.push(&r.solver);
+        }
+        if !resolutions.contains(&r.resolution) {
+            resolutions.push(r.resolution);
+        }
+    }
+    let names: Vec<&str> = [resolution_name, "points"]
+        .into_iter()
+        .chain(lead.iter().map(|(name, _)| *name))
+        .chain(solvers.iter().copied())
+        .collect();
+    println!("| {} |", names.join(" | "));
+    println!("|{}", " --- |".repeat(names.len()));
+    for resolution in resolutions {
+        let at: Vec<&Row> = mine
+            .iter()
+            .copied()
+            .filter(|r| r.resolution == resolution)
+            .collect();
+        let cells: Vec<Option<String>> = solvers
+            .iter()
+            .map(|s| at.iter().find(|r| r.solver == *s).and_then(|r| cell(r)))
+            .collect();
+        // A row with nothing to show is left out.
+        if lead.is_empty() && cells.iter().all(Option::is_none) {
+            continue;
+        }
+        let mut fields = vec![resolution.to_string(), at[0].points.to_string()];
+        fields.extend(lead.iter().map(|(_, value)| value(&at)));
+        fields.extend(cells.into_iter().map(|c| c.unwrap_or_else(|| "—".into())));
+        println!("| {} |", fields.join(" | "));
+    }
+    println!();
+}
+
+/// The book's tables: per problem, the times of every solver (with the errors of the exact
+/// solvers, Polonsky–Keer's) and each solver's largest difference from the active set's
+/// pressure; on Hertz also each solver's p_max error.
+fn print_tables(rows: &[Row]) {
+    let exact = |at: &[&Row], e: fn(&Row) -> Option<f64>| {
+        at.iter()
+            .find(|r| r.solver == PolonskyKeer::default().name())
+            .and_then(|r| e(r))
+            .map_or("—".into(), |x| format!("{x:.2e}"))
+    };
+    let first: &dyn Fn(&[&Row]) -> String = &|at| exact(at, |r| r.error);
+    let second: &dyn Fn(&[&Row]) -> String = &|at| exact(at, |r| r.error2);
+    let sci = |v: Option<f64>| v.map(|x| format!("{x:.1e}"));
+    let problems = [
+        ("Hertz", "a/Δx", "L2 error", "p_max error"),
+        ("Table 1", "elements", "centre error", "L2 difference"),
+    ];
+    for (problem, resolution, error, error2) in problems {
+        println!("{problem}, time ms of each solver:\n");
+        pivot(
+            rows,
+            (problem, resolution),
+            &[(error, first), (error2, second)],
+            &|r| r.time.map(milliseconds),
+        );
+        println!("{problem}, each solver's largest pressure difference from the active set's, over p_max:\n");
+        pivot(rows, (problem, resolution), &[], &|r| sci(r.vs_active_set));
+        if problem == "Hertz" {
+            println!("{problem}, each solver's {error2}:\n");
+            pivot(rows, (problem, resolution), &[], &|r| sci(r.error2));
+        }
+    }
+}
+
 /// The table the book's performance section shows; `chart` redraws its chart from it.
 const CSV: &str = "book/src/solver_benchmark.csv";
 
@@ -609,34 +706,20 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     };
 
     let paper_ratio = PAPER_C * Table1::new(18, None)?.compliance()?;
-    eprintln!("the paper's c times the largest (A w)_ii of its 18-element mesh: {paper_ratio:.3e}");
+    println!(
+        "the paper's c times the largest (A w)_ii of its 18-element mesh: {paper_ratio:.3e}\n"
+    );
     let reference = Reference::new()?;
     let mut rows = benchmark("Hertz", hertz_cells, |n| Hertz::new(n, paper_ratio))?;
     rows.extend(benchmark("Table 1", table1_elements, |n| {
         Table1::new(n, Some(&reference))
     })?);
 
-    println!("| problem | solver | resolution | points | time s | error | second error | vs active set | iterations | converged | note |");
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    print_tables(&rows);
     let mut csv = String::from(
         "problem,solver,resolution,points,time_s,error,error2,vs_active_set,iterations,converged,note\n",
     );
     for r in &rows {
-        let e = |v| opt(v, |x| format!("{x:.2e}"));
-        println!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            r.problem,
-            r.solver,
-            r.resolution,
-            r.points,
-            opt(r.time, |t| format!("{t:.3e}")),
-            e(r.error),
-            e(r.error2),
-            e(r.vs_active_set),
-            opt(r.iterations, |k| k.to_string()),
-            opt(r.converged, |c| c.to_string()),
-            r.note
-        );
         let g = |v| opt(v, |x| format!("{x:e}"));
         let _ = writeln!(
             csv,

@@ -1,0 +1,99 @@
+//! Every contact solver on Hertz on the finite-element half-space stand-in (interfaces of about
+//! 50, 200 and 1000 points): one solve each, its time, and its errors against the QP's solution
+//! (pressure over p_max, gap over the approach, approach relative). The table of the book's
+//! contact chapter; `cargo bench --bench contact` times the same solves with criterion.
+//!
+//! A rigid sphere (R = 100 mm) presses the block with the force that gives a 1 mm contact
+//! radius inside a 1.5 mm candidate zone, so a third of the points stay open. With three Gauss
+//! points per quadratic face the QP's minimisers share d and λ but not p at elements partly in
+//! contact: there the pressure column says which minimiser a method returns.
+//!
+//! `cargo run --release --example contact_cost`
+
+use std::time::Instant;
+
+use contopt::contact::{
+    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
+};
+use contopt::fem::{FeBody, Material};
+use contopt::scene::geometry::half_space_block;
+use contopt::{ElasticBody, RigidBody};
+
+const E: f64 = 2.0e5;
+const NU: f64 = 0.3;
+/// The sphere's radius [mm].
+const RADIUS: f64 = 100.0;
+/// The penalty parameter of the penalty and the augmented Lagrangian [MPa/mm].
+const C: f64 = E * 1e4;
+/// Contact faces of the three interfaces (three points each).
+const FACES: [usize; 3] = [17, 67, 333];
+
+/// The Hertz problem with `faces` contact faces.
+fn hertz(faces: usize) -> contopt::Result<InterfaceProblem<'static>> {
+    let (model, contact) = half_space_block(1.5, faces, 30.0, Material::new(E, NU)?)?;
+    let block = FeBody::new("block", model, &contact)?;
+    let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * RADIUS);
+    let gap: Vec<f64> = block
+        .interface()
+        .points
+        .iter()
+        .map(|x| x[0] * x[0] / (2.0 * RADIUS))
+        .collect();
+    let sphere = RigidBody::pressed("sphere", block.interface(), [0.0, 1.0, 0.0], force)?;
+    InterfaceProblem::owned(Box::new(block), Box::new(sphere), &gap)
+}
+
+/// The largest difference of `a` from `b`.
+fn difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+fn main() -> contopt::Result<()> {
+    let solvers: [Box<dyn ContactSolver>; 4] = [
+        Box::new(Qp::default()),
+        Box::new(ActiveSet),
+        Box::new(AugmentedLagrangian::new(C)),
+        Box::new(Penalty { c: C }),
+    ];
+    println!(
+        "{:>6}  {:<22} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9}",
+        "points", "solver", "p error", "d error", "λ error", "iters", "iterp", "iterd", "time ms"
+    );
+    for faces in FACES {
+        let problem = hertz(faces)?;
+        let t = Instant::now();
+        let reference = solvers[0].solve(&problem)?;
+        let reference_ms = t.elapsed().as_secs_f64() * 1e3;
+        for (k, solver) in solvers.iter().enumerate() {
+            // The reference (the first solver) is solved once.
+            let t = Instant::now();
+            let (st, ms) = match k {
+                0 => (reference.clone(), reference_ms),
+                _ => (solver.solve(&problem)?, t.elapsed().as_secs_f64() * 1e3),
+            };
+            let dp = difference(&st.pressure, &reference.pressure) / reference.p_max();
+            let dd = difference(&st.gap, &reference.gap) / reference.rigid[0].abs();
+            let dl = (st.rigid[0] / reference.rigid[0] - 1.0).abs();
+            // The first solver is the reference: its errors are blank.
+            let errors = [dp, dd, dl].map(|e| match k {
+                0 => "—".to_string(),
+                _ => format!("{e:.1e}"),
+            });
+            println!(
+                "{:>6}  {:<22} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {ms:>9.2}",
+                problem.len(),
+                solver.name(),
+                errors[0],
+                errors[1],
+                errors[2],
+                st.iterations,
+                st.iterp,
+                st.iterd
+            );
+        }
+    }
+    Ok(())
+}
