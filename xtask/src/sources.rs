@@ -160,6 +160,10 @@ pub const SOURCES: &[Source] = &[
         ..example(&["--example", "roller_scaling"], "roller_dense", true)
     },
     Source {
+        args: &["straight"],
+        ..example(&["--example", "roller_scaling"], "roller_straight", true)
+    },
+    Source {
         args: &["scaling", "large"],
         plots: &[("results/roller_scaling/scaling.svg", "roller_scaling.svg")],
         ..example(&["--example", "roller_scaling"], "roller_scaling", true)
