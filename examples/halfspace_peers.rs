@@ -16,18 +16,6 @@ const E: f64 = 210e3;
 const NU: f64 = 0.3;
 const L: f64 = 4.0;
 
-/// Peak resident memory of this process so far [MiB] (Linux), or NaN.
-fn max_rss_mib() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
-        })
-        .map_or(f64::NAN, |kib| kib / 1024.0)
-}
-
 fn run(case: &str, n: usize) -> String {
     let estar = E / (1.0 - NU * NU);
     let h = L / n as f64;
@@ -98,7 +86,7 @@ fn run(case: &str, n: usize) -> String {
          \"rel_err_contact_radius\": {:e}, \"rel_err_contact_area\": {:e}, \"status\": \"ok\"}}",
         env!("CARGO_PKG_VERSION"),
         state.iterations,
-        max_rss_mib(),
+        contopt_validation::fixtures::peak_resident_mib(),
         carried / force - 1.0,
         -state.rigid[0] / approach_ref - 1.0,
         state.p_max(),

@@ -44,14 +44,7 @@ fn hertz(q: f64) -> (f64, f64) {
 
 /// Peak resident memory of this process [MB] (Linux), or NaN.
 fn peak_mb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
-        })
-        .map_or(f64::NAN, |kib| kib * 1.024e-3)
+    contopt_validation::fixtures::peak_resident_mib() * 1.048_576
 }
 
 /// The roller's grid: `nx` cells along the axis over l, `ny` (odd) across ±2.6 b.

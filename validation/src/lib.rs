@@ -4,4 +4,5 @@
 //! The closed forms of elasticity the tests compare with are written once, in [`closed_form`].
 
 pub mod closed_form;
+pub mod fixtures;
 pub mod paper;

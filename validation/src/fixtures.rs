@@ -1,0 +1,73 @@
+//! Bodies and instruments the benchmarks share.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use contopt_core::Result;
+use contopt_fem::{Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Spacing};
+
+/// The paper's base block (r ≤ 100 mm, height 50 mm, clamped bottom, axisymmetric Q8) with 67
+/// uniform faces under the punch (r ≤ 50 mm) and `outer` × `layers` graded elements elsewhere,
+/// condensed onto those faces (201 contact points).
+pub fn base_block(outer: usize, layers: usize) -> Result<FeBody> {
+    let x = Spacing::uniform(0.0, 50.0, 67)?.then(&Spacing::geometric(50.0, 100.0, outer, 8.0)?)?;
+    let y = Spacing::geometric(0.0, 50.0, layers, 0.2)?;
+    let mesh = Mesh::rectangle(ElementKind::Q8, &x, &y)?;
+    let mut model = FeModel::new(mesh, Material::new(2e5, 0.3)?, Analysis::Axisymmetric)?;
+    let bottom = model.mesh().nodes_on_y(0.0, 0.0, 100.0);
+    model
+        .fix(&bottom, Component::X)?
+        .fix(&bottom, Component::Y)?;
+    let contact = model.mesh().faces_on_y(50.0, 0.0, 50.0);
+    FeBody::new("base", model, &contact)
+}
+
+/// A global allocator that counts the live and the peak heap bytes: a benchmark declares
+/// `#[global_allocator] static ALLOC: PeakAlloc = PeakAlloc;` and reads [`PeakAlloc::peak_since`].
+pub struct PeakAlloc;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+impl PeakAlloc {
+    /// Starts a measurement: the live bytes now, to pass to [`PeakAlloc::peak_since`].
+    pub fn start() -> usize {
+        let live = LIVE.load(Ordering::Relaxed);
+        PEAK.store(live, Ordering::Relaxed);
+        live
+    }
+
+    /// The peak heap above `start` since [`PeakAlloc::start`] \[MiB\].
+    pub fn peak_since(start: usize) -> f64 {
+        PEAK.load(Ordering::Relaxed).saturating_sub(start) as f64 / (1 << 20) as f64
+    }
+}
+
+// SAFETY: every call is forwarded to the system allocator; the counters are atomics.
+unsafe impl GlobalAlloc for PeakAlloc {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc(layout) };
+        if !p.is_null() {
+            let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(live, Ordering::Relaxed);
+        }
+        p
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) };
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+}
+
+/// The peak resident memory of this process so far \[MiB\] (Linux's `VmHWM`), or NaN where
+/// `/proc/self/status` does not say.
+pub fn peak_resident_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(f64::NAN, |kib| kib / 1024.0)
+}
