@@ -3,7 +3,8 @@
 //! Prints one JSON row per run with the peers' fields, so the tables can be joined; each run
 //! is a fresh process. Sizes and, optionally, the cases (`hertz`, `punch`) are arguments:
 //!
-//! `cargo run --release --example halfspace_peers -- 256 512 hertz`
+//! `cargo run --release --example halfspace_peers -- 256 512 hertz` (`--table`: a markdown
+//! table of time, steps, memory and errors instead of JSON)
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -16,7 +17,9 @@ const E: f64 = 210e3;
 const NU: f64 = 0.3;
 const L: f64 = 4.0;
 
-fn run(case: &str, n: usize) -> String {
+/// One run of `case` on an `n` × `n` grid: a JSON row in the peers' fields, or a markdown
+/// table row when `table`.
+fn run(case: &str, n: usize, table: bool) -> String {
     let estar = E / (1.0 - NU * NU);
     let h = L / n as f64;
     let origin = -((n / 2) as f64) * h;
@@ -79,32 +82,74 @@ fn run(case: &str, n: usize) -> String {
     };
     let contact = state.active.iter().filter(|&&c| c).count() as f64 * h * h;
     let carried = body.interface().resultant(&state.pressure);
-    format!(
-        "{{\"tool\": \"contopt\", \"version\": \"{}\", \"case\": \"{case}\", \"bc\": \"free (non-periodic)\", \"N\": {n}, \"threads\": 1, \
-         \"seconds\": {seconds:.6}, \"setup_s\": {setup:.6}, \"iterations\": {}, \"converged\": true, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
-         \"h_mm\": {h}, \"rel_err_force\": {:e}, \"rel_err_approach\": {:e}, \"p0_ref\": {p_ref}, \"p_max\": {}, \"rel_err_p0\": {:e}, \
-         \"rel_err_contact_radius\": {:e}, \"rel_err_contact_area\": {:e}, \"status\": \"ok\"}}",
-        env!("CARGO_PKG_VERSION"),
-        state.iterations,
-        contopt_validation::fixtures::peak_resident_mib(),
-        carried / force - 1.0,
-        -state.rigid[0] / approach_ref - 1.0,
-        state.p_max(),
-        p / p_ref - 1.0,
-        (contact / PI).sqrt() - 1.0,
-        contact / PI - 1.0,
-    )
+    let row = Row {
+        seconds,
+        setup,
+        iterations: state.iterations,
+        rss: contopt_validation::fixtures::peak_resident_mib(),
+        err_force: carried / force - 1.0,
+        err_approach: -state.rigid[0] / approach_ref - 1.0,
+        p_max: state.p_max(),
+        err_p0: p / p_ref - 1.0,
+        err_radius: (contact / PI).sqrt() - 1.0,
+        err_area: contact / PI - 1.0,
+    };
+    if table {
+        format!(
+            "| {case} | {n} | {:.3} s | {} | {:.0} MiB | {:+.3} % | {:+.3} % |",
+            row.seconds,
+            row.iterations,
+            row.rss,
+            100.0 * row.err_p0,
+            100.0 * row.err_radius
+        )
+    } else {
+        format!(
+            "{{\"tool\": \"contopt\", \"version\": \"{}\", \"case\": \"{case}\", \"bc\": \"free (non-periodic)\", \"N\": {n}, \"threads\": 1, \
+             \"seconds\": {:.6}, \"setup_s\": {:.6}, \"iterations\": {}, \"converged\": true, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
+             \"h_mm\": {h}, \"rel_err_force\": {:e}, \"rel_err_approach\": {:e}, \"p0_ref\": {p_ref}, \"p_max\": {}, \"rel_err_p0\": {:e}, \
+             \"rel_err_contact_radius\": {:e}, \"rel_err_contact_area\": {:e}, \"status\": \"ok\"}}",
+            env!("CARGO_PKG_VERSION"),
+            row.seconds,
+            row.setup,
+            row.iterations,
+            row.rss,
+            row.err_force,
+            row.err_approach,
+            row.p_max,
+            row.err_p0,
+            row.err_radius,
+            row.err_area,
+        )
+    }
+}
+
+/// One run's figures, in the peers' fields.
+struct Row {
+    seconds: f64,
+    setup: f64,
+    iterations: usize,
+    rss: f64,
+    err_force: f64,
+    err_approach: f64,
+    p_max: f64,
+    err_p0: f64,
+    err_radius: f64,
+    err_area: f64,
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     // One run in this process: `--one <case> <N>` (what the driver below spawns).
     if let [flag, case, n] = args.as_slice() {
-        if flag == "--one" {
-            println!("{}", run(case, n.parse().expect("N is a number")));
+        if flag == "--one" || flag == "--one-row" {
+            let n = n.parse().expect("N is a number");
+            println!("{}", run(case, n, flag == "--one-row"));
             return;
         }
     }
+    // `--table`: a markdown table instead of JSON (the book's column beside the peers').
+    let table = args.iter().any(|a| a == "--table");
     // Each run in a fresh process, as the peers' harness does, so the peak memory is that
     // run's own.
     let sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
@@ -115,14 +160,22 @@ fn main() {
     };
     let cases: Vec<&str> = ["hertz", "punch"]
         .into_iter()
-        .filter(|c| args.iter().all(|a| a.parse::<usize>().is_ok()) || args.iter().any(|a| a == c))
+        .filter(|c| {
+            args.iter()
+                .all(|a| a.parse::<usize>().is_ok() || a == "--table")
+                || args.iter().any(|a| a == c)
+        })
         .collect();
     let exe = std::env::current_exe().expect("the example's own path");
     let mut rows = Vec::new();
     for case in cases {
         for &n in &sizes {
             let out = std::process::Command::new(&exe)
-                .args(["--one", case, &n.to_string()])
+                .args([
+                    if table { "--one-row" } else { "--one" },
+                    case,
+                    &n.to_string(),
+                ])
                 .output()
                 .expect("the example can run itself");
             let row = String::from_utf8_lossy(&out.stdout).trim().to_string();
@@ -137,5 +190,11 @@ fn main() {
             rows.push(row);
         }
     }
-    println!("{{\"rows\": [\n{}\n]}}", rows.join(",\n"));
+    if table {
+        println!("| case | N | time | steps | peak memory | p₀ error | contact-radius error |");
+        println!("| --- | --- | --- | --- | --- | --- | --- |");
+        println!("{}", rows.join("\n"));
+    } else {
+        println!("{{\"rows\": [\n{}\n]}}", rows.join(",\n"));
+    }
 }

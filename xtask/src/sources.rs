@@ -168,6 +168,11 @@ pub const SOURCES: &[Source] = &[
         plots: &[("results/roller_scaling/scaling.svg", "roller_scaling.svg")],
         ..example(&["--example", "roller_scaling"], "roller_scaling", true)
     },
+    // Our column beside the peers' published figures (greens.md).
+    Source {
+        args: &["--table", "256", "512", "1024"],
+        ..example(&["--example", "halfspace_peers"], "halfspace_peers", true)
+    },
     // Writes book/src/solver_benchmark.{csv,svg} itself.
     example(&["--example", "solver_benchmark"], "solver_benchmark", true),
 ];

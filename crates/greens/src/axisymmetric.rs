@@ -17,7 +17,7 @@ use crate::{check_edges, elliptic};
 /// of two discs. The influence coefficient Aᵢⱼ is the deflection averaged over ring i (8-point
 /// Gauss in r, weighted by 2πr) per unit force spread over ring j: the Galerkin form, symmetric
 /// by reciprocity. (Collocating at mid-radii instead gives a matrix whose symmetric part, which
-/// the solvers need, misses the flat punch's centre pressure by 3 %.)
+/// the solvers need, misses the flat punch's centre pressure noticeably.)
 ///
 /// Below the surface it gives the stresses of the rings' uniform pressures
 /// ([`AxisymmetricHalfSpace::stresses_below`], [`AxisymmetricHalfSpace::stress_at`]).
