@@ -195,12 +195,12 @@ fn run(scene: &Scene, print: Print, out: &Path) -> Result<u8, SceneError> {
 /// Runs the cases in turn under a progress bar, cleared when they end (or one fails); cases
 /// that share their bodies share one build of them ([`Scene::run_observed`]).
 fn solve(scene: &Scene, quiet: bool) -> Result<Vec<CaseReport>, SceneError> {
-    let cases = scene.cases()?;
-    let progress = Progress::new(&cases, quiet);
+    let progress = Progress::new(quiet);
     let mut run = scene.run_observed(&progress)?;
-    let mut reports = Vec::with_capacity(cases.len());
-    for case in &cases {
-        progress.start(case);
+    progress.cases(run.len());
+    let mut reports = Vec::with_capacity(run.len());
+    for k in 0..run.len() {
+        progress.start(&run.cases()[k]);
         match run.next() {
             Some(report) => reports.push(report?),
             None => break,

@@ -28,12 +28,12 @@ pub struct Progress {
 }
 
 impl Progress {
-    /// A bar over `cases` on stderr; hidden when `quiet`.
-    pub fn new(cases: &[Case], quiet: bool) -> Self {
+    /// A bar on stderr, its length set by [`Progress::cases`]; hidden when `quiet`.
+    pub fn new(quiet: bool) -> Self {
         let bar = if quiet {
             ProgressBar::hidden()
         } else {
-            ProgressBar::new(cases.len() as u64)
+            ProgressBar::new(0)
         };
         if let Ok(style) = ProgressStyle::with_template(TEMPLATE) {
             bar.set_style(style.progress_chars("█▌░"));
@@ -44,6 +44,11 @@ impl Progress {
             step: Cell::new(("", 0)),
             solver: Default::default(),
         }
+    }
+
+    /// The run has `count` cases.
+    pub fn cases(&self, count: usize) {
+        self.bar.set_length(count as u64);
     }
 
     /// A case begins.
