@@ -13,30 +13,10 @@ use std::time::{Duration, Instant};
 use contopt::contact::{
     ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
 };
-use contopt::fem::{FeBody, Material};
-use contopt::scene::geometry::half_space_block;
-use contopt::{ElasticBody, RigidBody};
+use contopt_validation::fixtures::hertz_on_block;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 
 const E: f64 = 2.0e5;
-const NU: f64 = 0.3;
-
-/// The Hertz problem with `faces` contact faces (3 points each).
-fn hertz(faces: usize) -> InterfaceProblem<'static> {
-    let (model, contact) =
-        half_space_block(1.5, faces, 30.0, Material::new(E, NU).unwrap()).unwrap();
-    let block = FeBody::new("block", model, &contact).unwrap();
-    let radius = 100.0;
-    let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * radius);
-    let gap: Vec<f64> = block
-        .interface()
-        .points
-        .iter()
-        .map(|x| x[0] * x[0] / (2.0 * radius))
-        .collect();
-    let sphere = RigidBody::pressed("sphere", block.interface(), [0.0, 1.0, 0.0], force).unwrap();
-    InterfaceProblem::owned(Box::new(block), Box::new(sphere), &gap).unwrap()
-}
 
 fn solvers() -> Vec<Box<dyn ContactSolver>> {
     vec![
@@ -49,7 +29,8 @@ fn solvers() -> Vec<Box<dyn ContactSolver>> {
 
 fn bench(c: &mut Criterion) {
     let sizes = [17, 67, 333];
-    let problems: Vec<InterfaceProblem> = sizes.iter().map(|&f| hertz(f)).collect();
+    let problems: Vec<InterfaceProblem> =
+        sizes.iter().map(|&f| hertz_on_block(f).unwrap()).collect();
     println!(
         "{:>6} {:>22} {:>10} {:>10} {:>10} {:>10} {:>6} {:>6} {:>6}",
         "points", "solver", "time ms", "p error", "d error", "λ error", "iters", "iterp", "iterd"

@@ -12,36 +12,15 @@
 
 use std::time::Instant;
 
-use contopt::contact::{
-    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp,
-};
-use contopt::fem::{FeBody, Material};
-use contopt::scene::geometry::half_space_block;
-use contopt::{ElasticBody, RigidBody};
+use contopt::contact::{ActiveSet, AugmentedLagrangian, ContactSolver, Penalty, Qp};
+use contopt_validation::fixtures::hertz_on_block;
 
+/// The block's modulus E [MPa] ([`hertz_on_block`]).
 const E: f64 = 2.0e5;
-const NU: f64 = 0.3;
-/// The sphere's radius [mm].
-const RADIUS: f64 = 100.0;
 /// The penalty parameter of the penalty and the augmented Lagrangian [MPa/mm].
 const C: f64 = E * 1e4;
 /// Contact faces of the three interfaces (three points each).
 const FACES: [usize; 3] = [17, 67, 333];
-
-/// The Hertz problem with `faces` contact faces.
-fn hertz(faces: usize) -> contopt::Result<InterfaceProblem<'static>> {
-    let (model, contact) = half_space_block(1.5, faces, 30.0, Material::new(E, NU)?)?;
-    let block = FeBody::new("block", model, &contact)?;
-    let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * RADIUS);
-    let gap: Vec<f64> = block
-        .interface()
-        .points
-        .iter()
-        .map(|x| x[0] * x[0] / (2.0 * RADIUS))
-        .collect();
-    let sphere = RigidBody::pressed("sphere", block.interface(), [0.0, 1.0, 0.0], force)?;
-    InterfaceProblem::owned(Box::new(block), Box::new(sphere), &gap)
-}
 
 /// The largest difference of `a` from `b`.
 fn difference(a: &[f64], b: &[f64]) -> f64 {
@@ -63,7 +42,7 @@ fn main() -> contopt::Result<()> {
         "points", "solver", "p error", "d error", "λ error", "iters", "iterp", "iterd", "time ms"
     );
     for faces in FACES {
-        let problem = hertz(faces)?;
+        let problem = hertz_on_block(faces)?;
         let t = Instant::now();
         let reference = solvers[0].solve(&problem)?;
         let reference_ms = t.elapsed().as_secs_f64() * 1e3;

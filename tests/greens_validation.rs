@@ -223,12 +223,7 @@ fn hertz_sphere_on_half_space_grid() {
     let dx = 3.0 / n as f64;
     let origin = -1.5 + 0.5 * dx;
     let body = HalfSpace::grid("half-space", steel(), n, n, dx, dx, [origin, origin]).unwrap();
-    let gap: Vec<f64> = body
-        .interface()
-        .points
-        .iter()
-        .map(|x| hertz.gap(x[0].hypot(x[1])))
-        .collect();
+    let gap = hertz.gaps(body.interface());
     let sphere = RigidBody::pressed("sphere", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
     let problem = InterfaceProblem::new(&body, &sphere, &gap).unwrap();
     let p0 = hertz.peak_pressure(1.0);
@@ -314,12 +309,7 @@ fn peer_grid(n: usize) -> (HalfSpace, Vec<f64>, HertzSphere) {
         radius: 100.0,
         modulus: contact_modulus(&[peer_steel()]),
     };
-    let gap = body
-        .interface()
-        .points
-        .iter()
-        .map(|x| hertz.gap(x[0].hypot(x[1])))
-        .collect();
+    let gap = hertz.gaps(body.interface());
     (body, gap, hertz)
 }
 

@@ -354,12 +354,7 @@ fn penalty_sweep_on_a_hertz_grid() {
         let dx = 3.0 / n as f64;
         let origin = -1.5 + 0.5 * dx;
         let body = HalfSpace::grid("half-space", steel(), n, n, dx, dx, [origin, origin]).unwrap();
-        let gap: Vec<f64> = body
-            .interface()
-            .points
-            .iter()
-            .map(|x| hertz.gap(x[0].hypot(x[1])))
-            .collect();
+        let gap = hertz.gaps(body.interface());
         let sphere =
             RigidBody::pressed("sphere", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
         let problem = InterfaceProblem::new(&body, &sphere, &gap).unwrap();

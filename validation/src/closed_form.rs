@@ -42,6 +42,16 @@ impl HertzSphere {
         r * r / (2.0 * self.radius)
     }
 
+    /// [`HertzSphere::gap`] at every point of `interface`, the sphere's axis through the origin
+    /// along z \[mm\].
+    pub fn gaps(&self, interface: &contopt_core::Interface) -> Vec<f64> {
+        interface
+            .points
+            .iter()
+            .map(|x| self.gap(x[0].hypot(x[1])))
+            .collect()
+    }
+
     /// The force that makes the contact radius `a`: F = 4a³E*/(3R) \[N\].
     pub fn force(&self, a: f64) -> f64 {
         4.0 * a.powi(3) * self.modulus / (3.0 * self.radius)

@@ -695,16 +695,7 @@ fn controller() -> BoxedStrategy<Value> {
                 ("axis", axis),
             ])
         });
-    leaf.prop_recursive(6, 32, 2, |inner| {
-        (inner.clone(), inner).prop_map(|(a, b)| {
-            table(vec![
-                ("kind", Some(text("product"))),
-                ("a", Some(a)),
-                ("b", Some(b)),
-            ])
-        })
-    })
-    .boxed()
+    products(leaf, 6, 32)
 }
 
 fn optimisation() -> BoxedStrategy<Value> {
@@ -1631,7 +1622,17 @@ fn plausible_controller() -> BoxedStrategy<Value> {
                 ("axis", axis),
             ])),
     ];
-    leaf.prop_recursive(2, 4, 2, |inner| {
+    products(leaf, 2, 4)
+}
+
+/// Controllers from `leaf`, and `{ kind = "product", a, b }` of them nested up to `depth` deep
+/// with at most `size` controllers in all.
+fn products(
+    leaf: impl Strategy<Value = Value> + 'static,
+    depth: u32,
+    size: u32,
+) -> BoxedStrategy<Value> {
+    leaf.prop_recursive(depth, size, 2, |inner| {
         (inner.clone(), inner).prop_map(|(a, b)| {
             table(vec![
                 ("kind", Some(text("product"))),
