@@ -22,7 +22,7 @@
 use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
-use contopt_core::{Error, Result};
+use contopt_core::{Error, Result, Termination};
 
 pub use clarabel::algebra::CscMatrix;
 
@@ -41,12 +41,14 @@ pub enum Outcome {
     Solved,
     /// No x satisfies the constraints (`PrimalInfeasible` or `AlmostPrimalInfeasible`).
     Infeasible,
-    /// Stopped short of the tolerance (the iteration limit, numerical trouble, an unbounded
-    /// objective): clarabel's status and its residuals in words. `x` and `z` hold the last
-    /// iterate.
-    Stopped(String),
+    /// The objective is unbounded below on the constraints (`DualInfeasible` or
+    /// `AlmostDualInfeasible`).
+    Unbounded,
+    /// Stopped short of the tolerance: the iteration limit ([`Termination::StepLimit`]) or
+    /// numerical trouble ([`Termination::Stalled`], with clarabel's status and residuals).
+    /// `x` and `z` hold the last iterate.
+    Stopped(Termination),
 }
-
 /// The solution of a programme: the primal x and the dual z (one per constraint row), as
 /// clarabel left them.
 #[derive(Clone, Debug)]
@@ -64,13 +66,7 @@ pub struct Solution {
 /// clarabel's settings for a programme: silent, `tolerance` on feasibility and both gaps,
 /// at most [`MAX_ITERATIONS`] iterations.
 pub fn settings(tolerance: f64) -> Result<DefaultSettings<f64>> {
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(Error::invalid(
-            "solver.tolerance",
-            tolerance,
-            "must be positive and finite",
-        ));
-    }
+    contopt_core::check::positive("tolerance", tolerance)?;
     DefaultSettingsBuilder::default()
         .verbose(false)
         .tol_feas(tolerance)
@@ -78,7 +74,7 @@ pub fn settings(tolerance: f64) -> Result<DefaultSettings<f64>> {
         .tol_gap_rel(tolerance)
         .max_iter(MAX_ITERATIONS)
         .build()
-        .map_err(|e| Error::invalid("solver.tolerance", tolerance, format!("{e:?}")))
+        .map_err(|e| Error::invalid("tolerance", tolerance, format!("{e:?}")))
 }
 
 /// Solves min ½ xᵀ P x + cᵀ x subject to A x = b on the first `zero_rows` rows of A and
@@ -122,10 +118,18 @@ pub fn solve(
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             Outcome::Infeasible
         }
-        status => Outcome::Stopped(format!(
-            "clarabel status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
-            sol.r_prim, sol.r_dual
-        )),
+        SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => Outcome::Unbounded,
+        SolverStatus::MaxIterations => Outcome::Stopped(Termination::StepLimit {
+            steps: sol.iterations as usize,
+            measure: sol.r_prim.max(sol.r_dual),
+            tolerance,
+        }),
+        status => Outcome::Stopped(Termination::Stalled {
+            reason: format!(
+                "clarabel status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
+                sol.r_prim, sol.r_dual
+            ),
+        }),
     };
     Ok(Solution {
         outcome,
@@ -153,7 +157,7 @@ mod tests {
             "{err}"
         );
         let err = settings(f64::NAN).unwrap_err();
-        assert!(err.to_string().contains("solver.tolerance"), "{err}");
+        assert!(err.to_string().contains("invalid tolerance = NaN"), "{err}");
     }
 
     /// A QP with a known minimiser: min ½(x₀² + x₁²) − x₀ − 2x₁ with x₀ + x₁ ≤ 1 is at

@@ -4,45 +4,12 @@
 //! condensed [`Penalty`](crate::Penalty) runs on the interface problem. The cross-check of
 //! the condensation: both must agree to round-off.
 
-use contopt_core::observe::{Observer, Silent};
-use contopt_core::{ContactState, Error, Residuals, Result, Status};
+use contopt_core::observe::{Method, Observer, Silent};
+use contopt_core::{ContactState, Error, FullSystem, Residuals, Result};
 
 use crate::kalker::{self, ContactSet, Sweep};
-use crate::solvers::{check_penalty, Watch};
-
-/// A joint stiffness system of two bodies with a penalty spring at each contact point, as
-/// Kalker's iteration needs it (eq. 2.22):
-///
-/// (K¹ ⊕ K² + Σ_{i ∈ C} c wᵢ Lᵢᵀ Lᵢ) u = b − Σ_{i ∈ C} c wᵢ hᵢ Lᵢᵀ,
-///
-/// where Lᵢ u is the closing of the gap at point i, so that dᵢ = hᵢ + Lᵢ u. Springs hold a
-/// floating body, so nothing is pinned. An implementation keeps its symbolic factorisation
-/// across solves: the pattern holds every candidate spring, and a change of the contact set C
-/// costs one numeric refactorisation. `contopt_fem::coupled::JointSystem` is one for two
-/// finite-element bodies.
-pub trait FullSystem {
-    /// Number of contact points n (the candidate springs).
-    fn points(&self) -> usize;
-    /// Point weights wᵢ \[mm²\] (2πr·ds, b·ds), one per point.
-    fn weights(&self) -> &[f64];
-    /// The gap hᵢ at zero displacement of the unknowns u: the initial gap plus the share of
-    /// prescribed displacements \[mm\], one per point. It sets the scale of round-off in the
-    /// gap, and where a floating body touches first.
-    fn rest_gap(&self) -> &[f64];
-    /// Number of free rigid modes of the bodies: the modes only springs hold.
-    fn free_modes(&self) -> usize;
-    /// Puts springs of stiffness c·wᵢ at the points of `active` (the contact set C, none
-    /// elsewhere), solves the system (2.22) and writes the gaps dᵢ = hᵢ + Lᵢ u of every point
-    /// to `gap` \[mm\].
-    fn solve_springs(&mut self, active: &[bool], c: f64, gap: &mut [f64]) -> Result<()>;
-    /// Amplitudes of the bodies' free rigid modes in the last solve, as the condensed
-    /// [`InterfaceProblem`](crate::InterfaceProblem) reports them (first body's, then the
-    /// second's).
-    fn rigid(&self) -> Vec<f64>;
-    /// The largest equilibrium error of a free rigid mode under `pressure`,
-    /// |Σᵢ wᵢ pᵢ rᵢ + q| \[N\] (eq. 2.10).
-    fn equilibrium(&self, pressure: &[f64]) -> f64;
-}
+use crate::watch::{self, Watch};
+use crate::PenaltySettings;
 
 /// The penalty method (§2.2, eq. 2.22) on a [`FullSystem`]: Kalker's iteration over the
 /// contact set C, with pressure pᵢ = c⟨−dᵢ⟩ at the springs of C. Starts with every point in
@@ -50,7 +17,8 @@ pub trait FullSystem {
 /// gives the same answer (up to round-off) on the same bodies.
 ///
 /// ```
-/// use contopt_contact::{FullPenalty, FullSystem};
+/// use contopt_contact::{FullPenalty, PenaltySettings};
+/// use contopt_core::FullSystem;
 ///
 /// /// One point on a spring of compliance a [mm/N] against a rigid flat, initial gap h.
 /// struct Spring { a: f64, h: f64, w: [f64; 1], rest: [f64; 1], u: f64 }
@@ -75,20 +43,27 @@ pub trait FullSystem {
 /// // An interference of 1 µm: p = c·(penetration) = h / (a·w + 1/c).
 /// let (a, h, c) = (1e-3, -1e-3, 1e6);
 /// let mut spring = Spring { a, h, w: [1.0], rest: [h], u: 0.0 };
-/// let state = FullPenalty { c }.solve(&mut spring)?;
+/// let solver = FullPenalty::new(PenaltySettings { c_mpa_per_mm: c })?;
+/// let state = solver.solve(&mut spring)?;
 /// assert!((state.pressure[0] - 1e-3 / (1e-3 + 1e-6)).abs() < 1e-12);
 /// # Ok::<(), contopt_core::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct FullPenalty {
-    /// Penalty parameter c \[MPa/mm\] (the paper uses c = E·10⁴).
-    pub c: f64,
+    c: f64,
 }
 
 impl FullPenalty {
-    /// Name for messages and reports, and the method its iterations report to an observer.
-    pub fn name(&self) -> &str {
-        "penalty on the full system"
+    /// The method with `settings`, checked: c positive and finite.
+    pub fn new(settings: PenaltySettings) -> Result<Self> {
+        Ok(Self {
+            c: contopt_core::check::positive("c_mpa_per_mm", settings.c_mpa_per_mm)?,
+        })
+    }
+
+    /// The method its iterations report as.
+    pub fn method(&self) -> Method {
+        Method::FullPenalty
     }
 
     /// Solves the contact of the bodies of `system`.
@@ -99,18 +74,20 @@ impl FullPenalty {
     /// Solves the contact of the bodies of `system`, reporting each of Kalker's solves
     /// (`iterp`) to `observer` with the number of points that break a sign condition as the
     /// measure (tolerance 0). On [`Flow::Stop`](contopt_core::observe::Flow::Stop) it returns
-    /// the last solve as [`Status::Stopped`].
+    /// the last solve with [`Termination::Stopped`](contopt_core::Termination).
     pub fn solve_observed(
         &self,
         system: &mut dyn FullSystem,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        check_penalty(self.c)?;
         check(system)?;
         let mut springs = Springs::new(system, self.c);
         let mut active = vec![true; springs.points()];
-        let sweep = kalker::iterate(&mut springs, &mut active, Watch::new(observer, self.name()))?;
-        Ok(springs.state(active, sweep))
+        let watch = Watch::new(observer, self.method());
+        let sweep = kalker::iterate(&mut springs, &mut active, watch)?;
+        let state = springs.state(active, sweep);
+        watch::announce(observer, &state);
+        Ok(state)
     }
 }
 
@@ -186,11 +163,12 @@ impl<'s> Springs<'s> {
             iterp: sweep.iterp,
             iterd: sweep.iterd,
             residuals,
-            status: Status::Solved,
+            method: Method::FullPenalty,
+            termination: contopt_core::Termination::Converged,
         };
         state.stop_if_not_finite();
         if let Some(halt) = sweep.halt {
-            halt.stop("Kalker's active set", &mut state);
+            watch::end(&mut state, halt);
         }
         state
     }

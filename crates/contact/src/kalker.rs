@@ -1,15 +1,15 @@
 //! Kalker's active-set iteration, the one loop behind every method that solves on a contact
 //! set C: the penalty method and the active-set QP solver on the condensed interface, each
 //! Uzawa step of the augmented Lagrangian, and the penalty method on the full finite-element
-//! system (2.22, [`FullPenalty`](crate::FullPenalty)); and the Uzawa loop (2.19)–(2.20).
+//! system (2.22, [`FullPenalty`](crate::FullPenalty)).
 
-use contopt_core::observe::Observer;
-use contopt_core::{ContactState, Error, Result};
+use contopt_core::observe::Method;
+use contopt_core::{ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
-use crate::solvers::{Halt, Watch};
-use crate::{AugmentedLagrangian, ContactSolver, InterfaceProblem};
+use crate::watch::{self, Watch};
+use crate::InterfaceProblem;
 
 /// The n × n matrices a Kalker solve holds at once: A, the contact-set matrix, its
 /// eigenvectors and a product.
@@ -62,7 +62,7 @@ pub(crate) struct Sweep {
     /// Penetration checks: the solves whose pressure had no negative value (`iterd`).
     pub iterd: usize,
     /// Why it stopped short; `None` when solved.
-    pub halt: Option<Halt>,
+    pub halt: Option<Termination>,
 }
 
 /// Kalker's iteration: solve with the points of `active` in contact (one `iterp`); drop the
@@ -90,7 +90,7 @@ pub(crate) fn iterate(
             }
         }
         if let Err(reason) = system.solve_on(active)? {
-            sweep.halt = Some(Halt::Failed(reason));
+            sweep.halt = Some(Termination::Stalled { reason });
             return Ok(sweep);
         }
         sweep.iterp += 1;
@@ -108,13 +108,13 @@ pub(crate) fn iterate(
             return Ok(sweep);
         }
         if sweep.iterp >= max_solves {
-            sweep.halt = Some(Halt::Failed(format!(
-                "the contact set kept changing: {} points had negative pressure and {} penetrated \
-                 at the last of {} solves",
-                negative.len(),
-                penetrating.len(),
-                sweep.iterp
-            )));
+            // The contact set kept changing: the measure is the points that still break a
+            // sign condition (negative pressure or penetration).
+            sweep.halt = Some(Termination::StepLimit {
+                steps: sweep.iterp,
+                measure: infeasible as f64,
+                tolerance: 0.0,
+            });
             return Ok(sweep);
         }
         match pivot.next(&negative, &penetrating) {
@@ -142,9 +142,9 @@ fn infeasible(
 
 /// A pressure and rigid-mode amplitudes: an iterate, or the reference a solve starts from.
 #[derive(Clone, Debug)]
-struct Iterate {
-    pressure: Vec<f64>,
-    rigid: Vec<f64>,
+pub(crate) struct Iterate {
+    pub(crate) pressure: Vec<f64>,
+    pub(crate) rigid: Vec<f64>,
 }
 
 impl Iterate {
@@ -224,24 +224,24 @@ impl ContactMatrix {
 }
 
 /// Solution of one subproblem on its final active set.
-struct Inner {
-    solution: Iterate,
+pub(crate) struct Inner {
+    pub(crate) solution: Iterate,
     /// Gap d of the solution.
-    gap: Vec<f64>,
+    pub(crate) gap: Vec<f64>,
     /// Round-off level of the gap ([`GAP_ROUND_OFF`] of its largest terms); 0 when stopped.
-    gap_floor: f64,
+    pub(crate) gap_floor: f64,
     /// Solves, each followed by the sign check of p (the paper's `iterp`).
-    iterp: usize,
+    pub(crate) iterp: usize,
     /// Penetration checks: the solves whose pressure had no negative value (the paper's
     /// `iterd`).
-    iterd: usize,
+    pub(crate) iterd: usize,
     /// Why the iteration stopped short, with `solution` its last iterate; `None` when solved.
-    stopped: Option<Halt>,
+    pub(crate) stopped: Option<Termination>,
 }
 
 impl Inner {
     /// The contact set it started from was already the answer.
-    fn unchanged(&self) -> bool {
+    pub(crate) fn unchanged(&self) -> bool {
         self.iterp == 1
     }
 }
@@ -259,7 +259,7 @@ impl Inner {
 /// directions that do not move the interface (a semi-definite H) is amplified by c; in this
 /// form it multiplies the reference's residual instead of the whole gap, so a reference close
 /// to the answer keeps large c accurate.
-struct Subproblem<'a> {
+pub(crate) struct Subproblem<'a> {
     problem: &'a InterfaceProblem<'a>,
     rho: f64,
     shift: &'a [f64],
@@ -279,7 +279,7 @@ struct Subproblem<'a> {
 }
 
 impl<'a> Subproblem<'a> {
-    fn new(
+    pub(crate) fn new(
         problem: &'a InterfaceProblem<'a>,
         rho: f64,
         shift: &'a [f64],
@@ -304,7 +304,7 @@ impl<'a> Subproblem<'a> {
     }
 
     /// Kalker's iteration ([`iterate`]) from the contact set `active`, which it updates.
-    fn solve(mut self, active: &mut [bool], watch: Watch) -> Result<Inner> {
+    pub(crate) fn solve(mut self, active: &mut [bool], watch: Watch) -> Result<Inner> {
         let sweep = iterate(&mut self, active, watch)?;
         let gap_floor = if sweep.halt.is_none() {
             for v in self.current.pressure.iter_mut() {
@@ -509,8 +509,9 @@ impl PivotRule {
 
 /// The contact state of a subproblem's solution, after `steps` outer steps, with the set
 /// changes counted before it.
-fn finish(
+pub(crate) fn finish(
     problem: &InterfaceProblem,
+    method: Method,
     inner: Inner,
     active: Vec<bool>,
     steps: usize,
@@ -518,13 +519,14 @@ fn finish(
 ) -> ContactState {
     let s = inner.solution;
     let mut state = problem.state(
+        method,
         s.pressure,
         s.rigid,
         active,
         [steps, counts[0] + inner.iterp, counts[1] + inner.iterd],
     );
     if let Some(halt) = inner.stopped {
-        halt.stop("Kalker's active set", &mut state);
+        watch::end(&mut state, halt);
     }
     state
 }
@@ -532,7 +534,7 @@ fn finish(
 /// The QP (2.14) on the contact set `active` (updated by Kalker's iteration), from
 /// `reference`: ρ = 0 with the pseudo-inverse, so nothing changes along the directions that
 /// do not move the interface.
-fn solve_exact(
+pub(crate) fn solve_exact(
     problem: &InterfaceProblem,
     reference: &Iterate,
     active: &mut [bool],
@@ -563,7 +565,7 @@ pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
 /// A starting iterate for a subproblem with penalty `c`: zero, or for c above c_stiff the
 /// penalty solution at c_stiff (whose small gap keeps the large-c solve accurate), its solves
 /// added to `counts`; the stopped solve when it stopped short.
-fn start(
+pub(crate) fn start(
     problem: &InterfaceProblem,
     c: f64,
     active: &mut [bool],
@@ -594,103 +596,19 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64, watch: Watch) -> Resul
     let mut counts = [0, 0];
     let reference = match start(problem, c, &mut active, &mut counts, watch)? {
         Ok(reference) => reference,
-        Err(stopped) => return Ok(finish(problem, stopped, active, 1, counts)),
+        Err(stopped) => {
+            return Ok(finish(problem, Method::Penalty, stopped, active, 1, counts));
+        }
     };
     let zeros = vec![0.0; n];
     let spectral = c > stiff_penalty(problem)?;
     let inner = Subproblem::new(problem, 1.0 / c, &zeros, spectral, &reference)?
         .solve(&mut active, watch.after(counts[0]))?;
-    Ok(finish(problem, inner, active, 1, counts))
-}
-
-/// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
-/// from p = 0 with every point in contact, until the pressure changes by less than
-/// `tolerance`·p_max or the gap on the contact set is at round-off; with `accelerate`, until
-/// a step leaves the contact set unchanged, when the iteration's limit is solved for directly.
-/// Each step is reported to `observer` as the method's name, each Kalker solve as
-/// [`AugmentedLagrangian::KALKER`].
-pub(crate) fn uzawa(
-    problem: &InterfaceProblem,
-    al: &AugmentedLagrangian,
-    observer: &dyn Observer,
-) -> Result<ContactState> {
-    let c = al.c;
-    let steps = Watch::new(observer, al.name());
-    let kalker = Watch::new(observer, AugmentedLagrangian::KALKER);
-    let mut active = vec![true; problem.len()];
-    let mut counts = [0, 0];
-    let mut current = match start(problem, c, &mut active, &mut counts, kalker)? {
-        Ok(reference) => reference,
-        Err(stopped) => return Ok(finish(problem, stopped, active, 0, counts)),
-    };
-    let spectral = c > stiff_penalty(problem)?;
-    let mut change = f64::INFINITY;
-    for step in 1..=al.max_steps {
-        let shift = current.pressure.clone();
-        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current)?
-            .solve(&mut active, kalker.after(counts[0]))?;
-        if inner.stopped.is_some() {
-            return Ok(finish(problem, inner, active, step, counts));
-        }
-        counts[0] += inner.iterp;
-        counts[1] += inner.iterd;
-        let p_max = inner
-            .solution
-            .pressure
-            .iter()
-            .fold(0.0f64, |s, v| s.max(*v));
-        change = largest_difference(&inner.solution.pressure, &shift);
-        let relative = change / p_max.max(f64::MIN_POSITIVE);
-        // Converged when the pressure settles, or when the gap on the contact set is at
-        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
-        // directions that do not move the interface.
-        let converged =
-            relative <= al.tolerance || open_on_contact(&inner, &active) <= inner.gap_floor;
-        let halt = steps.report(step, relative, al.tolerance);
-        let unchanged = inner.unchanged();
-        current = inner.solution;
-        let counted = [step, counts[0], counts[1]];
-        if al.accelerate && unchanged && halt.is_none() {
-            // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
-            // and its fixed point is the exact solve on this set from the current iterate
-            // (which keeps the iterate's components along directions that do not move the
-            // interface, as the iteration would).
-            let jump = solve_exact(problem, &current, &mut active, kalker.after(counts[0]))?;
-            return Ok(finish(problem, jump, active, step, counts));
-        }
-        if converged || halt.is_some() {
-            let mut state = problem.state(current.pressure, current.rigid, active, counted);
-            if let Some(halt) = halt.filter(|_| !converged) {
-                halt.stop(al.name(), &mut state);
-            }
-            return Ok(state);
-        }
-    }
-    let mut state = problem.state(
-        current.pressure,
-        current.rigid,
-        active,
-        [al.max_steps, counts[0], counts[1]],
-    );
-    Halt::Failed(format!(
-        "Uzawa's {} steps: last pressure change {change:.3e} MPa, p_max {:.6} MPa; raise the \
-         penalty parameter c = {c:e} or the step limit",
-        al.max_steps,
-        state.p_max(),
-    ))
-    .stop(al.name(), &mut state);
-    Ok(state)
-}
-
-/// maxᵢ |aᵢ − bᵢ|.
-fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()))
+    Ok(finish(problem, Method::Penalty, inner, active, 1, counts))
 }
 
 /// The largest |dᵢ| over the contact set of a subproblem's solution.
-fn open_on_contact(inner: &Inner, active: &[bool]) -> f64 {
+pub(crate) fn open_on_contact(inner: &Inner, active: &[bool]) -> f64 {
     (0..active.len())
         .filter(|&i| active[i])
         .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()))
@@ -706,7 +624,7 @@ pub(crate) fn exact(
     start_set: Option<&[bool]>,
 ) -> Result<ContactState> {
     let silent = contopt_core::observe::Silent;
-    exact_observed(problem, start_set, Watch::new(&silent, "active set"))
+    exact_observed(problem, start_set, Watch::new(&silent, Method::ActiveSet))
 }
 
 /// [`exact`], reporting each of Kalker's solves to `watch`.
@@ -718,6 +636,7 @@ pub(crate) fn exact_observed(
     let (n, m) = (problem.len(), problem.load().len());
     let zero = Iterate::zero(n, m);
     let mut counts = [0, 0];
+    let method = Method::ActiveSet;
     let (mut active, pre) = match start_set {
         Some(set) => (set.to_vec(), None),
         None => {
@@ -727,7 +646,7 @@ pub(crate) fn exact_observed(
             let pre =
                 Subproblem::new(problem, rho, &zeros, false, &zero)?.solve(&mut active, watch)?;
             if pre.stopped.is_some() {
-                return Ok(finish(problem, pre, active, 1, counts));
+                return Ok(finish(problem, method, pre, active, 1, counts));
             }
             counts = [pre.iterp, pre.iterd];
             (active, Some(pre.solution))
@@ -735,7 +654,7 @@ pub(crate) fn exact_observed(
     };
     let reference = pre.as_ref().unwrap_or(&zero);
     let inner = solve_exact(problem, reference, &mut active, watch.after(counts[0]))?;
-    Ok(finish(problem, inner, active, 1, counts))
+    Ok(finish(problem, method, inner, active, 1, counts))
 }
 
 #[cfg(test)]

@@ -2,25 +2,37 @@
 //! Páczelt 1994): the complementary-energy QP ([`Qp`] by clarabel, [`ActiveSet`]), the
 //! [`Penalty`] method and the [`AugmentedLagrangian`] with Uzawa updates and Kalker's
 //! active-set iteration; matrix-free for large grids applied as operators, [`PolonskyKeer`];
-//! and the [`FullPenalty`] method on the uncondensed system of two bodies ([`FullSystem`],
-//! eq. 2.22), the cross-check of the condensation. Each reports its iterations to an
-//! [`Observer`](contopt_core::observe::Observer) ([`ContactSolver::solve_observed`]).
+//! [`Auto`], which picks between the exact ones by size; and the [`FullPenalty`] method on the
+//! uncondensed system of two bodies ([`FullSystem`](contopt_core::FullSystem), eq. 2.22), the
+//! cross-check of the condensation.
+//!
+//! Every solver is built one way, from its settings, whose defaults live beside it
+//! (`PolonskyKeer::new(PolonskyKeerSettings::default())`, or [`SolverSettings::build`] for a
+//! solver named at run time); each reports its iterations to an
+//! [`Observer`](contopt_core::observe::Observer) ([`ContactSolver::solve_observed`]) and ends
+//! with a [`Termination`](contopt_core::Termination).
 
-// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
-
+mod active_set;
+mod augmented;
 pub mod conic;
 mod full;
 mod kalker;
+mod penalty;
 mod polonsky_keer;
 mod problem;
 mod qp;
-mod solvers;
+mod settings;
+mod solver;
 #[cfg(test)]
 mod tests;
+mod watch;
 
-pub use full::{FullPenalty, FullSystem};
-pub use polonsky_keer::PolonskyKeer;
-pub use problem::{check_gap, FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
-pub use qp::Qp;
-pub use solvers::{ActiveSet, AugmentedLagrangian, ContactSolver, Penalty};
+pub use active_set::{ActiveSet, ActiveSetSettings};
+pub use augmented::{AugmentedLagrangian, AugmentedLagrangianSettings};
+pub use full::FullPenalty;
+pub use penalty::{Penalty, PenaltySettings};
+pub use polonsky_keer::{PolonskyKeer, PolonskyKeerSettings};
+pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
+pub use qp::{Qp, QpSettings};
+pub use settings::{Auto, SolverSettings};
+pub use solver::ContactSolver;

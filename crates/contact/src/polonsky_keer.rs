@@ -5,10 +5,11 @@
 // The iteration walks several parallel per-point arrays at once; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
-use contopt_core::observe::{Observer, Silent};
-use contopt_core::{ContactState, Error, Result, Status};
+use contopt_core::observe::{Method, Observer};
+use contopt_core::{check, ContactState, Error, Result, Termination};
+use serde::{Deserialize, Serialize};
 
-use crate::solvers::{Halt, Watch};
+use crate::watch::{self, Watch};
 use crate::{ContactSolver, InterfaceProblem};
 
 /// Relative size of a penetration outside the solved part that makes the part grow
@@ -39,13 +40,20 @@ const SEED_FRACTION: f64 = 0.25;
 /// interface with one product; the part grows until no point outside it penetrates.
 #[derive(Clone, Copy, Debug)]
 pub struct PolonskyKeer {
+    settings: PolonskyKeerSettings,
+}
+
+/// The settings of [`PolonskyKeer`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PolonskyKeerSettings {
     /// Stop when Σ wᵢ |Δpᵢ| falls below `tolerance` times the load (or the carried force).
     pub tolerance: f64,
     /// Largest number of steps.
     pub max_steps: usize,
 }
 
-impl PolonskyKeer {
+impl PolonskyKeerSettings {
     /// The default tolerance on the relative pressure change of a step (convergence: near
     /// round-off, the steps are cheap).
     pub const TOLERANCE: f64 = 1e-12;
@@ -53,7 +61,7 @@ impl PolonskyKeer {
     pub const MAX_STEPS: usize = 10_000;
 }
 
-impl Default for PolonskyKeer {
+impl Default for PolonskyKeerSettings {
     fn default() -> Self {
         Self {
             tolerance: Self::TOLERANCE,
@@ -62,17 +70,27 @@ impl Default for PolonskyKeer {
     }
 }
 
+impl PolonskyKeer {
+    /// The solver with `settings`, checked: the tolerance in (0, 1), at least one step.
+    pub fn new(settings: PolonskyKeerSettings) -> Result<Self> {
+        check::between("tolerance", settings.tolerance, 0.0, 1.0)?;
+        check::count("max_steps", settings.max_steps, 1, usize::MAX)?;
+        Ok(Self { settings })
+    }
+
+    /// Its settings.
+    pub fn settings(&self) -> &PolonskyKeerSettings {
+        &self.settings
+    }
+}
+
 impl ContactSolver for PolonskyKeer {
-    fn name(&self) -> &str {
-        "Polonsky-Keer"
+    fn method(&self) -> Method {
+        Method::PolonskyKeer
     }
 
-    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
-        self.solve_observed(problem, None, &Silent)
-    }
-
-    fn solve_from(&self, problem: &InterfaceProblem, start: &[f64]) -> Result<ContactState> {
-        self.solve_observed(problem, Some(start), &Silent)
+    fn dense_copies(&self, _points: usize) -> u64 {
+        0
     }
 
     /// Reports each conjugate-gradient step (`iterations`, numbered on across the growing
@@ -84,7 +102,6 @@ impl ContactSolver for PolonskyKeer {
         start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        self.check()?;
         if let Some(start) = start {
             if start.len() != problem.len() || start.iter().any(|p| !p.is_finite()) {
                 return Err(Error::invalid(
@@ -97,22 +114,13 @@ impl ContactSolver for PolonskyKeer {
                 ));
             }
         }
-        self.solve_cropped(problem, start, Watch::new(observer, self.name()))
+        let state = self.solve_cropped(problem, start, Watch::new(observer, self.method()))?;
+        watch::announce(observer, &state);
+        Ok(state)
     }
 }
 
 impl PolonskyKeer {
-    fn check(&self) -> Result<()> {
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(Error::invalid(
-                "solver.tolerance",
-                self.tolerance,
-                "must lie in (0, 1)",
-            ));
-        }
-        Ok(())
-    }
-
     /// Solves on a growing part of the interface when the problem can be restricted.
     fn solve_cropped(
         &self,
@@ -158,14 +166,10 @@ impl PolonskyKeer {
             let penetrating: Vec<usize> = (0..n)
                 .filter(|&k| !inside[k] && gap[k] < -PENETRATION * scale)
                 .collect();
-            if penetrating.is_empty() || state.status != Status::Solved {
-                return Ok(outcome(
-                    problem,
-                    pressure,
-                    (gap, rigid),
-                    steps,
-                    state.status,
-                ));
+            if penetrating.is_empty() || !state.is_converged() {
+                let mut whole = outcome(problem, pressure, (gap, rigid), steps);
+                watch::end(&mut whole, state.termination);
+                return Ok(whole);
             }
             for k in index.into_iter().chain(penetrating) {
                 keep[k] = true;
@@ -184,13 +188,14 @@ impl PolonskyKeer {
         watch: Watch,
     ) -> Result<ContactState> {
         let mut cg = Descent::new(problem, start)?;
+        let (tolerance, max_steps) = (self.settings.tolerance, self.settings.max_steps);
         let (mut steps, mut change, mut halt) = (0, f64::INFINITY, None);
-        while steps < self.max_steps && halt.is_none() {
+        while steps < max_steps && halt.is_none() {
             steps += 1;
             let entered = match cg.step(problem) {
                 Ok(entered) => entered,
                 Err(reason) => {
-                    halt = Some(Halt::Failed(reason));
+                    halt = Some(Termination::Stalled { reason });
                     false
                 }
             };
@@ -200,28 +205,30 @@ impl PolonskyKeer {
                 f64::NAN
             };
             if halt.is_none() && !change.is_finite() {
+                // The last finite iterate is kept; the step that overflowed is undone.
                 cg.undo();
-                halt = Some(Halt::Failed(
-                    "a step gave non-finite pressures (overflowing data?)".into(),
-                ));
+                halt = Some(Termination::NonFinite {
+                    field: "pressure of a conjugate-gradient step".into(),
+                });
             }
-            let stop = watch.report(steps, change, self.tolerance);
-            if halt.is_none() && change < self.tolerance && !entered {
+            let stop = watch.report(steps, change, tolerance);
+            if halt.is_none() && change < tolerance && !entered {
                 break;
             }
             halt = halt.or(stop);
         }
-        if halt.is_none() && !(change < self.tolerance) {
-            halt = Some(Halt::Failed(format!(
-                "{steps} steps: relative pressure change {change:.3e} (tolerance {:.1e})",
-                self.tolerance
-            )));
+        if halt.is_none() && !(change < tolerance) {
+            halt = Some(Termination::StepLimit {
+                steps,
+                measure: change,
+                tolerance,
+            });
         }
         let Descent { mut groups, p, .. } = cg;
         let gap_rigid = groups.final_gap(problem, &p);
-        let mut state = outcome(problem, p, gap_rigid, steps, Status::Solved);
+        let mut state = outcome(problem, p, gap_rigid, steps);
         if let Some(halt) = halt {
-            halt.stop(self.name(), &mut state);
+            watch::end(&mut state, halt);
         }
         Ok(state)
     }
@@ -308,7 +315,6 @@ fn outcome(
     pressure: Vec<f64>,
     (gap, rigid): (Vec<f64>, Vec<f64>),
     steps: usize,
-    status: Status,
 ) -> ContactState {
     let mut state = ContactState {
         active: pressure.iter().map(|&p| p > 0.0).collect(),
@@ -319,7 +325,8 @@ fn outcome(
         iterations: steps,
         iterp: 0,
         iterd: 0,
-        status,
+        method: Method::PolonskyKeer,
+        termination: Termination::Converged,
     };
     problem.verify(&mut state);
     state

@@ -3,7 +3,10 @@
 use std::rc::Rc;
 use std::sync::{Mutex, OnceLock};
 
-use contopt_core::{ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result};
+use contopt_core::observe::Method;
+use contopt_core::{
+    ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
+};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
@@ -238,7 +241,7 @@ impl<'a> InterfaceProblem<'a> {
         let pair = s1.partners(s2, b1.name(), b2.name())?;
         check_partners(b1, b2, &pair)?;
         let n = s1.len();
-        check_gap(initial_gap, n)?;
+        contopt_core::check::gap(initial_gap, n)?;
         let f1 = b1.load_displacement()?;
         let f2 = b2.load_displacement()?;
         let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
@@ -283,7 +286,7 @@ impl<'a> InterfaceProblem<'a> {
     /// The same problem with another initial gap h (the optimisation changes it): the
     /// operators, the interface and the dense matrix, once built, are shared, not copied.
     pub fn with_initial_gap(&self, initial_gap: &[f64]) -> Result<Self> {
-        check_gap(initial_gap, self.len())?;
+        contopt_core::check::gap(initial_gap, self.len())?;
         Ok(Self {
             initial_gap: initial_gap.to_vec(),
             ..self.clone()
@@ -356,7 +359,7 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Point weights wᵢ \[mm²\].
     pub fn weights(&self) -> &[f64] {
-        &self.interface.weights
+        &self.interface.weights()
     }
 
     /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the
@@ -542,9 +545,11 @@ impl<'a> InterfaceProblem<'a> {
         Residuals::new(equilibrium, pressure, gap)
     }
 
-    /// Assembles a solved [`ContactState`] from a solution, with its gap and residuals.
+    /// Assembles a [`ContactState`] of `method` from a solution, with its gap and residuals,
+    /// converged unless [`InterfaceProblem::verify`] finds it out of bounds.
     pub fn state(
         &self,
+        method: Method,
         pressure: Vec<f64>,
         rigid: Vec<f64>,
         active: Vec<bool>,
@@ -561,7 +566,8 @@ impl<'a> InterfaceProblem<'a> {
             iterp: counts[1],
             iterd: counts[2],
             residuals,
-            status: contopt_core::Status::Solved,
+            method,
+            termination: Termination::Converged,
         };
         self.verify(&mut state);
         state
@@ -577,23 +583,23 @@ impl<'a> InterfaceProblem<'a> {
             .fold(0.0f64, |m, (d, h)| m.max((d - h).abs()))
     }
 
-    /// Stops (see [`ContactState::stop_if_not_finite`]) a state that holds a NaN or an
+    /// Ends (see [`ContactState::stop_if_not_finite`]) a state that holds a NaN or an
     /// infinity, or whose elastic displacement, d − h − Rλ, exceeds [`SMALL_STRAIN`] times the
     /// size of the interface (the diagonal of its points' bounding box): no linear-elastic
     /// answer, but data in the wrong units or overflowing (a modulus of 10⁻³⁰⁰ MPa). Every
     /// solver passes its result through it.
     pub fn verify(&self, state: &mut ContactState) {
         state.stop_if_not_finite();
-        if state.status != contopt_core::Status::Solved || state.gap.len() != self.len() {
+        if !state.is_converged() || state.gap.len() != self.len() {
             return;
         }
         let elastic = self.elastic_displacement(&state.gap, &state.rigid);
         let size = self.interface().extent();
         if size > 0.0 && elastic > SMALL_STRAIN * size {
-            state.status = contopt_core::Status::Stopped(format!(
-                "the elastic displacement {elastic:.3e} mm exceeds the size of the interface \
-                 {size:.3e} mm: not a small-strain answer (check the moduli, the load and the units)"
-            ));
+            state.termination = Termination::LargeDisplacement {
+                displacement_mm: elastic,
+                size_mm: size,
+            };
         }
     }
 
@@ -653,7 +659,7 @@ impl<'a> InterfaceProblem<'a> {
 fn check_partners(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Result<()> {
     let (s1, s2) = (b1.interface(), b2.interface());
     for (i, &j) in pair.iter().enumerate() {
-        let (wa, wb) = (s1.weights[i], s2.weights[j]);
+        let (wa, wb) = (s1.weights()[i], s2.weights()[j]);
         if (wa - wb).abs() > WEIGHT_MATCH * wa.abs().max(wb.abs()) {
             return Err(Error::InterfaceMismatch {
                 index: i,
@@ -664,7 +670,7 @@ fn check_partners(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) ->
                 ),
             });
         }
-        let (na, nb) = (s1.normals[i], s2.normals[j]);
+        let (na, nb) = (s1.normals()[i], s2.normals()[j]);
         if (0..3).map(|c| (na[c] + nb[c]).abs()).fold(0.0, f64::max) > NORMAL_MATCH {
             return Err(Error::InterfaceMismatch {
                 index: i,
@@ -690,7 +696,7 @@ const MODE_INDEPENDENCE: f64 = 1e-10;
 /// modes that move the interface alike refused.
 fn free_modes(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Result<Vec<FreeMode>> {
     let n = pair.len();
-    let w = &b1.interface().weights;
+    let w = b1.interface().weights();
     let identity: Vec<usize> = (0..n).collect();
     let mut kept = vec![];
     for (b, order) in [(b1, identity.as_slice()), (b2, pair)] {
@@ -769,26 +775,6 @@ fn check_independent(modes: &[FreeMode], w: &[f64]) -> Result<()> {
             "rigid modes",
             names.join(", "),
             "move the interface alike: support one of the bodies",
-        ));
-    }
-    Ok(())
-}
-
-/// Checks an initial gap: one finite value per interface point (an error names the field
-/// `initial_gap` and the offending value).
-pub fn check_gap(initial_gap: &[f64], n: usize) -> Result<()> {
-    if initial_gap.len() != n {
-        return Err(Error::invalid(
-            "initial_gap",
-            initial_gap.len(),
-            format!("one value per interface point ({n})"),
-        ));
-    }
-    if let Some(i) = initial_gap.iter().position(|h| !h.is_finite()) {
-        return Err(Error::invalid(
-            format!("initial_gap[{i}]"),
-            initial_gap[i],
-            "must be finite",
         ));
     }
     Ok(())

@@ -1,8 +1,11 @@
 //! The complementary-energy QP (2.14) by the interior-point solver clarabel.
 
-use contopt_core::{ContactState, Error, Result, Status};
+use contopt_core::observe::{Method, Observer};
+use contopt_core::{check, ContactState, Error, Result, Termination};
+use serde::{Deserialize, Serialize};
 
 use crate::conic::{self, CscMatrix, Outcome, Solution};
+use crate::watch;
 use crate::{kalker, ContactSolver, InterfaceProblem};
 
 /// The n × n arrays of a solve held at once: the upper triangle as triplets and CSC (three
@@ -31,11 +34,18 @@ const ZERO_APPROACH: f64 = 1e-12;
 /// return) exactly, instead of to the interior point's tolerance.
 #[derive(Clone, Copy, Debug)]
 pub struct Qp {
+    settings: QpSettings,
+}
+
+/// The settings of the [`Qp`] solver.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct QpSettings {
     /// Feasibility and duality-gap tolerance (clarabel's tol_feas, tol_gap_abs, tol_gap_rel).
     pub tolerance: f64,
 }
 
-impl Default for Qp {
+impl Default for QpSettings {
     fn default() -> Self {
         Self {
             tolerance: conic::TOLERANCE,
@@ -43,12 +53,44 @@ impl Default for Qp {
     }
 }
 
-impl ContactSolver for Qp {
-    fn name(&self) -> &str {
-        "QP (clarabel)"
+impl Qp {
+    /// The solver with `settings`, checked: the tolerance in (0, 1).
+    pub fn new(settings: QpSettings) -> Result<Self> {
+        check::between("tolerance", settings.tolerance, 0.0, 1.0)?;
+        Ok(Self { settings })
     }
 
-    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+    /// Its settings.
+    pub fn settings(&self) -> &QpSettings {
+        &self.settings
+    }
+}
+
+impl ContactSolver for Qp {
+    fn method(&self) -> Method {
+        Method::Qp
+    }
+
+    fn dense_copies(&self, _points: usize) -> u64 {
+        QP_COPIES
+    }
+
+    /// clarabel reports nothing per iteration (its only hook, a termination callback, cannot
+    /// hold a borrowed observer): the observer sees the solve's end alone. Solves from scratch.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
+        let state = self.interior_point(problem)?;
+        watch::announce(observer, &state);
+        Ok(state)
+    }
+}
+
+impl Qp {
+    fn interior_point(&self, problem: &InterfaceProblem) -> Result<ContactState> {
         let qp = ScaledQp::new(problem)?;
         let m = problem.load().len();
         let sol = conic::solve(
@@ -57,7 +99,7 @@ impl ContactSolver for Qp {
             &qp.constraints,
             &qp.b,
             m,
-            self.tolerance,
+            self.settings.tolerance,
             "QP data",
         )?;
         match &sol.outcome {
@@ -67,7 +109,12 @@ impl ContactSolver for Qp {
                 format!("{:?}", problem.load()),
                 "cannot be equilibrated by compressive contact",
             )),
-            Outcome::Stopped(reason) => Ok(last_iterate(problem, &sol, qp.scale, reason)),
+            Outcome::Unbounded => Err(Error::invalid(
+                "influence",
+                "not positive definite",
+                "the complementary energy is unbounded: a free rigid mode moves no point",
+            )),
+            Outcome::Stopped(why) => Ok(last_iterate(problem, &sol, qp.scale, why.clone())),
         }
     }
 }
@@ -152,31 +199,41 @@ fn polish(problem: &InterfaceProblem, sol: &Solution) -> Result<ContactState> {
         .map(|&x| x > INTERIOR_POINT_ACCURACY * p_max)
         .collect();
     let mut state = kalker::exact(problem, Some(&contact))?;
-    for (k, (&mine, &theirs)) in state.rigid.iter().zip(&sol.z[..m]).enumerate() {
-        if (mine - theirs).abs() > INTERIOR_POINT_ACCURACY * theirs.abs().max(ZERO_APPROACH) {
-            state.status = Status::Stopped(format!(
+    state.method = Method::Qp;
+    let disagreement = state
+        .rigid
+        .iter()
+        .zip(&sol.z[..m])
+        .enumerate()
+        .find(|(_, (mine, theirs))| {
+            (*mine - *theirs).abs() > INTERIOR_POINT_ACCURACY * theirs.abs().max(ZERO_APPROACH)
+        })
+        .map(|(k, (mine, theirs))| {
+            format!(
                 "polished rigid amplitude {k} = {mine:e} disagrees with the interior point's \
                  {theirs:e}"
-            ));
-        }
+            )
+        });
+    if let Some(reason) = disagreement {
+        watch::end(&mut state, Termination::Stalled { reason });
     }
     state.iterations = sol.iterations;
     Ok(state)
 }
 
 /// clarabel's last iterate of a programme that stopped short, with its own rigid amplitudes
-/// and the reason.
+/// and why it stopped.
 fn last_iterate(
     problem: &InterfaceProblem,
     sol: &Solution,
     scale: f64,
-    reason: &str,
+    why: Termination,
 ) -> ContactState {
     let m = problem.load().len();
     let pressure: Vec<f64> = sol.x.iter().map(|&x| x.max(0.0) / scale).collect();
     let active = pressure.iter().map(|&p| p > 0.0).collect();
     let rigid = sol.z[..m].to_vec();
-    let mut state = problem.state(pressure, rigid, active, [sol.iterations, 0, 0]);
-    state.status = Status::Stopped(reason.to_string());
+    let mut state = problem.state(Method::Qp, pressure, rigid, active, [sol.iterations, 0, 0]);
+    watch::end(&mut state, why);
     state
 }

@@ -3,14 +3,44 @@
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 
-use contopt_core::observe::{stopped_by_observer, Flow, Iteration, Observer};
-use contopt_core::{ContactState, ElasticBody, Geometry, Interface, RigidBody, RigidMode, Status};
+use contopt_core::observe::{Event, Flow, Method, Observer};
+use contopt_core::{ContactState, ElasticBody, Geometry, Interface, RigidBody, RigidMode, Termination};
 use faer::Mat;
 
 use crate::{
-    ActiveSet, AugmentedLagrangian, ContactSolver, FullPenalty, InterfaceProblem, Penalty,
-    PolonskyKeer, Qp,
+    ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
+    FullPenalty, InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer, PolonskyKeerSettings,
+    Qp, QpSettings,
 };
+
+fn qp() -> Qp {
+    Qp::new(QpSettings::default()).unwrap()
+}
+
+fn active_set() -> ActiveSet {
+    ActiveSet::new(ActiveSetSettings::default()).unwrap()
+}
+
+fn penalty(c: f64) -> Penalty {
+    Penalty::new(PenaltySettings { c_mpa_per_mm: c }).unwrap()
+}
+
+fn augmented(settings: AugmentedLagrangianSettings) -> AugmentedLagrangian {
+    AugmentedLagrangian::new(settings).unwrap()
+}
+
+fn polonsky_keer() -> PolonskyKeer {
+    PolonskyKeer::new(PolonskyKeerSettings::default()).unwrap()
+}
+
+fn full_penalty(c: f64) -> FullPenalty {
+    FullPenalty::new(PenaltySettings { c_mpa_per_mm: c }).unwrap()
+}
+
+/// The solver's method, as a test message.
+fn name(s: &dyn ContactSolver) -> String {
+    s.method().to_string()
+}
 
 /// A body given by its influence matrix, load displacement and rigid modes.
 struct MatrixBody {
@@ -63,10 +93,10 @@ fn body(a: Mat<f64>, modes: Vec<RigidMode>) -> MatrixBody {
 
 fn solvers() -> Vec<Box<dyn ContactSolver>> {
     vec![
-        Box::new(Qp::default()),
-        Box::new(ActiveSet),
-        Box::new(AugmentedLagrangian::new(1e3)),
-        Box::new(PolonskyKeer::default()),
+        Box::new(qp()),
+        Box::new(active_set()),
+        Box::new(augmented(AugmentedLagrangianSettings::new(1e3))),
+        Box::new(polonsky_keer()),
     ]
 }
 
@@ -86,13 +116,13 @@ fn two_points_one_in_contact() {
     let problem = InterfaceProblem::new(&b, &rigid, &[-1e-3, 0.5e-3]).unwrap();
     for s in solvers() {
         let st = s.solve(&problem).unwrap();
-        assert_close(&st.pressure, &[0.5, 0.0], 1e-10, s.name());
-        assert_close(&st.gap, &[0.0, 1e-3], 1e-13, s.name());
-        assert_eq!(st.active, vec![true, false], "{}", s.name());
+        assert_close(&st.pressure, &[0.5, 0.0], 1e-10, &name(s.as_ref()));
+        assert_close(&st.gap, &[0.0, 1e-3], 1e-13, &name(s.as_ref()));
+        assert_eq!(st.active, vec![true, false], "{}", &name(s.as_ref()));
     }
     // The penalty closes the gap only to p/c: p₀ = 1e-3 / (2e-3 + 1/c).
     for c in [1e2, 1e4, 1e8] {
-        let st = Penalty { c }.solve(&problem).unwrap();
+        let st = penalty(c).solve(&problem).unwrap();
         let exact = 1e-3 / (2e-3 + 1.0 / c);
         assert!((st.pressure[0] - exact).abs() < 1e-12 * exact, "c = {c}");
         assert!((st.gap[0] + exact / c).abs() < 1e-15, "penetration p/c");
@@ -120,13 +150,13 @@ fn three_points_with_a_rigid_mode() {
     let problem = floating_three_points(0.0);
     for s in solvers() {
         let st = s.solve(&problem).unwrap();
-        assert_close(&st.pressure, &[2.0, 1.0, 0.0], 1e-10, s.name());
-        assert_close(&st.gap, &[0.0, 0.0, 3e-3], 1e-12, s.name());
-        assert_close(&st.rigid, &[-2e-3], 1e-12, s.name());
+        assert_close(&st.pressure, &[2.0, 1.0, 0.0], 1e-10, &name(s.as_ref()));
+        assert_close(&st.gap, &[0.0, 0.0, 3e-3], 1e-12, &name(s.as_ref()));
+        assert_close(&st.rigid, &[-2e-3], 1e-12, &name(s.as_ref()));
         assert!(
             st.residuals.equilibrium < 1e-9,
             "{}: {:?}",
-            s.name(),
+            &name(s.as_ref()),
             st.residuals
         );
     }
@@ -138,33 +168,38 @@ fn three_points_with_a_rigid_mode() {
 #[test]
 fn augmented_lagrangian_counts_set_changes() {
     let problem = floating_three_points(0.2e-3);
-    let reference = Qp::default().solve(&problem).unwrap();
+    let reference = qp().solve(&problem).unwrap();
     for c in [1e3, 1e5, 1e9] {
-        let st = AugmentedLagrangian::new(c).solve(&problem).unwrap();
+        let st = augmented(AugmentedLagrangianSettings::new(c))
+            .solve(&problem)
+            .unwrap();
         assert_close(&st.pressure, &reference.pressure, 1e-8, &format!("c = {c}"));
         assert_eq!(st.iterp - st.iterd, 1, "c = {c}");
         assert!(st.iterations >= 1);
     }
     // Too small a c for this compliance (ρ = 1/c ≫ A w): each step gains only 1 %; the
-    // state says it stopped and how far it got, and `solved` makes that an error.
-    let state = AugmentedLagrangian {
-        c: 10.0,
-        tolerance: 1e-10,
+    // state says it stopped at its step limit and how far it got.
+    let state = augmented(AugmentedLagrangianSettings {
         max_steps: 50,
         accelerate: false,
-    }
+        ..AugmentedLagrangianSettings::new(10.0)
+    })
     .solve(&problem)
     .unwrap();
-    assert!(state.residuals.penetration > 1e-4, "{:?}", state.residuals);
-    assert!(state.pressure.iter().all(|p| p.is_finite()));
-    let err = state
-        .solved("augmented Lagrangian")
-        .unwrap_err()
-        .to_string();
     assert!(
-        err.contains("did not converge in 50") && err.contains("penetration 3.357e-4 mm"),
-        "{err}"
+        (state.residuals.penetration - 3.357e-4).abs() < 1e-7,
+        "{:?}",
+        state.residuals
     );
+    assert!(state.pressure.iter().all(|p| p.is_finite()));
+    match &state.termination {
+        Termination::StepLimit {
+            steps: 50,
+            measure,
+            tolerance,
+        } => assert!(*measure > *tolerance && *tolerance == 1e-10, "{measure}"),
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]
@@ -172,8 +207,15 @@ fn mismatched_interfaces_and_impossible_loads_are_named() {
     let a = Mat::from_fn(2, 2, |i, j| if i == j { 1e-3 } else { 0.0 });
     let b = body(a.clone(), vec![]);
     let mut other = body(a.clone(), vec![]);
-    other.interface.points[1][0] = 1.5;
-    other.interface.normals = vec![[0.0, -1.0, 0.0]; 2];
+    let mut points = other.interface.points().to_vec();
+    points[1][0] = 1.5;
+    other.interface = Interface::new(
+        Geometry::Surface,
+        points,
+        other.interface.weights().to_vec(),
+        vec![[0.0, -1.0, 0.0]; 2],
+    )
+    .unwrap();
     let err = InterfaceProblem::new(&b, &other, &[0.0; 2])
         .unwrap_err()
         .to_string();
@@ -193,11 +235,10 @@ fn mismatched_interfaces_and_impossible_loads_are_named() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("pulls the bodies apart"), "{err}");
-    assert!(Penalty { c: -1.0 }
-        .solve(
-            &InterfaceProblem::new(&body(Mat::identity(2, 2), vec![]), &rigid, &[0.0; 2]).unwrap()
-        )
-        .is_err());
+    let err = Penalty::new(PenaltySettings { c_mpa_per_mm: -1.0 })
+        .unwrap_err()
+        .to_string();
+    assert_eq!(err, "invalid c_mpa_per_mm = -1: must be positive and finite");
 }
 
 /// The dense matrix is refused before allocation past the memory limit, with its size, the
@@ -207,7 +248,7 @@ fn mismatched_interfaces_and_impossible_loads_are_named() {
 fn dense_matrix_is_refused_past_the_limit_and_shared() {
     let problem = floating_three_points(0.2e-3);
     let small = problem.clone().with_dense_limit(100);
-    let err = ActiveSet.solve(&small).unwrap_err().to_string();
+    let err = active_set().solve(&small).unwrap_err().to_string();
     assert!(
         err.contains("dense 3 × 3 influence matrix")
             && err.contains("limit")
@@ -233,12 +274,12 @@ fn dense_matrix_is_refused_past_the_limit_and_shared() {
 #[test]
 fn polonsky_keer_warm_start() {
     let problem = floating_three_points(0.2e-3);
-    let cold = PolonskyKeer::default().solve(&problem).unwrap();
-    let warm = PolonskyKeer::default()
+    let cold = polonsky_keer().solve(&problem).unwrap();
+    let warm = polonsky_keer()
         .solve_from(&problem, &[3.0, 0.0, 1.0])
         .unwrap();
     assert_close(&warm.pressure, &cold.pressure, 1e-10, "warm");
-    assert!(PolonskyKeer::default()
+    assert!(polonsky_keer()
         .solve_from(&problem, &[1.0])
         .is_err());
 }
@@ -265,17 +306,18 @@ fn column_modes_carry_their_own_loads() {
             },
         ])
         .unwrap();
-    let reference = Qp::default().solve(&columns).unwrap();
+    let reference = qp().solve(&columns).unwrap();
     assert!(
         (reference.pressure[2] - 1.0).abs() < 1e-9,
         "{:?}",
         reference.pressure
     );
     for s in solvers() {
-        let st = s.solve(&columns).unwrap().solved(s.name()).unwrap();
-        assert_close(&st.pressure, &reference.pressure, 1e-9, s.name());
-        assert_close(&st.rigid, &reference.rigid, 1e-12, s.name());
-        assert!(st.residuals.equilibrium < 1e-9, "{}", s.name());
+        let st = s.solve(&columns).unwrap();
+        assert!(st.is_converged(), "{}: {}", name(s.as_ref()), st.termination);
+        assert_close(&st.pressure, &reference.pressure, 1e-9, &name(s.as_ref()));
+        assert_close(&st.rigid, &reference.rigid, 1e-12, &name(s.as_ref()));
+        assert!(st.residuals.equilibrium < 1e-9, "{}", &name(s.as_ref()));
     }
 }
 
@@ -297,8 +339,15 @@ fn second_body_in_another_order_is_permuted() {
         }),
         vec![],
     );
-    b2.interface.points.reverse();
-    b2.interface.normals = vec![[0.0, -1.0, 0.0]; 3];
+    let mut points = b2.interface.points().to_vec();
+    points.reverse();
+    b2.interface = Interface::new(
+        Geometry::Surface,
+        points,
+        b2.interface.weights().to_vec(),
+        vec![[0.0, -1.0, 0.0]; 3],
+    )
+    .unwrap();
     let problem = InterfaceProblem::new(&b1, &b2, &[0.0; 3]).unwrap();
     let f = [1.0, 2.0, 4.0];
     let mut u = vec![0.0; 3];
@@ -352,7 +401,7 @@ struct StiffnessSystem {
     w: Vec<f64>,
 }
 
-impl crate::FullSystem for StiffnessSystem {
+impl contopt_core::FullSystem for StiffnessSystem {
     fn points(&self) -> usize {
         self.h.len()
     }
@@ -422,24 +471,34 @@ fn stiffness_pair(n: usize) -> (StiffnessSystem, InterfaceProblem<'static>) {
 /// Runs `solve` with an observer that counts the iterations each method reports, checks that
 /// each method numbers them 1, 2, … with a finite measure, and asks to stop at `stop`
 /// (method, iteration).
+/// The last event of the outermost method carries its termination, and is not counted.
 fn observed(
-    stop: Option<(&str, usize)>,
+    stop: Option<(Method, usize)>,
     solve: impl FnOnce(&dyn Observer) -> contopt_core::Result<ContactState>,
-) -> (ContactState, BTreeMap<String, usize>) {
-    let counts = RefCell::new(BTreeMap::<String, usize>::new());
-    let observer = |it: &Iteration| {
+) -> (ContactState, BTreeMap<Method, usize>) {
+    let counts = RefCell::new(BTreeMap::<Method, usize>::new());
+    let end = RefCell::new(None);
+    let observer = |e: &Event| {
+        if let Some(termination) = e.end {
+            assert_eq!(e.level, 0, "only the outermost method announces its end here");
+            *end.borrow_mut() = Some(termination.clone());
+            return Flow::Continue;
+        }
         let mut counts = counts.borrow_mut();
-        let k = counts.entry(it.method.to_string()).or_insert(0);
+        let k = counts.entry(e.method).or_insert(0);
         *k += 1;
-        assert_eq!(it.iteration, *k, "{} numbers its iterations", it.method);
-        assert!(it.measure.is_finite() && it.tolerance >= 0.0, "{it:?}");
-        if stop == Some((it.method, it.iteration)) {
+        assert_eq!(e.iteration, *k, "{} numbers its iterations", e.method);
+        assert!(e.measure.is_finite() && e.tolerance >= 0.0, "{e:?}");
+        let inner = e.method == Method::Kalker;
+        assert_eq!(e.level, usize::from(inner), "{e:?}");
+        if stop == Some((e.method, e.iteration)) {
             Flow::Stop
         } else {
             Flow::Continue
         }
     };
     let state = solve(&observer).unwrap();
+    assert_eq!(end.into_inner().as_ref(), Some(&state.termination));
     (state, counts.into_inner())
 }
 
@@ -450,40 +509,28 @@ fn observed(
 #[test]
 fn observers_see_every_iteration() {
     let problem = wavy_floating(40, 1.0);
-    let al = AugmentedLagrangian {
+    let al = augmented(AugmentedLagrangianSettings {
         accelerate: false,
-        ..AugmentedLagrangian::new(1e3)
-    };
-    let solvers: [&dyn ContactSolver; 5] = [
-        &Penalty { c: 1e4 },
-        &Penalty { c: 1e12 },
-        &ActiveSet,
-        &al,
-        &PolonskyKeer::default(),
-    ];
+        ..AugmentedLagrangianSettings::new(1e3)
+    });
+    let (soft, stiff, exact, pk) = (penalty(1e4), penalty(1e12), active_set(), polonsky_keer());
+    let solvers: [&dyn ContactSolver; 5] = [&soft, &stiff, &exact, &al, &pk];
     for s in solvers {
         let silent = s.solve(&problem).unwrap();
         let (st, counts) = observed(None, |o| s.solve_observed(&problem, None, o));
-        assert_eq!(st, silent, "{}: observing changes the answer", s.name());
-        assert_eq!(st.status, Status::Solved, "{}", s.name());
-        let own = counts.get(s.name()).copied().unwrap_or(0);
-        if s.name() == al.name() {
-            assert_eq!(own, st.iterations, "Uzawa steps");
-            assert_eq!(
-                counts[AugmentedLagrangian::KALKER],
-                st.iterp,
-                "inner solves"
-            );
-        } else if s.name() == "Polonsky-Keer" {
-            assert_eq!(own, st.iterations);
-        } else {
-            assert_eq!(own, st.iterp, "{}: Kalker's solves", s.name());
+        assert_eq!(st, silent, "{}: observing changes the answer", name(s));
+        assert_eq!(st.termination, Termination::Converged, "{}", name(s));
+        assert_eq!(st.method, s.method());
+        let own = counts.get(&s.method()).copied().unwrap_or(0);
+        match s.method() {
+            Method::AugmentedLagrangian => {
+                assert_eq!(own, st.iterations, "Uzawa steps");
+                assert_eq!(counts[&Method::Kalker], st.iterp, "inner solves");
+            }
+            Method::PolonskyKeer => assert_eq!(own, st.iterations),
+            _ => assert_eq!(own, st.iterp, "{}: Kalker's solves", name(s)),
         }
-        assert!(
-            own >= 3,
-            "{}: {own} iterations are too few for the test",
-            s.name()
-        );
+        assert!(own >= 3, "{}: {own} iterations are too few for the test", name(s));
     }
 }
 
@@ -492,26 +539,27 @@ fn observers_see_every_iteration() {
 #[test]
 fn observers_stop_every_solver() {
     let problem = wavy_floating(40, 1.0);
-    let al = AugmentedLagrangian {
+    let al = augmented(AugmentedLagrangianSettings {
         accelerate: false,
-        ..AugmentedLagrangian::new(1e3)
-    };
-    let cases: [(&dyn ContactSolver, &str); 6] = [
-        (&Penalty { c: 1e4 }, "penalty"),
-        (&Penalty { c: 1e12 }, "penalty"),
-        (&ActiveSet, "active set"),
-        (&al, al.name()),
-        (&al, AugmentedLagrangian::KALKER),
-        (&PolonskyKeer::default(), "Polonsky-Keer"),
+        ..AugmentedLagrangianSettings::new(1e3)
+    });
+    let (soft, stiff, exact, pk) = (penalty(1e4), penalty(1e12), active_set(), polonsky_keer());
+    let cases: [(&dyn ContactSolver, Method); 6] = [
+        (&soft, Method::Penalty),
+        (&stiff, Method::Penalty),
+        (&exact, Method::ActiveSet),
+        (&al, Method::AugmentedLagrangian),
+        (&al, Method::Kalker),
+        (&pk, Method::PolonskyKeer),
     ];
     for (s, method) in cases {
         let (mut st, counts) = observed(Some((method, 2)), |o| s.solve_observed(&problem, None, o));
-        let expected = Status::Stopped(stopped_by_observer(2));
-        assert_eq!(st.status, expected, "{} ({method})", s.name());
-        assert_eq!(counts[method], 2, "{}: nothing after the stop", s.name());
-        assert_eq!(st.non_finite(), None, "{}", s.name());
+        let expected = Termination::Stopped { after: 2 };
+        assert_eq!(st.termination, expected, "{} ({method})", name(s));
+        assert_eq!(counts[&method], 2, "{}: nothing after the stop", name(s));
+        assert_eq!(st.non_finite(), None, "{}", name(s));
         problem.verify(&mut st);
-        assert_eq!(st.status, expected, "{}", s.name());
+        assert_eq!(st.termination, expected, "{}", name(s));
     }
 }
 
@@ -522,31 +570,31 @@ fn observers_stop_every_solver() {
 fn full_penalty_matches_the_condensed_one() {
     let (mut system, problem) = stiffness_pair(30);
     let c = 1e6;
-    let condensed = Penalty { c }.solve(&problem).unwrap();
-    let full = FullPenalty { c }.solve(&mut system).unwrap();
+    let condensed = penalty(c).solve(&problem).unwrap();
+    let full = full_penalty(c).solve(&mut system).unwrap();
     let p_max = condensed.p_max();
     assert!(p_max > 0.0 && condensed.active.iter().any(|a| !a));
     assert_close(&full.pressure, &condensed.pressure, 1e-9 * p_max, "p");
     assert_close(&full.gap, &condensed.gap, 1e-12, "d");
     assert_eq!(full.active, condensed.active);
     assert_eq!([full.iterp, full.iterd], [condensed.iterp, condensed.iterd]);
-    let name = FullPenalty { c }.name().to_string();
-    let (st, counts) = observed(None, |o| FullPenalty { c }.solve_observed(&mut system, o));
-    assert_eq!(counts[&name], st.iterp);
+    let method = Method::FullPenalty;
+    let (st, counts) = observed(None, |o| full_penalty(c).solve_observed(&mut system, o));
+    assert_eq!(counts[&method], st.iterp);
     assert!(
         st.iterp >= 3,
         "{} solves are too few for the test",
         st.iterp
     );
-    let (st, counts) = observed(Some((&name, 2)), |o| {
-        FullPenalty { c }.solve_observed(&mut system, o)
+    let (st, counts) = observed(Some((method, 2)), |o| {
+        full_penalty(c).solve_observed(&mut system, o)
     });
-    assert_eq!(st.status, Status::Stopped(stopped_by_observer(2)));
-    assert_eq!((counts[&name], st.iterp), (2, 2));
+    assert_eq!(st.termination, Termination::Stopped { after: 2 });
+    assert_eq!((counts[&method], st.iterp), (2, 2));
     assert_eq!(st.non_finite(), None);
     // A system whose weights do not match its points is refused.
     system.w.pop();
-    let err = FullPenalty { c }
+    let err = full_penalty(c)
         .solve(&mut system)
         .unwrap_err()
         .to_string();

@@ -21,9 +21,9 @@ pub struct RigidMode {
 
 /// A linear-elastic body as contact sees it: its contact surface, how normal forces on that
 /// surface move it, where its given loads move it, and which rigid motions it is free to make
-/// (DESIGN §2).
+/// (eqs. 2.5–2.6).
 ///
-/// Conventions (DESIGN §3): normal displacements are measured *into* the body, along −n,
+/// Conventions (the book's chapter "Write your own body"): normal displacements are measured *into* the body, along −n,
 /// where n is the body's outward normal at the point, so that pressing a surface moves it by a
 /// positive amount; a force is a compressive normal force (pressure × weight). A body with free
 /// rigid modes reports displacements relative to an internal reference that removes those

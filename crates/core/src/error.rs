@@ -5,9 +5,12 @@ pub type Result<T> = std::result::Result<T, Error>;
 
 /// Everything that can go wrong in contopt.
 ///
-/// Bad input is reported with the field that holds it and its value, never by a panic or a
-/// NaN in the output.
-#[derive(Debug, Error)]
+/// Errors are for bad input and for work refused before it starts (a matrix past the memory
+/// limit): reported with the field that holds it and its value, never by a panic or a NaN in
+/// the output. A method that starts and stops short is not an error: its result carries a
+/// [`Termination`](crate::Termination). `Debug` prints the message too, so that a `main`
+/// returning [`Result`] shows it as a sentence.
+#[derive(Error)]
 pub enum Error {
     /// A parameter outside its admissible range.
     #[error("invalid {field} = {value}: {reason}")]
@@ -51,16 +54,6 @@ pub enum Error {
         /// What to do instead.
         advice: String,
     },
-    /// An iterative method stopped before meeting its tolerance.
-    #[error("{method} did not converge in {iterations} iterations: {detail}")]
-    NotConverged {
-        /// Name of the method.
-        method: String,
-        /// Iterations performed.
-        iterations: usize,
-        /// How far it got (residuals at the last iterate).
-        detail: String,
-    },
 }
 
 /// A size in MB, or the words for one too large to count in bytes.
@@ -84,5 +77,11 @@ impl Error {
             value: value.to_string(),
             reason: reason.into(),
         }
+    }
+}
+
+impl std::fmt::Debug for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Display::fmt(self, f)
     }
 }

@@ -41,7 +41,7 @@ impl GapShape {
     /// One design value per interface point: Q = I.
     pub fn pointwise(interface: &Interface) -> Self {
         Self {
-            nodes: interface.points.clone(),
+            nodes: interface.points().to_vec(),
             rows: (0..interface.len()).map(|i| vec![(i, 1.0)]).collect(),
         }
     }
@@ -66,7 +66,7 @@ impl GapShape {
             return Err(Error::invalid("gap_shape.axis", axis, "0, 1 or 2"));
         }
         let coordinate: Vec<f64> = interface
-            .points
+            .points()
             .iter()
             .map(|x| coordinate(x[axis]))
             .collect();

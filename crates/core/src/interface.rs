@@ -2,7 +2,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::{Error, Result};
 
-/// How the surface measure of an interface point was formed (DESIGN §3).
+/// How the surface measure of an interface point was formed.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Geometry {
     /// Axisymmetric: points are (r, z); weights carry the ring length 2πr.
@@ -28,15 +28,10 @@ pub const GEOMETRY_TOLERANCE: f64 = 1e-9;
 /// (structure of arrays) because the solvers sweep them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Interface {
-    /// How the weights were formed.
-    pub geometry: Geometry,
-    /// Coordinates of the points.
-    pub points: Vec<[f64; 3]>,
-    /// Surface measure w_i attributed to each point \[mm²\]: the quadrature weight times
-    /// the Jacobian and 2πr (axisymmetric) or b (plane), so that ∫_Ω p dS ≈ Σ w_i p_i.
-    pub weights: Vec<f64>,
-    /// Unit outward normal of this body at each point.
-    pub normals: Vec<[f64; 3]>,
+    geometry: Geometry,
+    points: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+    normals: Vec<[f64; 3]>,
 }
 
 impl Interface {
@@ -92,6 +87,51 @@ impl Interface {
             points,
             weights,
             normals,
+        })
+    }
+
+    /// How the weights were formed.
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    /// Coordinates of the points \[mm\].
+    pub fn points(&self) -> &[[f64; 3]] {
+        &self.points
+    }
+
+    /// Surface measure w_i attributed to each point \[mm²\]: the quadrature weight times
+    /// the Jacobian and 2πr (axisymmetric) or b (plane), so that ∫_Ω p dS ≈ Σ w_i p_i.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Unit outward normal of this body at each point.
+    pub fn normals(&self) -> &[[f64; 3]] {
+        &self.normals
+    }
+
+    /// The same points seen from the partner across the contact: the normals reversed (a
+    /// rigid body's or a bed's surface facing this one).
+    pub fn mirrored(&self) -> Interface {
+        Interface {
+            normals: self.normals.iter().map(|n| n.map(|c| -c)).collect(),
+            ..self.clone()
+        }
+    }
+
+    /// The points kept by `keep`, in order (one flag per point), with their weights and
+    /// normals; `None` when none is kept.
+    pub fn subset(&self, keep: &[bool]) -> Option<Interface> {
+        let index: Vec<usize> = (0..self.len()).filter(|&i| keep.get(i) == Some(&true)).collect();
+        if index.is_empty() {
+            return None;
+        }
+        Some(Interface {
+            geometry: self.geometry,
+            points: index.iter().map(|&i| self.points[i]).collect(),
+            weights: index.iter().map(|&i| self.weights[i]).collect(),
+            normals: index.iter().map(|&i| self.normals[i]).collect(),
         })
     }
 

@@ -1,11 +1,18 @@
-//! Core of contopt: the [`ElasticBody`] trait, the contact [`Interface`] a body exposes, and the
-//! [`Error`] type shared by every crate of the workspace.
+//! Core of contopt: the [`ElasticBody`] trait, the contact [`Interface`] a body exposes, how
+//! an iterative method ends ([`Termination`]) and what it reports on the way
+//! ([`observe`]), the checks every input passes ([`check`]), and the [`Error`] type shared by
+//! every crate of the workspace.
 //!
 //! Equation numbers refer to I. Páczelt, *Some new developments in contact pressure
 //! optimization* (1994). Units throughout: N, mm, MPa.
+//!
+//! [`faer`] is re-exported: a body that overrides [`ElasticBody::influence_matrix`] returns
+//! a `faer::Mat` without a faer dependency of its own.
 
 mod body;
+pub mod check;
 mod error;
+mod full_system;
 mod gap_shape;
 mod interface;
 mod material;
@@ -14,15 +21,19 @@ pub mod observe;
 mod rigid;
 mod state;
 pub mod stress;
+mod termination;
 
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
+pub use faer;
+pub use full_system::FullSystem;
 pub use gap_shape::GapShape;
 pub use interface::{Geometry, Interface, GEOMETRY_TOLERANCE};
-pub use material::Material;
+pub use material::{Material, MaterialValues};
 pub use rigid::RigidBody;
-pub use state::{ContactState, Residuals, Status};
+pub use state::{ContactState, Residuals};
 pub use stress::{
     Peak, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,
     SubsurfaceRequest,
 };
+pub use termination::Termination;

@@ -1,12 +1,41 @@
 use serde::{Deserialize, Serialize};
 
-use crate::{Error, Result};
+use crate::{check, Error, Result};
 
-/// Isotropic linear-elastic material, validated on construction.
+/// Isotropic linear-elastic material, validated on construction, also when it is read from a
+/// file: its serialised form is `{ e_mpa, nu }`, and reading it goes through [`Material::new`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "MaterialValues", into = "MaterialValues")]
 pub struct Material {
     e: f64,
     nu: f64,
+}
+
+/// A material as written: Young's modulus and Poisson's ratio, not yet checked.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialValues {
+    /// Young's modulus E \[MPa\].
+    pub e_mpa: f64,
+    /// Poisson's ratio ν.
+    pub nu: f64,
+}
+
+impl TryFrom<MaterialValues> for Material {
+    type Error = Error;
+
+    fn try_from(m: MaterialValues) -> Result<Self> {
+        Material::new(m.e_mpa, m.nu)
+    }
+}
+
+impl From<Material> for MaterialValues {
+    fn from(m: Material) -> Self {
+        Self {
+            e_mpa: m.e,
+            nu: m.nu,
+        }
+    }
 }
 
 impl Material {
@@ -15,16 +44,10 @@ impl Material {
     /// ν = 0.5 (incompressible) is rejected: the displacement formulation locks there and
     /// plane-strain and axisymmetric elasticity matrices are singular.
     pub fn new(e: f64, nu: f64) -> Result<Self> {
-        if !(e.is_finite() && e > 0.0) {
-            return Err(Error::invalid(
-                "material.e",
-                e,
-                "Young's modulus must be positive and finite",
-            ));
-        }
+        check::positive("e_mpa", e)?;
         if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
             return Err(Error::invalid(
-                "material.nu",
+                "nu",
                 nu,
                 "Poisson's ratio must satisfy -1 < nu < 0.5",
             ));
@@ -45,5 +68,11 @@ impl Material {
     /// Plane-strain (and half-space) modulus E* = E / (1 − ν²).
     pub fn plane_strain_modulus(&self) -> f64 {
         self.e / (1.0 - self.nu * self.nu)
+    }
+
+    /// The body's share (1 − ν²)/E of the contact compliance 1/E* of a pair (Hertz): the
+    /// pair's modulus is 1/E* = Σ (1 − νₖ²)/Eₖ \[1/MPa\].
+    pub fn contact_compliance(&self) -> f64 {
+        1.0 / self.plane_strain_modulus()
     }
 }

@@ -1,29 +1,156 @@
-//! Observers of iterative methods, as argmin has them: a contact solver or the optimisation
-//! loop reports each of its iterations to an [`Observer`], which may log it, draw a progress
-//! bar or stop the method early.
+//! Observers of iterative methods, as argmin has them: a contact solver, the optimisation loop
+//! or a profile search reports each of its iterations to an [`Observer`] as an [`Event`], which
+//! may log it, draw a progress bar or stop the method early.
+//!
+//! Methods nest: an optimisation runs contact solves, a crown search runs optimisations. An
+//! outer method hands its inner ones [`Nested`], so that every event says how deep it was
+//! raised ([`Event::level`]: 0 for the outermost method of a run).
 //!
 //! ```
 //! use std::cell::Cell;
-//! use contopt_core::observe::{Flow, Iteration, Observer};
+//! use contopt_core::observe::{Event, Flow, Method, Nested, Observer};
 //!
 //! // Stop any method after 3 iterations, counting what it reported.
 //! let seen = Cell::new(0);
-//! let stop_at_three = |it: &Iteration| {
+//! let stop_at_three = |e: &Event| {
 //!     seen.set(seen.get() + 1);
-//!     if it.iteration >= 3 { Flow::Stop } else { Flow::Continue }
+//!     if e.iteration >= 3 { Flow::Stop } else { Flow::Continue }
 //! };
 //! let observer: &dyn Observer = &stop_at_three;
-//! let it = Iteration { method: "demo", iteration: 3, measure: 1.0, tolerance: 0.1 };
-//! assert_eq!(observer.observe(&it), Flow::Stop);
+//! let event = Event::step(Method::PolonskyKeer, 3, 1.0, 0.1);
+//! assert_eq!(observer.observe(&event), Flow::Stop);
+//! // The same event raised inside an optimisation arrives one level deeper.
+//! let deeper = |e: &Event| { assert_eq!(e.level, 1); Flow::Continue };
+//! assert_eq!(Nested(&deeper).observe(&event), Flow::Continue);
 //! assert_eq!(seen.get(), 1);
 //! ```
 
-/// One iteration of an iterative method, as it reports it.
+use serde::{Deserialize, Serialize};
+
+use crate::Termination;
+
+/// The methods that report to observers. A solver of your own reports as
+/// [`Method::Other`] with its name. Written to files as its [`Method::id`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Method {
+    /// The complementary-energy QP (2.14) by an interior point.
+    Qp,
+    /// Kalker's active set with exact dense solves.
+    ActiveSet,
+    /// The penalty method (2.18 without the multiplier).
+    Penalty,
+    /// Uzawa's steps of the augmented Lagrangian (2.19–2.20).
+    AugmentedLagrangian,
+    /// Kalker's iteration inside another method (an Uzawa step's solves).
+    Kalker,
+    /// Polonsky–Keer's constrained conjugate gradients.
+    PolonskyKeer,
+    /// The penalty method on the uncondensed system (2.22).
+    FullPenalty,
+    /// The iteration of §3.2 (steps 1–7, TOLH of 4.2).
+    GapIteration,
+    /// The restricted linear programme (3.5).
+    LinearProgramme,
+    /// The optimum of (3.5) from the loads carried by the design columns.
+    LoadSplit,
+    /// The load split over an envelope of load cases (a robust crown).
+    EnvelopeSplit,
+    /// A derivative-free search over a profile's parameters (Nelder–Mead).
+    ProfileSearch,
+    /// A method of your own.
+    Other(&'static str),
+}
+
+/// The methods of the library, as [`Method::id`] names them.
+const LIBRARY_METHODS: [Method; 12] = [
+    Method::Qp,
+    Method::ActiveSet,
+    Method::Penalty,
+    Method::AugmentedLagrangian,
+    Method::Kalker,
+    Method::PolonskyKeer,
+    Method::FullPenalty,
+    Method::GapIteration,
+    Method::LinearProgramme,
+    Method::LoadSplit,
+    Method::EnvelopeSplit,
+    Method::ProfileSearch,
+];
+
+impl Method {
+    /// Its name in files (`"polonsky_keer"`, `"gap_iteration"`, …; a method of your own by
+    /// the name it gave).
+    pub fn id(&self) -> &'static str {
+        match self {
+            Method::Qp => "qp",
+            Method::ActiveSet => "active_set",
+            Method::Penalty => "penalty",
+            Method::AugmentedLagrangian => "augmented_lagrangian",
+            Method::Kalker => "kalker",
+            Method::PolonskyKeer => "polonsky_keer",
+            Method::FullPenalty => "full_penalty",
+            Method::GapIteration => "gap_iteration",
+            Method::LinearProgramme => "linear_programme",
+            Method::LoadSplit => "load_split",
+            Method::EnvelopeSplit => "envelope_split",
+            Method::ProfileSearch => "profile_search",
+            Method::Other(name) => name,
+        }
+    }
+}
+
+impl Serialize for Method {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.id())
+    }
+}
+
+/// Reads a library method by its [`Method::id`]; a method of your own cannot be read back
+/// (its name is not `'static`), and is refused naming the library's.
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let id = String::deserialize(deserializer)?;
+        LIBRARY_METHODS
+            .into_iter()
+            .find(|m| m.id() == id)
+            .ok_or_else(|| {
+                let ids: Vec<&str> = LIBRARY_METHODS.iter().map(Method::id).collect();
+                serde::de::Error::custom(format!(
+                    "unknown method {id:?}, expected one of {}",
+                    ids.join(", ")
+                ))
+            })
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Method::Qp => "QP",
+            Method::ActiveSet => "active-set solve",
+            Method::Penalty => "penalty solve",
+            Method::AugmentedLagrangian => "augmented Lagrangian",
+            Method::Kalker => "Kalker iteration",
+            Method::PolonskyKeer => "Polonsky–Keer solve",
+            Method::FullPenalty => "penalty solve of the full system",
+            Method::GapIteration => "gap iteration (§3.2)",
+            Method::LinearProgramme => "linear programme (3.5)",
+            Method::LoadSplit => "load split (3.5)",
+            Method::EnvelopeSplit => "envelope load split (3.5)",
+            Method::ProfileSearch => "profile search",
+            Method::Other(name) => name,
+        })
+    }
+}
+
+/// One iteration of a method, as it reports it; the last one also says how it ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Iteration<'a> {
-    /// The method: a contact solver's name (`"Polonsky-Keer"`, `"augmented Lagrangian"`,
-    /// `"active set"`, …) or `"optimisation"` for the loop of §3.2.
-    pub method: &'a str,
+pub struct Event<'a> {
+    /// The method.
+    pub method: Method,
+    /// How deep the method runs: 0 for the outermost of a run, one more for each method that
+    /// runs it (see [`Nested`]).
+    pub level: usize,
     /// The iteration's number, from 1, counted by that method.
     pub iteration: usize,
     /// The method's convergence measure after this iteration (a relative residual, a change
@@ -31,6 +158,30 @@ pub struct Iteration<'a> {
     pub measure: f64,
     /// The value `measure` must reach for the method to stop converged.
     pub tolerance: f64,
+    /// How the method ended, on its last event; `None` while it goes on.
+    pub end: Option<&'a Termination>,
+}
+
+impl<'a> Event<'a> {
+    /// An iteration at level 0 that the method goes on from.
+    pub fn step(method: Method, iteration: usize, measure: f64, tolerance: f64) -> Self {
+        Self {
+            method,
+            level: 0,
+            iteration,
+            measure,
+            tolerance,
+            end: None,
+        }
+    }
+
+    /// The same event, marked as the method's last with how it ended.
+    pub fn ending(self, end: &'a Termination) -> Self {
+        Self {
+            end: Some(end),
+            ..self
+        }
+    }
 }
 
 /// What an observer asks of the method that reported to it.
@@ -40,17 +191,17 @@ pub enum Flow {
     /// Go on iterating.
     #[default]
     Continue,
-    /// Stop now: the method returns its last iterate as
-    /// [`Status::Stopped`](crate::Status::Stopped), saying that an observer stopped it.
+    /// Stop now: the method returns its last iterate with
+    /// [`Termination::Stopped`]. Ignored on a method's last event.
     Stop,
 }
 
-/// Receives the iterations of a method. Takes `&self` so that one observer can be shared by
+/// Receives the events of a method. Takes `&self` so that one observer can be shared by
 /// nested methods (the optimisation loop and the contact solves inside it); keep its state in
-/// a `Cell`, a `RefCell` or a lock. Any `Fn(&Iteration) -> Flow` closure is an observer.
+/// a `Cell`, a `RefCell` or a lock. Any `Fn(&Event) -> Flow` closure is an observer.
 pub trait Observer {
     /// Called after each iteration of a method.
-    fn observe(&self, iteration: &Iteration) -> Flow;
+    fn observe(&self, event: &Event) -> Flow;
 }
 
 /// The observer that sees nothing and never stops a method: the default.
@@ -58,18 +209,27 @@ pub trait Observer {
 pub struct Silent;
 
 impl Observer for Silent {
-    fn observe(&self, _: &Iteration) -> Flow {
+    fn observe(&self, _: &Event) -> Flow {
         Flow::Continue
     }
 }
 
-impl<F: Fn(&Iteration) -> Flow> Observer for F {
-    fn observe(&self, iteration: &Iteration) -> Flow {
-        self(iteration)
+impl<F: Fn(&Event) -> Flow> Observer for F {
+    fn observe(&self, event: &Event) -> Flow {
+        self(event)
     }
 }
 
-/// The reason a method gives when an observer stopped it after `iterations` iterations.
-pub fn stopped_by_observer(iterations: usize) -> String {
-    format!("stopped by an observer after {iterations} iterations")
+/// The observer an outer method gives the methods it runs: it passes their events on one
+/// level deeper.
+#[derive(Clone, Copy)]
+pub struct Nested<'a>(pub &'a dyn Observer);
+
+impl Observer for Nested<'_> {
+    fn observe(&self, event: &Event) -> Flow {
+        self.0.observe(&Event {
+            level: event.level + 1,
+            ..*event
+        })
+    }
 }

@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{ElasticBody, Error, Interface, Result, RigidMode, GEOMETRY_TOLERANCE};
+use crate::{check, ElasticBody, Error, Interface, Result, RigidMode, GEOMETRY_TOLERANCE};
 
 /// A rigid body facing another body's contact surface: no compliance, and either held in
 /// place or free to translate along one axis under a given force (a punch, an indenter).
@@ -15,19 +15,11 @@ pub struct RigidBody {
 }
 
 impl RigidBody {
-    fn mirror(partner: &Interface) -> Interface {
-        let mut interface = partner.clone();
-        for n in &mut interface.normals {
-            *n = n.map(|c| -c);
-        }
-        interface
-    }
-
     /// A rigid body held in place (its approach is prescribed through the initial gap).
     pub fn fixed(name: impl Into<String>, partner: &Interface) -> Self {
         Self {
             name: name.into(),
-            interface: Self::mirror(partner),
+            interface: partner.mirrored(),
             modes: vec![],
         }
     }
@@ -49,17 +41,11 @@ impl RigidBody {
                 "must be a unit vector",
             ));
         }
-        if !(force.is_finite() && force > 0.0) {
-            return Err(Error::invalid(
-                "rigid.force",
-                force,
-                "must be positive: the body is pressed into contact",
-            ));
-        }
+        check::positive("force_n", force)?;
         // Moving away from the partner along `axis` moves each point into this body by
         // axis · n_partner.
         let interface_displacement = partner
-            .normals
+            .normals()
             .iter()
             .map(|n| (0..3).map(|c| axis[c] * n[c]).sum())
             .collect();
@@ -70,7 +56,7 @@ impl RigidBody {
         };
         Ok(Self {
             name: name.into(),
-            interface: Self::mirror(partner),
+            interface: partner.mirrored(),
             modes: vec![mode],
         })
     }
@@ -101,17 +87,11 @@ impl ElasticBody for RigidBody {
     /// Its modes keep their loads (the points left out carry no pressure).
     fn restrict(&self, keep: &[bool]) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
         let index: Vec<usize> = (0..self.interface.len()).filter(|&i| keep[i]).collect();
-        if index.is_empty() || index.len() == self.interface.len() {
+        if index.len() == self.interface.len() {
             return None;
         }
+        let interface = self.interface.subset(keep)?;
         let pick = |v: &[f64]| index.iter().map(|&i| v[i]).collect::<Vec<f64>>();
-        let interface = Interface::new(
-            self.interface.geometry,
-            index.iter().map(|&i| self.interface.points[i]).collect(),
-            pick(&self.interface.weights),
-            index.iter().map(|&i| self.interface.normals[i]).collect(),
-        )
-        .ok()?;
         let modes = self
             .modes
             .iter()

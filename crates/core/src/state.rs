@@ -1,6 +1,7 @@
 use serde::{Deserialize, Serialize};
 
-use crate::{Error, Result};
+use crate::observe::Method;
+use crate::Termination;
 
 /// How well a contact solution satisfies the conditions (2.15).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -37,17 +38,6 @@ fn largest(a: f64, b: f64) -> f64 {
     }
 }
 
-/// How a solve ended: clarabel's way, a status rather than an error (errors are for bad input).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub enum Status {
-    /// The method met its tolerance.
-    #[default]
-    Solved,
-    /// The method stopped before its tolerance; the text says where and how far it got. The
-    /// state holds its last iterate and that iterate's residuals.
-    Stopped(String),
-}
-
 /// The solution of a normal contact problem at the interface points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ContactState {
@@ -71,27 +61,25 @@ pub struct ContactState {
     pub iterd: usize,
     /// Residuals of the returned solution.
     pub residuals: Residuals,
-    /// Whether the method met its tolerance.
-    pub status: Status,
+    /// The method that solved it.
+    pub method: Method,
+    /// How the method ended: [`Termination::Converged`], or why it stopped short (the state
+    /// then holds its last iterate and that iterate's residuals).
+    pub termination: Termination,
 }
 
 impl ContactState {
-    /// The state itself when its method met its tolerance; otherwise
-    /// [`Error::NotConverged`] naming `method`, the reason and the residuals reached.
-    pub fn solved(self, method: &str) -> Result<Self> {
-        match &self.status {
-            Status::Solved => Ok(self),
-            Status::Stopped(reason) => Err(Error::NotConverged {
-                method: method.into(),
-                iterations: self.iterations,
-                detail: format!(
-                    "{reason}; reached: equilibrium {:.3e} N, penetration {:.3e} mm, |p·d| {:.3e} MPa·mm",
-                    self.residuals.equilibrium,
-                    self.residuals.penetration,
-                    self.residuals.complementarity
-                ),
-            }),
-        }
+    /// Whether the method met its tolerance.
+    pub fn is_converged(&self) -> bool {
+        self.termination.is_converged()
+    }
+
+    /// The approach δ of the floating body \[mm\]: how far it moved towards its partner
+    /// along the contact normal, positive when the bodies are pressed together. It is the
+    /// negated amplitude of the first rigid mode (a mode's unit amplitude moves the body away
+    /// from its partner, eq. 2.6); `None` when no body floats.
+    pub fn approach(&self) -> Option<f64> {
+        self.rigid.first().map(|lambda| -lambda)
     }
 
     /// The first field of the state that holds a NaN or an infinity, with its first such
@@ -112,15 +100,14 @@ impl ContactState {
         .find_map(|(name, v)| v.map(|v| (name, v)))
     }
 
-    /// Stops a state that holds a NaN or an infinity ([`Status::Stopped`], naming the field),
-    /// so that no non-finite value passes for a solution: the data overflowed f64 (a load
-    /// near 10³⁰⁸ N, a modulus near 10⁻³⁰⁰) or the method broke down.
+    /// Marks a state that holds a NaN or an infinity [`Termination::NonFinite`], naming the
+    /// field, so that no non-finite value passes for a solution: the data overflowed f64 (a
+    /// load near 10³⁰⁸ N, a modulus near 10⁻³⁰⁰) or the method broke down.
     pub fn stop_if_not_finite(&mut self) {
-        if let Some((field, value)) = self.non_finite() {
-            self.status = Status::Stopped(format!(
-                "the {field} is not finite ({value}): the data overflow f64 \
-                 (check the load, the moduli and the units) or the method broke down"
-            ));
+        if let Some((field, _)) = self.non_finite() {
+            self.termination = Termination::NonFinite {
+                field: field.to_string(),
+            };
         }
     }
 

@@ -3,7 +3,7 @@
 //! This module builds the system; [`contopt_contact::FullPenalty`] runs Kalker's iteration
 //! on it, the loop the condensed penalty method shares.
 
-use contopt_contact::FullSystem;
+use contopt_core::FullSystem;
 use contopt_core::{ElasticBody, Error, Result};
 use faer::linalg::solvers::Solve;
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
@@ -57,7 +57,7 @@ impl<'a> JointSystem<'a> {
             .interface()
             .partners(body2.interface(), body1.name(), body2.name())?;
         let n = pair.len();
-        contopt_contact::check_gap(initial_gap, n)?;
+        contopt_core::check::gap(initial_gap, n)?;
         let bodies = [body1, body2];
         let numbering = [
             Numbering::new(&body1.model, &[], false)?,

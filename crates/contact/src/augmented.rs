@@ -1,0 +1,193 @@
+//! The augmented Lagrangian technique (§2.2, eqs. 2.18–2.20): Uzawa's updates, each step one
+//! Kalker iteration.
+
+use contopt_core::observe::{Method, Nested, Observer};
+use contopt_core::{check, ContactState, Result, Termination};
+use serde::{Deserialize, Serialize};
+
+use crate::kalker::{self, Subproblem};
+use crate::watch::{self, Watch};
+use crate::{ContactSolver, InterfaceProblem};
+
+/// The settings of the [`AugmentedLagrangian`]: the penalty parameter, which has no default,
+/// and the stopping rule, which has.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AugmentedLagrangianSettings {
+    /// Penalty parameter c \[MPa/mm\]: any c > 0 converges to the QP's solution; a small c
+    /// costs more Uzawa steps.
+    pub c_mpa_per_mm: f64,
+    /// Stop when no pressure changes by more than `tolerance`·p_max in a step.
+    #[serde(default = "AugmentedLagrangianSettings::default_tolerance")]
+    pub tolerance: f64,
+    /// Largest number of Uzawa steps.
+    #[serde(default = "AugmentedLagrangianSettings::default_max_steps")]
+    pub max_steps: usize,
+    /// Once a step leaves the contact set unchanged, solve for the iteration's limit directly.
+    /// Without it, plain Uzawa steps continue to the tolerance; along directions the interface
+    /// hardly feels (elements partly in contact) that can take thousands of steps.
+    #[serde(default = "AugmentedLagrangianSettings::default_accelerate")]
+    pub accelerate: bool,
+}
+
+impl AugmentedLagrangianSettings {
+    /// The default tolerance on the pressure change of a step, relative to p_max
+    /// (convergence: six orders above round-off, far below any engineering need).
+    pub const TOLERANCE: f64 = 1e-10;
+    /// The default limit on Uzawa steps: far more than an accelerated solve takes (a few).
+    pub const MAX_STEPS: usize = 2000;
+
+    /// Penalty parameter `c` \[MPa/mm\] with the default stopping rule, accelerated.
+    pub fn new(c_mpa_per_mm: f64) -> Self {
+        Self {
+            c_mpa_per_mm,
+            tolerance: Self::TOLERANCE,
+            max_steps: Self::MAX_STEPS,
+            accelerate: Self::default_accelerate(),
+        }
+    }
+
+    fn default_tolerance() -> f64 {
+        Self::TOLERANCE
+    }
+
+    fn default_max_steps() -> usize {
+        Self::MAX_STEPS
+    }
+
+    fn default_accelerate() -> bool {
+        true
+    }
+}
+
+/// The augmented Lagrangian technique (§2.2, eqs. 2.18–2.20): Uzawa updates
+/// p ← ⟨p − c d⟩, each solved by Kalker's active-set iteration, whose solves are counted as
+/// `iterp` and its penetration checks as `iterd` (the paper's counts). Converges to the
+/// solution of the QP (2.14) for any c > 0.
+#[derive(Clone, Copy, Debug)]
+pub struct AugmentedLagrangian {
+    settings: AugmentedLagrangianSettings,
+}
+
+impl AugmentedLagrangian {
+    /// The method with `settings`, checked: c positive and finite, the tolerance in (0, 1), at
+    /// least one step.
+    pub fn new(settings: AugmentedLagrangianSettings) -> Result<Self> {
+        check::positive("c_mpa_per_mm", settings.c_mpa_per_mm)?;
+        check::between("tolerance", settings.tolerance, 0.0, 1.0)?;
+        check::count("max_steps", settings.max_steps, 1, usize::MAX)?;
+        Ok(Self { settings })
+    }
+
+    /// Its settings.
+    pub fn settings(&self) -> &AugmentedLagrangianSettings {
+        &self.settings
+    }
+}
+
+impl ContactSolver for AugmentedLagrangian {
+    fn method(&self) -> Method {
+        Method::AugmentedLagrangian
+    }
+
+    fn dense_copies(&self, _points: usize) -> u64 {
+        kalker::DENSE_COPIES
+    }
+
+    /// Reports each Uzawa step (`iterations`) with its largest pressure change relative to
+    /// p_max as the measure and `tolerance`; and, one level deeper, each inner Kalker solve
+    /// (`iterp`) as [`Method::Kalker`], measured by the number of points that break a sign
+    /// condition (tolerance 0). Solves from scratch: a `start` is not used.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
+        let state = uzawa(problem, &self.settings, observer)?;
+        watch::announce(observer, &state);
+        Ok(state)
+    }
+}
+
+/// Uzawa's iteration p⁽ᵏ⁺¹⁾ = ⟨p⁽ᵏ⁾ − c d⁽ᵏ⁾⟩ (2.19)–(2.20), each step a Kalker subproblem,
+/// from p = 0 with every point in contact, until the pressure changes by less than
+/// `tolerance`·p_max or the gap on the contact set is at round-off; with `accelerate`, until
+/// a step leaves the contact set unchanged, when the iteration's limit is solved for directly.
+fn uzawa(
+    problem: &InterfaceProblem,
+    al: &AugmentedLagrangianSettings,
+    observer: &dyn Observer,
+) -> Result<ContactState> {
+    let method = Method::AugmentedLagrangian;
+    let c = al.c_mpa_per_mm;
+    let steps = Watch::new(observer, method);
+    let nested = Nested(observer);
+    let inner_watch = Watch::new(&nested, Method::Kalker);
+    let mut active = vec![true; problem.len()];
+    let mut counts = [0, 0];
+    let mut current = match kalker::start(problem, c, &mut active, &mut counts, inner_watch)? {
+        Ok(reference) => reference,
+        Err(stopped) => return Ok(kalker::finish(problem, method, stopped, active, 0, counts)),
+    };
+    let spectral = c > kalker::stiff_penalty(problem)?;
+    let mut relative = f64::INFINITY;
+    for step in 1..=al.max_steps {
+        let shift = current.pressure.clone();
+        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current)?
+            .solve(&mut active, inner_watch.after(counts[0]))?;
+        if inner.stopped.is_some() {
+            return Ok(kalker::finish(problem, method, inner, active, step, counts));
+        }
+        counts[0] += inner.iterp;
+        counts[1] += inner.iterd;
+        let p_max = inner.solution.pressure.iter().fold(0.0f64, |s, v| s.max(*v));
+        let change = largest_difference(&inner.solution.pressure, &shift);
+        relative = change / p_max.max(f64::MIN_POSITIVE);
+        // Converged when the pressure settles, or when the gap on the contact set is at
+        // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
+        // directions that do not move the interface.
+        let converged = relative <= al.tolerance
+            || kalker::open_on_contact(&inner, &active) <= inner.gap_floor;
+        let halt = steps.report(step, relative, al.tolerance);
+        let unchanged = inner.unchanged();
+        current = inner.solution;
+        if al.accelerate && unchanged && halt.is_none() {
+            // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
+            // and its fixed point is the exact solve on this set from the current iterate
+            // (which keeps the iterate's components along directions that do not move the
+            // interface, as the iteration would).
+            let jump = kalker::solve_exact(
+                problem,
+                &current,
+                &mut active,
+                inner_watch.after(counts[0]),
+            )?;
+            return Ok(kalker::finish(problem, method, jump, active, step, counts));
+        }
+        if converged || halt.is_some() {
+            let counted = [step, counts[0], counts[1]];
+            let mut state = problem.state(method, current.pressure, current.rigid, active, counted);
+            if let Some(halt) = halt.filter(|_| !converged) {
+                watch::end(&mut state, halt);
+            }
+            return Ok(state);
+        }
+    }
+    let counted = [al.max_steps, counts[0], counts[1]];
+    let mut state = problem.state(method, current.pressure, current.rigid, active, counted);
+    let limit = Termination::StepLimit {
+        steps: al.max_steps,
+        measure: relative,
+        tolerance: al.tolerance,
+    };
+    watch::end(&mut state, limit);
+    Ok(state)
+}
+
+/// maxᵢ |aᵢ − bᵢ|.
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |s, (a, b)| s.max((a - b).abs()))
+}

@@ -1,0 +1,46 @@
+//! The [`ContactSolver`] trait that every method of §2 implements.
+
+use contopt_core::observe::{Method, Observer, Silent};
+use contopt_core::{ContactState, Result};
+
+use crate::InterfaceProblem;
+
+/// A method that solves the interface problem: p ≥ 0, d ≥ 0, pᵀd = 0 and equilibrium (2.15).
+///
+/// The outcome of a solve is a state with a [`Termination`](contopt_core::Termination): a
+/// method that stops short returns its last iterate and residuals, and says why. Errors are
+/// for bad input, and for dense matrices past the problem's memory limit.
+///
+/// Build a solver from its settings ([`SolverSettings`](crate::SolverSettings), or each type's
+/// own `new(settings)`): every setting has its default in the library.
+pub trait ContactSolver {
+    /// The method, in events and reports.
+    fn method(&self) -> Method;
+
+    /// The n × n matrices the solver holds at once on an interface of `points` points (0 for
+    /// a matrix-free solver): what a memory estimate counts before it builds anything.
+    fn dense_copies(&self, points: usize) -> u64;
+
+    /// Solves `problem` (from the pressure `start` when given: a warm start, one value per
+    /// point), reporting each iteration to `observer` as an event of [`ContactSolver::method`]
+    /// and the last with how it ended. The observer may stop the method early
+    /// ([`Flow::Stop`](contopt_core::observe::Flow)): it then returns its last iterate, finite,
+    /// with [`Termination::Stopped`](contopt_core::Termination). Solvers that cannot use a
+    /// start solve from scratch.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState>;
+
+    /// Solves `problem` from scratch, unobserved.
+    fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
+        self.solve_observed(problem, None, &Silent)
+    }
+
+    /// Solves `problem` from the pressure `start`, unobserved.
+    fn solve_from(&self, problem: &InterfaceProblem, start: &[f64]) -> Result<ContactState> {
+        self.solve_observed(problem, Some(start), &Silent)
+    }
+}

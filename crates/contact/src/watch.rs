@@ -1,0 +1,55 @@
+//! How a method reports to its observer: each iteration as an [`Event`] of the method, numbered
+//! on across the loops of one solve, and its last event with how it ended.
+
+use contopt_core::observe::{Event, Flow, Method, Observer};
+use contopt_core::{ContactState, Termination};
+
+/// Where a method reports its iterations: the observer, the method they carry and how many
+/// came before in the same solve, so that the numbers run on across the loops of one solve (a
+/// penalty solve's start at c_stiff and its main solve).
+#[derive(Clone, Copy)]
+pub(crate) struct Watch<'a> {
+    observer: &'a dyn Observer,
+    method: Method,
+    before: usize,
+}
+
+impl<'a> Watch<'a> {
+    pub(crate) fn new(observer: &'a dyn Observer, method: Method) -> Self {
+        Self {
+            observer,
+            method,
+            before: 0,
+        }
+    }
+
+    /// The same watch for a loop that follows `before` iterations of the solve.
+    pub(crate) fn after(self, before: usize) -> Self {
+        Self { before, ..self }
+    }
+
+    /// Reports the loop's iteration `k` (from 1) with its convergence `measure` and the
+    /// `tolerance` it must reach; [`Termination::Stopped`] when the observer asks to stop.
+    pub(crate) fn report(&self, k: usize, measure: f64, tolerance: f64) -> Option<Termination> {
+        let iteration = self.before + k;
+        let event = Event::step(self.method, iteration, measure, tolerance);
+        (self.observer.observe(&event) == Flow::Stop)
+            .then_some(Termination::Stopped { after: iteration })
+    }
+}
+
+/// Tells `observer` how the solve that gave `state` ended: its last event, with the number of
+/// its iterations (`iterp` for the methods that count only Kalker's solves).
+pub(crate) fn announce(observer: &dyn Observer, state: &ContactState) {
+    let iteration = state.iterations.max(state.iterp);
+    let event = Event::step(state.method, iteration, f64::NAN, f64::NAN).ending(&state.termination);
+    let _ = observer.observe(&event);
+}
+
+/// Marks `state` as ended by `termination` unless it already says that a value is not finite
+/// (which [`ContactState::stop_if_not_finite`] put there: it says more).
+pub(crate) fn end(state: &mut ContactState, termination: Termination) {
+    if !matches!(state.termination, Termination::NonFinite { .. }) {
+        state.termination = termination;
+    }
+}
