@@ -274,3 +274,127 @@ fn gauss_point_sawtooth_moves_nothing_and_is_recovered() {
     let recovered = problem.recovered_pressure(&with).unwrap();
     assert!(max_diff(&recovered, &uniform) < 1e-9 * 100.0);
 }
+
+// The joint system of two finite-element bodies (eq. 2.22), built by contopt-fem and solved
+// by contopt-contact: the cross-check of the condensation.
+
+/// A plane-stress punch, 10 × 5 mm, on a 20 × 10 mm base (half-models, x = 0 held in x;
+/// the base's bottom clamped), pressed by 100 MPa on its top: the punch floats (one
+/// vertical mode). Their contact faces, y = 0 for x ≤ 10, have matching nodes.
+fn plane_punch_and_base() -> (FeBody, FeBody) {
+    let analysis = Analysis::PlaneStress { thickness: 2.0 };
+    let material = Material::new(E, 0.3).unwrap();
+    let y = Spacing::uniform(-10.0, 0.0, 3).unwrap();
+    let x = Spacing::uniform(0.0, 20.0, 8).unwrap();
+    let mut base = FeModel::new(
+        Mesh::rectangle(ElementKind::Q8, &x, &y).unwrap(),
+        material,
+        analysis,
+    )
+    .unwrap();
+    let bottom = base.mesh().nodes_on_y(-10.0, 0.0, 20.0);
+    let axis = base.mesh().nodes_on_x(0.0, -10.0, 0.0);
+    base.fix(&bottom, Component::X).unwrap();
+    base.fix(&bottom, Component::Y).unwrap();
+    base.fix(&axis, Component::X).unwrap();
+    let top = base.mesh().faces_on_y(0.0, 0.0, 10.0);
+    let base = FeBody::new("base", base, &top).unwrap();
+    let (x, y) = (
+        Spacing::uniform(0.0, 10.0, 4).unwrap(),
+        Spacing::uniform(0.0, 5.0, 2).unwrap(),
+    );
+    let mut punch = FeModel::new(
+        Mesh::rectangle(ElementKind::Q8, &x, &y).unwrap(),
+        material,
+        analysis,
+    )
+    .unwrap();
+    let axis = punch.mesh().nodes_on_x(0.0, 0.0, 5.0);
+    let (loaded, contact) = (
+        punch.mesh().faces_on_y(5.0, 0.0, 10.0),
+        punch.mesh().faces_on_y(0.0, 0.0, 10.0),
+    );
+    punch.fix(&axis, Component::X).unwrap();
+    punch.pressure(&loaded, 100.0).unwrap();
+    (base, FeBody::new("punch", punch, &contact).unwrap())
+}
+
+/// The penalty method on the joint system (2.22) and on the condensed interface give the
+/// same pressure, gap, contact set and approach of the floating punch, under a crowned
+/// gap that opens the punch's edge; the joint system carries the punch's load.
+#[test]
+fn joint_system_matches_the_condensed_penalty() {
+    let (base, punch) = plane_punch_and_base();
+    let gap: Vec<f64> = base
+        .interface()
+        .points()
+        .iter()
+        .map(|x| 0.05 * (x[0] / 10.0).powi(2))
+        .collect();
+    let c = E * 1e4;
+    let settings = PenaltySettings { c_mpa_per_mm: c };
+    let condensed = Penalty::new(settings)
+        .unwrap()
+        .solve(&InterfaceProblem::new(&base, &punch, &gap).unwrap())
+        .unwrap();
+    let mut joint = JointSystem::new(&base, &punch, &gap).unwrap();
+    assert_eq!(joint.free_modes(), 1);
+    let solves = std::cell::Cell::new(0);
+    let count = |e: &Event| {
+        if e.end.is_some() {
+            return Flow::Continue;
+        }
+        solves.set(solves.get() + 1);
+        Flow::Continue
+    };
+    let full = FullPenalty::new(settings)
+        .unwrap()
+        .solve_observed(&mut joint, &count)
+        .unwrap();
+    let p_max = condensed.p_max();
+    let dp = full
+        .pressure
+        .iter()
+        .zip(&condensed.pressure)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let dd = full
+        .gap
+        .iter()
+        .zip(&condensed.gap)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let touching = full.active.iter().filter(|&&a| a).count();
+    eprintln!(
+        "{touching} of {} points in contact after {} solves: dp {dp:.2e} MPa, dd {dd:.2e} mm",
+        full.active.len(),
+        full.iterp
+    );
+    assert!(touching < full.active.len(), "the edge must open");
+    assert!(dp < 1e-6 * p_max, "pressures differ by {dp:e} MPa");
+    assert!(dd < 1e-9, "gaps differ by {dd:e} mm");
+    assert_eq!(full.active, condensed.active);
+    assert_eq!(solves.get(), full.iterp);
+    assert!((full.rigid[0] - condensed.rigid[0]).abs() < 1e-9 * condensed.rigid[0].abs());
+    // The contact force carries the 100 MPa on the punch's top, 10 mm × 2 mm.
+    let force: f64 = full
+        .pressure
+        .iter()
+        .zip(base.interface().weights())
+        .map(|(p, w)| p * w)
+        .sum();
+    assert!((force - 2000.0).abs() < 1e-6 * 2000.0, "{force} N");
+    assert!(full.residuals.equilibrium < 1e-9 * 2000.0);
+}
+
+#[test]
+fn joint_system_refuses_a_wrong_gap() {
+    let (base, punch) = plane_punch_and_base();
+    let n = base.interface().len();
+    let err = JointSystem::new(&base, &punch, &vec![0.0; n - 1])
+        .err()
+        .unwrap();
+    assert!(err.to_string().contains("initial_gap"), "{err}");
+    let mut gap = vec![0.0; n];
+    gap[1] = f64::NAN;
+    let err = JointSystem::new(&base, &punch, &gap).err().unwrap();
+    assert!(err.to_string().contains("initial_gap[1]"), "{err}");
+}

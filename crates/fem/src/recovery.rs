@@ -189,7 +189,7 @@ impl FeBody {
 
     /// Compressive normal forces pᵢwᵢ \[N\] at the interface points, the pressure checked.
     fn interface_forces(&self, pressure: &[f64]) -> Result<Vec<f64>> {
-        let weights = &self.interface().weights;
+        let weights = self.interface().weights();
         if pressure.len() != weights.len() {
             return Err(Error::invalid(
                 format!("{}.pressure.len()", self.name()),
@@ -263,8 +263,8 @@ impl FeBody {
     /// model's plane is its vertical section, positions its x (or r) and depths the distance
     /// from the face. `None` for any other mesh.
     fn grid_section(&self, stresses: &[StressTensor]) -> Option<SectionField> {
-        let face = self.interface().points.first()?[1];
-        let points = self.interface().points.iter();
+        let face = self.interface().points().first()?[1];
+        let points = self.interface().points().iter();
         if points
             .clone()
             .any(|p| (p[1] - face).abs() > SAME_COORDINATE)
@@ -343,7 +343,7 @@ impl FeBody {
     /// contact surface.
     fn depth(&self, x: [f64; 2]) -> f64 {
         self.interface()
-            .points
+            .points()
             .iter()
             .map(|p| (x[0] - p[0]).hypot(x[1] - p[1]))
             .fold(f64::INFINITY, f64::min)

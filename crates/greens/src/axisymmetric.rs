@@ -81,7 +81,7 @@ impl AxisymmetricHalfSpace {
             vec![[0.0, 1.0, 0.0]; n],
         )?;
         let scale = 4.0 / (PI * material.plane_strain_modulus());
-        let w = &interface.weights;
+        let w = &interface.weights();
         let averaged = Mat::from_fn(n, n, |i, j| {
             let (lo, hi) = (edges[i], edges[i + 1]);
             let mean: f64 = GAUSS8
@@ -122,7 +122,7 @@ impl AxisymmetricHalfSpace {
     ) -> Result<Subsurface> {
         let name = &self.surface.name;
         let radii: Vec<f64> = std::iter::once(0.0)
-            .chain(self.surface.interface.points.iter().map(|p| p[0]))
+            .chain(self.surface.interface.points().iter().map(|p| p[0]))
             .collect();
         sweep(
             name,
@@ -448,7 +448,7 @@ mod tests {
         let body = rings(a, n);
         let pressure: Vec<f64> = body
             .interface()
-            .points
+            .points()
             .iter()
             .map(|q| p0 * (1.0 - (q[0] / a).powi(2)).max(0.0).sqrt())
             .collect();
@@ -490,7 +490,7 @@ mod tests {
         let body = rings(1.0, 100);
         let pressure: Vec<f64> = body
             .interface()
-            .points
+            .points()
             .iter()
             .map(|q| 1.0 - q[0] * q[0])
             .collect();
@@ -517,7 +517,7 @@ mod tests {
         let (e, nu, a, p) = (2e5, 0.3, 10.0, 100.0);
         let edges: Vec<f64> = (0..=40).map(|i| a * i as f64 / 40.0).collect();
         let body = AxisymmetricHalfSpace::new("hs", Material::new(e, nu).unwrap(), &edges).unwrap();
-        let force: Vec<f64> = body.interface().weights.iter().map(|w| w * p).collect();
+        let force: Vec<f64> = body.interface().weights().iter().map(|w| w * p).collect();
         let mut w = vec![0.0; 40];
         body.apply_influence(&force, &mut w);
         let centre = 2.0 * (1.0 - nu * nu) * p * a / e;
@@ -525,7 +525,7 @@ mod tests {
         // the centre value; symmetrising costs less than 1e-3.
         assert!((w[0] / centre - 1.0).abs() < 1e-3, "{} vs {centre}", w[0]);
         let edge = 4.0 * (1.0 - nu * nu) * p * a / (PI * e);
-        let last = body.interface().points[39][0];
+        let last = body.interface().points()[39][0];
         let near_edge = 4.0 * (1.0 - nu * nu) * p * a / (PI * e) * elliptic::complete(last / a).1;
         assert!(
             (w[39] / near_edge - 1.0).abs() < 2e-3,

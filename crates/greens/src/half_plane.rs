@@ -97,7 +97,7 @@ impl HalfPlane {
             2.0 / (PI * modulus) * ((b - a) * (datum.ln() + 1.0) + logs / (d - c))
         };
         let averaged = Mat::from_fn(n, n, |i, j| {
-            strip_mean(edges[i], edges[i + 1], edges[j], edges[j + 1]) / interface.weights[j]
+            strip_mean(edges[i], edges[i + 1], edges[j], edges[j + 1]) / interface.weights()[j]
         });
         let out_of_plane = match state {
             PlaneState::Strain => material.nu(),
@@ -127,7 +127,7 @@ impl HalfPlane {
         request: &SubsurfaceRequest,
     ) -> Result<Subsurface> {
         let name = &self.surface.name;
-        let centres: Vec<f64> = self.surface.interface.points.iter().map(|p| p[0]).collect();
+        let centres: Vec<f64> = self.surface.interface.points().iter().map(|p| p[0]).collect();
         let (first, last) = (self.edges[0], self.edges[self.edges.len() - 1]);
         let axis_extra = first <= 0.0 && 0.0 <= last && !centres.contains(&0.0);
         let extra: &[f64] = if axis_extra { &[0.0] } else { &[] };
@@ -255,7 +255,7 @@ mod tests {
         let hp = body(PlaneState::Strain, &edges);
         let pressure: Vec<f64> = hp
             .interface()
-            .points
+            .points()
             .iter()
             .map(|p| p0 * (1.0 - (p[0] / b).powi(2)).max(0.0).sqrt())
             .collect();

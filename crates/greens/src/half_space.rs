@@ -221,13 +221,13 @@ impl HalfSpace {
         let index: Vec<usize> = (0..cx * cy)
             .map(|k| (j0 + k / cx) * self.nx + i0 + k % cx)
             .collect();
-        let points = index.iter().map(|&k| self.interface.points[k]).collect();
-        let weights = index.iter().map(|&k| self.interface.weights[k]).collect();
+        let points = index.iter().map(|&k| self.interface.points()[k]).collect();
+        let weights = index.iter().map(|&k| self.interface.weights()[k]).collect();
         let interface = Interface::new(
             Geometry::Surface,
             points,
             weights,
-            vec![self.interface.normals[0]; cx * cy],
+            vec![self.interface.normals()[0]; cx * cy],
         )?;
         let kernel = Mat::from_fn(cx, cy, |i, j| self.kernel[(i, j)]);
         let convolution = Arc::new(Convolution::free(cx, cy, |i, j| kernel[(i, j)]));
@@ -299,9 +299,7 @@ impl HalfSpace {
     /// normal is −z: the second of two elastic bodies pressed together (a roller on its
     /// raceway, both as half-spaces). The influence is unchanged.
     pub fn upper(mut self) -> Self {
-        for n in &mut self.interface.normals {
-            *n = [0.0, 0.0, -1.0];
-        }
+        self.interface = self.interface.mirrored();
         self
     }
 }
@@ -353,14 +351,14 @@ impl ElasticBody for HalfSpace {
 
     /// The grid's cells, spacing and kind; the kernel is (1 − ν²)/E times one of those alone.
     fn influence_shape(&self) -> Option<(String, f64)> {
-        let p = &self.interface.points;
+        let p = &self.interface.points();
         let dx = if self.nx > 1 { p[1][0] - p[0][0] } else { 0.0 };
         let dy = if self.ny > 1 {
             p[self.nx][1] - p[0][1]
         } else {
             0.0
         };
-        let w = self.interface.weights[0];
+        let w = self.interface.weights()[0];
         Some((
             format!(
                 "half-space grid {} x {}, {dx:e} x {dy:e} mm, cell {w:e} mm², periodic {}",
@@ -442,7 +440,7 @@ mod tests {
         let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
         let (qx, qy) = (2.0 * PI * 3.0 / lx, 2.0 * PI * 2.0 / ly);
         let q = qx.hypot(qy);
-        let pts = &body.interface().points;
+        let pts = &body.interface().points();
         let force: Vec<f64> = pts
             .iter()
             .map(|x| (7.0 + (qx * x[0] + qy * x[1]).cos()) * dx * dy)

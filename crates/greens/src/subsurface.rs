@@ -393,7 +393,7 @@ impl HalfSpace {
         check_pressure(&self.name, pressure, self.nx * self.ny)?;
         request.check()?;
         let (nx, ny) = (self.nx, self.ny);
-        let origin = self.interface.points[0];
+        let origin = self.interface.points()[0];
         let lines: Vec<(Section, Vec<usize>, Vec<f64>)> = request
             .sections
             .iter()
@@ -414,7 +414,7 @@ impl HalfSpace {
         for &z in &request.depths {
             solver.depth(z, &mut fields);
             for k in 0..nx * ny {
-                let p = self.interface.points[k];
+                let p = self.interface.points()[k];
                 peaks.record(&tensor(&fields, k), p[0], p[1], z);
             }
             for (field, (_, cells, _)) in sections.iter_mut().zip(&lines) {
@@ -440,14 +440,14 @@ impl HalfSpace {
             SectionAxis::X => {
                 let j = nearest(section.at, origin[1], self.dy, ny);
                 let cells: Vec<usize> = (0..nx).map(|i| j * nx + i).collect();
-                let positions = cells.iter().map(|&k| self.interface.points[k][0]).collect();
+                let positions = cells.iter().map(|&k| self.interface.points()[k][0]).collect();
                 let at = origin[1] + j as f64 * self.dy;
                 (Section { at, ..section }, cells, positions)
             }
             SectionAxis::Y => {
                 let i = nearest(section.at, origin[0], self.dx, nx);
                 let cells: Vec<usize> = (0..ny).map(|j| j * nx + i).collect();
-                let positions = cells.iter().map(|&k| self.interface.points[k][1]).collect();
+                let positions = cells.iter().map(|&k| self.interface.points()[k][1]).collect();
                 let at = origin[0] + i as f64 * self.dx;
                 (Section { at, ..section }, cells, positions)
             }
@@ -563,7 +563,7 @@ mod tests {
         .unwrap();
         let p = body
             .interface()
-            .points
+            .points()
             .iter()
             .map(|x| pressure(x[0], x[1]))
             .collect();
@@ -717,7 +717,7 @@ mod tests {
         let z = 0.4;
         let field = body.stress_field(&p, z).unwrap();
         let (n_x, n_y, e) = (qx / q, qy / q, (-q * z).exp());
-        for (x, s) in body.interface().points.iter().zip(&field) {
+        for (x, s) in body.interface().points().iter().zip(&field) {
             let (cos, sin) = ((qx * x[0] + qy * x[1]).cos(), (qx * x[0] + qy * x[1]).sin());
             let nn = -(1.0 - q * z) * e * cos;
             let tt = -2.0 * NU * e * cos;

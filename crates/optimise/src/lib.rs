@@ -121,7 +121,7 @@ impl<'a> Optimisation<'a> {
                 format!("one row per interface point ({})", iface.len()),
             ));
         }
-        let v: Vec<f64> = iface.points.iter().map(|&x| controller.value(x)).collect();
+        let v: Vec<f64> = iface.points().iter().map(|&x| controller.value(x)).collect();
         let regions = vec![Region::OmegaV; iface.len()];
         let nearest = (0..shape.nodes().len())
             .min_by(|&a, &b| {
@@ -183,7 +183,7 @@ impl<'a> Optimisation<'a> {
 
     /// The controller's values, the regions and the design nodes are consistent.
     fn check(&self) -> Result<()> {
-        let pts = &self.problem.interface().points;
+        let pts = &self.problem.interface().points();
         for (i, &v) in self.v.iter().enumerate() {
             if self.regions[i] != Region::Contact && !(0.0..=1.0).contains(&v) {
                 return Err(Error::invalid(

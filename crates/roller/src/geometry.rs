@@ -108,7 +108,7 @@ impl Roller {
             .pressed(self.load)?;
         let gap = raceway
             .interface()
-            .points
+            .points()
             .iter()
             .map(|x| {
                 Ok(x[1] * x[1] / (2.0 * radius)
