@@ -222,16 +222,16 @@ impl Node {
                 position.ok_or_else(|| format!("no key `{segment}` in this table"))
             }
             Value::Array(items) => match segment.parse::<usize>() {
-                Ok(index) if index < items.len() => {
+                Ok(index) => {
                     push_index(rendered, index);
-                    Ok(index)
+                    let length = items.len();
+                    (index < length)
+                        .then_some(index)
+                        .ok_or_else(|| format!("no element {index}: the array has {length}"))
                 }
-                _ => {
+                Err(_) => {
                     push_key(rendered, segment);
-                    Err(format!(
-                        "no element `{segment}`: the array has {}",
-                        items.len()
-                    ))
+                    Err(format!("`{segment}` is not an index into an array"))
                 }
             },
             other => {

@@ -133,5 +133,5 @@ fn to_i64(integer: &DeInteger<'_>) -> Option<i64> {
 /// A TOML float as an `f64`; `None` when a finite literal overflows (toml's own rule).
 fn to_f64(float: &DeFloat<'_>) -> Option<f64> {
     let value: f64 = float.as_str().parse().ok()?;
-    (value.is_finite() || float.as_str().contains("inf")).then_some(value)
+    (!value.is_infinite() || float.as_str().contains("inf")).then_some(value)
 }

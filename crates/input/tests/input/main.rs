@@ -1,0 +1,6 @@
+//! Whole documents read through `contopt-input`: where each kind of error points, enums, JSON,
+//! editing a tree, hostile input.
+
+mod errors;
+
+mod scene;
