@@ -6,7 +6,8 @@ use std::ops::Range;
 
 use serde::de::value::BorrowedStrDeserializer;
 use serde::de::{
-    self, DeserializeSeed, EnumAccess, MapAccess, SeqAccess, Unexpected, VariantAccess, Visitor,
+    self, DeserializeSeed, EnumAccess, Expected, MapAccess, SeqAccess, Unexpected, VariantAccess,
+    Visitor,
 };
 use serde::Deserialize;
 
@@ -16,6 +17,9 @@ use crate::InputError;
 
 /// The key whose string value names an enum's variant, the other keys being its content.
 const KIND_KEY: &str = "kind";
+
+/// How errors name JSON's `null`.
+const NULL: Unexpected<'static> = Unexpected::Other("null");
 
 /// Reads `node`, at the rendered path `root`, into a `T`.
 pub(crate) fn from_node<'de, T: Deserialize<'de>>(
@@ -65,6 +69,17 @@ impl de::Error for DeError {
             place: None,
             missing: None,
         }
+    }
+
+    /// Serde's message, with JSON's `null` named so (a visitor sees it as `()`).
+    fn invalid_type(unexpected: Unexpected<'_>, expected: &dyn Expected) -> Self {
+        let unexpected = match unexpected {
+            Unexpected::Unit => NULL,
+            other => other,
+        };
+        Self::custom(format_args!(
+            "invalid type: {unexpected}, expected {expected}"
+        ))
     }
 
     fn missing_field(field: &'static str) -> Self {
@@ -147,7 +162,7 @@ impl<'de, 'p> NodeDe<'de, 'p> {
 /// What serde is told about a value it did not expect.
 fn unexpected(value: &Value) -> Unexpected<'_> {
     match value {
-        Value::Null => Unexpected::Unit,
+        Value::Null => NULL,
         Value::Bool(value) => Unexpected::Bool(*value),
         Value::Integer(value) => Unexpected::Signed(*value),
         Value::Float(value) => Unexpected::Float(*value),
@@ -363,7 +378,7 @@ impl<'de> VariantAccess<'de> for Variant<'de, '_> {
                     .at(&Path::Key(content.path, key.name()), key.span())),
             },
             other => {
-                Err(no_content(format!("a {}", other.kind())).at(content.path, content.node.span()))
+                Err(no_content(unexpected(other).to_string()).at(content.path, content.node.span()))
             }
         }
     }

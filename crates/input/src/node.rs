@@ -236,7 +236,7 @@ impl Node {
             },
             other => {
                 push_key(rendered, segment);
-                Err(format!("no `{segment}` in a {}", other.kind()))
+                Err(format!("no `{segment}` in this {}", other.kind()))
             }
         };
         found.map_err(|message| InputError::new(rendered.clone(), self.span(), message))
