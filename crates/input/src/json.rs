@@ -242,8 +242,8 @@ impl Parser<'_> {
         Ok(c)
     }
 
-    /// The character of a `\uXXXX` escape starting at `start`, the position after its `u`; a
-    /// surrogate must be followed by its pair.
+    /// The character of a `\uXXXX` escape whose backslash is at `start` (the position is after
+    /// its `u`); a surrogate must be followed by its pair.
     fn unicode_escape(&mut self, start: usize) -> Result<char, InputError> {
         let first = self.hex4(start)?;
         let code = if HIGH_SURROGATES.contains(&first) {

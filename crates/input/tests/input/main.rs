@@ -3,6 +3,8 @@
 
 mod enums;
 mod errors;
+mod hostile;
 mod json;
+mod nodes;
 
 mod scene;
