@@ -12,7 +12,7 @@ use serde::de::{
 use serde::Deserialize;
 
 use crate::node::{Key, Node, Value};
-use crate::path::{push_key, Path};
+use crate::path::Path;
 use crate::InputError;
 
 /// The key whose string value names an enum's variant, the other keys being its content.
@@ -102,10 +102,7 @@ fn located<'de, 'p, T>(
             return error;
         }
         if let Some(field) = error.missing.take() {
-            let mut path = de.path.render();
-            push_key(&mut path, field);
-            error.place = Some((path, de.node.span()));
-            return error;
+            return error.at(&Path::Key(de.path, field), de.node.span());
         }
         match named_key(&error.message, de.node) {
             Some((key, value)) => error.at(&Path::Key(de.path, key.name()), value.span()),

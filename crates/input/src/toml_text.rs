@@ -21,34 +21,64 @@ pub(crate) fn parse(text: &str, limits: &Limits) -> Result<Node, InputError> {
 }
 
 /// Refuses brackets nested deeper than `limits.max_depth` before toml's recursive parser sees
-/// them: brackets in strings and comments do not count, a table header `[a]` counts 1 and an
-/// array-of-tables header `[[a]]` counts 2. Dotted keys (`a.b.c = 1`) nest without brackets;
-/// the conversion refuses those.
+/// them: brackets in strings (of the four kinds) and comments do not count, a table header
+/// `[a]` counts 1 and an array-of-tables header `[[a]]` counts 2. Dotted keys (`a.b.c = 1`)
+/// nest without brackets; the conversion refuses those. The scan looks at ASCII bytes only, so
+/// it never splits a character.
 fn check_nesting(text: &str, limits: &Limits) -> Result<(), InputError> {
-    let (mut depth, mut quote) = (0usize, None);
-    let mut chars = text.char_indices();
-    while let Some((at, c)) = chars.next() {
-        match (quote, c) {
-            (Some('"'), '\\') => {
-                chars.next();
+    let bytes = text.as_bytes();
+    let (mut at, mut depth, mut string) = (0, 0usize, None);
+    while let Some(&byte) = bytes.get(at) {
+        let rest = &bytes[at..];
+        if let Some(delimiter) = string {
+            at += if rest.starts_with(delimiter) {
+                string = None;
+                closing_len(rest, delimiter)
+            } else if byte == b'\\' && delimiter.starts_with(b"\"") {
+                ESCAPE_LEN
+            } else {
+                1
+            };
+            continue;
+        }
+        match byte {
+            b'"' | b'\'' => {
+                let delimiter = STRING_DELIMITERS.iter().find(|d| rest.starts_with(d));
+                string = delimiter.copied();
+                at += string.map_or(1, <[u8]>::len) - 1;
             }
-            (Some(open), c) if c == open => quote = None,
-            (Some(_), _) => {}
-            (None, '"' | '\'') => quote = Some(c),
-            (None, '#') => {
-                chars.by_ref().find(|&(_, c)| c == '\n');
-            }
-            (None, '[' | '{') => {
+            b'#' => at += rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len()),
+            b'[' | b'{' => {
                 depth += 1;
                 if depth > limits.depth() {
                     return Err(limits.too_deep(&Path::Root(""), at..at + 1));
                 }
             }
-            (None, ']' | '}') => depth = depth.saturating_sub(1),
+            b']' | b'}' => depth = depth.saturating_sub(1),
             _ => {}
         }
+        at += 1;
     }
     Ok(())
+}
+
+/// TOML's string delimiters, multi-line ones first.
+const STRING_DELIMITERS: [&[u8]; 4] = [b"\"\"\"", b"'''", b"\"", b"'"];
+/// A backslash and the byte it escapes.
+const ESCAPE_LEN: usize = 2;
+/// A multi-line string may end in up to two quotes of its own before its delimiter.
+const MAX_CLOSING_QUOTES: usize = 5;
+
+/// The length of the closing `delimiter` at the start of `rest`, with the quotes a multi-line
+/// string may end in.
+fn closing_len(rest: &[u8], delimiter: &[u8]) -> usize {
+    if delimiter.len() == 1 {
+        return 1;
+    }
+    let quotes = rest
+        .iter()
+        .take_while(|&&byte| Some(&byte) == delimiter.first());
+    quotes.count().min(MAX_CLOSING_QUOTES)
 }
 
 /// A toml value as a node at `path`, `depth` tables and arrays below the root.

@@ -42,6 +42,24 @@ fn nesting_deeper_than_the_limit_is_refused_where_it_goes_too_deep() {
 }
 
 #[test]
+fn brackets_in_toml_strings_and_comments_do_not_nest() {
+    let brackets = nested("[", 40, "");
+    for text in [
+        format!(r#"a = """x " {brackets} """"#),
+        format!("a = '''it's {brackets}'''"),
+        format!(r#"a = "\" {brackets}""#),
+        format!(r"a = '\' # {brackets}"),
+    ] {
+        assert!(Node::parse_toml(&text).is_ok(), "{text}");
+    }
+    let after = |string: &str| format!("a = {string}\nb = {}", nested("[", 33, "]"));
+    for string in [r#""""x"""""#, "'''x'''''", r#""x\"""#, "''"] {
+        let refused = toml_refused(&after(string));
+        assert!(refused.starts_with("2:37 "), "{string}: {refused}");
+    }
+}
+
+#[test]
 fn very_deep_nesting_is_refused_without_recursing() {
     let depth = 100_000;
     assert!(json_refused(&nested("[", depth, "]")).starts_with("1:34 "));
