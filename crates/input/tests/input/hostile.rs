@@ -3,7 +3,9 @@
 
 use std::collections::HashMap;
 
-use contopt_input::{line_column, InputError, Limits, Node, Value, DEFAULT_MAX_DEPTH};
+use contopt_input::{
+    line_column, InputError, Limits, Node, Value, DEFAULT_MAX_DEPTH, DEPTH_CEILING,
+};
 
 use crate::scene::{place, Scene, SAMPLE_JSON, SAMPLE_TOML};
 
@@ -83,6 +85,10 @@ fn a_text_over_the_size_limit_is_refused_before_parsing() {
     assert_eq!(error.to_string(), message);
 }
 
+/// Arrays of arrays, as deep as they come.
+#[derive(serde::Deserialize)]
+struct Deep(Vec<Deep>);
+
 #[test]
 fn limits_are_the_callers() {
     let limits = Limits {
@@ -93,6 +99,17 @@ fn limits_are_the_callers() {
     assert!(Node::parse_toml_with("a = [[1]]", &limits).is_err());
     assert!(Node::parse_json_with("{\"a\": [[1]]}", &limits).is_err());
     assert!(Node::parse_json_with("[1, 2, 3, 4, 5]", &limits).is_err());
+    let unbounded = Limits {
+        max_bytes: u64::MAX,
+        max_depth: usize::MAX,
+    };
+    let deep = nested("[", 100_000, "]");
+    let error = Node::parse_json_with(&deep, &unbounded).unwrap_err();
+    let ceiling = DEPTH_CEILING + 1;
+    assert_eq!(error.span, Some(ceiling..ceiling + 1), "{error}");
+    assert!(Node::parse_toml_with(&format!("a = {deep}"), &unbounded).is_err());
+    let deepest = Node::parse_json_with(&nested("[", DEPTH_CEILING + 1, "]"), &unbounded);
+    assert_eq!(deepest.unwrap().deserialize::<Deep>().unwrap().0.len(), 1);
 }
 
 #[test]
