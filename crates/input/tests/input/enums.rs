@@ -137,3 +137,24 @@ fn a_table_naming_no_variant_is_refused() {
         "1:7 law: invalid type: unit variant, expected newtype variant"
     );
 }
+
+/// What the crate documentation warns of: serde buffers an internally tagged enum's content,
+/// and errors inside it can only point at the enclosing table.
+#[test]
+fn an_internally_tagged_enum_loses_the_inner_position() {
+    #[derive(serde::Deserialize, Debug)]
+    #[serde(tag = "kind", rename_all = "snake_case")]
+    enum Tagged {
+        Penalty {
+            #[serde(rename = "c_mpa_per_mm")]
+            _c_mpa_per_mm: f64,
+        },
+    }
+    assert_eq!(
+        refused::<Tagged>(
+            "law = { kind = \"penalty\", c_mpa_per_mm = \"stiff\" }",
+            "law"
+        ),
+        "1:7 law: invalid type: string \"stiff\", expected f64"
+    );
+}
