@@ -105,6 +105,25 @@ impl Serialize for Method {
     }
 }
 
+#[cfg(feature = "schema")]
+impl schemars::JsonSchema for Method {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Method".into()
+    }
+
+    /// A library method's id, or the name of a method of one's own.
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let ids: Vec<&str> = LIBRARY_METHODS.iter().map(Method::id).collect();
+        schemars::json_schema!({
+            "description": format!(
+                "The method, by its id ({}) or, for a method of one's own, its name.",
+                ids.join(", ")
+            ),
+            "type": "string"
+        })
+    }
+}
+
 /// Reads a library method by its [`Method::id`]; a method of your own cannot be read back
 /// (its name is not `'static`), and is refused naming the library's.
 impl<'de> Deserialize<'de> for Method {

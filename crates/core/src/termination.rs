@@ -9,6 +9,7 @@ use crate::observe::Method;
 
 /// Why a method stopped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Termination {
     /// The method met its tolerance.

@@ -1,0 +1,417 @@
+//! The results of a contopt run as data: what `result.json` holds and `contopt run --json`
+//! prints, and what the tables, CSV files and charts are drawn from.
+//!
+//! The schema is a contract: [`SCHEMA_VERSION`] says which, every field is always present
+//! (`null` or empty when it does not apply), each kind of quantity has one unit, written in the
+//! field's name (`_mpa` for pressures and stresses, `_mm` for positions and sizes, `_um` for
+//! displacements, gaps and gap changes, `_n` for forces), and a case has one label, used by the
+//! table, the files and the charts alike. [`schema`] derives the JSON Schema from these types;
+//! `crates/results/result.schema.json` in the repository is that schema, and a test keeps the
+//! two equal.
+//!
+//! This crate knows nothing of bodies or solvers: a chart or a table needs only it.
+
+mod settle;
+mod validate;
+
+pub use validate::violations;
+
+use std::collections::BTreeMap;
+
+use contopt_core::observe::Method;
+use contopt_core::{SectionField, Termination};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
+/// a new field raises it too, so that a reader can refuse a file it does not know.
+pub const SCHEMA_VERSION: u32 = 2;
+
+/// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
+pub fn schema() -> serde_json::Value {
+    serde_json::to_value(schemars::schema_for!(Report)).unwrap_or(serde_json::Value::Null)
+}
+
+/// The contract that every field is present, `null` when it does not apply: serde would take
+/// a missing `Option` as `None`, so schemars leaves such fields out of `required`.
+fn every_field_required(schema: &mut schemars::Schema) {
+    let names: Vec<serde_json::Value> = schema
+        .get("properties")
+        .and_then(|p| p.as_object())
+        .map(|p| p.keys().cloned().map(serde_json::Value::String).collect())
+        .unwrap_or_default();
+    schema.insert("required".into(), names.into());
+}
+
+/// All cases of a scene.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Report {
+    /// The schema's version, [`SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The scene's name.
+    pub scene: String,
+    /// What the scene shows, as its file says.
+    pub description: String,
+    /// One per case, in the scene's order.
+    pub cases: Vec<CaseReport>,
+}
+
+/// How a case ended, as a whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CaseStatus {
+    /// Every method converged and the answer lies within the model's limits.
+    Solved,
+    /// A method stopped short; `termination` says why and how far it got.
+    NotConverged,
+    /// The methods converged, but the answer lies outside what the model can tell: the contact
+    /// reaches an edge of its zone (`limit` says which, and the size needed).
+    OutsideModel,
+}
+
+/// One case.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct CaseReport {
+    /// The case's label, the same in tables, files and charts (`L1 = 20 mm`, `ISO/TS 16281`).
+    pub label: String,
+    /// The keys the case changed from the scene (a sweep's key, a `[[case]]`'s numbers), as
+    /// dotted paths of the scene, with their values.
+    pub params: BTreeMap<String, f64>,
+    /// The case's inputs as they were resolved: the scene with the case's values put in and
+    /// every default written out. It reads back as a scene.
+    pub input: serde_json::Value,
+    /// How the case ended.
+    pub status: CaseStatus,
+    /// How its outermost method ended (the optimisation or search, else the contact solve).
+    pub termination: Termination,
+    /// The optimisation or search that designed the gap; null for a contact analysis.
+    pub method: Option<Method>,
+    /// The contact solver that solved it (under `auto`, the one chosen).
+    pub solver: Option<Method>,
+    /// What the user should know about an answer that stands: a penalty solution that
+    /// penetrates too far, a contact resolved by too few cells.
+    pub warnings: Vec<String>,
+    /// Where the answer leaves the model's limits; null within them.
+    pub limit: Option<ModelLimit>,
+    /// The largest contact pressure at the interface points, maxᵢ pᵢ \[MPa\]; null when the
+    /// case did not converge.
+    pub p_max_mpa: Option<f64>,
+    /// The level p̂ of the bound p ≤ v·p̂ that the optimisation minimised (the paper's p_max of
+    /// Tables 1–3) \[MPa\]; null without optimisation. The pressure reaches it where v = 1
+    /// only, so `p_max_mpa` may be lower, or higher by the discretisation's error between the
+    /// design nodes.
+    pub bound_p_max_mpa: Option<f64>,
+    /// The largest gap change Δh_max \[µm\]; null without optimisation.
+    pub dh_max_um: Option<f64>,
+    /// The floating body's approach δ, positive when the bodies are pressed together \[µm\];
+    /// null when nothing floats.
+    pub approach_um: Option<f64>,
+    /// The largest penetration of the solution, maxᵢ(−dᵢ) \[µm\]: O(1/c) for the penalty
+    /// method, round-off for the exact ones.
+    pub penetration_um: Option<f64>,
+    /// Hertz's nominal contact for the case's shape and load; null where Hertz does not apply.
+    pub hertz: Option<Hertz>,
+    /// How finely the zone resolves the contact; null without contact.
+    pub resolution: Option<Resolution>,
+    /// The passes of the optimisation (Table 2's columns); empty without one.
+    pub passes: Vec<Pass>,
+    /// The fields at the interface points.
+    pub interface: Vec<Point>,
+    /// Wall time of the stages \[ms\]: `build`, then `solve`, `optimise`, `search`,
+    /// `envelope`, `subsurface` as the case ran them.
+    pub timings_ms: BTreeMap<String, f64>,
+    /// What a bearing engineer reads off a roller case; null for other gaps.
+    pub roller: Option<RollerReport>,
+    /// Stresses below the surface (`[output.subsurface]`); null when not asked for or when
+    /// nothing is in contact.
+    pub subsurface: Option<SubsurfaceReport>,
+    /// The closed-form pressure of a validation case (Hertz, Sneddon's flat punch), along the
+    /// line the pressure chart draws; null where none exists.
+    pub reference: Option<ReferenceCurve>,
+}
+
+/// Where an answer leaves the model's limits.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct ModelLimit {
+    /// The edge the contact reaches (`x = +1.25 mm`, `r = 10 mm`).
+    pub edge: String,
+    /// How far the zone reaches from its centre across that edge \[mm\].
+    pub extent_mm: f64,
+    /// How far it must reach to hold the contact, at least \[mm\].
+    pub needed_mm: f64,
+    /// The whole message.
+    pub message: String,
+}
+
+/// Hertz's nominal contact.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Hertz {
+    /// `point` (a sphere: a circle of radius a) or `line` (a cylinder or a roller: a strip of
+    /// half-width b).
+    pub contact: String,
+    /// The peak pressure p₀ \[MPa\].
+    pub p0_mpa: f64,
+    /// The contact radius a or half-width b \[mm\].
+    pub half_width_mm: f64,
+}
+
+/// How finely the zone resolves the contact.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Resolution {
+    /// The contact's half-width along its narrowest direction (its radius on an axisymmetric
+    /// body) \[mm\].
+    pub half_width_mm: f64,
+    /// The cells (rings, strips, faces) across that half-width.
+    pub cells: f64,
+}
+
+/// One pass of an optimisation (Table 2's columns).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Pass {
+    /// The pass k (for the linear programme: its restrictions).
+    pub k: usize,
+    /// The level p̂ of the bound p ≤ v·p̂ (Table 2's p_max) \[MPa\].
+    pub bound_p_max_mpa: f64,
+    /// Δh_max \[µm\].
+    pub dh_max_um: f64,
+    /// TOLH (4.2), the sum of squared changes of Δh \[mm²\] (the paper's unit).
+    pub tolh_mm2: f64,
+    /// Kalker's solves of the pass's contact solves (the paper's `iterp`).
+    pub iterp: usize,
+    /// Kalker's penetration checks of the pass's contact solves (the paper's `iterd`).
+    pub iterd: usize,
+}
+
+/// The fields at one interface point.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Point {
+    /// Coordinates \[mm\] (axisymmetric: r, z; plane: x, y; grids: x, y, z).
+    pub x_mm: [f64; 3],
+    /// Contact pressure \[MPa\].
+    pub p_mpa: f64,
+    /// Gap after deformation \[µm\].
+    pub d_um: f64,
+    /// Gap change Δh, or a roller's crown drop \[µm\].
+    pub dh_um: f64,
+}
+
+/// A point of a pressure curve.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct CurvePoint {
+    /// Position along the curve \[mm\].
+    pub x_mm: f64,
+    /// Pressure \[MPa\].
+    pub p_mpa: f64,
+}
+
+/// A closed-form contact pressure beside a computed one.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct ReferenceCurve {
+    /// The closed form and its figures (`Hertz: p₀ = 4539 MPa, a = 0.3244 mm`).
+    pub label: String,
+    /// The curve along the row of interface points nearest the x axis (on an axisymmetric or
+    /// plane body: along r or x), within the computed points' range; a flat punch's stops at
+    /// the outermost point under the punch (p grows without bound at its rim).
+    pub points: Vec<CurvePoint>,
+}
+
+/// A roller case's figures. Columns are the grid's cells along the axis; the ends are the
+/// outermost columns.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct RollerReport {
+    /// Where the largest pressure sits: x along the axis, y across \[mm\].
+    pub p_max_at_mm: [f64; 2],
+    /// Whether the ends carry more than 10 % above the pressure at mid-length.
+    pub edge_loading: bool,
+    /// The contact half-width at mid-length and at the ends (their mean) \[mm\], counted in
+    /// cells.
+    pub half_width_mm: [f64; 2],
+    /// The crown's drop at the ends \[µm\].
+    pub crown_drop_end_um: f64,
+    /// The load cases of the scene's `[envelope]` under this crown, the scene's own first;
+    /// empty without an envelope.
+    pub envelope: Vec<EnvelopeCase>,
+    /// The largest p_max over the envelope \[MPa\]; null without an envelope.
+    pub worst_p_max_mpa: Option<f64>,
+    /// The parameters a profile search found; null for other crowns.
+    pub tuned: Option<TunedProfile>,
+}
+
+/// One load case of a roller's envelope.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct EnvelopeCase {
+    /// Load Q \[N\].
+    pub load_n: f64,
+    /// Misalignment γ \[arc-minutes\].
+    pub tilt_arcmin: f64,
+    /// Largest contact pressure \[MPa\].
+    pub p_max_mpa: f64,
+    /// Where it sits: x along the axis, y across \[mm\].
+    pub p_max_at_mm: [f64; 2],
+    /// Whether an end carries more than 10 % above the pressure at mid-length.
+    pub edge_loading: bool,
+    /// The roller's approach \[µm\].
+    pub approach_um: f64,
+    /// The pressure along the centre row.
+    pub centre_line: Vec<CurvePoint>,
+}
+
+/// A Fujiwara–Kawase profile tuned by the profile search.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct TunedProfile {
+    /// Load coefficient K1.
+    pub k1: f64,
+    /// Crowned fraction K2 of each half-length.
+    pub k2: f64,
+    /// End drop z_m \[µm\].
+    pub z_m_um: f64,
+    /// How many crowns the search solved (each under every case).
+    pub evaluations: usize,
+}
+
+/// Stresses below the surface under a case's contact pressure.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct SubsurfaceReport {
+    /// The depths evaluated \[mm\].
+    pub depths_mm: Vec<f64>,
+    /// Each body that computes stresses (a rigid body does not).
+    pub bodies: Vec<BodyStresses>,
+}
+
+/// The stresses below one body's surface.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct BodyStresses {
+    /// The body (two names when they share one field: a roller and raceway of one Poisson's
+    /// ratio).
+    pub body: String,
+    /// The largest von Mises and Tresca stresses, the largest tension σ₁ and compression σ₃,
+    /// each with where it is. A finite-element body reports its nodes, (x, y) in its own
+    /// coordinates and the depth as the distance to the nearest contact point; a peak at a
+    /// singular edge grows as the mesh is refined.
+    pub peaks: Peaks,
+    /// The sections' fields, written as CSV and heat maps (not into the JSON report).
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub sections: Vec<SectionField>,
+}
+
+/// The largest value of each criterion below a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Peaks {
+    /// Largest von Mises stress.
+    pub von_mises: Peak,
+    /// Largest shear stress (σ₁ − σ₃)/2 (Tresca).
+    pub tresca: Peak,
+    /// Largest principal stress σ₁ (the largest tension when positive).
+    pub max_principal: Peak,
+    /// Smallest principal stress σ₃ (the largest compression), its value negative.
+    pub min_principal: Peak,
+}
+
+/// Where a criterion is largest, and its value.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Peak {
+    /// The value \[MPa\].
+    pub value_mpa: f64,
+    /// First surface coordinate \[mm\].
+    pub x_mm: f64,
+    /// Second surface coordinate \[mm\] (0 on a plane or axisymmetric body).
+    pub y_mm: f64,
+    /// Depth below the surface \[mm\].
+    pub depth_mm: f64,
+}
+
+impl From<contopt_core::Peak> for Peak {
+    fn from(p: contopt_core::Peak) -> Self {
+        Self {
+            value_mpa: p.value,
+            x_mm: p.x,
+            y_mm: p.y,
+            depth_mm: p.depth,
+        }
+    }
+}
+
+impl From<contopt_core::StressPeaks> for Peaks {
+    fn from(p: contopt_core::StressPeaks) -> Self {
+        Self {
+            von_mises: p.von_mises.into(),
+            tresca: p.tresca.into(),
+            max_principal: p.max_principal.into(),
+            min_principal: p.min_principal.into(),
+        }
+    }
+}
+
+impl CaseReport {
+    /// A case that has not run yet: every figure null, `status` not converged.
+    pub fn new(label: &str, params: &BTreeMap<String, f64>, input: serde_json::Value) -> Self {
+        Self {
+            label: label.to_string(),
+            params: params.clone(),
+            input,
+            status: CaseStatus::NotConverged,
+            termination: Termination::Stopped { after: 0 },
+            method: None,
+            solver: None,
+            warnings: vec![],
+            limit: None,
+            p_max_mpa: None,
+            bound_p_max_mpa: None,
+            dh_max_um: None,
+            approach_um: None,
+            penetration_um: None,
+            hertz: None,
+            resolution: None,
+            passes: vec![],
+            interface: vec![],
+            timings_ms: BTreeMap::new(),
+            roller: None,
+            subsurface: None,
+            reference: None,
+        }
+    }
+
+    /// Whether the case converged within the model's limits.
+    pub fn is_solved(&self) -> bool {
+        self.status == CaseStatus::Solved
+    }
+
+    /// Records the wall time of a stage that began at `since`.
+    pub fn time(&mut self, stage: &str, since: std::time::Instant) {
+        self.timings_ms
+            .insert(stage.to_string(), 1e3 * since.elapsed().as_secs_f64());
+    }
+}
