@@ -3,15 +3,13 @@
 use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
-use contopt_core::observe::Flow;
-use contopt_core::{ContactState, Error, Result};
+use contopt_core::observe::{Flow, Method};
+use contopt_core::{ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{ColPivQr, SolveLstsq};
 use faer::Mat;
 
-use crate::{Optimisation, Optimum, Region, ROUND_OFF};
-
-/// The loop's name in messages.
-const GAP_ITERATION: &str = "gap iteration (§3.2)";
+use crate::passes::Passes;
+use crate::{IterationSettings, Optimisation, Optimum, Region, ROUND_OFF};
 
 /// What is given on the bodies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,22 +21,57 @@ pub enum Mode {
     GivenDisplacement,
 }
 
-/// One row of the iteration (the columns of Table 2).
+/// One pass of an optimisation loop (the columns of Table 2).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Iteration {
-    /// Iteration number k.
+pub struct Pass {
+    /// The pass number k, from 1.
     pub k: usize,
     /// p_max of step 4 \[MPa\].
     pub p_max: f64,
-    /// Largest gap change Δh⁽ᵏ⁾ \[mm\].
+    /// Largest gap change Δh⁽ᵏ⁾ the pass computed \[mm\].
     pub dh_max: f64,
-    /// TOLH = Σⱼ (Δhⱼ⁽ᵏ⁾ − Δhⱼ⁽ᵏ⁻¹⁾)² over the design nodes \[mm²\] (4.2).
+    /// TOLH = Σⱼ (Δhⱼ⁽ᵏ⁾ − Δhⱼ⁽ᵏ⁻¹⁾)² over the design nodes \[mm²\] (4.2); 0 for the linear
+    /// programme.
     pub tolh: f64,
-    /// Kalker's primal (contact-set) iterations of the contact solve.
+    /// The contact solver's steps in the pass, summed over its solves: Kalker's solves on a
+    /// contact set (the paper's I_terp, [`ContactState::iterp`]), or a solver's own
+    /// iterations when it has no such solves; for the linear programme, the interior point's
+    /// iterations.
     pub iterp: usize,
-    /// Kalker's dual (Uzawa) iterations of the contact solve.
+    /// Kalker's penetration checks (the paper's I_terd, [`ContactState::iterd`]), summed over
+    /// the pass's contact solves; 0 for a solver without them.
     pub iterd: usize,
 }
+
+impl Pass {
+    /// The row of pass `k` with p_max, the gap change `dh` and TOLH, counting the solver
+    /// steps of `states`.
+    pub(crate) fn new<'s>(
+        k: usize,
+        p_max: f64,
+        dh: &[f64],
+        tolh: f64,
+        states: impl IntoIterator<Item = &'s ContactState>,
+    ) -> Self {
+        let (mut iterp, mut iterd) = (0, 0);
+        for s in states {
+            iterp += s.iterp.max(s.iterations);
+            iterd += s.iterd;
+        }
+        Self {
+            k,
+            p_max,
+            dh_max: dh.iter().fold(0.0, |a: f64, b| a.max(*b)),
+            tolh,
+            iterp,
+            iterd,
+        }
+    }
+}
+
+/// The last completed pass: its contact solution, the gap change it was solved with and its
+/// p_max.
+type Iterate = (ContactState, Vec<f64>, f64);
 
 impl Optimisation<'_> {
     /// The iteration of §3.2: solve the contact problem with the gap h₀ + QΔh⁽ᵏ⁻¹⁾ (step 3),
@@ -47,9 +80,16 @@ impl Optimisation<'_> {
     /// values that moves nothing cannot set it), prescribe p = v·p_max on Ω_v (step 5), and
     /// choose Δh⁽ᵏ⁾ so that the gap closes on Ω_v under that pressure up to a uniform shift,
     /// Δh = 0 at the reference node N: Δh = −(m − m_N) (step 6, through a least-squares fit of
-    /// Q, exact when Q interpolates like the displacements); stop when TOLH (4.2) ≤ `tolh`
-    /// \[mm²\] (the paper: 0.5·10⁻⁶), at most `max_iterations` (step 7). Each pass is reported
-    /// to the observer ([`Optimisation::with_observer`]) with its TOLH.
+    /// Q, exact when Q interpolates like the displacements; under [`crate::Reference::Least`]
+    /// N is where −m is least, so min Δh = 0); stop when TOLH (4.2) ≤
+    /// [`IterationSettings::tolh_mm2`] (the paper: 0.5·10⁻⁶ mm²), after at most
+    /// [`IterationSettings::max_iterations`] passes (step 7). Each pass is reported to the
+    /// observer ([`Optimisation::with_observer`]) with its TOLH.
+    ///
+    /// The optimum holds the last contact solution with the gap change it was solved with.
+    /// A contact solve that does not converge ends the loop with [`Termination::Inner`],
+    /// holding the last finite solution (the first solve's own state, without a gap change,
+    /// when it is the first).
     ///
     /// Under [`Mode::GivenLoad`] the loop closes in two passes when Ω_v is the whole region:
     /// the second contact solve, on the optimised gap, reproduces v·p_max and changes nothing.
@@ -57,62 +97,70 @@ impl Optimisation<'_> {
         &self,
         mode: Mode,
         solver: &dyn ContactSolver,
-        tolh: f64,
-        max_iterations: usize,
+        settings: &IterationSettings,
     ) -> Result<Optimum> {
-        if !(tolh > 0.0) {
-            return Err(Error::invalid("tolh", tolh, "must be positive"));
-        }
+        settings.check()?;
         self.check_mode(mode)?;
         let omega_v = self.omega_v();
         let fit = StepSix::new(self, &omega_v)?;
+        let tolh = settings.tolh_mm2;
+        let mut passes = Passes::new(self.observer, Method::GapIteration, tolh);
         let mut dh = vec![0.0; self.shape.nodes().len()];
-        let mut rows: Vec<Iteration> = vec![];
-        let mut warm: Option<Vec<f64>> = None;
-        for k in 1..=max_iterations {
+        let mut last: Option<Iterate> = None;
+        for k in 1..=settings.max_iterations {
             // Steps 3–4, each contact solve starting from the previous pressure.
-            let change = self.shape.apply(&dh);
+            let warm = last.as_ref().map(|(s, _, _)| s.pressure.as_slice());
             let state =
-                self.solve_with_gap_change(solver, self.problem, &change, warm.as_deref())?;
+                self.solve_with_gap_change(solver, self.problem, &self.shape.apply(&dh), warm)?;
+            if !state.is_converged() {
+                let end = state.termination.clone().inside(state.method);
+                let held = self.held(last, state, dh, mode);
+                return Ok(passes.finish(held, end));
+            }
             let p_max = self.step_four(mode, &state.pressure)?;
             // Steps 5–6.
             let next = self.steps_five_and_six(&fit, &omega_v, &state, p_max);
             let tolh_k: f64 = next.iter().zip(&dh).map(|(a, b)| (a - b).powi(2)).sum();
-            dh = next;
-            rows.push(Iteration {
-                k,
-                p_max,
-                dh_max: dh.iter().fold(0.0, |a: f64, b| a.max(*b)),
-                tolh: tolh_k,
-                iterp: state.iterp,
-                iterd: state.iterd,
-            });
-            let flow = self.report(k, tolh_k, tolh);
+            let flow = passes.push(Pass::new(k, p_max, &next, tolh_k, [&state]), tolh_k);
             // Step 7.
             if tolh_k <= tolh {
                 self.check_sign(&dh)?;
-                return Ok(Optimum {
-                    p_max,
-                    gap_change: self.shape.apply(&dh),
-                    dh,
-                    pressure: state.pressure,
-                    gap: state.gap,
-                    rigid: state.rigid,
-                    iterations: rows,
-                });
+                let optimum = self.optimum(state, dh, p_max, Method::GapIteration);
+                return Ok(passes.finish(optimum, Termination::Converged));
             }
             if flow == Flow::Stop {
-                let detail = format!("TOLH = {tolh_k:.3e} mm² (tolerance {tolh:.1e})");
-                return Err(Self::stopped(GAP_ITERATION, k, detail));
+                let optimum = self.optimum(state, dh, p_max, Method::GapIteration);
+                return Ok(passes.finish(optimum, Termination::Stopped { after: k }));
             }
-            warm = Some(state.pressure);
+            last = Some((state, dh, p_max));
+            dh = next;
         }
-        let last = rows.last().map_or(f64::NAN, |r| r.tolh);
-        Err(Error::NotConverged {
-            method: GAP_ITERATION.into(),
-            iterations: max_iterations,
-            detail: format!("TOLH = {last:.3e} mm² (tolerance {tolh:.1e})"),
-        })
+        let end = passes.step_limit();
+        let (state, dh, p_max) =
+            last.ok_or_else(|| Error::invalid("max_iterations", 0, "at least one pass"))?;
+        Ok(passes.finish(self.optimum(state, dh, p_max, Method::GapIteration), end))
+    }
+
+    /// The iterate a loop holds when a contact solve ends short: that solve's `state` (solved
+    /// with `dh`) when it is finite or the first, else the last completed pass.
+    fn held(
+        &self,
+        last: Option<Iterate>,
+        state: ContactState,
+        dh: Vec<f64>,
+        mode: Mode,
+    ) -> Optimum {
+        let (state, dh) = match last {
+            Some((s, d, p_max)) if state.non_finite().is_some() => {
+                return self.optimum(s, d, p_max, Method::GapIteration)
+            }
+            _ => (state, dh),
+        };
+        let p_max = match mode {
+            Mode::GivenLoad => self.equilibrium_p_max(&state.pressure).unwrap_or(f64::NAN),
+            Mode::GivenDisplacement => self.p_max_on_omega_opt(&state.pressure),
+        };
+        self.optimum(state, dh, p_max, Method::GapIteration)
     }
 
     /// The mode fits the bodies: a given load needs a floating body, a given displacement
@@ -168,8 +216,7 @@ impl Optimisation<'_> {
         // Q's rows sum to one, so subtracting Δh_N from every node moves the gap by −m_N
         // everywhere: the uniform part of the residual (the approach, a rigid translation)
         // is left to the contact solver and the gap does not change at N.
-        let at_n = fitted[self.reference];
-        fitted.iter().map(|v| v - at_n).collect()
+        self.anchored(&fitted)
     }
 
     /// p_max of a given load: the least-squares solution over the rigid modes of
@@ -222,8 +269,9 @@ enum StepSix {
         /// Σ weight² per node.
         norms: Vec<f64>,
     },
-    /// The QR factors and the number of nodes.
-    Qr(ColPivQr<f64>, usize),
+    /// The QR factors of the columns of the used nodes ([`Optimisation::used_nodes`]), the
+    /// node of each column, and the number of nodes.
+    Qr(ColPivQr<f64>, Vec<usize>, usize),
 }
 
 impl StepSix {
@@ -243,25 +291,37 @@ impl StepSix {
             }
             return Ok(StepSix::Diagonal { rows, norms });
         }
+        let used = opt.used_nodes();
+        let columns: Vec<usize> = (0..nodes).filter(|&k| used[k]).collect();
+        let mut column_of = vec![usize::MAX; nodes];
+        columns
+            .iter()
+            .enumerate()
+            .for_each(|(c, &k)| column_of[k] = c);
         let bytes = (omega_v.len() as u64)
-            .saturating_mul(nodes as u64)
+            .saturating_mul(columns.len() as u64)
             .saturating_mul(16);
         let limit = opt.problem.dense_limit();
         if bytes > limit {
             return Err(Error::TooLarge {
-                what: format!("step 6's dense {} × {nodes} fit of Q", omega_v.len()),
+                what: format!(
+                    "step 6's dense {} × {} fit of Q",
+                    omega_v.len(),
+                    columns.len()
+                ),
                 bytes,
                 limit,
                 advice: "give the gap shape one node per point row (pointwise or extruded)".into(),
             });
         }
-        let mut fit = Mat::<f64>::zeros(omega_v.len(), nodes);
+        // Ω_v rows reach only used nodes (Optimisation::check_rows ties every used node to Ω_v).
+        let mut fit = Mat::<f64>::zeros(omega_v.len(), columns.len());
         for (a, &i) in omega_v.iter().enumerate() {
             for &(k, wt) in opt.shape.row(i) {
-                fit[(a, k)] += wt;
+                fit[(a, column_of[k])] += wt;
             }
         }
-        Ok(StepSix::Qr(fit.col_piv_qr(), nodes))
+        Ok(StepSix::Qr(fit.col_piv_qr(), columns, nodes))
     }
 
     /// Δh at every node from the right-hand side b on the Ω_v rows.
@@ -279,10 +339,15 @@ impl StepSix {
                 }
                 dh
             }
-            StepSix::Qr(qr, nodes) => {
+            StepSix::Qr(qr, columns, nodes) => {
                 let mut rhs = Mat::<f64>::from_fn(b.len(), 1, |a, _| b[a]);
                 qr.solve_lstsq_in_place(rhs.as_mut());
-                (0..*nodes).map(|k| rhs[(k, 0)]).collect()
+                let mut dh = vec![0.0; *nodes];
+                columns
+                    .iter()
+                    .enumerate()
+                    .for_each(|(c, &k)| dh[k] = rhs[(c, 0)]);
+                dh
             }
         }
     }

@@ -20,6 +20,14 @@
 //! [`nelder_mead`] tunes the few parameters of a given profile family (a derivative-free
 //! search), the published practice the optimised gaps are compared with.
 
+//!
+//! Every method ends with a [`Termination`] in its [`Optimum`], which always holds the last
+//! iterate: a step limit, an observer's stop, an infeasible programme or a contact solve that
+//! did not converge are outcomes, not errors. Errors are for bad input and for work refused
+//! before it starts. Settings carry the library's defaults ([`IterationSettings`],
+//! [`LoadSplitSettings`], [`LinearProgrammeSettings`], [`OptimisationMethod`]); controllers
+//! are built from [`ControllerSettings`] too.
+
 // Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
@@ -27,18 +35,25 @@ mod controller;
 mod iteration;
 mod load_split;
 mod lp;
+mod passes;
+mod settings;
 mod simplex;
 #[cfg(test)]
 mod tests;
 
-pub use controller::{Constant, Controller, Product, Profile};
-pub use iteration::{Iteration, Mode};
+pub use controller::{Constant, Controller, ControllerSettings, Product, Profile};
+pub use iteration::{Mode, Pass};
 pub use load_split::EnvelopeOptimum;
-pub use simplex::{nelder_mead, Minimum};
+pub use settings::{
+    IterationSettings, LinearProgrammeSettings, LoadSplitSettings, OptimisationMethod,
+};
+pub use simplex::{nelder_mead, Minimum, SearchSettings};
+
+use std::borrow::Cow;
 
 use contopt_contact::{ContactSolver, InterfaceProblem};
-use contopt_core::observe::{self, stopped_by_observer, Flow, Observer, Silent};
-use contopt_core::{ContactState, Error, GapShape, Result};
+use contopt_core::observe::{Method, Nested, Observer, Silent};
+use contopt_core::{ContactState, Error, GapShape, Result, Termination};
 
 /// Relative round-off of a sum over points (a row of Q, a column's rigid displacement, the
 /// equilibrium of v·p_max): values that agree to it are equal (round-off).
@@ -49,7 +64,8 @@ pub(crate) const ROUND_OFF: f64 = 1e-9;
 pub(crate) const SOLVER_ACCURACY: f64 = 1e-6;
 
 /// Role of an interface point in the optimisation (§3.2), one per point through
-/// [`Optimisation::with_regions`]; without it every point is Ω_v.
+/// [`Optimisation::with_regions`] or [`Optimisation::with_omega`]; without them every point is
+/// Ω_v.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Region {
     /// In the proposed contact zone Ω but outside Ω_opt: only p ≥ 0, d ≥ 0, pd = 0.
@@ -60,25 +76,45 @@ pub enum Region {
     OmegaNv,
 }
 
-/// The result of an optimisation.
+/// The design node N of §3.2 step 6, where the gap does not change (Δh_N = 0).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Reference {
+    /// The node where the gap change comes out least, so that min Δh = 0 and Δh ≥ 0 of (3.5)
+    /// holds by construction, wherever the body deflects most.
+    #[default]
+    Least,
+    /// A given design node (an index of the gap shape's nodes). A gap change that comes out
+    /// negative elsewhere is refused as an invalid reference: (3.5) requires Δh ≥ 0.
+    Node(usize),
+}
+
+/// The result of an optimisation: its last iterate and how the method ended.
+///
+/// The pressure, the gap and the rigid amplitudes are those of one contact solution on the
+/// initial gap changed by `gap_change`, so they agree with each other; `passes` holds the
+/// rows of the loop (Table 2's columns: row k's Δh_max is the change that pass k computed,
+/// which the next pass would solve with).
 #[derive(Clone, Debug)]
 pub struct Optimum {
-    /// The least largest pressure p_max \[MPa\].
+    /// The least largest pressure p_max \[MPa\] (of the last pass).
     pub p_max: f64,
     /// Gap change at the design nodes of the [`GapShape`], Δh ≥ 0, zero at the reference
     /// node \[mm\].
     pub dh: Vec<f64>,
     /// Gap change at the interface points, QΔh \[mm\].
     pub gap_change: Vec<f64>,
-    /// The pressure at the interface points \[MPa\]: v·p_max on Ω_v.
+    /// The pressure at the interface points \[MPa\]: v·p_max on Ω_v once converged.
     pub pressure: Vec<f64>,
-    /// Gap after deformation at the interface points \[mm\].
+    /// Gap after deformation at the interface points, the gap change included \[mm\].
     pub gap: Vec<f64>,
     /// Rigid-mode amplitudes λ.
     pub rigid: Vec<f64>,
-    /// The rows of the iteration of §3.2 (Table 2's columns); one row for the LP, its number
-    /// of restrictions in `k`.
-    pub iterations: Vec<Iteration>,
+    /// The rows of the loop, one per pass (for the programme: one per restricted programme).
+    pub passes: Vec<Pass>,
+    /// The method that found it.
+    pub method: Method,
+    /// How the method ended: [`Termination::Converged`], or why it stopped short.
+    pub termination: Termination,
 }
 
 impl Optimum {
@@ -86,28 +122,34 @@ impl Optimum {
     pub fn dh_max(&self) -> f64 {
         self.dh.iter().fold(0.0, |m: f64, v| m.max(*v))
     }
+
+    /// Whether the method met its tolerance.
+    pub fn is_converged(&self) -> bool {
+        self.termination.is_converged()
+    }
 }
 
 /// The data of an optimisation: the interface problem, the gap map Q, the controller's values
 /// and the regions.
 pub struct Optimisation<'a> {
     problem: &'a InterfaceProblem<'a>,
-    shape: &'a GapShape,
+    shape: Cow<'a, GapShape>,
     /// v(xᵢ) at every point (used on Ω_opt).
     v: Vec<f64>,
     regions: Vec<Region>,
+    /// Points that keep their gap: outside Ω_opt, set by [`Optimisation::with_omega`].
+    kept: Vec<bool>,
     /// The design node N of §3.2 step 6 where the gap does not change.
-    reference: usize,
-    /// Receives each iteration of the loop and of the contact solves inside it.
+    reference: Reference,
+    /// Receives each pass of the loop; the contact solves inside report one level deeper.
     observer: &'a dyn Observer,
 }
 
 impl<'a> Optimisation<'a> {
     /// The optimisation of `problem` with gap changes described by `shape` and pressures
     /// controlled by `controller`. The whole interface is Ω_v (the one-dimensional case of
-    /// §3.2) until [`Optimisation::with_regions`] says otherwise.
-    /// The reference node N, where the gap does not change, is the design node nearest the
-    /// origin (the axis or the plane of symmetry); see [`Optimisation::with_reference`].
+    /// §3.2) until [`Optimisation::with_regions`] or [`Optimisation::with_omega`] say
+    /// otherwise; the reference node is where the gap change is least ([`Reference::Least`]).
     pub fn new(
         problem: &'a InterfaceProblem<'a>,
         shape: &'a GapShape,
@@ -121,39 +163,39 @@ impl<'a> Optimisation<'a> {
                 format!("one row per interface point ({})", iface.len()),
             ));
         }
-        let v: Vec<f64> = iface.points().iter().map(|&x| controller.value(x)).collect();
-        let regions = vec![Region::OmegaV; iface.len()];
-        let nearest = (0..shape.nodes().len())
-            .min_by(|&a, &b| {
-                let r = |k: usize| shape.nodes()[k].iter().map(|c| c * c).sum::<f64>();
-                r(a).total_cmp(&r(b))
-            })
-            .unwrap_or(0);
+        let v: Vec<f64> = iface
+            .points()
+            .iter()
+            .map(|&x| controller.value(x))
+            .collect();
         let opt = Self {
             problem,
-            shape,
+            shape: Cow::Borrowed(shape),
+            regions: vec![Region::OmegaV; v.len()],
+            kept: vec![false; v.len()],
             v,
-            regions,
-            reference: nearest,
+            reference: Reference::Least,
             observer: &Silent,
         };
         opt.check()?;
         Ok(opt)
     }
 
-    /// Reports each iteration of the optimisation and of its contact solves to `observer`,
-    /// which may stop the loop early. The loop reports as method `"optimisation"`, with the
-    /// measure it compares with its tolerance: TOLH (4.2) in [`Optimisation::iterate`], the
-    /// number of points that carry pressure across an open gap (tolerance 0) in
-    /// [`Optimisation::linear_programme`], the miss of v·p_max on Ω_v in
-    /// [`Optimisation::load_split`] and [`Optimisation::envelope_split`]. Stopped, the loop
-    /// fails with [`Error::NotConverged`] saying that an observer stopped it.
+    /// Reports each pass of the optimisation to `observer` as an event of its method
+    /// ([`Method::GapIteration`], [`Method::LinearProgramme`], [`Method::LoadSplit`],
+    /// [`Method::EnvelopeSplit`]) at level 0, with the measure it compares with its tolerance:
+    /// TOLH (4.2) in [`Optimisation::iterate`], the number of points that carry pressure
+    /// across an open gap (tolerance 0) in [`Optimisation::linear_programme`], the miss of
+    /// v·p_max on Ω_v in the load splits; the last event says how it ended. The contact
+    /// solves inside report to it through [`Nested`], one level deeper. A stop ends the loop
+    /// with [`Termination::Stopped`].
     pub fn with_observer(mut self, observer: &'a dyn Observer) -> Self {
         self.observer = observer;
         self
     }
 
-    /// Sets the regions explicitly, one per interface point.
+    /// Sets the regions explicitly, one per interface point; every point's gap follows its
+    /// row of Q.
     pub fn with_regions(mut self, regions: Vec<Region>) -> Result<Self> {
         if regions.len() != self.v.len() {
             return Err(Error::invalid(
@@ -167,23 +209,68 @@ impl<'a> Optimisation<'a> {
         Ok(self)
     }
 
-    /// Sets the reference node N (an index of the gap shape's nodes) where Δh = 0.
-    pub fn with_reference(mut self, node: usize) -> Result<Self> {
-        if node >= self.shape.nodes().len() {
+    /// Sets Ω_v and Ω_opt from masks (one flag per interface point, Ω_v ⊆ Ω_opt): Ω_nv =
+    /// Ω_opt − Ω_v, and the points outside Ω_opt are only in contact (p ≥ 0, d ≥ 0, pd = 0)
+    /// and keep their initial gap: no gap change reaches them, whatever the shape's rows. A
+    /// design node reached only from outside Ω_opt stays at Δh = 0.
+    pub fn with_omega(mut self, omega_v: &[bool], omega_opt: &[bool]) -> Result<Self> {
+        let n = self.v.len();
+        for (field, mask) in [("omega_v", omega_v), ("omega_opt", omega_opt)] {
+            if mask.len() != n {
+                return Err(Error::invalid(
+                    field,
+                    format!("{} flags", mask.len()),
+                    format!("one per interface point ({n})"),
+                ));
+            }
+        }
+        if let Some(i) = (0..n).find(|&i| omega_v[i] && !omega_opt[i]) {
             return Err(Error::invalid(
-                "reference",
-                node,
-                format!("a design node below {}", self.shape.nodes().len()),
+                format!("omega_v[{i}]"),
+                true,
+                "Ω_v lies inside Ω_opt: the point is not in omega_opt",
             ));
         }
-        self.reference = node;
+        self.regions = (0..n)
+            .map(|i| match (omega_v[i], omega_opt[i]) {
+                (true, _) => Region::OmegaV,
+                (false, true) => Region::OmegaNv,
+                (false, false) => Region::Contact,
+            })
+            .collect();
+        let rows = (0..n)
+            .map(|i| match omega_opt[i] {
+                true => self.shape.row(i).to_vec(),
+                false => vec![],
+            })
+            .collect();
+        self.shape = Cow::Owned(GapShape::new(self.shape.nodes().to_vec(), rows)?);
+        self.kept = omega_opt.iter().map(|o| !o).collect();
         self.check()?;
+        Ok(self)
+    }
+
+    /// Sets the reference node N of §3.2 step 6, where Δh = 0.
+    pub fn with_reference(mut self, reference: Reference) -> Result<Self> {
+        if let Reference::Node(node) = reference {
+            if node >= self.shape.nodes().len() || !self.used_nodes()[node] {
+                return Err(Error::invalid(
+                    "reference",
+                    node,
+                    format!(
+                        "a design node below {} that a point of Ω_opt reaches",
+                        self.shape.nodes().len()
+                    ),
+                ));
+            }
+        }
+        self.reference = reference;
         Ok(self)
     }
 
     /// The controller's values, the regions and the design nodes are consistent.
     fn check(&self) -> Result<()> {
-        let pts = &self.problem.interface().points();
+        let pts = self.problem.interface().points();
         for (i, &v) in self.v.iter().enumerate() {
             if self.regions[i] != Region::Contact && !(0.0..=1.0).contains(&v) {
                 return Err(Error::invalid(
@@ -208,7 +295,13 @@ impl<'a> Optimisation<'a> {
                 "vanishes on all of Ω_v: no pressure is allowed",
             ));
         }
-        for i in 0..self.v.len() {
+        self.check_rows()
+    }
+
+    /// Each row of Q sums to one (a uniform Δh is a uniform gap change) except where the gap
+    /// is kept, and every node that a point reaches is tied to Ω_v.
+    fn check_rows(&self) -> Result<()> {
+        for i in (0..self.v.len()).filter(|&i| !self.kept[i]) {
             let sum: f64 = self.shape.row(i).iter().map(|(_, w)| w).sum();
             if (sum - 1.0).abs() > ROUND_OFF {
                 return Err(Error::invalid(
@@ -219,12 +312,13 @@ impl<'a> Optimisation<'a> {
             }
         }
         let mut tied = vec![false; self.shape.nodes().len()];
-        for &i in &omega_v {
+        for i in self.omega_v() {
             for &(k, w) in self.shape.row(i) {
                 tied[k] |= w != 0.0;
             }
         }
-        if let Some(k) = tied.iter().position(|t| !t) {
+        let used = self.used_nodes();
+        if let Some(k) = (0..tied.len()).find(|&k| used[k] && !tied[k]) {
             return Err(Error::invalid(
                 format!("gap_shape.nodes[{k}]"),
                 format!("{:?}", self.shape.nodes()[k]),
@@ -241,35 +335,44 @@ impl<'a> Optimisation<'a> {
             .collect()
     }
 
-    /// The design nodes other than the reference.
-    pub(crate) fn free_nodes(&self) -> Vec<usize> {
-        (0..self.shape.nodes().len())
-            .filter(|&k| k != self.reference)
-            .collect()
+    /// The design nodes that some point's row reaches with a non-zero weight; the others
+    /// stay at Δh = 0.
+    pub(crate) fn used_nodes(&self) -> Vec<bool> {
+        let mut used = vec![false; self.shape.nodes().len()];
+        for i in 0..self.shape.len() {
+            for &(k, w) in self.shape.row(i) {
+                used[k] |= w != 0.0;
+            }
+        }
+        used
     }
 
-    /// Reports pass `k` of the loop to the observer (see [`Optimisation::with_observer`]).
-    fn report(&self, k: usize, measure: f64, tolerance: f64) -> Flow {
-        self.observer.observe(&observe::Iteration {
-            method: "optimisation",
-            iteration: k,
-            measure,
-            tolerance,
-        })
-    }
-
-    /// The error of a loop (`method`) that an observer stopped after `k` passes, `detail`
-    /// saying how far it got.
-    fn stopped(method: &str, k: usize, detail: String) -> Error {
-        Error::NotConverged {
-            method: method.into(),
-            iterations: k,
-            detail: format!("{}; {detail}", stopped_by_observer(k)),
+    /// The reference node for the fitted gap change `dh`: the given node, or the used node
+    /// where `dh` is least.
+    pub(crate) fn reference_node(&self, dh: &[f64]) -> usize {
+        match self.reference {
+            Reference::Node(k) => k,
+            Reference::Least => {
+                let used = self.used_nodes();
+                (0..dh.len())
+                    .filter(|&k| used[k])
+                    .min_by(|&a, &b| dh[a].total_cmp(&dh[b]))
+                    .unwrap_or(0)
+            }
         }
     }
 
+    /// `dh` less its value at the reference node (unused nodes stay 0), so that Δh_N = 0.
+    pub(crate) fn anchored(&self, dh: &[f64]) -> Vec<f64> {
+        let at_n = dh[self.reference_node(dh)];
+        let used = self.used_nodes();
+        (0..dh.len())
+            .map(|k| if used[k] { dh[k] - at_n } else { 0.0 })
+            .collect()
+    }
+
     /// Solves `problem` with its initial gap changed by `gap_change` (from the pressure
-    /// `start` when given), the contact solver reporting to the observer.
+    /// `start` when given), the contact solver reporting one level below the loop.
     fn solve_with_gap_change(
         &self,
         solver: &dyn ContactSolver,
@@ -283,22 +386,74 @@ impl<'a> Optimisation<'a> {
             .zip(gap_change)
             .map(|(h, d)| h + d)
             .collect();
-        solver
-            .solve_observed(&problem.with_initial_gap(&gap)?, start, self.observer)?
-            .solved(solver.name())
+        solver.solve_observed(
+            &problem.with_initial_gap(&gap)?,
+            start,
+            &Nested(self.observer),
+        )
     }
 
-    /// Fails when Δh is negative beyond round-off at some node: the reference node is not
-    /// where the gap change is least, and (3.5) requires Δh ≥ 0.
+    /// The largest pressure on Ω_opt of a contact solution (its p_max before any
+    /// optimisation).
+    fn p_max_on_omega_opt(&self, pressure: &[f64]) -> f64 {
+        (0..pressure.len())
+            .filter(|&i| self.regions[i] != Region::Contact)
+            .map(|i| pressure[i])
+            .fold(0.0, f64::max)
+    }
+
+    /// The optimum of the contact solution `state`, solved with the gap change of `dh`.
+    fn optimum(&self, state: ContactState, dh: Vec<f64>, p_max: f64, method: Method) -> Optimum {
+        Optimum {
+            p_max,
+            gap_change: self.shape.apply(&dh),
+            dh,
+            pressure: state.pressure,
+            gap: state.gap,
+            rigid: state.rigid,
+            passes: vec![],
+            method,
+            termination: Termination::Converged,
+        }
+    }
+
+    /// The iterate of a method that stopped before its first pass gave one: the contact
+    /// solution without a gap change, ended as the solve ended (when it did not converge) or
+    /// as `termination`.
+    fn unoptimised(
+        &self,
+        solver: &dyn ContactSolver,
+        method: Method,
+        termination: Termination,
+    ) -> Result<Optimum> {
+        let zero = vec![0.0; self.shape.nodes().len()];
+        let state =
+            self.solve_with_gap_change(solver, self.problem, &self.shape.apply(&zero), None)?;
+        let end = match state.is_converged() {
+            true => termination,
+            false => state.termination.clone().inside(state.method),
+        };
+        let p_max = self.p_max_on_omega_opt(&state.pressure);
+        Ok(Optimum {
+            termination: end,
+            ..self.optimum(state, zero, p_max, method)
+        })
+    }
+
+    /// Fails when Δh is negative beyond round-off at some node: the given reference node is
+    /// not where the gap change is least, and (3.5) requires Δh ≥ 0.
     fn check_sign(&self, dh: &[f64]) -> Result<()> {
+        let Reference::Node(reference) = self.reference else {
+            return Ok(());
+        };
         let top = dh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if let Some(k) = dh.iter().position(|&v| v < -SOLVER_ACCURACY * top) {
             return Err(Error::invalid(
                 "reference",
-                format!("{:?}", self.shape.nodes()[self.reference]),
+                format!("{:?}", self.shape.nodes()[reference]),
                 format!(
                     "the gap change is negative ({:.4e} mm) at node {k} {:?}: take as reference \
-                     the node where it is least",
+                     the node where it is least (Reference::Least)",
                     dh[k],
                     self.shape.nodes()[k]
                 ),

@@ -1,12 +1,15 @@
 //! The optimum of (3.5) without a dense matrix: the load carried by each design column.
 
 use contopt_contact::{ContactSolver, FreeMode, InterfaceProblem};
-use contopt_core::observe::Flow;
-use contopt_core::{ContactState, Error, Result};
+use contopt_core::observe::{Flow, Method};
+use contopt_core::{ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
-use crate::{Iteration, Optimisation, Optimum, Region, ROUND_OFF, SOLVER_ACCURACY};
+use crate::passes::Passes;
+use crate::{
+    LoadSplitSettings, Optimisation, Optimum, Pass, Reference, Region, ROUND_OFF, SOLVER_ACCURACY,
+};
 
 /// Bounds of the exponent α in p̄ ∝ F^α that a column's update assumes: ½ for a Hertzian line
 /// contact, 1 for a single point; secant estimates outside are noise from the coupling.
@@ -47,7 +50,9 @@ impl Optimisation<'_> {
     /// min ½ pᵀ W A W p + pᵀ W g  subject to  p ≥ 0,  Σᵢ∈j wᵢ rᵢ pᵢ = F_j,
     ///
     /// whose multipliers λ_j are the column approaches; the gap change is their spread,
-    /// Δh_j = r (λ_j − λ_N), zero at the reference node N. An outer update of the shares drives
+    /// Δh_j = r (λ_j − λ_N), zero at the reference node N (under [`Reference::Least`] the
+    /// column of least r·λ_j, so min Δh = 0; the body's approach is then λ_N, which keeps the
+    /// optimum's gap that of the solve). An outer update of the shares drives
     /// each column's Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the
     /// exponent α_j of p̄ ∝ F^α from the first secants (½ for a Hertzian line contact, 1 for a
     /// single point) and p_max the value at which the shares add up to the load, accelerated by
@@ -61,20 +66,18 @@ impl Optimisation<'_> {
     /// Every contact solve starts from the previous pressure, so a matrix-free `solver`
     /// ([`contopt_contact::PolonskyKeer`]) takes a few steps after the first; a dense one works
     /// too, for small problems. Stops when every column's Ω_v pressure is within
-    /// `tolerance`·p_max of v·p_max, after at most `max_iterations` solves; each solve is a row
-    /// of the result (its `iterp` counts the contact solver's steps), reported to the observer
-    /// ([`Optimisation::with_observer`]) with its miss. Needs a floating body
-    /// with one rigid mode (the given load) and a gap shape whose rows each reach one node
-    /// (pointwise, or extruded along an axis).
+    /// [`LoadSplitSettings::tolerance`]·p_max of v·p_max, after at most
+    /// [`LoadSplitSettings::max_iterations`] solves; each solve is a pass of the result,
+    /// reported to the observer ([`Optimisation::with_observer`]) with its miss. Needs a
+    /// floating body with one rigid mode (the given load) and a gap shape whose rows each reach
+    /// one node (pointwise, or extruded along an axis), every point in a column (no point
+    /// kept outside Ω_opt by [`Optimisation::with_omega`]).
     pub fn load_split(
         &self,
         solver: &dyn ContactSolver,
-        tolerance: f64,
-        max_iterations: usize,
+        settings: &LoadSplitSettings,
     ) -> Result<Optimum> {
-        Ok(self
-            .envelope_split(&[], solver, tolerance, max_iterations)?
-            .optimum)
+        Ok(self.envelope_split(&[], solver, settings)?.optimum)
     }
 
     /// The robust optimum over an envelope of load cases that share one gap change: the least
@@ -83,7 +86,8 @@ impl Optimisation<'_> {
     /// own load), equality on Ω_v. It is the load split of the design case, whose column
     /// shares are driven by the envelope maxₖ p̄ of the cases' Ω_v pressures instead of its
     /// own; every case is solved again, from its last pressure, under the gap change of each
-    /// update.
+    /// update. Its passes are events of [`Method::EnvelopeSplit`] (of [`Method::LoadSplit`]
+    /// without further cases).
     ///
     /// Why the closed envelope is the optimum: raising the gap of one column lowers that
     /// column's pressure and raises the others' in every case (the load is carried
@@ -96,91 +100,46 @@ impl Optimisation<'_> {
         &self,
         cases: &[InterfaceProblem],
         solver: &dyn ContactSolver,
-        tolerance: f64,
-        max_iterations: usize,
+        settings: &LoadSplitSettings,
     ) -> Result<EnvelopeOptimum> {
-        if !(tolerance > 0.0 && tolerance < 1.0) {
-            return Err(Error::invalid("tolerance", tolerance, "must lie in (0, 1)"));
-        }
+        settings.check()?;
         self.check_cases(cases)?;
         let columns = self.columns()?;
-        let total = -self.problem.modes()[0].load;
-        let mut update = ShareUpdate::new(&columns);
-        let mut warm: Option<Vec<f64>> = None;
-        let mut case_warm: Vec<Option<Vec<f64>>> = vec![None; cases.len()];
-        let mut rows: Vec<Iteration> = vec![];
-        let mut dh_last = vec![0.0; self.shape.nodes().len()];
-        let method = if cases.is_empty() {
-            "load split (3.5)"
-        } else {
-            "envelope load split (3.5)"
+        let method = match cases.is_empty() {
+            true => Method::LoadSplit,
+            false => Method::EnvelopeSplit,
         };
-        let mut miss = f64::NAN;
-        for k in 1..=max_iterations {
-            let state =
-                self.column_solve(solver, &columns, &update.share, total, warm.as_deref())?;
-            let dh = self.column_crown(&columns, &state.rigid);
-            let mut envelope = columns.omega_v_pressure(self, &state.pressure);
-            let states =
-                self.case_solves(solver, cases, &case_warm, &dh, &columns, &mut envelope)?;
-            let p_max = columns.fitted_p_max(&envelope);
-            miss = (0..envelope.len())
-                .map(|j| (envelope[j] - columns.v[j] * p_max).abs())
-                .fold(0.0, f64::max)
-                / p_max;
-            rows.push(Iteration {
-                k,
-                p_max,
-                dh_max: dh.iter().fold(0.0, |a: f64, b| a.max(*b)),
-                tolh: dh.iter().zip(&dh_last).map(|(a, b)| (a - b).powi(2)).sum(),
-                iterp: std::iter::once(&state)
-                    .chain(&states)
-                    .map(|s| s.iterp.max(s.iterations))
-                    .sum(),
-                iterd: state.iterd,
-            });
-            let flow = self.report(k, miss, tolerance);
-            if miss <= tolerance {
-                return self.column_optimum(state, states, p_max, dh, rows);
+        let mut split = Split {
+            opt: self,
+            solver,
+            cases,
+            columns: &columns,
+            passes: Passes::new(self.observer, method, settings.tolerance),
+        };
+        let mut update = ShareUpdate::new(&columns);
+        let mut last: Option<SplitIterate> = None;
+        for k in 1..=settings.max_iterations {
+            let iterate = match split.pass(&update.share, last.as_ref())? {
+                Ok(iterate) => iterate,
+                Err(failed) => return Ok(split.held(last, failed)),
+            };
+            let flow = split
+                .passes
+                .push(iterate.row(k, last.as_ref()), iterate.miss);
+            if iterate.miss <= settings.tolerance {
+                self.check_envelope(&iterate)?;
+                return Ok(split.finish(iterate, Termination::Converged));
             }
             if flow == Flow::Stop {
-                return Err(Self::stopped(method, k, miss_detail(miss, tolerance)));
+                return Ok(split.finish(iterate, Termination::Stopped { after: k }));
             }
-            update.next(k, &envelope, &columns.v, p_max);
-            warm = Some(state.pressure);
-            case_warm = states.into_iter().map(|s| Some(s.pressure)).collect();
-            dh_last = dh;
+            update.next(k, &iterate.envelope, &columns.v, iterate.p_max);
+            last = Some(iterate);
         }
-        Err(Error::NotConverged {
-            method: method.into(),
-            iterations: max_iterations,
-            detail: miss_detail(miss, tolerance),
-        })
-    }
-
-    /// Solves every case of the envelope under the gap change of `dh`, each from its last
-    /// pressure, and raises `envelope` to each case's Ω_v pressures.
-    fn case_solves(
-        &self,
-        solver: &dyn ContactSolver,
-        cases: &[InterfaceProblem],
-        starts: &[Option<Vec<f64>>],
-        dh: &[f64],
-        columns: &Columns,
-        envelope: &mut [f64],
-    ) -> Result<Vec<ContactState>> {
-        let gap_change = self.shape.apply(dh);
-        let mut states = Vec::with_capacity(cases.len());
-        for (case, start) in cases.iter().zip(starts) {
-            let solved = self.solve_with_gap_change(solver, case, &gap_change, start.as_deref())?;
-            let mean = columns.omega_v_pressure(self, &solved.pressure);
-            envelope
-                .iter_mut()
-                .zip(mean)
-                .for_each(|(e, m)| *e = e.max(m));
-            states.push(solved);
-        }
-        Ok(states)
+        let end = split.passes.step_limit();
+        let last =
+            last.ok_or_else(|| Error::invalid("max_iterations", 0, "at least one update"))?;
+        Ok(split.finish(last, end))
     }
 
     /// The envelope's cases share the design case's interface.
@@ -213,6 +172,14 @@ impl Optimisation<'_> {
                 "the load split needs one floating body with one mode (the given load)",
             ));
         }
+        if let Some(i) = self.kept.iter().position(|&k| k) {
+            return Err(Error::invalid(
+                format!("omega_opt[{i}]"),
+                false,
+                "the load split moves every point with a design column: points outside Ω_opt \
+                 that keep their gap need the iteration or the linear programme",
+            ));
+        }
         let n = problem.len();
         let mut r = vec![0.0; n];
         for (&i, &v) in modes[0].points.iter().zip(&modes[0].displacement) {
@@ -239,11 +206,26 @@ impl Optimisation<'_> {
                 ));
             }
         }
-        let w = problem.weights();
+        self.column_data(points, &r)
+    }
+
+    /// The columns of the nodes' `points`, each moved by its one value of `r`.
+    fn column_data(&self, points: Vec<Vec<usize>>, r: &[f64]) -> Result<Columns> {
+        let w = self.problem.weights();
+        let nodes = points.len();
         let (mut measure, mut v, mut column_r) =
             (vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]);
         for (k, members) in points.iter().enumerate() {
-            column_r[k] = r[members[0]];
+            // check_rows ties every node a point reaches to Ω_v; a node no point reaches
+            // has no column to load.
+            let Some(&first) = members.first() else {
+                return Err(Error::invalid(
+                    format!("gap_shape.nodes[{k}]"),
+                    format!("{:?}", self.shape.nodes()[k]),
+                    "the load split needs every design node reached by a point",
+                ));
+            };
+            column_r[k] = r[first];
             if let Some(&i) = members
                 .iter()
                 .find(|&&i| (r[i] - column_r[k]).abs() > ROUND_OFF * column_r[k].abs())
@@ -275,55 +257,13 @@ impl Optimisation<'_> {
         })
     }
 
-    /// The contact problem with each column a mode of its own loaded by `share`·`total`.
-    fn column_solve(
-        &self,
-        solver: &dyn ContactSolver,
-        columns: &Columns,
-        share: &[f64],
-        total: f64,
-        warm: Option<&[f64]>,
-    ) -> Result<ContactState> {
-        let modes = columns
-            .points
-            .iter()
-            .enumerate()
-            .map(|(k, members)| FreeMode {
-                name: format!("column {k}"),
-                points: members.clone(),
-                displacement: vec![columns.r[k]; members.len()],
-                load: -share[k] * total,
-            })
-            .collect();
-        let problem: InterfaceProblem = self.problem.with_modes(modes)?;
-        solver
-            .solve_observed(&problem, warm, self.observer)?
-            .solved(solver.name())
-    }
-
-    /// Δh_j = r (λ_j − λ_N) from the column approaches.
-    fn column_crown(&self, columns: &Columns, lambda: &[f64]) -> Vec<f64> {
-        let at_n = lambda[self.reference];
-        lambda
-            .iter()
-            .zip(&columns.r)
-            .map(|(l, r)| r * (l - at_n))
-            .collect()
-    }
-
-    /// The optimum of a converged split: the crown checked for sign, the pressure of Ω_nv in
-    /// every case checked against v·p_max (χ ≥ 0 of 3.5).
-    fn column_optimum(
-        &self,
-        state: ContactState,
-        cases: Vec<ContactState>,
-        p_max: f64,
-        dh: Vec<f64>,
-        rows: Vec<Iteration>,
-    ) -> Result<EnvelopeOptimum> {
-        self.check_sign(&dh)?;
-        let excess = std::iter::once(&state)
-            .chain(&cases)
+    /// The pressure of Ω_nv in every case of a converged split is within v·p_max (χ ≥ 0 of
+    /// 3.5), and the crown's sign fits a given reference node.
+    fn check_envelope(&self, iterate: &SplitIterate) -> Result<()> {
+        self.check_sign(&iterate.dh)?;
+        let p_max = iterate.p_max;
+        let excess = std::iter::once(&iterate.state)
+            .chain(&iterate.cases)
             .flat_map(|s| {
                 (0..s.pressure.len())
                     .filter(|&i| self.regions[i] == Region::OmegaNv)
@@ -339,33 +279,196 @@ impl Optimisation<'_> {
                  meets χ ≥ 0 (3.5): put Ω_v where each column peaks",
             ));
         }
-        Ok(EnvelopeOptimum {
-            optimum: Optimum {
-                p_max,
-                gap_change: self.shape.apply(&dh),
-                dh,
-                rigid: vec![state.rigid[self.reference]],
-                pressure: state.pressure,
-                gap: state.gap,
-                iterations: rows,
-            },
+        Ok(())
+    }
+}
+
+/// One update of a load split: the design case's column solve, the crown from its approaches,
+/// every case's contact under it, the envelope of their Ω_v pressures and its row.
+struct SplitIterate {
+    state: ContactState,
+    cases: Vec<ContactState>,
+    dh: Vec<f64>,
+    envelope: Vec<f64>,
+    p_max: f64,
+    miss: f64,
+}
+
+impl SplitIterate {
+    /// Its row as update `k`, after `last`.
+    fn row(&self, k: usize, last: Option<&SplitIterate>) -> Pass {
+        let tolh = last.map_or(0.0, |l| {
+            self.dh
+                .iter()
+                .zip(&l.dh)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum()
+        });
+        let states = std::iter::once(&self.state).chain(&self.cases);
+        Pass::new(k, self.p_max, &self.dh, tolh, states)
+    }
+}
+
+/// A contact solve of an update that ended short: the update's column solve (the one that
+/// failed, or the one before the case that did), whether the column solve failed, and how the
+/// split ends (seen from outside).
+struct Failed {
+    column: ContactState,
+    column_failed: bool,
+    end: Termination,
+}
+
+/// What a load split works with.
+struct Split<'s, 'o, 'a> {
+    opt: &'s Optimisation<'a>,
+    solver: &'s dyn ContactSolver,
+    cases: &'s [InterfaceProblem<'s>],
+    columns: &'s Columns,
+    passes: Passes<'o>,
+}
+
+impl Split<'_, '_, '_> {
+    /// An update with the column loads `share`, from the pressures of `last`: the iterate, or
+    /// the contact solve that did not converge.
+    fn pass(
+        &self,
+        share: &[f64],
+        last: Option<&SplitIterate>,
+    ) -> Result<std::result::Result<SplitIterate, Failed>> {
+        let (opt, columns) = (self.opt, self.columns);
+        let warm = last.map(|l| l.state.pressure.as_slice());
+        let state = self.column_solve(share, warm)?;
+        if !state.is_converged() {
+            return Ok(Err(Failed {
+                end: state.termination.clone().inside(state.method),
+                column: state,
+                column_failed: true,
+            }));
+        }
+        let (dh, _) = self.crown(&state.rigid);
+        let mut envelope = columns.omega_v_pressure(opt, &state.pressure);
+        let gap_change = opt.shape.apply(&dh);
+        let mut cases = Vec::with_capacity(self.cases.len());
+        for (c, case) in self.cases.iter().enumerate() {
+            let start = last.map(|l| l.cases[c].pressure.as_slice());
+            let solved = opt.solve_with_gap_change(self.solver, case, &gap_change, start)?;
+            if !solved.is_converged() {
+                return Ok(Err(Failed {
+                    end: solved.termination.inside(solved.method),
+                    column: state,
+                    column_failed: false,
+                }));
+            }
+            let mean = columns.omega_v_pressure(opt, &solved.pressure);
+            envelope
+                .iter_mut()
+                .zip(mean)
+                .for_each(|(e, m)| *e = e.max(m));
+            cases.push(solved);
+        }
+        let p_max = columns.fitted_p_max(&envelope);
+        let miss = (0..envelope.len())
+            .map(|j| (envelope[j] - columns.v[j] * p_max).abs())
+            .fold(0.0, f64::max)
+            / p_max;
+        Ok(Ok(SplitIterate {
+            state,
             cases,
-        })
+            dh,
+            envelope,
+            p_max,
+            miss,
+        }))
+    }
+
+    /// The contact problem with each column a mode of its own loaded by `share` of the load.
+    fn column_solve(&self, share: &[f64], warm: Option<&[f64]>) -> Result<ContactState> {
+        let (opt, columns) = (self.opt, self.columns);
+        let total = -opt.problem.modes()[0].load;
+        let modes = columns
+            .points
+            .iter()
+            .enumerate()
+            .map(|(k, members)| FreeMode {
+                name: format!("column {k}"),
+                points: members.clone(),
+                displacement: vec![columns.r[k]; members.len()],
+                load: -share[k] * total,
+            })
+            .collect();
+        let problem: InterfaceProblem = opt.problem.with_modes(modes)?;
+        let zero = vec![0.0; problem.len()];
+        opt.solve_with_gap_change(self.solver, &problem, &zero, warm)
+    }
+
+    /// Δh_j = r (λ_j − λ_N) from the column approaches, and the body's approach λ_N.
+    fn crown(&self, lambda: &[f64]) -> (Vec<f64>, f64) {
+        let r = &self.columns.r;
+        let n = match self.opt.reference {
+            Reference::Node(k) => k,
+            Reference::Least => (0..lambda.len())
+                .min_by(|&a, &b| (r[a] * lambda[a]).total_cmp(&(r[b] * lambda[b])))
+                .unwrap_or(0),
+        };
+        let dh = lambda
+            .iter()
+            .zip(r)
+            .map(|(l, r)| r * (l - lambda[n]))
+            .collect();
+        (dh, lambda[n])
+    }
+
+    /// The optimum of `iterate`, ended as `termination`.
+    fn finish(self, iterate: SplitIterate, termination: Termination) -> EnvelopeOptimum {
+        let (_, approach) = self.crown(&iterate.state.rigid);
+        let optimum = Optimum {
+            rigid: vec![approach],
+            ..self
+                .opt
+                .optimum(iterate.state, iterate.dh, iterate.p_max, Method::LoadSplit)
+        };
+        EnvelopeOptimum {
+            optimum: self.passes.finish(optimum, termination),
+            cases: iterate.cases,
+        }
+    }
+
+    /// The optimum when a contact solve ended short: the last update when there is one and
+    /// the failed solve is a case's or not finite; else the update's column solve, with the
+    /// crown of its approaches and no cases.
+    fn held(self, last: Option<SplitIterate>, failed: Failed) -> EnvelopeOptimum {
+        let Failed {
+            column,
+            column_failed,
+            end,
+        } = failed;
+        match last {
+            Some(last) if !column_failed || column.non_finite().is_some() => self.finish(last, end),
+            _ => {
+                let (dh, _) = self.crown(&column.rigid);
+                let p_max = self.opt.p_max_on_omega_opt(&column.pressure);
+                let iterate = SplitIterate {
+                    state: column,
+                    cases: vec![],
+                    dh,
+                    envelope: vec![],
+                    p_max,
+                    miss: f64::NAN,
+                };
+                self.finish(iterate, end)
+            }
+        }
     }
 }
 
 /// The robust optimum of [`Optimisation::envelope_split`].
 #[derive(Clone, Debug)]
 pub struct EnvelopeOptimum {
-    /// The gap change, p_max and the design case's contact.
+    /// The gap change, p_max and the design case's contact, and how the split ended.
     pub optimum: Optimum,
-    /// The contact of each further case under the same gap change.
+    /// The contact of each further case under the same gap change (none when the split ended
+    /// before it solved them).
     pub cases: Vec<ContactState>,
-}
-
-/// How far the Ω_v pressure is from v·p_max, for a loop that stopped short.
-fn miss_detail(miss: f64, tolerance: f64) -> String {
-    format!("the Ω_v pressure misses v·p_max by {miss:.3e} of p_max (tolerance {tolerance:e})")
 }
 
 impl Columns {

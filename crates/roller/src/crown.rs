@@ -3,6 +3,9 @@
 use std::f64::consts::PI;
 
 use contopt_core::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+use crate::Roller;
 
 /// A crown: the drop z(x) of the roller's surface below the straight generator at the axial
 /// position x, |x| < l/2 \[mm\]. The logarithmic profiles are written with the pair's modulus
@@ -17,13 +20,25 @@ pub enum Crown {
         /// Roller diameter D \[mm\].
         diameter: f64,
     },
-    /// Lundberg (1939), the profile of a uniform line load: z = Q/(π l E*)·ln[1/(1 − (2x/l)²)].
+    /// Lundberg (1939), the profile of a uniform line load: z = Q/(π l E*)·ln[1/(1 − (2x/l)²)]
+    /// (the form Fujiwara & Kawase, NTN Technical Review 75, 2007, quote as the profile that
+    /// "gives an axially uniform pressure distribution").
     Lundberg {
         /// Q/(π l E*) \[mm\].
         scale: f64,
     },
     /// Johns & Gohar (1981), Lundberg's profile made finite at the ends:
     /// z = Q/(π l E*)·ln[1/(1 − (1 − (2b/l)²)(2x/l)²)], b the Hertz half-width.
+    ///
+    /// What is established here: Fujiwara & Kawase (NTN Technical Review 75, 2007, abstract)
+    /// describe Johns–Gohar's function as Lundberg's logarithm "improved for the convenience
+    /// of manufacturing" (finite at the ends, no flat part) and build their K1, K2, z_m
+    /// profile on it. What is not: the end term. This code writes 1 − (2b/l)²; a reviewer
+    /// quotes the literature's form as 1 − 0.3033·(2b/l). Neither Johns & Gohar (1981) nor a
+    /// text that prints their equation could be read for this crate, so the term is left as
+    /// it was and stays unverified: both make the drop finite at |x| = l/2 and differ only
+    /// there, by the size of the end drop (ln[1/(2b/l)²] against ln[1/(0.3033·2b/l)] times
+    /// Q/(π l E*)).
     JohnsGohar {
         /// Q/(π l E*) \[mm\].
         scale: f64,
@@ -184,6 +199,48 @@ fn checked_scale(load: f64, length: f64, e_star: f64) -> Result<f64> {
     Ok(log_scale(load, length, e_star))
 }
 
+/// A crown as a scene names it (`{ kind = "fujiwara_kawase", k1 = 1.2, k2 = 0.4, z_m_mm =
+/// 0.01 }`), built for a roller by [`CrownSettings::build`]; a table from a file is the
+/// caller's to read ([`Crown::table`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum CrownSettings {
+    /// No crown ([`Crown::Straight`]).
+    Straight,
+    /// ISO/TS 16281's profile for the roller's diameter ([`Crown::Iso`]).
+    Iso,
+    /// Lundberg's profile for the roller's load, length and modulus ([`Crown::Lundberg`]).
+    Lundberg,
+    /// Johns and Gohar's, with Hertz's half-width of the nominal line load
+    /// ([`Crown::JohnsGohar`]).
+    JohnsGohar,
+    /// Fujiwara and Kawase's ([`Crown::FujiwaraKawase`]).
+    FujiwaraKawase {
+        /// The load coefficient K1 > 0.
+        k1: f64,
+        /// The crowned fraction K2 of each half-length, in (0, 1].
+        k2: f64,
+        /// The drop at the ends z_m \[mm\].
+        z_m_mm: f64,
+    },
+}
+
+impl CrownSettings {
+    /// The crown for `roller` (its diameter, load, length and materials).
+    pub fn build(&self, roller: &Roller) -> Result<Crown> {
+        let (q, l, e_star) = (roller.load, roller.length, roller.e_star());
+        match *self {
+            CrownSettings::Straight => Ok(Crown::Straight),
+            CrownSettings::Iso => Crown::iso(roller.diameter),
+            CrownSettings::Lundberg => Crown::lundberg(q, l, e_star),
+            CrownSettings::JohnsGohar => Crown::johns_gohar(q, l, e_star, roller.hertz()?.0),
+            CrownSettings::FujiwaraKawase { k1, k2, z_m_mm } => {
+                Crown::fujiwara_kawase(k1, k2, z_m_mm, q, l, e_star)
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -246,5 +303,50 @@ mod tests {
         assert!(e.contains("row 3"), "{e}");
         let e = Crown::iso(-1.0).unwrap_err().to_string();
         assert!(e.contains("diameter_mm"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod settings_tests {
+    use contopt_core::Material;
+
+    use super::*;
+
+    /// A scene's crown builds the profile of its kind for the roller; unknown fields are named.
+    #[test]
+    fn crown_settings_build_for_the_roller() {
+        let steel = Material::new(2.1e5, 0.3).unwrap();
+        let roller = Roller {
+            diameter: 10.0,
+            length: 10.0,
+            raceway_diameter: None,
+            roller: steel,
+            raceway: steel,
+            load: 5446.0,
+            tilt: 0.0,
+            crown: Crown::Straight,
+        };
+        let read: CrownSettings =
+            serde_json::from_str(r#"{"fujiwara_kawase": {"k1": 1.2, "k2": 0.4, "z_m_mm": 0.01}}"#)
+                .unwrap();
+        let (q, l, e) = (roller.load, roller.length, roller.e_star());
+        assert_eq!(
+            read.build(&roller).unwrap(),
+            Crown::fujiwara_kawase(1.2, 0.4, 0.01, q, l, e).unwrap()
+        );
+        let jg: CrownSettings = serde_json::from_str(r#""johns_gohar""#).unwrap();
+        let b = roller.hertz().unwrap().0;
+        assert_eq!(
+            jg.build(&roller).unwrap(),
+            Crown::johns_gohar(q, l, e, b).unwrap()
+        );
+        assert_eq!(
+            CrownSettings::Iso.build(&roller).unwrap(),
+            Crown::iso(10.0).unwrap()
+        );
+        let e = serde_json::from_str::<CrownSettings>(r#"{"fujiwara_kawase": {"k1": 1, "zm": 1}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("unknown field `zm`"), "{e}");
     }
 }

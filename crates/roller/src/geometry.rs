@@ -72,6 +72,28 @@ impl Roller {
         Ok((b, 2.0 * q / (PI * b)))
     }
 
+    /// The cell size \[mm\] along the axis and across of a grid of `nx` × `ny` cells over the
+    /// length and ±`reach`·b (the grid of [`Roller::bodies`]).
+    pub fn cell(&self, nx: usize, ny: usize, reach: f64) -> Result<[f64; 2]> {
+        if ny % 2 == 0 || ny < 3 {
+            return Err(Error::invalid(
+                "cells[1]",
+                ny,
+                "an odd number, at least 3: the centre row lies on y = 0",
+            ));
+        }
+        let (b, _) = self.hertz()?;
+        Ok([
+            self.length / nx.max(1) as f64,
+            reach * b / ((ny - 1) / 2) as f64,
+        ])
+    }
+
+    /// The tilt γ in arc-minutes.
+    pub fn tilt_arcmin(&self) -> f64 {
+        60.0 * self.tilt.to_degrees()
+    }
+
     /// The raceway and the roller on `nx` cells along the length and `ny` (odd) across
     /// ±`reach`·b, the roller pressed by Q, and the initial gap at the cell centres.
     pub fn bodies(
@@ -80,13 +102,6 @@ impl Roller {
         ny: usize,
         reach: f64,
     ) -> Result<(HalfSpace, HalfSpace, Vec<f64>)> {
-        if ny % 2 == 0 || ny < 3 {
-            return Err(Error::invalid(
-                "cells[1]",
-                ny,
-                "an odd number, at least 3: the centre row lies on y = 0",
-            ));
-        }
         if !(reach > 0.0 && reach.is_finite()) {
             return Err(Error::invalid(
                 "reach_b",
@@ -97,10 +112,9 @@ impl Roller {
         if !self.tilt.is_finite() {
             return Err(Error::invalid("tilt", self.tilt, "must be finite"));
         }
-        let (b, _) = self.hertz()?;
         let radius = self.radius()?;
         let half = (ny - 1) / 2;
-        let (dx, dy) = (self.length / nx.max(1) as f64, reach * b / half as f64);
+        let [dx, dy] = self.cell(nx, ny, reach)?;
         let origin = [-0.5 * self.length + 0.5 * dx, -(half as f64) * dy];
         let raceway = HalfSpace::grid("raceway", self.raceway, nx, ny, dx, dy, origin)?;
         let roller = HalfSpace::grid("roller", self.roller, nx, ny, dx, dy, origin)?

@@ -1,7 +1,7 @@
 //! The roller pair against the equivalent single half-space, Hertz's line contact with the
 //! local line load, and a finer grid under tilt.
 
-use contopt_contact::{ContactSolver, InterfaceProblem, PolonskyKeer};
+use contopt_contact::{ContactSolver, InterfaceProblem, PolonskyKeer, PolonskyKeerSettings};
 use contopt_core::{ContactState, ElasticBody, Material, RigidBody};
 use contopt_greens::HalfSpace;
 use contopt_roller::{Crown, Roller};
@@ -21,15 +21,17 @@ fn roller(tilt: f64, crown: Crown) -> Roller {
     }
 }
 
+fn polonsky_keer() -> PolonskyKeer {
+    PolonskyKeer::new(PolonskyKeerSettings::default()).unwrap()
+}
+
 fn solve(r: &Roller, nx: usize, ny: usize) -> (HalfSpace, ContactState) {
     let (raceway, body, gap) = r.bodies(nx, ny, 2.6).unwrap();
     let state = {
         let problem = InterfaceProblem::new(&raceway, &body, &gap).unwrap();
-        PolonskyKeer::default()
-            .solve(&problem)
-            .unwrap()
-            .solved("Polonsky-Keer")
-            .unwrap()
+        let state = polonsky_keer().solve(&problem).unwrap();
+        assert!(state.is_converged(), "{}", state.termination);
+        state
     };
     (raceway, state)
 }
@@ -49,14 +51,17 @@ fn steel_pair_is_the_rigid_roller_on_the_combined_half_space() {
     let single = Material::new(1.05e5, 0.3).unwrap();
     let (nx, ny) = raceway.cells();
     let iface = raceway.interface();
-    let (dx, dy) = (10.0 / nx as f64, iface.points[nx][1] - iface.points[0][1]);
-    let origin = [iface.points[0][0], iface.points[0][1]];
+    let (dx, dy) = (
+        10.0 / nx as f64,
+        iface.points()[nx][1] - iface.points()[0][1],
+    );
+    let origin = [iface.points()[0][0], iface.points()[0][1]];
     let half_space = HalfSpace::grid("half-space", single, nx, ny, dx, dy, origin).unwrap();
     let cylinder =
         RigidBody::pressed("roller", half_space.interface(), [0.0, 0.0, 1.0], 5446.0).unwrap();
-    let gap: Vec<f64> = iface.points.iter().map(|x| x[1] * x[1] / 10.0).collect();
+    let gap: Vec<f64> = iface.points().iter().map(|x| x[1] * x[1] / 10.0).collect();
     let problem = InterfaceProblem::new(&half_space, &cylinder, &gap).unwrap();
-    let rigid = PolonskyKeer::default().solve(&problem).unwrap();
+    let rigid = polonsky_keer().solve(&problem).unwrap();
     let dp = pair
         .pressure
         .iter()
@@ -77,7 +82,7 @@ fn tilted_roller_converges_with_the_grid() {
         let (raceway, st) = solve(&roller(gamma, Crown::Straight), nx, ny);
         let iface = raceway.interface();
         (0..iface.len())
-            .map(|i| iface.points[i][0] * st.pressure[i] * iface.weights[i])
+            .map(|i| iface.points()[i][0] * st.pressure[i] * iface.weights()[i])
             .sum::<f64>()
             / 5446.0
     };

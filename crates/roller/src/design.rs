@@ -1,0 +1,372 @@
+//! Crowns designed for an envelope of load cases: the cases ([`load_cases`]), their contact
+//! under one crown ([`solve_cases`]), the robust crown of the envelope load split
+//! ([`robust_crown`], Páczelt 1994 §3.2 with the control of eq. 3.1 over every case) and the
+//! Fujiwara–Kawase profile tuned by a Nelder–Mead search ([`tune_fujiwara_kawase`]).
+
+use std::ops::ControlFlow;
+
+use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_core::observe::{Event, Flow, Method, Nested, Observer};
+use contopt_core::{check, ContactState, Error, GapShape, Result, Termination};
+use contopt_optimise::{
+    nelder_mead, Controller, LoadSplitSettings, Optimisation, Region, SearchSettings,
+};
+use serde::{Deserialize, Serialize};
+
+use crate::{end_ratio, Crown, Roller, EDGE_LOADING};
+
+/// A load factor this close to 1 and a tilt this close to the scene's \[arc-minutes\] are the
+/// scene's own case, listed first already (round-off).
+const SAME_CASE: f64 = 1e-12;
+
+/// The envelope of load cases a crown serves: every combination of a load factor (times the
+/// roller's load) and a tilt.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Envelope {
+    /// Factors on the roller's load, each positive.
+    pub load_factors: Vec<f64>,
+    /// Tilts γ \[arc-minutes\].
+    pub tilts_arcmin: Vec<f64>,
+}
+
+impl Envelope {
+    /// The envelope, checked: at least one value of each, finite, the load factors positive.
+    pub fn check(&self) -> Result<()> {
+        for (field, values) in [
+            ("load_factors", &self.load_factors),
+            ("tilts_arcmin", &self.tilts_arcmin),
+        ] {
+            check::count(
+                &format!("{field} (its length)"),
+                values.len(),
+                1,
+                usize::MAX,
+            )?;
+            check::all_finite(field, values)?;
+        }
+        for (k, &f) in self.load_factors.iter().enumerate() {
+            check::positive(&format!("load_factors[{k}]"), f)?;
+        }
+        Ok(())
+    }
+}
+
+/// One load case: its load \[N\], tilt \[arc-minutes\] and contact problem.
+#[derive(Clone, Debug)]
+pub struct LoadCase<'a> {
+    /// The load Q \[N\].
+    pub load_n: f64,
+    /// The tilt γ \[arc-minutes\].
+    pub tilt_arcmin: f64,
+    /// The contact problem under that load and tilt.
+    pub problem: InterfaceProblem<'a>,
+}
+
+/// The cases of an envelope: the roller's own (`nominal`, under `roller`'s load and tilt)
+/// first, then every other combination of a load factor and a tilt of `envelope`, each the
+/// nominal problem with its load scaled and the gap tilted by the difference of tilts.
+pub fn load_cases<'a>(
+    nominal: &InterfaceProblem<'a>,
+    roller: &Roller,
+    envelope: Option<&Envelope>,
+) -> Result<Vec<LoadCase<'a>>> {
+    let (load, tilt) = (roller.load, roller.tilt_arcmin());
+    let mut cases = vec![LoadCase {
+        load_n: load,
+        tilt_arcmin: tilt,
+        problem: nominal.clone(),
+    }];
+    let Some(envelope) = envelope else {
+        return Ok(cases);
+    };
+    envelope.check()?;
+    for &factor in &envelope.load_factors {
+        for &t in &envelope.tilts_arcmin {
+            if (factor - 1.0).abs() < SAME_CASE && (t - tilt).abs() < SAME_CASE {
+                continue;
+            }
+            let mut modes = nominal.modes().to_vec();
+            modes.iter_mut().for_each(|m| m.load *= factor);
+            let slope = ((t - tilt) / 60.0).to_radians();
+            let gap: Vec<f64> = nominal
+                .initial_gap()
+                .iter()
+                .zip(nominal.interface().points())
+                .map(|(h, x)| h + slope * x[0])
+                .collect();
+            cases.push(LoadCase {
+                load_n: factor * load,
+                tilt_arcmin: t,
+                problem: nominal.with_modes(modes)?.with_initial_gap(&gap)?,
+            });
+        }
+    }
+    Ok(cases)
+}
+
+/// The index of the robust crown's design case, whose column loads carry the crown: the
+/// heaviest case at the largest tilt, whose loaded end needs the deepest crown.
+pub fn design_case(cases: &[LoadCase]) -> usize {
+    (0..cases.len())
+        .max_by(|&a, &b| {
+            let key = |c: &LoadCase| (c.load_n, c.tilt_arcmin.abs(), c.tilt_arcmin);
+            let (ka, kb) = (key(&cases[a]), key(&cases[b]));
+            ka.0.total_cmp(&kb.0)
+                .then(ka.1.total_cmp(&kb.1))
+                .then(ka.2.total_cmp(&kb.2))
+        })
+        .unwrap_or(0)
+}
+
+/// Every case solved with its initial gap changed by `gap_change` \[mm per point\], each from
+/// its pressure in `start` when given, its iterations reported to `observer`.
+pub fn solve_cases(
+    cases: &[LoadCase],
+    gap_change: &[f64],
+    solver: &dyn ContactSolver,
+    start: Option<&[ContactState]>,
+    observer: &dyn Observer,
+) -> Result<Vec<ContactState>> {
+    cases
+        .iter()
+        .enumerate()
+        .map(|(k, case)| {
+            let gap: Vec<f64> = case
+                .problem
+                .initial_gap()
+                .iter()
+                .zip(gap_change)
+                .map(|(h, d)| h + d)
+                .collect();
+            let problem = case.problem.with_initial_gap(&gap)?;
+            let start = start.map(|s| s[k].pressure.as_slice());
+            solver.solve_observed(&problem, start, observer)
+        })
+        .collect()
+}
+
+/// One case's contact under a designed crown.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Contact {
+    /// The pressure at the grid's points \[MPa\].
+    pub pressure: Vec<f64>,
+    /// The gap after deformation, the crown included \[mm\].
+    pub gap: Vec<f64>,
+    /// The roller's approach \[mm\].
+    pub approach_mm: f64,
+}
+
+/// The robust crown of [`robust_crown`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RobustCrown {
+    /// The crown's drop at each point \[mm\] (the gap change, symmetric about mid-length).
+    pub drop: Vec<f64>,
+    /// The level p_max of max over the cases of p ≤ v·p_max \[MPa\].
+    pub p_max: f64,
+    /// Each case's contact in the cases' order; shorter when the split ended before it
+    /// solved them.
+    pub cases: Vec<Contact>,
+    /// How the envelope load split ended.
+    pub termination: Termination,
+}
+
+/// The robust crown for `cases` ([`load_cases`]): the envelope load split
+/// ([`Optimisation::envelope_split`]) of the design case ([`design_case`]) with the others,
+/// a gap change symmetric about mid-length and extruded across ([`GapShape::symmetric`]
+/// along x), Ω_v the centre row (|y| ≤ `dy`/2, the cell size across; eq. 3.3: the rest of
+/// each column follows it) and the pressure controlled by `controller` (eq. 3.1). The split
+/// reports to `observer` at level 0, its contact solves one level deeper.
+pub fn robust_crown(
+    cases: &[LoadCase],
+    controller: &dyn Controller,
+    dy: f64,
+    solver: &dyn ContactSolver,
+    settings: &LoadSplitSettings,
+    observer: &dyn Observer,
+) -> Result<RobustCrown> {
+    check::positive("dy", dy)?;
+    let design = design_case(cases);
+    let problem = &cases
+        .get(design)
+        .ok_or_else(|| Error::invalid("cases", "none", "at least one load case"))?
+        .problem;
+    let iface = problem.interface();
+    let shape = GapShape::symmetric(iface, 0)?;
+    let regions = iface
+        .points()
+        .iter()
+        .map(|x| match x[1].abs() <= 0.5 * dy {
+            true => Region::OmegaV,
+            false => Region::OmegaNv,
+        })
+        .collect();
+    let optimisation = Optimisation::new(problem, &shape, controller)?
+        .with_regions(regions)?
+        .with_observer(observer);
+    let others: Vec<InterfaceProblem> = (0..cases.len())
+        .filter(|&k| k != design)
+        .map(|k| cases[k].problem.clone())
+        .collect();
+    let found = optimisation.envelope_split(&others, solver, settings)?;
+    let optimum = found.optimum;
+    let own = Contact {
+        pressure: optimum.pressure,
+        gap: optimum.gap,
+        approach_mm: -optimum.rigid[0],
+    };
+    let mut rest = found.cases.into_iter().map(|s| Contact {
+        approach_mm: s.approach().unwrap_or(0.0),
+        pressure: s.pressure,
+        gap: s.gap,
+    });
+    let mut contacts = Vec::with_capacity(cases.len());
+    let mut own = Some(own);
+    for k in 0..cases.len() {
+        let next = if k == design { own.take() } else { rest.next() };
+        match next {
+            Some(c) => contacts.push(c),
+            None => break,
+        }
+    }
+    Ok(RobustCrown {
+        drop: optimum.gap_change,
+        p_max: optimum.p_max,
+        cases: contacts,
+        termination: optimum.termination,
+    })
+}
+
+/// The search's objective: the worst case's p_max, raised by how far its worst end ratio
+/// passes [`EDGE_LOADING`] (so that an edge-loaded crown never wins).
+pub fn penalised_worst(points: &[[f64; 3]], states: &[ContactState]) -> f64 {
+    states
+        .iter()
+        .map(|s| s.p_max() * (end_ratio(points, &s.pressure) / EDGE_LOADING).max(1.0))
+        .fold(0.0, f64::max)
+}
+
+/// The Fujiwara–Kawase profile tuned by [`tune_fujiwara_kawase`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct TunedCrown {
+    /// The load coefficient K1.
+    pub k1: f64,
+    /// The crowned fraction K2 of each half-length.
+    pub k2: f64,
+    /// The drop z_m at the ends \[mm\].
+    pub z_m_mm: f64,
+    /// The crown's drop at each point \[mm\].
+    pub drop: Vec<f64>,
+    /// The objective there, [`penalised_worst`] \[MPa\].
+    pub worst: f64,
+    /// Each case's contact under it (empty when no crown was solved).
+    pub states: Vec<ContactState>,
+    /// The crowns evaluated.
+    pub evaluations: usize,
+    /// How the search ended: converged, its budget used ([`Termination::StepLimit`]), an
+    /// observer's stop ([`Termination::Stopped`]) or a contact solve that did not converge
+    /// ([`Termination::Inner`]).
+    pub termination: Termination,
+}
+
+/// The search's start: K1 = 1, K2 = ½ and z_m = 5·Q/(π l E*), in the unconstrained
+/// parameters of [`FkParameters`].
+const START: [f64; 3] = [0.0, 0.0, 1.609_437_912_434_100_3];
+/// The first simplex's steps in those parameters.
+const STEP: [f64; 3] = [0.5, 1.0, 0.5];
+
+/// K1 = e^u₀ > 0, K2 = 1/(1 + e^−u₁) in (0, 1), z_m = scale·e^u₂ > 0: an unconstrained search.
+struct FkParameters<'r> {
+    roller: &'r Roller,
+    scale: f64,
+}
+
+impl FkParameters<'_> {
+    fn values(&self, u: &[f64]) -> (f64, f64, f64) {
+        (
+            u[0].exp(),
+            1.0 / (1.0 + (-u[1]).exp()),
+            self.scale * u[2].exp(),
+        )
+    }
+
+    /// The crown's drop at `points` for the parameters `u`.
+    fn drops(&self, u: &[f64], points: &[[f64; 3]]) -> Result<Vec<f64>> {
+        let (k1, k2, z_m) = self.values(u);
+        let r = self.roller;
+        let crown = Crown::fujiwara_kawase(k1, k2, z_m, r.load, r.length, r.e_star())?;
+        points.iter().map(|x| crown.drop(x[0], r.length)).collect()
+    }
+}
+
+/// The best crown a search has seen: parameters, objective and the cases' states.
+type Best = (Vec<f64>, f64, Vec<ContactState>);
+
+/// Tunes the Fujiwara–Kawase profile (NTN Technical Review 75, 2007: K1, K2, z_m) of
+/// `roller` for every case of `cases` by a Nelder–Mead search ([`nelder_mead`]) of the least
+/// [`penalised_worst`], from K1 = 1, K2 = ½, z_m = 5·Q/(π l E*). Each crown is reported to
+/// `observer` as an event of [`Method::ProfileSearch`] at level 0 (its objective against the
+/// search's tolerance), the contact solves one level deeper; a stop, a contact solve that does
+/// not converge and the budget end the search with the best crown so far.
+pub fn tune_fujiwara_kawase(
+    cases: &[LoadCase],
+    roller: &Roller,
+    solver: &dyn ContactSolver,
+    settings: &SearchSettings,
+    observer: &dyn Observer,
+) -> Result<TunedCrown> {
+    let points = cases
+        .first()
+        .ok_or_else(|| Error::invalid("cases", "none", "at least one load case"))?
+        .problem
+        .interface()
+        .points();
+    let scale = roller.load / (std::f64::consts::PI * roller.length * roller.e_star());
+    let parameters = FkParameters { roller, scale };
+    let mut best: Option<Best> = None;
+    let mut warm: Option<Vec<ContactState>> = None;
+    let mut crowns = 0;
+    let minimum = nelder_mead(
+        |u| {
+            let states = solve_cases(
+                cases,
+                &parameters.drops(u, points)?,
+                solver,
+                warm.as_deref(),
+                &Nested(observer),
+            )?;
+            if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+                return Ok(ControlFlow::Break(s.termination.clone().inside(s.method)));
+            }
+            let value = penalised_worst(points, &states);
+            crowns += 1;
+            if best.as_ref().is_none_or(|b| value < b.1) {
+                best = Some((u.to_vec(), value, states.clone()));
+            }
+            warm = Some(states);
+            let event = Event::step(Method::ProfileSearch, crowns, value, settings.tolerance);
+            Ok(match observer.observe(&event) {
+                Flow::Continue => ControlFlow::Continue(value),
+                Flow::Stop => ControlFlow::Break(Termination::Stopped { after: crowns }),
+            })
+        },
+        &START,
+        &STEP,
+        settings,
+    )?;
+    let (u, worst, states) = best.unwrap_or((START.to_vec(), f64::INFINITY, vec![]));
+    let end = Event::step(Method::ProfileSearch, crowns, worst, settings.tolerance)
+        .ending(&minimum.termination);
+    let _ = observer.observe(&end);
+    let (k1, k2, z_m_mm) = parameters.values(&u);
+    Ok(TunedCrown {
+        k1,
+        k2,
+        z_m_mm,
+        drop: parameters.drops(&u, points)?,
+        worst,
+        states,
+        evaluations: minimum.evaluations,
+        termination: minimum.termination,
+    })
+}

@@ -1,0 +1,212 @@
+//! The crown designs on a small grid (40 × 21 cells): the envelope's cases, the robust crown
+//! against the straight roller, and the tuned Fujiwara–Kawase search, its events and its stop.
+
+use std::cell::RefCell;
+
+use contopt_contact::{InterfaceProblem, PolonskyKeer, PolonskyKeerSettings};
+use contopt_core::observe::{Event, Flow, Method, Observer, Silent};
+use contopt_core::{Material, Termination};
+use contopt_optimise::{LoadSplitSettings, Product, Profile, SearchSettings};
+use contopt_roller::{
+    design_case, load_cases, robust_crown, solve_cases, tune_fujiwara_kawase, CaseContact, Crown,
+    Envelope, Roller, RollerFigures,
+};
+
+/// Cells along the axis and across, and the reach across in Hertz half-widths.
+const CELLS: [usize; 2] = [40, 21];
+const REACH: f64 = 2.6;
+
+/// The issue's roller: D = 10 mm, l = 10 mm, Q = 5446 N, steel on steel, flat raceway,
+/// straight.
+fn roller() -> Roller {
+    let steel = Material::new(2.1e5, 0.3).unwrap();
+    Roller {
+        diameter: 10.0,
+        length: 10.0,
+        raceway_diameter: None,
+        roller: steel,
+        raceway: steel,
+        load: 5446.0,
+        tilt: 0.0,
+        crown: Crown::Straight,
+    }
+}
+
+fn envelope() -> Envelope {
+    Envelope {
+        load_factors: vec![1.0, 1.5],
+        tilts_arcmin: vec![0.0, 2.0],
+    }
+}
+
+fn solver() -> PolonskyKeer {
+    PolonskyKeer::new(PolonskyKeerSettings::default()).unwrap()
+}
+
+/// Runs `run` on the roller's envelope cases.
+fn with_cases<T>(run: impl FnOnce(&Roller, &[contopt_roller::LoadCase], f64) -> T) -> T {
+    let r = roller();
+    let (raceway, body, gap) = r.bodies(CELLS[0], CELLS[1], REACH).unwrap();
+    let nominal = InterfaceProblem::new(&raceway, &body, &gap).unwrap();
+    let cases = load_cases(&nominal, &r, Some(&envelope())).unwrap();
+    let dy = r.cell(CELLS[0], CELLS[1], REACH).unwrap()[1];
+    run(&r, &cases, dy)
+}
+
+/// The roller's own case comes first, then the other combinations; the design case is the
+/// heaviest at the largest tilt; a bad envelope is named.
+#[test]
+fn load_cases_put_the_scenes_own_first() {
+    with_cases(|_, cases, _| {
+        let keys: Vec<[f64; 2]> = cases.iter().map(|c| [c.load_n, c.tilt_arcmin]).collect();
+        assert_eq!(
+            keys,
+            vec![[5446.0, 0.0], [5446.0, 2.0], [8169.0, 0.0], [8169.0, 2.0]]
+        );
+        assert_eq!(design_case(cases), 3);
+    });
+    let r = roller();
+    let (raceway, body, gap) = r.bodies(CELLS[0], CELLS[1], REACH).unwrap();
+    let nominal = InterfaceProblem::new(&raceway, &body, &gap).unwrap();
+    let bad = Envelope {
+        load_factors: vec![1.0, -2.0],
+        tilts_arcmin: vec![0.0],
+    };
+    let e = load_cases(&nominal, &r, Some(&bad))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("load_factors[1]"), "{e}");
+    let e = serde_json::from_str::<Envelope>(r#"{"load_factors": [1], "tilt": [0]}"#)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("unknown field `tilt`"), "{e}");
+}
+
+/// The robust crown's worst case carries less than any case of the straight roller, which is
+/// edge loaded; its figures say where.
+#[test]
+fn robust_crown_beats_the_straight_roller_in_every_case() {
+    with_cases(|r, cases, dy| {
+        let straight = solve_cases(
+            cases,
+            &vec![0.0; cases[0].problem.len()],
+            &solver(),
+            None,
+            &Silent,
+        )
+        .unwrap();
+        let least_straight = straight
+            .iter()
+            .map(|s| s.p_max())
+            .fold(f64::INFINITY, f64::min);
+        let v = Product(
+            Box::new(|_: [f64; 3]| 1.0) as Box<dyn contopt_optimise::Controller>,
+            Box::new(Profile::cubic(3.0, 0.5 * r.length).unwrap())
+                as Box<dyn contopt_optimise::Controller>,
+        );
+        let robust = robust_crown(
+            cases,
+            &v,
+            dy,
+            &solver(),
+            &LoadSplitSettings {
+                tolerance: 1e-6,
+                max_iterations: 100,
+            },
+            &Silent,
+        )
+        .unwrap();
+        assert!(robust.termination.is_converged(), "{}", robust.termination);
+        assert_eq!(robust.cases.len(), cases.len());
+        let points = cases[0].problem.interface().points();
+        let contacts: Vec<CaseContact> = cases
+            .iter()
+            .zip(&robust.cases)
+            .map(|(case, c)| CaseContact {
+                load_n: case.load_n,
+                tilt_arcmin: case.tilt_arcmin,
+                pressure: &c.pressure,
+                approach_mm: c.approach_mm,
+            })
+            .collect();
+        let figures = RollerFigures::new(&contacts, points, &robust.drop, dy);
+        eprintln!(
+            "robust crown: worst p_max {:.1} MPa (level {:.1}), straight roller's least {:.1} MPa",
+            figures.worst_p_max, robust.p_max, least_straight
+        );
+        assert!(
+            figures.worst_p_max <= least_straight,
+            "{} vs {least_straight}",
+            figures.worst_p_max
+        );
+        assert!(figures.cases.iter().all(|c| !c.edge_loading), "{figures:?}");
+        assert!(figures.cases[0].crown_drop_end_um > 0.0);
+    });
+}
+
+/// Records the search's crowns and stops it after `stop_after` of them.
+#[derive(Default)]
+struct Crowns {
+    seen: RefCell<Vec<(usize, usize, f64, bool)>>,
+    stop_after: Option<usize>,
+}
+
+impl Observer for Crowns {
+    fn observe(&self, e: &Event) -> Flow {
+        if e.method == Method::ProfileSearch {
+            self.seen
+                .borrow_mut()
+                .push((e.level, e.iteration, e.measure, e.end.is_some()));
+            if self.stop_after.is_some_and(|k| e.iteration >= k) {
+                return Flow::Stop;
+            }
+        } else {
+            assert_eq!(e.level, 1, "{e:?}");
+        }
+        Flow::Continue
+    }
+}
+
+/// The tuned search improves on its starting crown, reports each crown at level 0 (the
+/// contact solves at level 1) and ends with an event; an observer's stop ends it with
+/// Stopped and the best crown so far.
+#[test]
+fn tuned_search_improves_and_stops_when_asked() {
+    with_cases(|r, cases, _| {
+        let settings = SearchSettings {
+            tolerance: 0.5,
+            max_evaluations: 40,
+        };
+        let crowns = Crowns::default();
+        let tuned = tune_fujiwara_kawase(cases, r, &solver(), &settings, &crowns).unwrap();
+        let seen = crowns.seen.borrow();
+        let first = seen[0].2;
+        eprintln!(
+            "tuned: K1 {:.3}, K2 {:.3}, z_m {:.2} µm, worst {:.1} MPa from {first:.1} in {} \
+             crowns ({})",
+            tuned.k1,
+            tuned.k2,
+            1e3 * tuned.z_m_mm,
+            tuned.worst,
+            tuned.evaluations,
+            tuned.termination
+        );
+        assert!(tuned.worst < first, "{} vs {first}", tuned.worst);
+        assert!(seen.iter().all(|s| s.0 == 0));
+        assert!(seen.last().unwrap().3, "the last event ends the search");
+        assert_eq!(tuned.states.len(), cases.len());
+        assert!(matches!(
+            tuned.termination,
+            Termination::Converged | Termination::StepLimit { .. }
+        ));
+
+        let stopper = Crowns {
+            stop_after: Some(3),
+            ..Crowns::default()
+        };
+        let stopped = tune_fujiwara_kawase(cases, r, &solver(), &settings, &stopper).unwrap();
+        assert_eq!(stopped.termination, Termination::Stopped { after: 3 });
+        assert_eq!(stopped.evaluations, 3);
+        assert!(stopped.worst.is_finite() && stopped.states.len() == cases.len());
+    });
+}
