@@ -56,6 +56,27 @@ fn disc(r: f64, a: f64) -> f64 {
 }
 
 impl AxisymmetricHalfSpace {
+    /// The surface of rings between the radii `edges` \[mm\]: each ring's mid-radius, its
+    /// area π(ρⱼ₊₁² − ρⱼ²) as its weight, the outward normal +y of the body below (the axis
+    /// of symmetry is y). A rigid body or a bed facing the rings takes this surface
+    /// (mirrored).
+    pub fn rings_interface(edges: &[f64]) -> Result<Interface> {
+        check_edges(edges, "half_space.edges")?;
+        let n = edges.len() - 1;
+        let points: Vec<[f64; 3]> = (0..n)
+            .map(|j| [0.5 * (edges[j] + edges[j + 1]), 0.0, 0.0])
+            .collect();
+        let weights: Vec<f64> = (0..n)
+            .map(|j| PI * (edges[j + 1].powi(2) - edges[j].powi(2)))
+            .collect();
+        Interface::new(
+            Geometry::Axisymmetric,
+            points,
+            weights,
+            vec![[0.0, 1.0, 0.0]; n],
+        )
+    }
+
     /// A half-space of `material` with contact rings between the radii `edges` \[mm\]
     /// (increasing, from 0 or more). The surface is at z = 0 with outward normal +z.
     pub fn new(name: impl Into<String>, material: Material, edges: &[f64]) -> Result<Self> {
@@ -68,18 +89,7 @@ impl AxisymmetricHalfSpace {
             ));
         }
         let n = edges.len() - 1;
-        let points: Vec<[f64; 3]> = (0..n)
-            .map(|j| [0.5 * (edges[j] + edges[j + 1]), 0.0, 0.0])
-            .collect();
-        let weights: Vec<f64> = (0..n)
-            .map(|j| PI * (edges[j + 1].powi(2) - edges[j].powi(2)))
-            .collect();
-        let interface = Interface::new(
-            Geometry::Axisymmetric,
-            points,
-            weights,
-            vec![[0.0, 1.0, 0.0]; n],
-        )?;
+        let interface = Self::rings_interface(edges)?;
         let scale = 4.0 / (PI * material.plane_strain_modulus());
         let w = &interface.weights();
         let averaged = Mat::from_fn(n, n, |i, j| {

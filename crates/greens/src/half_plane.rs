@@ -41,6 +41,28 @@ pub struct HalfPlane {
 }
 
 impl HalfPlane {
+    /// The edge of a half-plane of `thickness` \[mm\] cut into strips between `edges` \[mm\]:
+    /// each strip's middle, its width times the thickness as its weight, the outward normal +y
+    /// of the body below. A rigid body or a bed facing the strips takes this surface
+    /// (mirrored).
+    pub fn strips_interface(edges: &[f64], thickness: f64) -> Result<Interface> {
+        check_edges(edges, "half_plane.edges")?;
+        contopt_core::check::positive("thickness_mm", thickness)?;
+        let n = edges.len() - 1;
+        let points: Vec<[f64; 3]> = (0..n)
+            .map(|j| [0.5 * (edges[j] + edges[j + 1]), 0.0, 0.0])
+            .collect();
+        let weights: Vec<f64> = (0..n)
+            .map(|j| (edges[j + 1] - edges[j]) * thickness)
+            .collect();
+        Interface::new(
+            Geometry::Plane { thickness },
+            points,
+            weights,
+            vec![[0.0, 1.0, 0.0]; n],
+        )
+    }
+
     /// A half-plane of `material` and `thickness` \[mm\] in `state`, with contact strips between
     /// `edges` \[mm\], deflections measured from the datum `datum` \[mm\] > 0.
     pub fn new(
@@ -71,18 +93,7 @@ impl HalfPlane {
             PlaneState::Stress => material.e(),
         };
         let n = edges.len() - 1;
-        let points: Vec<[f64; 3]> = (0..n)
-            .map(|j| [0.5 * (edges[j] + edges[j + 1]), 0.0, 0.0])
-            .collect();
-        let weights: Vec<f64> = (0..n)
-            .map(|j| (edges[j + 1] - edges[j]) * thickness)
-            .collect();
-        let interface = Interface::new(
-            Geometry::Plane { thickness },
-            points,
-            weights,
-            vec![[0.0, 1.0, 0.0]; n],
-        )?;
+        let interface = Self::strips_interface(edges, thickness)?;
         // ∫ t ln|t| dt, for the average of −(x − a) ln|x − a| + (x − b) ln|x − b| over [c, d].
         let primitive = |t: f64| {
             if t == 0.0 {

@@ -171,8 +171,11 @@ impl HalfSpace {
         memory::bytes(&[nx, ny], GRID_BYTES_PER_CELL)
     }
 
-    /// The checked cell-centre interface of a grid, x fastest.
-    fn cells_interface(
+    /// The surface of an `nx` × `ny` grid of cells of `dx` × `dy` \[mm\] whose first cell's
+    /// centre is at `origin`: the cell centres, x fastest, each weighted by its area, with
+    /// the outward normal +z of the half-space below. A rigid body or a bed facing a grid
+    /// takes this surface (mirrored); the memory estimate of the grid's body is checked first.
+    pub fn cells_interface(
         nx: usize,
         ny: usize,
         dx: f64,

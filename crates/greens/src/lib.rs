@@ -6,7 +6,8 @@
 //!   uniformly (Boussinesq; complete elliptic integrals);
 //! - [`HalfSpace`]: a regular grid of rectangular cells on the surface of a half-space (Love);
 //! - [`HalfPlane`]: strips on the edge of a half-plane in plane strain or plane stress
-//!   (Flamant).
+//!   (Flamant);
+//! - [`Winkler`]: a bed of independent springs under any surface (kernel δ(x − x')/k).
 //!
 //! Each also gives the stresses below its surface under a contact pressure
 //! ([`contopt_core::ElasticBody::subsurface`]): FFT products of Love's rectangle kernels on a
@@ -22,10 +23,12 @@ mod half_plane;
 mod half_space;
 mod subsurface;
 mod subsurface_2d;
+mod winkler;
 
 pub use axisymmetric::AxisymmetricHalfSpace;
 pub use half_plane::{HalfPlane, PlaneState};
 pub use half_space::HalfSpace;
+pub use winkler::Winkler;
 
 use contopt_core::{Error, Result};
 

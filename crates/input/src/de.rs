@@ -122,6 +122,9 @@ fn named_key<'n>(message: &str, node: &'n Node) -> Option<&'n (Key, Node)> {
     })
 }
 
+/// The empty table a newtype variant named by a string is read from.
+static EMPTY_TABLE: Node = Node::empty_table();
+
 /// A node being read at `path`; a table may hide one entry (the `kind` of an enum's content).
 #[derive(Clone, Copy)]
 struct NodeDe<'de, 'p> {
@@ -380,10 +383,18 @@ impl<'de> VariantAccess<'de> for Variant<'de, '_> {
         }
     }
 
+    /// A newtype variant named by a string reads its value from an empty table: a settings
+    /// struct whose fields all have defaults may be named alone (`solver = "auto"`,
+    /// `method = "given_load"`); one that needs a field says which is missing.
     fn newtype_variant_seed<S: DeserializeSeed<'de>>(self, seed: S) -> Result<S::Value, DeError> {
         match self.content {
             Content::Node(content) => located(content, |content| seed.deserialize(content)),
-            Content::Empty(_) => Err(self.needs_content("newtype variant")),
+            Content::Empty(named) => {
+                let empty = NodeDe::new(&EMPTY_TABLE, named.path);
+                let span = named.node.span();
+                seed.deserialize(empty)
+                    .map_err(|error| error.at(named.path, span))
+            }
         }
     }
 

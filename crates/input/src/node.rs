@@ -108,12 +108,27 @@ impl Node {
         Self { value, span: None }
     }
 
+    /// An empty table made in code.
+    pub(crate) const fn empty_table() -> Self {
+        Self {
+            value: Value::Table(Vec::new()),
+            span: None,
+        }
+    }
+
     /// A value read from a text.
     pub(crate) fn spanned(value: Value, span: Range<usize>) -> Self {
         Self {
             value,
             span: Some(span),
         }
+    }
+
+    /// The same value placed at `span` of the text (a value made in code that stands for one
+    /// read from there).
+    pub fn with_span(mut self, span: Option<Range<usize>>) -> Self {
+        self.span = span;
+        self
     }
 
     /// A table made in code from its entries, in order.
@@ -175,6 +190,37 @@ impl Node {
             node = node.child_mut(index);
         }
         Ok(std::mem::replace(node, value))
+    }
+
+    /// Sets the value at `path` (as in [`Node::get`]): replaces it when it exists, or adds its
+    /// last key to the table that `path` leads to, which must exist. Returns the old value,
+    /// if any. The error names the first segment not found.
+    pub fn insert(&mut self, path: &str, value: Node) -> Result<Option<Node>, InputError> {
+        if self.get(path).is_some() {
+            return self.set(path, value).map(Some);
+        }
+        let (parent, key) = match path.rsplit_once('.') {
+            Some((parent, key)) => (parent, key),
+            None => ("", path),
+        };
+        let mut node = self;
+        let mut rendered = String::new();
+        for segment in segments(parent) {
+            let index = node.child_index(segment, &mut rendered)?;
+            node = node.child_mut(index);
+        }
+        let span = node.span();
+        match &mut node.value {
+            Value::Table(entries) => {
+                entries.push((Key::new(key), value));
+                Ok(None)
+            }
+            other => {
+                push_key(&mut rendered, key);
+                let kind = other.kind();
+                Err(InputError::new(rendered, span, format!("a {kind} has no keys")))
+            }
+        }
     }
 
     /// Removes a key of this table and returns its value; `None` when there is no such key or

@@ -13,6 +13,7 @@
 
 mod settle;
 mod validate;
+pub mod words;
 
 pub use validate::violations;
 

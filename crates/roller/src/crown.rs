@@ -3,6 +3,20 @@
 use std::f64::consts::PI;
 
 use contopt_core::{Error, Result};
+
+/// The largest crown table \[bytes\]: a page of numbers.
+const MAX_TABLE_BYTES: u64 = 1_000_000;
+
+/// The text of `file`, read no further than one byte past [`MAX_TABLE_BYTES`] (so that
+/// `/dev/zero` ends): the caller refuses text longer than the limit.
+fn read_at_most(file: std::fs::File) -> std::io::Result<String> {
+    let mut text = String::new();
+    std::io::Read::read_to_string(
+        &mut std::io::Read::take(file, MAX_TABLE_BYTES + 1),
+        &mut text,
+    )?;
+    Ok(text)
+}
 use serde::{Deserialize, Serialize};
 
 use crate::Roller;
@@ -73,6 +87,46 @@ fn log_scale(load: f64, length: f64, e_star: f64) -> f64 {
 }
 
 impl Crown {
+    /// A crown table from a CSV file of `x_mm, drop_mm` rows; a first line that is not numbers is
+    /// a header.
+    pub fn read_table(path: &std::path::Path) -> Result<Self> {
+        let unreadable = |why: String| Error::invalid("profile.file", path.display(), why);
+        let file = std::fs::File::open(path).map_err(|e| unreadable(format!("cannot be read: {e}")))?;
+        if !file.metadata().is_ok_and(|m| m.is_file()) {
+            return Err(unreadable("is not a regular file".into()));
+        }
+        let text = read_at_most(file).map_err(|e| unreadable(format!("cannot be read: {e}")))?;
+        if text.len() as u64 > MAX_TABLE_BYTES {
+            return Err(unreadable(format!(
+                "is over {} bytes: a crown table is a page of numbers",
+                MAX_TABLE_BYTES
+            )));
+        }
+        let (mut x, mut drop) = (vec![], vec![]);
+        for (k, line) in text.lines().enumerate() {
+            let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+            if fields.iter().all(|f| f.is_empty()) {
+                continue;
+            }
+            let numbers: Option<Vec<f64>> = fields.iter().map(|f| f.parse().ok()).collect();
+            match numbers.as_deref() {
+                Some([a, b]) => {
+                    x.push(*a);
+                    drop.push(*b);
+                }
+                None if k == 0 => {}
+                _ => {
+                    return Err(Error::invalid(
+                        format!("{}:{}", path.display(), k + 1),
+                        line,
+                        "a row of two numbers, x_mm and drop_mm",
+                    ))
+                }
+            }
+        }
+        Crown::table(x, drop)
+    }
+
     /// ISO/TS 16281's profile for a roller of diameter `diameter` \[mm\].
     pub fn iso(diameter: f64) -> Result<Self> {
         positive("profile.diameter_mm", diameter)?;
@@ -200,12 +254,12 @@ fn checked_scale(load: f64, length: f64, e_star: f64) -> Result<f64> {
 }
 
 /// A crown as a scene names it (`{ kind = "fujiwara_kawase", k1 = 1.2, k2 = 0.4, z_m_mm =
-/// 0.01 }`), built for a roller by [`CrownSettings::build`]; a table from a file is the
-/// caller's to read ([`Crown::table`]).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// 0.01 }`, or `"iso"`), built for a roller by [`CrownSettings::build`].
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum CrownSettings {
-    /// No crown ([`Crown::Straight`]).
+    /// No crown ([`Crown::Straight`]), the default.
+    #[default]
     Straight,
     /// ISO/TS 16281's profile for the roller's diameter ([`Crown::Iso`]).
     Iso,
@@ -223,13 +277,22 @@ pub enum CrownSettings {
         /// The drop at the ends z_m \[mm\].
         z_m_mm: f64,
     },
+    /// A measured or designed profile from a CSV file of `x_mm, drop_mm` rows (|x|
+    /// increasing; one header line allowed), relative to `dir` of [`CrownSettings::build`]
+    /// (a scene's folder) ([`Crown::read_table`]).
+    Table {
+        /// The file.
+        file: String,
+    },
 }
 
 impl CrownSettings {
-    /// The crown for `roller` (its diameter, load, length and materials).
-    pub fn build(&self, roller: &Roller) -> Result<Crown> {
+    /// The crown for `roller` (its diameter, load, length and materials); a table is read
+    /// from `dir`.
+    pub fn build(&self, roller: &Roller, dir: &std::path::Path) -> Result<Crown> {
         let (q, l, e_star) = (roller.load, roller.length, roller.e_star());
         match *self {
+            CrownSettings::Table { ref file } => Crown::read_table(&dir.join(file)),
             CrownSettings::Straight => Ok(Crown::Straight),
             CrownSettings::Iso => Crown::iso(roller.diameter),
             CrownSettings::Lundberg => Crown::lundberg(q, l, e_star),

@@ -1,39 +1,38 @@
-//! The bundled scenes, which the `contopt` command runs by name.
+//! The bundled scenes, which the `contopt` command runs by name and prints as templates.
 
-/// The scenes in `scenes/`, built in: `(name, TOML text)`.
-pub const BUNDLED: &[(&str, &str)] = &[
-    (
-        "paper-table1",
-        include_str!("../../../scenes/paper-table1.toml"),
-    ),
-    (
-        "paper-table2",
-        include_str!("../../../scenes/paper-table2.toml"),
-    ),
-    (
-        "paper-table3",
-        include_str!("../../../scenes/paper-table3.toml"),
-    ),
-    ("roller", include_str!("../../../scenes/roller.toml")),
-    (
-        "roller-study",
-        include_str!("../../../scenes/roller-study.toml"),
-    ),
-    (
-        "roller-envelope",
-        include_str!("../../../scenes/roller-envelope.toml"),
-    ),
-    ("hertz", include_str!("../../../scenes/hertz.toml")),
-    (
-        "flat-punch",
-        include_str!("../../../scenes/flat-punch.toml"),
-    ),
-    (
-        "punch-on-block",
-        include_str!("../../../scenes/punch-on-block.toml"),
-    ),
-    (
-        "steel-on-aluminium",
-        include_str!("../../../scenes/steel-on-aluminium.toml"),
-    ),
-];
+/// A bundled scene: its name and its text (as in `scenes/<name>.toml`).
+#[derive(Clone, Copy, Debug)]
+pub struct Bundled {
+    /// The name, the file's stem.
+    pub name: &'static str,
+    /// The TOML text.
+    pub text: &'static str,
+}
+
+macro_rules! bundled {
+    ($($name:literal),* $(,)?) => {
+        /// The scenes in `scenes/`, built in.
+        pub const BUNDLED: &[Bundled] = &[
+            $(Bundled { name: $name, text: include_str!(concat!("../../../scenes/", $name, ".toml")) }),*
+        ];
+    };
+}
+
+bundled!(
+    "paper-table1",
+    "paper-table2",
+    "paper-table3",
+    "roller",
+    "roller-study",
+    "roller-envelope",
+    "hertz",
+    "flat-punch",
+    "punch-on-block",
+    "steel-on-aluminium",
+    "winkler-bed",
+);
+
+/// The bundled scene `name`.
+pub fn find(name: &str) -> Option<&'static Bundled> {
+    BUNDLED.iter().find(|b| b.name == name)
+}

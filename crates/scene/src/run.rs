@@ -1,85 +1,103 @@
-//! The run of a scene's cases, which builds each distinct set of bodies once.
+//! The run of a scene's cases, which builds each distinct pair of bodies once, and the run of
+//! one case on its bodies.
 
 use std::collections::HashMap;
+use std::time::Instant;
 
-use contopt_core::observe::Observer;
+use contopt_contact::InterfaceProblem;
+use contopt_core::observe::{Observer, Silent};
+use contopt_results::CaseReport;
 
 use crate::build::Built;
-use crate::{Case, CaseReport, Scene, SceneError};
+use crate::methods::Context;
+use crate::{Case, Scene, SceneError};
+
+/// The initial gap of a point where the gap is open for good (beyond a flat punch's rim), in
+/// sizes of the interface: out of reach, since the solvers refuse an elastic displacement
+/// larger than one size ([`contopt_contact::SMALL_STRAIN`]).
+const OPEN_SIZES: f64 = 4.0;
 
 /// A scene's cases run in order ([`Scene::run`]): an iterator of their reports.
 ///
-/// Cases that differ only outside the problem (a sweep over the controller, the solver or the
-/// optimisation's settings) share its bodies: each distinct problem (by its canonical form) is
-/// built — assembled, factorised, condensed — once, before its first case, and dropped after
-/// its last, so that at most the problems whose cases interleave are held at once.
-pub struct Run<'o> {
-    cases: Vec<Case>,
-    /// Each case's problem key.
-    keys: Vec<String>,
+/// Cases that differ only outside their bodies (a sweep over the controller, the gap, the
+/// solver or the method's settings) share them: each distinct pair (by its zone, kinds and
+/// load) is built — assembled, factorised, condensed — once, before its first case, and
+/// dropped after its last.
+pub struct Run<'s, 'o> {
+    cases: &'s [Case],
     /// The index of each key's last case.
-    last: HashMap<String, usize>,
-    /// The bodies of problems whose last case is still to come.
-    built: HashMap<String, Built>,
+    last: HashMap<&'s str, usize>,
+    /// The bodies of pairs whose last case is still to come.
+    built: HashMap<&'s str, Built>,
     next: usize,
+    /// How many pairs were built so far.
+    builds: usize,
     observer: &'o dyn Observer,
 }
 
 impl Scene {
     /// Runs every case in order: see [`Run`].
-    pub fn run(&self) -> Result<Run<'static>, SceneError> {
-        self.run_observed(&contopt_core::observe::Silent)
+    pub fn run(&self) -> Run<'_, 'static> {
+        self.run_observed(&Silent)
     }
 
-    /// [`Scene::run`], reporting each iteration of the contact solves and optimisations to
+    /// [`Scene::run`], reporting each iteration of the contact solves and of the designs to
     /// `observer` (see [`Case::run_observed`]).
-    pub fn run_observed<'o>(&self, observer: &'o dyn Observer) -> Result<Run<'o>, SceneError> {
-        let cases = self.cases()?;
-        let keys: Vec<String> = cases.iter().map(Case::problem_key).collect();
-        let last = keys
+    pub fn run_observed<'o>(&self, observer: &'o dyn Observer) -> Run<'_, 'o> {
+        let cases = self.cases();
+        let last = cases
             .iter()
             .enumerate()
-            .map(|(k, key)| (key.clone(), k))
+            .map(|(k, case)| (case.plan.key.as_str(), k))
             .collect();
-        Ok(Run {
+        Run {
             cases,
-            keys,
             last,
             built: HashMap::new(),
             next: 0,
+            builds: 0,
             observer,
-        })
+        }
     }
 }
 
-impl Run<'_> {
+impl Run<'_, '_> {
     /// The cases, in the order their reports come.
     pub fn cases(&self) -> &[Case] {
-        &self.cases
+        self.cases
     }
 
-    /// How many distinct sets of bodies the cases need: the builds of a whole run.
-    pub fn builds(&self) -> usize {
+    /// How many distinct pairs of bodies the cases need: the builds of a whole run.
+    pub fn distinct_bodies(&self) -> usize {
         self.last.len()
     }
 
-    /// Runs case `k` on its problem's bodies, building them if no earlier case did, and drops
-    /// them after the problem's last case.
+    /// How many pairs the run has built so far.
+    pub fn builds(&self) -> usize {
+        self.builds
+    }
+
+    /// Runs case `k` on its bodies, building them if no earlier case did, and drops them after
+    /// the last case that needs them.
     fn run_case(&mut self, k: usize) -> Result<CaseReport, SceneError> {
-        let (case, key) = (&self.cases[k], &self.keys[k]);
+        let case = &self.cases[k];
+        let key = case.plan.key.as_str();
         let built = match self.built.remove(key) {
             Some(built) => built.reused(),
-            None => case.build()?,
+            None => {
+                self.builds += 1;
+                case.build()?
+            }
         };
         let report = case.run_on(&built, self.observer);
         if self.last.get(key).is_some_and(|&last| last > k) {
-            self.built.insert(key.clone(), built);
+            self.built.insert(key, built);
         }
         report
     }
 }
 
-impl Iterator for Run<'_> {
+impl Iterator for Run<'_, '_> {
     type Item = Result<CaseReport, SceneError>;
 
     fn next(&mut self) -> Option<Self::Item> {
@@ -97,4 +115,84 @@ impl Iterator for Run<'_> {
     }
 }
 
-impl ExactSizeIterator for Run<'_> {}
+impl ExactSizeIterator for Run<'_, '_> {}
+
+impl Case {
+    /// Solves the case. A method that stops short gives a report that says why and how far
+    /// it got; bad input is an error.
+    pub fn run(&self) -> Result<CaseReport, SceneError> {
+        self.run_observed(&Silent)
+    }
+
+    /// [`Case::run`], reporting each iteration of its methods to `observer` (the outermost at
+    /// level 0), which may stop them early (the case then reports how it was stopped).
+    pub fn run_observed(&self, observer: &dyn Observer) -> Result<CaseReport, SceneError> {
+        self.run_on(&self.build()?, observer)
+    }
+
+    /// Runs the case on bodies built for it (by this case, or by an earlier case of the scene
+    /// that shares them: its `build` time is then only the interface's).
+    pub fn run_on(&self, built: &Built, observer: &dyn Observer) -> Result<CaseReport, SceneError> {
+        let at = &self.locator;
+        let mut report = CaseReport::new(&self.label, &self.params, self.input());
+        let start = Instant::now();
+        let gap = self.initial_gap(built)?;
+        let problem = InterfaceProblem::new(built.first(), built.second(), &gap)
+            .map_err(|e| at.library("body", e))?
+            .with_dense_limit(self.plan.dense_limit);
+        let build_ms = 1e3 * (built.took() + start.elapsed()).as_secs_f64();
+        report.timings_ms.insert("build".into(), build_ms);
+        let solver = self
+            .spec
+            .solver
+            .build()
+            .map_err(|e| at.library("solver", e))?;
+        let cases =
+            crate::methods::load_cases(self, &problem).map_err(|e| at.library("envelope", e))?;
+        let context = Context {
+            spec: &self.spec,
+            plan: &self.plan,
+            problem: &problem,
+            solver: solver.as_ref(),
+            observer,
+            cases: &cases,
+        };
+        let designed = crate::methods::design(&self.spec)
+            .run(&context, &mut report)
+            .map_err(|e| at.library("optimisation", e))?;
+        crate::report::fill(&mut report, &context, designed);
+        crate::limits::judge(&mut report, self, &problem);
+        crate::report::below_surface(&mut report, self, built)
+            .map_err(|e| at.library("output.subsurface", e))?;
+        report.reference = crate::reference::curve(self, &report);
+        report.settle();
+        Ok(report)
+    }
+
+    /// The initial gap at the first body's points: the gap's shape less the approach; where
+    /// the gap is open for good, out of reach.
+    fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
+        let at = &self.locator;
+        let contact = &self.spec.contact;
+        let interface = built.first().interface();
+        let mut gap = interface
+            .points()
+            .iter()
+            .map(|&x| contact.gap.at(&contact.zone, x, self.plan.roller.as_ref()))
+            .collect::<contopt_core::Result<Vec<f64>>>()
+            .map_err(|e| at.library("contact.gap", e))?;
+        contact
+            .gap
+            .covers(interface.points(), &gap, &self.plan.layout)
+            .map_err(|e| at.library("contact.gap", e))?;
+        let open = OPEN_SIZES * interface.extent();
+        let approach = match contact.load {
+            crate::spec::LoadSpec::ApproachMm(a) => a,
+            _ => 0.0,
+        };
+        for h in &mut gap {
+            *h = if h.is_finite() { *h - approach } else { open };
+        }
+        Ok(gap)
+    }
+}

@@ -2,11 +2,11 @@
 //! makes of its bodies, and their answers for the report.
 
 use contopt_core::{
-    ElasticBody, Error, Geometry, Interface, Result, Section, SectionAxis, SubsurfaceRequest,
+    ElasticBody, Geometry, Interface, Result, Section, SectionAxis, SubsurfaceRequest,
 };
 
-use crate::report::{BodyStresses, SubsurfaceReport};
-use crate::spec::SubsurfaceSpec;
+use contopt_results::{BodyStresses, SubsurfaceReport};
+use serde::{Deserialize, Serialize};
 
 /// The most depths a case may ask for: each costs a pass over the whole grid.
 const MAX_DEPTHS: usize = 1000;
@@ -20,30 +20,53 @@ const SAME_SECTION: f64 = 0.5;
 /// Coordinates closer than this \[mm\] are one (round-off).
 const DISTINCT_MM: f64 = 1e-12;
 
-/// Checks the scene's values before anything is solved.
-pub(crate) fn check(spec: &SubsurfaceSpec) -> Result<()> {
-    if !(1..=MAX_DEPTHS).contains(&spec.depths) {
-        return Err(Error::invalid(
-            "subsurface.depths",
-            spec.depths,
-            format!("from 1 to {MAX_DEPTHS}"),
-        ));
+/// Stresses below the surface of every elastic body that computes them (half-spaces,
+/// half-planes, finite-element bodies), under each case's contact pressure
+/// (`[output.subsurface]`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubsurfaceSpec {
+    /// Deepest depth \[mm\]; default twice the contact's half-width (the smaller half-extent
+    /// of the contact area; its radius on an axisymmetric body), where the largest shear of a
+    /// Hertz contact (0.5–0.8 half-widths down) lies well inside.
+    #[serde(default)]
+    pub max_depth_mm: Option<f64>,
+    /// Number of depths, evenly spaced from max_depth/depths down to max_depth (default 40).
+    #[serde(default = "SubsurfaceSpec::default_depths")]
+    pub depths: usize,
+    /// Vertical sections of a grid; default: along x and along y through the largest
+    /// pressure (a roller: across the contact at mid-length, at the largest pressure and at
+    /// the end cell). A plane or axisymmetric body has one section, its own plane.
+    #[serde(default)]
+    pub sections: Vec<SectionSpec>,
+}
+
+/// A vertical section through a grid.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionSpec {
+    /// `"x"` or `"y"`: the direction of the section along the surface.
+    pub along: SectionAxis,
+    /// The other surface coordinate \[mm\] (the nearest row or column of cells is taken).
+    pub at_mm: f64,
+}
+
+impl SubsurfaceSpec {
+    fn default_depths() -> usize {
+        40
     }
-    if let Some(d) = spec.max_depth_mm.filter(|d| !(d.is_finite() && *d > 0.0)) {
-        return Err(Error::invalid(
-            "subsurface.max_depth_mm",
-            d,
-            "must be positive and finite",
-        ));
+
+    /// Checks the values before anything is solved.
+    pub(crate) fn check(&self) -> Result<()> {
+        contopt_core::check::count("depths", self.depths, 1, MAX_DEPTHS)?;
+        if let Some(d) = self.max_depth_mm {
+            contopt_core::check::positive("max_depth_mm", d)?;
+        }
+        for (k, s) in self.sections.iter().enumerate() {
+            contopt_core::check::finite(&format!("sections[{k}].at_mm"), s.at_mm)?;
+        }
+        Ok(())
     }
-    if let Some(s) = spec.sections.iter().find(|s| !s.at_mm.is_finite()) {
-        return Err(Error::invalid(
-            "subsurface.sections.at_mm",
-            s.at_mm,
-            "must be finite",
-        ));
-    }
-    Ok(())
 }
 
 /// The stresses below every body that computes them (a rigid body does not), under the
@@ -75,7 +98,7 @@ pub(crate) fn compute(
             };
             report.bodies.push(BodyStresses {
                 body: name,
-                peaks: found.peaks,
+                peaks: found.peaks.into(),
                 sections: found.sections,
             });
         }
@@ -91,7 +114,7 @@ fn request(
     roller: bool,
 ) -> Option<SubsurfaceRequest> {
     let contact: Vec<[f64; 3]> = interface
-        .points
+        .points()
         .iter()
         .zip(pressure)
         .filter(|(_, p)| **p > 0.0)
@@ -103,7 +126,7 @@ fn request(
     };
     let n = spec.depths;
     let depths = (1..=n).map(|k| max_depth * k as f64 / n as f64).collect();
-    let sections = if interface.geometry != Geometry::Surface {
+    let sections = if interface.geometry() != Geometry::Surface {
         // A plane or axisymmetric body has one section, its own plane.
         vec![Section {
             axis: SectionAxis::X,
@@ -127,7 +150,7 @@ fn request(
 /// over the axes along which it extends; `None` without contact.
 fn half_width(interface: &Interface, contact: &[[f64; 3]]) -> Option<f64> {
     let first = contact.first()?;
-    if interface.geometry == Geometry::Axisymmetric {
+    if interface.geometry() == Geometry::Axisymmetric {
         return contact.iter().map(|x| x[0]).reduce(f64::max);
     }
     // One point in contact still spans its own weight's width (a cell or a strip).
@@ -150,7 +173,7 @@ fn half_width(interface: &Interface, contact: &[[f64; 3]]) -> Option<f64> {
 /// The smallest spacing between distinct point coordinates along `axis` (0 when they all
 /// agree).
 fn spacing(interface: &Interface, axis: usize) -> f64 {
-    let mut v: Vec<f64> = interface.points.iter().map(|x| x[axis]).collect();
+    let mut v: Vec<f64> = interface.points().iter().map(|x| x[axis]).collect();
     v.sort_by(f64::total_cmp);
     v.windows(2)
         .map(|w| w[1] - w[0])
@@ -166,7 +189,7 @@ fn default_sections(interface: &Interface, pressure: &[f64], roller: bool) -> Ve
         .iter()
         .enumerate()
         .fold(0, |m, (k, p)| if *p > pressure[m] { k } else { m });
-    let at = interface.points.get(peak).copied().unwrap_or_default();
+    let at = interface.points().get(peak).copied().unwrap_or_default();
     if !roller {
         return vec![
             Section {
@@ -180,7 +203,7 @@ fn default_sections(interface: &Interface, pressure: &[f64], roller: bool) -> Ve
         ];
     }
     let end = interface
-        .points
+        .points()
         .iter()
         .map(|x| x[0])
         .fold(f64::NEG_INFINITY, f64::max);

@@ -1,10 +1,6 @@
-//! The paper's words for a scene's keys: `optimisation.controller.l1_mm = 20` reads
-//! `L1 = 20 mm`, `problem.material.nu = 0.3` reads `ν = 0.3`, `e_mpa = 200000` reads
-//! `E = 2·10⁵ MPa`.
-
-use std::collections::BTreeMap;
-
-use contopt_scene::CaseReport;
+//! The paper's words for a scene's keys, which a case's label is made of:
+//! `optimisation.controller.l1_mm = 20` reads `L1 = 20 mm`, `body.0.material.nu = 0.3` reads
+//! `ν = 0.3`, `e_mpa = 200000` reads `E = 2·10⁵ MPa`.
 
 /// A scene key (its last dotted part), its symbol and its unit.
 const QUANTITIES: &[(&str, &str, &str)] = &[
@@ -70,22 +66,6 @@ pub fn quantity(key: &str, value: f64) -> String {
     }
 }
 
-/// A case's name in a legend: a sweep's `key = value` in the paper's words, a named case's
-/// label as its author wrote it.
-pub fn case_legend(case: &CaseReport) -> String {
-    legend(&case.label, &case.params)
-}
-
-/// [`case_legend`] of a label and its parameters.
-pub fn legend(label: &str, params: &BTreeMap<String, f64>) -> String {
-    match params.iter().next() {
-        Some((key, &value)) if params.len() == 1 && label == format!("{key} = {value}") => {
-            quantity(key, value)
-        }
-        _ => label.to_string(),
-    }
-}
-
 /// Significant digits of a value in a legend.
 const DIGITS: usize = 6;
 
@@ -96,7 +76,7 @@ pub fn number(v: f64) -> String {
 }
 
 /// [`number`] to at most `digits` significant digits (at least one).
-pub(crate) fn significant(v: f64, digits: usize) -> String {
+pub fn significant(v: f64, digits: usize) -> String {
     let digits = digits.max(1);
     if v == 0.0 {
         return "0".into();
@@ -111,12 +91,26 @@ pub(crate) fn significant(v: f64, digits: usize) -> String {
     } else {
         let mantissa = trim(format!("{:.*}", digits - 1, v / 10f64.powi(n)));
         match mantissa.as_str() {
-            "1" => crate::ticks::power_of_ten(n),
-            "-1" => format!("-{}", crate::ticks::power_of_ten(n)),
-            m => format!("{m}·{}", crate::ticks::power_of_ten(n)),
+            "1" => power_of_ten(n),
+            "-1" => format!("-{}", power_of_ten(n)),
+            m => format!("{m}·{}", power_of_ten(n)),
         }
     };
     text.replace('-', "−")
+}
+
+/// 10 to the power `n`, written `10ⁿ`.
+pub fn power_of_ten(n: i32) -> String {
+    format!("10{}", superscript(n))
+}
+
+/// An integer in superscript digits (`⁻³`).
+pub fn superscript(n: i32) -> String {
+    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    n.to_string()
+        .chars()
+        .map(|c| c.to_digit(10).map_or('⁻', |d| DIGITS[d as usize]))
+        .collect()
 }
 
 /// A decimal without trailing zeros (and without a trailing point).
@@ -138,12 +132,12 @@ mod tests {
             quantity("optimisation.controller.l1_mm", 20.0),
             "L1 = 20 mm"
         );
-        assert_eq!(quantity("problem.material.nu", 0.3), "ν = 0.3");
+        assert_eq!(quantity("body.0.material.nu", 0.3), "ν = 0.3");
         assert_eq!(quantity("e_mpa", 2e5), "E = 2·10⁵ MPa");
         assert_eq!(quantity("e_mpa", 2.1e5), "E = 2.1·10⁵ MPa");
         assert_eq!(quantity("tilt_arcmin", -2.0), "γ = −2′");
         assert_eq!(quantity("solver.c_mpa_per_mm", 2e9), "c = 2·10⁹ MPa/mm");
-        assert_eq!(quantity("problem.datum_mm", 100.0), "datum = 100 mm");
+        assert_eq!(quantity("body.0.datum_mm", 100.0), "datum = 100 mm");
         assert_eq!(quantity("reach_b", 2.6), "reach_b = 2.6");
         assert_eq!(quantity("tolh_mm2", 5e-7), "TOLH = 5·10⁻⁷ mm²");
     }
@@ -159,18 +153,5 @@ mod tests {
         assert_eq!(number(-1.5e-4), "−1.5·10⁻⁴");
         assert_eq!(significant(2960.67, 4), "2961");
         assert_eq!(significant(0.123456, 2), "0.12");
-    }
-
-    /// A sweep's generated label is translated; a named case keeps its label.
-    #[test]
-    fn legends_translate_sweeps_only() {
-        let sweep: BTreeMap<String, f64> = [("l1_mm".to_string(), 20.0)].into();
-        assert_eq!(legend("l1_mm = 20", &sweep), "L1 = 20 mm");
-        let named: BTreeMap<String, f64> = [("l1_mm".to_string(), 4.0)].into();
-        assert_eq!(
-            legend("optimised at Q, L1 = 4 mm", &named),
-            "optimised at Q, L1 = 4 mm"
-        );
-        assert_eq!(legend("hertz", &BTreeMap::new()), "hertz");
     }
 }

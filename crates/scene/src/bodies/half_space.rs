@@ -1,0 +1,154 @@
+//! An elastic half-space (`kind = "half_space"`) by Green's functions: Love's rectangles on a
+//! grid, Boussinesq's rings, Flamant's strips on a half-plane.
+
+use contopt_core::{ElasticBody, Error, Interface, Material, Result};
+use contopt_fem::Analysis;
+use contopt_greens::{
+    dense_surface_bytes, AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState,
+};
+use serde::{Deserialize, Serialize};
+
+use super::{misplaced, BodyKind, Placement, Side, Takes};
+use crate::spec::LoadSpec;
+use crate::zone::{Layout, ZoneSpec};
+
+/// The datum of a half-plane's deflections unless the scene sets one \[mm\].
+const DEFAULT_DATUM_MM: f64 = 100.0;
+
+/// An elastic half-space under the zone (on a grid, also over it: the roller of a roller
+/// pair, which then floats under the contact's force).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HalfSpaceBody {
+    /// Its name in reports (default `half-space`).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The material.
+    pub material: Material,
+    /// On strips: the depth at which a point load's deflection vanishes \[mm\] (default 100;
+    /// a half-plane's deflection is defined up to a constant).
+    #[serde(default)]
+    pub datum_mm: Option<f64>,
+}
+
+impl HalfSpaceBody {
+    /// A half-plane's state and thickness from the strips' analysis.
+    fn plane(analysis: &Analysis) -> Result<(PlaneState, f64)> {
+        match *analysis {
+            Analysis::PlaneStress { thickness } => Ok((PlaneState::Stress, thickness)),
+            Analysis::PlaneStrain { thickness } => Ok((PlaneState::Strain, thickness)),
+            Analysis::Axisymmetric => Err(Error::invalid(
+                "analysis",
+                "axisymmetric",
+                "a half-plane is plane_stress or plane_strain",
+            )),
+        }
+    }
+}
+
+impl BodyKind for HalfSpaceBody {
+    fn kind(&self) -> &'static str {
+        "half_space"
+    }
+
+    fn name(&self) -> String {
+        self.name.clone().unwrap_or_else(|| "half-space".into())
+    }
+
+    /// A grid on either side; rings and strips below only (their bodies do not float); not on
+    /// finite-element faces, whose Gauss points no Green's body shares.
+    fn check(&self, at: &Placement) -> Result<()> {
+        match (at.zone, at.side) {
+            (ZoneSpec::Grid(_), _) | (ZoneSpec::Rings(_) | ZoneSpec::Strips(_), Side::Below) => {}
+            (ZoneSpec::Faces(_), _) => {
+                return Err(misplaced(
+                    self.kind(),
+                    at,
+                    "finite-element faces are met by a finite-element body, a rigid body or a bed",
+                ))
+            }
+            _ => {
+                return Err(misplaced(
+                    self.kind(),
+                    at,
+                    "rings and strips lie under the zone",
+                ))
+            }
+        }
+        if let (Some(d), false) = (self.datum_mm, matches!(at.zone, ZoneSpec::Strips(_))) {
+            return Err(Error::invalid(
+                "datum_mm",
+                d,
+                "a datum fixes a half-plane's deflection: strips only",
+            ));
+        }
+        Ok(())
+    }
+
+    fn memory(&self, at: &Placement) -> Option<u64> {
+        match at.zone {
+            ZoneSpec::Grid(g) => HalfSpace::grid_bytes(g.cells[0], g.cells[1]),
+            zone => zone.points().and_then(dense_surface_bytes),
+        }
+    }
+
+    fn owns_surface(&self) -> bool {
+        true
+    }
+
+    fn takes(&self, zone: &ZoneSpec) -> Takes {
+        match zone {
+            ZoneSpec::Grid(_) => Takes::Force,
+            _ => Takes::Nothing,
+        }
+    }
+
+    fn build(&self, at: &Placement, _surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
+        let (name, material) = (self.name(), self.material);
+        Ok(match at.layout {
+            Layout::Grid {
+                nx,
+                ny,
+                dx,
+                dy,
+                origin,
+            } => {
+                let grid = HalfSpace::grid(name, material, *nx, *ny, *dx, *dy, *origin)?;
+                match (at.side, at.load) {
+                    (Side::Below, _) => Box::new(grid),
+                    (Side::Above, LoadSpec::ForceN(force)) => {
+                        Box::new(grid.upper().pressed(force)?)
+                    }
+                    (Side::Above, _) => Box::new(grid.upper()),
+                }
+            }
+            Layout::Rings(edges) => Box::new(AxisymmetricHalfSpace::new(name, material, edges)?),
+            Layout::Strips { edges, thickness } => {
+                let ZoneSpec::Strips(strips) = at.zone else {
+                    return Err(misplaced(self.kind(), at, "strips need a strip zone"));
+                };
+                let (state, _) = Self::plane(&strips.analysis)?;
+                let datum = self.datum_mm.unwrap_or(DEFAULT_DATUM_MM);
+                Box::new(HalfPlane::new(
+                    name, material, state, *thickness, edges, datum,
+                )?)
+            }
+            Layout::Faces(_) => return Err(misplaced(self.kind(), at, "not on faces")),
+        })
+    }
+
+    fn material(&self) -> Option<Material> {
+        Some(self.material)
+    }
+
+    /// (1 − ν²)/E, or 1/E for a half-plane in plane stress.
+    fn compliance(&self, zone: &ZoneSpec) -> Option<f64> {
+        let m = self.material;
+        Some(match zone {
+            ZoneSpec::Strips(s) if matches!(s.analysis, Analysis::PlaneStress { .. }) => {
+                1.0 / m.e()
+            }
+            _ => m.contact_compliance(),
+        })
+    }
+}

@@ -1,0 +1,233 @@
+//! The body kinds of a scene (`[[body]]`). Each kind is one file with a type that implements
+//! [`BodyKind`], and one line in [`BodySpec`] and [`BodySpec::kind`] registers it: the compiler
+//! names every `match` a new kind must join.
+//!
+//! A body is built on the scene's contact zone, on one side of it: the first body below (its
+//! outward normal is n¹ of eq. 2.1), the second above. Kinds that mesh or grid their own
+//! surface (finite elements, half-spaces) build it from the zone; the others (a rigid body, a
+//! Winkler bed) take the zone's surface, or their partner's on finite-element faces.
+
+mod fe;
+mod half_space;
+mod rigid;
+mod winkler;
+
+use std::path::Path;
+
+use contopt_core::{ElasticBody, Error, Interface, Material, Result};
+use serde::{Deserialize, Serialize};
+
+use crate::spec::LoadSpec;
+use crate::zone::{Layout, ZoneSpec};
+
+pub use fe::{FeBase, FeBlock, FePunch, PunchLoad, Support};
+pub use half_space::HalfSpaceBody;
+pub use rigid::Rigid;
+pub use winkler::WinklerBed;
+
+/// A body of a scene, by its kind.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodySpec {
+    /// A rigid body: no compliance; its shape is the contact's gap.
+    Rigid(Rigid),
+    /// An elastic half-space on a grid, rings or strips (Green's functions).
+    HalfSpace(HalfSpaceBody),
+    /// A finite-element base below faces: a cylinder (plane: a rectangle) wider than the
+    /// zone, held at its bottom.
+    FeBase(FeBase),
+    /// A finite-element punch above faces: a cylinder whose bottom face is the zone, loaded on
+    /// its top.
+    FePunch(FePunch),
+    /// A large finite-element block below faces, clamped at its bottom: a stand-in for a
+    /// half-space.
+    FeBlock(FeBlock),
+    /// A Winkler bed of independent springs under any zone.
+    Winkler(WinklerBed),
+}
+
+impl BodySpec {
+    /// The kind's implementation: the registration of every kind.
+    pub fn kind(&self) -> &dyn BodyKind {
+        match self {
+            BodySpec::Rigid(b) => b,
+            BodySpec::HalfSpace(b) => b,
+            BodySpec::FeBase(b) => b,
+            BodySpec::FePunch(b) => b,
+            BodySpec::FeBlock(b) => b,
+            BodySpec::Winkler(b) => b,
+        }
+    }
+}
+
+/// Which side of the zone a body is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// The first body: its outward normal is the reference n¹.
+    Below,
+    /// The second body, which a contact force presses.
+    Above,
+}
+
+/// How a body takes the load of the contact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Takes {
+    /// It floats under a contact force along the normal (a rigid indenter, a half-space grid).
+    Force,
+    /// It carries loads of its own and takes none through the contact (a finite-element punch).
+    OwnLoad,
+    /// It is held: a contact force cannot press it (a bed, the rings of a half-space).
+    Nothing,
+}
+
+/// Where a body is built: the zone, its sizes, the side, the contact's load, and the folder
+/// the scene's files are read from.
+pub struct Placement<'a> {
+    /// The zone as the scene writes it.
+    pub zone: &'a ZoneSpec,
+    /// The zone with every size known.
+    pub layout: &'a Layout,
+    /// The side of the zone.
+    pub side: Side,
+    /// The contact's load (it presses the body above).
+    pub load: LoadSpec,
+    /// The scene file's folder.
+    pub dir: &'a Path,
+}
+
+/// What a body kind does: check itself on a zone without building anything, estimate its
+/// memory, and build its [`ElasticBody`].
+pub trait BodyKind {
+    /// The kind's name in messages (`"half_space"`).
+    fn kind(&self) -> &'static str;
+
+    /// The body's name in reports: its own `name`, or the kind's.
+    fn name(&self) -> String;
+
+    /// Refuses a zone, a side or values the body cannot have, without building it.
+    fn check(&self, at: &Placement) -> Result<()>;
+
+    /// The memory the built body holds \[bytes\], `None` when the count overflows.
+    fn memory(&self, at: &Placement) -> Option<u64>;
+
+    /// Whether it meshes or grids its own surface from the zone; otherwise it is built on the
+    /// surface it is given (the zone's, or its partner's).
+    fn owns_surface(&self) -> bool;
+
+    /// How it takes the contact's load on `zone`.
+    fn takes(&self, zone: &ZoneSpec) -> Takes;
+
+    /// Builds the body. A kind that does not own its surface is built on `surface`: the zone's
+    /// surface as the body below sees it (outward normal n¹), which a body above mirrors.
+    fn build(&self, at: &Placement, surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>>;
+
+    /// Its material, when it has one.
+    fn material(&self) -> Option<Material>;
+
+    /// Its share of the pair's contact compliance 1/E* on this zone \[1/MPa\]: (1 − ν²)/E for
+    /// a half-space or a block standing in for one, 1/E for a half-plane in plane stress, 0 for
+    /// a rigid body; `None` for a body whose compliance Hertz does not describe (a punch, a
+    /// bed).
+    fn compliance(&self, zone: &ZoneSpec) -> Option<f64>;
+
+    /// Whether its surface ends at the zone's rim (a punch's face is the zone): contact there
+    /// is the body's edge, not the zone's limit.
+    fn ends_at_rim(&self) -> bool {
+        false
+    }
+}
+
+/// The pair's checks: two bodies, not both rigid, the load taken by the body above, and the
+/// finite-element faces meshed by a finite-element body.
+pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+    if bodies.len() != 2 {
+        return Err(Error::invalid(
+            "body",
+            format!("{} bodies", bodies.len()),
+            "give two: the first below the zone, the second above",
+        ));
+    }
+    let [below, above] = [bodies[0].kind(), bodies[1].kind()];
+    if below.kind() == "rigid" && above.kind() == "rigid" {
+        return Err(Error::invalid(
+            "body[1].kind",
+            "rigid",
+            "two rigid bodies have no compliance to share a load",
+        ));
+    }
+    if matches!(zone, ZoneSpec::Faces(_)) && !(below.owns_surface() || above.owns_surface()) {
+        return Err(Error::invalid(
+            "contact.zone.kind",
+            "faces",
+            "finite-element faces are meshed by a finite-element body (fe_base, fe_block or \
+             fe_punch); give one, or a grid, rings or strips",
+        ));
+    }
+    check_load(above, zone, load)
+}
+
+/// The contact's load fits the body above.
+fn check_load(above: &dyn BodyKind, zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+    match (load, above.takes(zone)) {
+        (LoadSpec::ForceN(f), Takes::Force) => {
+            contopt_core::check::positive("contact.load.force_n", f).map(|_| ())
+        }
+        (LoadSpec::ForceN(_), Takes::OwnLoad) => Err(Error::invalid(
+            "contact.load.force_n",
+            above.kind(),
+            "carries its own load (the punch's `load`): the contact takes no force",
+        )),
+        (LoadSpec::ForceN(_), Takes::Nothing) => Err(Error::invalid(
+            "contact.load.force_n",
+            above.kind(),
+            "is held and cannot float under a force: press it by an approach, or put it below",
+        )),
+        (LoadSpec::ApproachMm(a), _) => {
+            contopt_core::check::positive("contact.load.approach_mm", a).map(|_| ())
+        }
+        (LoadSpec::None, Takes::OwnLoad) => Ok(()),
+        (LoadSpec::None, _) => Err(Error::invalid(
+            "contact.load",
+            "none",
+            "nothing presses the bodies together: give { force_n } or { approach_mm }",
+        )),
+    }
+}
+
+/// The side's name in messages.
+pub fn side_name(side: Side) -> &'static str {
+    match side {
+        Side::Below => "the first body (below the zone)",
+        Side::Above => "the second body (above the zone)",
+    }
+}
+
+/// A kind refused on a side or a zone, with what it needs.
+pub fn misplaced(kind: &str, at: &Placement, needs: &str) -> Error {
+    Error::invalid(
+        "kind",
+        kind,
+        format!(
+            "cannot be {} on {}: {needs}",
+            side_name(at.side),
+            at.zone.kind()
+        ),
+    )
+}
+
+/// The surface a body that does not own one stands on: `surface` (the zone's, as the body
+/// below sees it) for the body below, mirrored for the body above; an error when none was
+/// given.
+pub fn own_surface(kind: &str, at: &Placement, surface: Option<&Interface>) -> Result<Interface> {
+    let surface = surface.ok_or_else(|| {
+        Error::invalid(
+            "kind",
+            kind,
+            "needs a surface to stand on: the zone's, or a finite-element partner's",
+        )
+    })?;
+    Ok(match at.side {
+        Side::Below => surface.clone(),
+        Side::Above => surface.mirrored(),
+    })
+}

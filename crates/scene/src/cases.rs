@@ -1,0 +1,177 @@
+//! A scene's cases: one per value of its `[sweep]`, one per `[[case]]`, or the scene itself.
+//! Each case is the scene's tree with its values put in, keeping the place each value was
+//! written (a swept value's errors point at the sweep's line).
+
+use std::collections::BTreeMap;
+
+use contopt_input::{Node, Value};
+use contopt_results::words;
+
+use crate::error::Locator;
+use crate::{SceneError, MAX_CASES};
+
+/// 2⁵³: below it an f64 holds every whole number exactly, so a swept float becomes an integer
+/// key's value without loss.
+const MAX_EXACT_INTEGER: f64 = 9_007_199_254_740_992.0;
+
+/// A case before it is read: its label, the numbers it changed, its tree.
+pub(crate) struct CaseInput {
+    pub label: String,
+    /// Whether the scene named it (`[[case]]`, or a sweep's value): a scene of one unnamed
+    /// case takes the scene's name as its label.
+    pub named: Option<()>,
+    pub params: BTreeMap<String, f64>,
+    pub tree: Node,
+}
+
+/// The cases of `tree`, whose `sweep` and `case` keys it consumes.
+pub(crate) fn expand(mut tree: Node, at: &Locator) -> Result<Vec<CaseInput>, SceneError> {
+    let sweep = tree.remove("sweep");
+    let listed = tree.remove("case");
+    let cases = match (sweep, listed) {
+        (Some(_), Some(_)) => {
+            return Err(at.at("case", "give either a [sweep] or [[case]]s, not both"))
+        }
+        (Some(sweep), None) => swept(&tree, &sweep, at)?,
+        (None, Some(list)) => listed_cases(&tree, &list, at)?,
+        (None, None) => vec![CaseInput {
+            label: String::new(),
+            named: None,
+            params: BTreeMap::new(),
+            tree,
+        }],
+    };
+    if cases.len() > MAX_CASES {
+        return Err(at.at(
+            "case",
+            format!("{} cases, at most {MAX_CASES} in one scene", cases.len()),
+        ));
+    }
+    Ok(cases)
+}
+
+/// The entries of a table, refusing any key outside `allowed`.
+fn entries<'n>(
+    node: &'n Node,
+    path: &str,
+    allowed: &[&str],
+    at: &Locator,
+) -> Result<&'n [(contopt_input::Key, Node)], SceneError> {
+    let Value::Table(entries) = node.value() else {
+        return Err(at.at(
+            path,
+            format!("must be a table, not a {}", node.value().kind()),
+        ));
+    };
+    if let Some((key, _)) = entries.iter().find(|(k, _)| !allowed.contains(&k.name())) {
+        return Err(at.at(
+            &format!("{path}.{}", key.name()),
+            format!("unknown key, expected one of {}", allowed.join(", ")),
+        ));
+    }
+    Ok(entries)
+}
+
+/// One case per value of `[sweep]`: `key` a dotted path to a number of the scene, `values`
+/// its values (whole numbers where the scene has an integer).
+fn swept(tree: &Node, sweep: &Node, at: &Locator) -> Result<Vec<CaseInput>, SceneError> {
+    entries(sweep, "sweep", &["key", "values"], at)?;
+    let key = match sweep.get("key").map(Node::value) {
+        Some(Value::String(key)) => key.clone(),
+        _ => return Err(at.at("sweep.key", "give the dotted path of a number of the scene")),
+    };
+    let values = match sweep.get("values").map(Node::value) {
+        Some(Value::Array(values)) if !values.is_empty() => values,
+        _ => return Err(at.at("sweep.values", "give at least one value")),
+    };
+    let current = tree
+        .get(&key)
+        .ok_or_else(|| at.at("sweep.key", format!("the scene has no `{key}`")))?;
+    let integer = matches!(current.value(), Value::Integer(_));
+    values
+        .iter()
+        .enumerate()
+        .map(|(k, value)| {
+            let place = format!("sweep.values[{k}]");
+            let (node, number) = swept_value(value, integer).map_err(|m| at.at(&place, m))?;
+            let mut case = tree.clone();
+            case.set(&key, node).map_err(|e| at.input(e))?;
+            Ok(CaseInput {
+                label: words::quantity(&key, number),
+                named: Some(()),
+                params: [(key.clone(), number)].into(),
+                tree: case,
+            })
+        })
+        .collect()
+}
+
+/// A swept value as the scene's key takes it: an integer key takes whole numbers only.
+fn swept_value(value: &Node, integer: bool) -> Result<(Node, f64), String> {
+    let number = match *value.value() {
+        Value::Integer(i) => i as f64,
+        Value::Float(f) => f,
+        ref other => {
+            return Err(format!(
+                "a sweep's values are numbers, not a {}",
+                other.kind()
+            ))
+        }
+    };
+    if !integer {
+        return Ok((value.clone(), number));
+    }
+    if number.fract() != 0.0 || number.abs() >= MAX_EXACT_INTEGER {
+        return Err(format!(
+            "{number}: the swept key holds an integer, so give whole numbers"
+        ));
+    }
+    Ok((Node::from(number as i64).with_span(value.span()), number))
+}
+
+/// One case per `[[case]]`: its `label` and the dotted keys it `set`s, with their values.
+fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>, SceneError> {
+    let Value::Array(items) = list.value() else {
+        return Err(at.at("case", "write the cases as [[case]] tables"));
+    };
+    let mut seen = std::collections::HashSet::new();
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, item)| {
+            let path = format!("case[{k}]");
+            entries(item, &path, &["label", "set"], at)?;
+            let label = match item.get("label").map(Node::value) {
+                Some(Value::String(label)) if !label.trim().is_empty() => label.clone(),
+                _ => return Err(at.at(&format!("{path}.label"), "give each case a label")),
+            };
+            if !seen.insert(label.clone()) {
+                return Err(at.at(&format!("{path}.label"), format!("a second case {label:?}")));
+            }
+            let changes = match item.get("set").map(Node::value) {
+                Some(Value::Table(entries)) => entries.as_slice(),
+                _ => return Err(at.at(&format!("{path}.set"), "give the keys the case sets")),
+            };
+            let mut case = tree.clone();
+            let mut params = BTreeMap::new();
+            for (key, value) in changes {
+                case.insert(key.name(), value.clone())
+                    .map_err(|e| at.input(e))?;
+                let number = match *value.value() {
+                    Value::Integer(i) => Some(i as f64),
+                    Value::Float(f) => Some(f),
+                    _ => None,
+                };
+                if let Some(number) = number {
+                    params.insert(key.name().to_string(), number);
+                }
+            }
+            Ok(CaseInput {
+                label,
+                named: Some(()),
+                params,
+                tree: case,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,236 @@
+//! The model's limits, judged on every converged case: a contact that reaches an edge of its
+//! zone (where the zone, not a body, ends it) is outside the model — its pressure is wrong, and
+//! the case says where and how large the zone must be; a contact resolved by fewer than
+//! [`MIN_CELLS_ACROSS`] cells across its half-width carries a warning with the number; and
+//! Hertz's nominal contact is reported beside the case where it applies.
+
+use contopt_contact::InterfaceProblem;
+use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
+
+use crate::zone::Layout;
+use crate::Case;
+
+/// Cells across the contact's half-width below which its peak is not resolved (a Hertz
+/// pressure on 8 cells per half-width is within about 1 % of its peak).
+pub const MIN_CELLS_ACROSS: f64 = 8.0;
+
+/// A point carries pressure when it holds more than this fraction of p_max (round-off of
+/// the solvers' exact zeros).
+const CARRIES: f64 = 1e-6;
+
+/// A zone must reach this many Hertz half-widths to hold the contact with a margin.
+const HERTZ_MARGIN: f64 = 1.25;
+
+/// Without Hertz, the zone must grow at least by this factor past an edge the contact reaches.
+const GROWTH: f64 = 1.5;
+
+/// One edge of a zone: its name, the surface axis it cuts, its position, and its points.
+struct Edge {
+    name: String,
+    axis: usize,
+    extent: f64,
+    points: Vec<usize>,
+}
+
+/// Judges a case's limits into its report.
+pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfaceProblem) {
+    report.hertz = case.plan.hertz.map(|h| contopt_results::Hertz {
+        contact: if h.line { "line" } else { "point" }.into(),
+        p0_mpa: h.p0,
+        half_width_mm: h.half_width,
+    });
+    if report.status != CaseStatus::Solved {
+        return;
+    }
+    let points = problem.interface().points();
+    let pressure: Vec<f64> = report.interface.iter().map(|q| q.p_mpa).collect();
+    let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+    if !(p_max > 0.0) {
+        return;
+    }
+    let carrying: Vec<bool> = pressure.iter().map(|&p| p > CARRIES * p_max).collect();
+    if let Some(limit) = edge_reached(case, points, &pressure, &carrying, p_max) {
+        report.status = CaseStatus::OutsideModel;
+        report.limit = Some(limit);
+        return;
+    }
+    report.resolution = resolution(&case.plan.layout, points, &carrying, &pressure);
+    if let Some(r) = &report.resolution {
+        if r.cells < MIN_CELLS_ACROSS {
+            report.warnings.push(format!(
+                "the contact's half-width ({:.4} mm) spans {:.1} cells, fewer than \
+                 {MIN_CELLS_ACROSS}: its peak is not resolved; refine the zone (cells of at \
+                 most {:.4} mm)",
+                r.half_width_mm,
+                r.cells,
+                r.half_width_mm / MIN_CELLS_ACROSS
+            ));
+        }
+    }
+}
+
+/// The first edge of the zone where the contact carries pressure and the gap goes on beyond
+/// it, as a limit with the size the zone needs.
+fn edge_reached(
+    case: &Case,
+    points: &[[f64; 3]],
+    pressure: &[f64],
+    carrying: &[bool],
+    p_max: f64,
+) -> Option<ModelLimit> {
+    let layout = &case.plan.layout;
+    let zone = &case.spec.contact.zone;
+    let rim_is_a_body = case.spec.body.iter().any(|b| b.kind().ends_at_rim());
+    let cell = layout.edge_cell();
+    for edge in edges(layout, points) {
+        if rim_is_a_body && edge.axis == 0 {
+            continue;
+        }
+        let reached = edge.points.iter().copied().find(|&i| {
+            carrying[i]
+                && case
+                    .spec
+                    .contact
+                    .gap
+                    .goes_on(zone, points[i], edge.axis, cell[edge.axis])
+        });
+        if let Some(i) = reached {
+            return Some(limit(case, &edge, pressure[i], p_max));
+        }
+    }
+    None
+}
+
+/// The limit of a contact that reached `edge`, with the size the zone needs.
+fn limit(case: &Case, edge: &Edge, p: f64, p_max: f64) -> ModelLimit {
+    let (needed, why) = match case.plan.hertz {
+        Some(h) => (
+            (HERTZ_MARGIN * h.half_width).max(GROWTH * edge.extent),
+            format!(
+                " (Hertz's {} = {:.4} mm)",
+                if h.line { "b" } else { "a" },
+                h.half_width
+            ),
+        ),
+        None => (GROWTH * edge.extent, String::new()),
+    };
+    let message = format!(
+        "the contact reaches the zone's edge {} (p = {p:.4e} MPa there, {:.0} % of p_max): the \
+         zone ends inside the contact, so the pressure and all that follows from it are wrong; \
+         the zone must reach at least {needed:.4} mm from its centre{why}: give it more or \
+         larger cells",
+        edge.name,
+        100.0 * p / p_max
+    );
+    ModelLimit {
+        edge: edge.name.clone(),
+        extent_mm: edge.extent,
+        needed_mm: needed,
+        message,
+    }
+}
+
+/// The edges of a zone and the points along each: a grid's four sides; the rim of rings or
+/// of axisymmetric faces; both ends of strips; the outer end of plane faces (x = 0 is their
+/// plane of symmetry).
+fn edges(layout: &Layout, points: &[[f64; 3]]) -> Vec<Edge> {
+    let cell = layout.edge_cell();
+    let along = |axis: usize, high: bool| {
+        let pick = |m: f64, v: f64| if high { m.max(v) } else { m.min(v) };
+        let start = if high {
+            f64::NEG_INFINITY
+        } else {
+            f64::INFINITY
+        };
+        let end = points.iter().fold(start, |m, x| pick(m, x[axis]));
+        let near: Vec<usize> = (0..points.len())
+            .filter(|&i| (points[i][axis] - end).abs() < 0.5 * cell[axis].max(f64::MIN_POSITIVE))
+            .collect();
+        (end, near)
+    };
+    let named = |axis: usize, high: bool, symbol: &str| {
+        let (end, near) = along(axis, high);
+        let outer = if high {
+            end + 0.5 * cell[axis]
+        } else {
+            end - 0.5 * cell[axis]
+        };
+        Edge {
+            name: format!("{symbol} = {outer:+.4} mm"),
+            axis,
+            extent: outer.abs(),
+            points: near,
+        }
+    };
+    match layout {
+        Layout::Grid { .. } => vec![
+            named(0, false, "x"),
+            named(0, true, "x"),
+            named(1, false, "y"),
+            named(1, true, "y"),
+        ],
+        Layout::Rings(_) => vec![named(0, true, "r")],
+        Layout::Strips { .. } => vec![named(0, false, "x"), named(0, true, "x")],
+        Layout::Faces(f) if f.analysis == contopt_fem::Analysis::Axisymmetric => {
+            vec![named(0, true, "r")]
+        }
+        Layout::Faces(_) => vec![named(0, true, "x")],
+    }
+}
+
+/// How many cells span the contact's half-width, along its narrowest direction through the
+/// largest pressure.
+fn resolution(
+    layout: &Layout,
+    points: &[[f64; 3]],
+    carrying: &[bool],
+    pressure: &[f64],
+) -> Option<Resolution> {
+    let peak = (0..pressure.len()).max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))?;
+    let count = |axis: usize, other: usize| {
+        carrying
+            .iter()
+            .zip(points)
+            .filter(|(c, x)| {
+                **c && (x[other] - points[peak][other]).abs() < 1e-9 * (1.0 + x[other].abs())
+            })
+            .map(|(_, x)| x[axis])
+            .collect::<Vec<f64>>()
+    };
+    match layout {
+        Layout::Grid { dx, dy, .. } => {
+            let across = [count(0, 1).len() as f64 * dx, count(1, 0).len() as f64 * dy];
+            let (axis, width) = if across[0] <= across[1] {
+                (0, across[0])
+            } else {
+                (1, across[1])
+            };
+            let cell = [*dx, *dy][axis];
+            Some(Resolution {
+                half_width_mm: 0.5 * width,
+                cells: 0.5 * width / cell,
+            })
+        }
+        _ => {
+            let inside: Vec<f64> = points
+                .iter()
+                .zip(carrying)
+                .filter(|(_, c)| **c)
+                .map(|(x, _)| x[0])
+                .collect();
+            let lo = inside.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = inside.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let symmetric = matches!(layout, Layout::Strips { .. });
+            let half = if symmetric { 0.5 * (hi - lo) } else { hi };
+            let per_cell = match layout {
+                Layout::Faces(_) => 3.0,
+                _ => 1.0,
+            };
+            let cells = inside.len() as f64 / per_cell / if symmetric { 2.0 } else { 1.0 };
+            Some(Resolution {
+                half_width_mm: half,
+                cells,
+            })
+        }
+    }
+}

@@ -1,0 +1,393 @@
+//! The designs a case may run on its contact: none (the contact analysed as it is), the
+//! paper's methods for the initial gap (§3: the iteration under a given load or displacement,
+//! the linear programme, the load split), and for a roller the robust crown of its envelope and
+//! the tuned Fujiwara–Kawase profile. Each is one file implementing [`Design`]; one line of
+//! [`MethodSpec`] and of [`design`] registers it.
+
+mod analysis;
+mod envelope;
+mod gap;
+mod search;
+
+use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_core::observe::{Method, Nested, Observer};
+use contopt_core::{ContactState, Error, GapShape, Result, Termination};
+use contopt_optimise::{
+    Controller, IterationSettings, LinearProgrammeSettings, LoadSplitSettings, Optimisation,
+    OptimisationMethod, Pass, Region, SearchSettings,
+};
+use contopt_results::{CaseReport, CurvePoint, EnvelopeCase, RollerReport, TunedProfile};
+use contopt_roller::{CaseContact, CrownSettings, LoadCase, RollerFigures};
+use serde::{Deserialize, Serialize};
+
+use crate::prepare::Plan;
+use crate::spec::{CaseSpec, OptimisationSpec};
+use crate::zone::Layout;
+use crate::Case;
+
+/// A design method and its settings, as `[optimisation] method` names it: the library's
+/// settings with the library's defaults.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodSpec {
+    /// The iteration of §3.2 under a given load: p_max from the floating body's equilibrium
+    /// (Tables 1 and 3).
+    GivenLoad(IterationSettings),
+    /// The iteration of §3.2 under a given displacement: p_max from the contact pressure
+    /// (Table 2).
+    GivenDisplacement(IterationSettings),
+    /// The restricted linear programme (3.5) on the dense influence matrix (small problems).
+    LinearProgramme(LinearProgrammeSettings),
+    /// The optimum of (3.5) from the loads carried by the design columns, without a dense
+    /// matrix (a floating body; pointwise or extruded profiles).
+    LoadSplit(LoadSplitSettings),
+    /// A roller's symmetric crown with the least worst-case p_max over its `[envelope]`:
+    /// max over the cases of p ≤ v·p_max.
+    EnvelopeSplit(LoadSplitSettings),
+    /// A roller's Fujiwara–Kawase profile with K1, K2 and z_m tuned by a Nelder–Mead search to
+    /// the least worst-case p_max over its `[envelope]` (or its own load), edge-loaded crowns
+    /// penalised.
+    ProfileSearch(SearchSettings),
+}
+
+/// The design of a case: the registration of every method.
+pub(crate) fn design(spec: &CaseSpec) -> Box<dyn Design> {
+    let Some(opt) = &spec.optimisation else {
+        return Box::new(analysis::Analysis);
+    };
+    match &opt.method {
+        MethodSpec::GivenLoad(s) => Box::new(gap::Gap(OptimisationMethod::GivenLoad(*s))),
+        MethodSpec::GivenDisplacement(s) => {
+            Box::new(gap::Gap(OptimisationMethod::GivenDisplacement(*s)))
+        }
+        MethodSpec::LinearProgramme(s) => {
+            Box::new(gap::Gap(OptimisationMethod::LinearProgramme(*s)))
+        }
+        MethodSpec::LoadSplit(s) => Box::new(gap::Gap(OptimisationMethod::LoadSplit(*s))),
+        MethodSpec::EnvelopeSplit(s) => Box::new(envelope::EnvelopeSplit(*s)),
+        MethodSpec::ProfileSearch(s) => Box::new(search::ProfileSearch(*s)),
+    }
+}
+
+/// What a design method does: check a case before anything is built, count its dense
+/// matrices, and run.
+pub(crate) trait Design {
+    /// Refuses a case the method cannot run; fields are named from `[optimisation]`.
+    fn check(&self, c: &Check) -> Result<()>;
+
+    /// The n × n matrices the method holds at once on `points` points (with the solver's own
+    /// counted by the solver).
+    fn dense_copies(&self, points: usize, solver: &dyn ContactSolver) -> u64 {
+        solver.dense_copies(points)
+    }
+
+    /// Runs the design on the case's contact, timing its stages into `report`.
+    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed>;
+}
+
+/// What a check sees of a case.
+pub(crate) struct Check<'a> {
+    pub spec: &'a CaseSpec,
+    pub layout: &'a Layout,
+    /// Whether a body floats.
+    pub floating: bool,
+    /// Whether the gap is a roller's.
+    pub roller: bool,
+}
+
+/// What a design runs on.
+pub(crate) struct Context<'a> {
+    pub spec: &'a CaseSpec,
+    pub plan: &'a Plan,
+    pub problem: &'a InterfaceProblem<'a>,
+    pub solver: &'a dyn ContactSolver,
+    pub observer: &'a dyn Observer,
+    /// A roller's load cases, its own first (empty for other gaps).
+    pub cases: &'a [LoadCase<'a>],
+}
+
+/// What a design found: its last iterate, how it ended, and its figures.
+pub(crate) struct Designed {
+    pub method: Option<Method>,
+    pub solver: Option<Method>,
+    pub termination: Termination,
+    pub pressure: Vec<f64>,
+    pub gap: Vec<f64>,
+    pub rigid: Vec<f64>,
+    /// The gap change per point \[mm\] (empty without one).
+    pub gap_change: Vec<f64>,
+    /// What the report shows as Δh instead: a roller's given crown \[mm\].
+    pub crown: Option<Vec<f64>>,
+    pub bound_p_max: Option<f64>,
+    pub dh_max: Option<f64>,
+    pub passes: Vec<Pass>,
+    pub roller: Option<RollerReport>,
+}
+
+impl Designed {
+    /// A contact solve's state, nothing designed.
+    fn contact(state: ContactState) -> Self {
+        Self {
+            method: None,
+            solver: Some(state.method),
+            termination: state.termination,
+            pressure: state.pressure,
+            gap: state.gap,
+            rigid: state.rigid,
+            gap_change: vec![],
+            crown: None,
+            bound_p_max: None,
+            dh_max: None,
+            passes: vec![],
+            roller: None,
+        }
+    }
+}
+
+/// A roller's load cases for `problem`, its own first; none for other gaps.
+pub(crate) fn load_cases<'a>(
+    case: &Case,
+    problem: &InterfaceProblem<'a>,
+) -> Result<Vec<LoadCase<'a>>> {
+    match &case.plan.roller {
+        Some(roller) => contopt_roller::load_cases(problem, roller, case.spec.envelope.as_ref()),
+        None => Ok(vec![]),
+    }
+}
+
+/// The optimisation settings of a design method's case.
+fn optimisation(spec: &CaseSpec) -> Result<&OptimisationSpec> {
+    spec.optimisation
+        .as_ref()
+        .ok_or_else(|| Error::invalid("method", "none", "a design needs [optimisation]"))
+}
+
+/// The controller a method needs, checked against the zone's reach, and its regions.
+fn check_controller(c: &Check) -> Result<()> {
+    let opt = optimisation(c.spec)?;
+    let Some(settings) = &opt.controller else {
+        return Err(Error::invalid(
+            "controller",
+            "missing",
+            "give the controller v(x) of p ≤ v·p_max: { kind = \"constant\", level = 1.0 }, \
+             \"trapezoid\" or \"cubic\" with l1_mm and l2_mm",
+        ));
+    };
+    let within = |e: Error| match e {
+        Error::InvalidInput {
+            field,
+            value,
+            reason,
+        } => Error::InvalidInput {
+            field: format!("controller.{field}"),
+            value,
+            reason,
+        },
+        other => other,
+    };
+    settings.build().map_err(within)?;
+    let [hx, hy] = c.layout.half_extent();
+    let [cx, cy] = c.layout.edge_cell();
+    settings
+        .check_reach([hx, hy, 0.0], [cx, cy, 0.0])
+        .map_err(within)?;
+    check_regions(opt)
+}
+
+/// Ω_v and the profile's axis.
+fn check_regions(opt: &OptimisationSpec) -> Result<()> {
+    if let Some(omega_v) = &opt.omega_v {
+        omega_v.check().map_err(|e| match e {
+            Error::InvalidInput {
+                field,
+                value,
+                reason,
+            } => Error::InvalidInput {
+                field: format!("omega_v.{field}"),
+                value,
+                reason,
+            },
+            other => other,
+        })?;
+    }
+    if let Some(axis) = opt.profile_axis {
+        contopt_core::check::count("profile_axis", axis, 0, 1)?;
+    }
+    Ok(())
+}
+
+/// A design of a roller's crown starts from the straight roller: it designs the whole crown.
+fn straight_roller(c: &Check, method: &str) -> Result<()> {
+    match c.spec.contact.gap.roller_gap() {
+        Some(g) if g.profile == CrownSettings::Straight => Ok(()),
+        Some(_) => Err(Error::invalid(
+            "method",
+            method,
+            "designs the roller's whole crown: give the straight profile \
+             (contact.gap.profile = \"straight\")",
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The cell size across a roller's grid \[mm\].
+fn cell_across(plan: &Plan) -> f64 {
+    plan.layout.edge_cell()[1]
+}
+
+/// The gap shape, the controller and Ω_v of an optimisation of `c`: the profile along
+/// `profile_axis` (a roller's axis by default; `symmetric` about its middle for an envelope),
+/// else at the finite-element face nodes, else at every point; Ω_v from `omega_v`, a roller's
+/// centre row by default, else everywhere.
+fn setup(
+    c: &Context,
+    symmetric: bool,
+) -> Result<(GapShape, Box<dyn Controller>, Option<Vec<bool>>)> {
+    let opt = optimisation(c.spec)?;
+    let roller = c.plan.roller.is_some();
+    let iface = c.problem.interface();
+    let axis = opt.profile_axis.or(roller.then_some(0));
+    let shape = match (axis, c.problem.pressure_basis()) {
+        (Some(axis), _) if symmetric => GapShape::symmetric(iface, axis)?,
+        (Some(axis), _) => GapShape::extruded(iface, axis)?,
+        (None, Some(basis)) => basis.clone(),
+        (None, None) => GapShape::pointwise(iface),
+    };
+    let controller = opt
+        .controller
+        .as_ref()
+        .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?
+        .build()?;
+    let dy = cell_across(c.plan);
+    let mask = match (&opt.omega_v, roller) {
+        (Some(region), _) => Some(region.mask(iface)),
+        (None, true) => Some(
+            iface
+                .points()
+                .iter()
+                .map(|x| x[1].abs() <= 0.5 * dy)
+                .collect(),
+        ),
+        (None, false) => None,
+    };
+    Ok((shape, controller, mask))
+}
+
+/// The regions of a mask: Ω_v inside, Ω_nv outside.
+fn regions(mask: &[bool]) -> Vec<Region> {
+    mask.iter()
+        .map(|&inside| {
+            if inside {
+                Region::OmegaV
+            } else {
+                Region::OmegaNv
+            }
+        })
+        .collect()
+}
+
+/// An optimisation of `c` on `shape` with `controller` and Ω_v from `mask`, reporting to the
+/// case's observer.
+fn optimisation_of<'a>(
+    c: &'a Context,
+    shape: &'a GapShape,
+    controller: &dyn Controller,
+    mask: Option<&[bool]>,
+) -> Result<Optimisation<'a>> {
+    let optimisation = Optimisation::new(c.problem, shape, controller)?.with_observer(c.observer);
+    match mask {
+        Some(mask) => optimisation.with_regions(regions(mask)),
+        None => Ok(optimisation),
+    }
+}
+
+/// A roller case's figures under the crown `drop` (per point \[mm\]) from the contacts of its
+/// load cases (its own first), with the envelope's cases when the scene has one and the tuned
+/// parameters of a search.
+fn roller_figures(
+    c: &Context,
+    contacts: &[CaseContact],
+    drop: &[f64],
+    tuned: Option<TunedProfile>,
+) -> Option<RollerReport> {
+    c.plan.roller.as_ref()?;
+    let points = c.problem.interface().points();
+    let figures = RollerFigures::new(contacts, points, drop, cell_across(c.plan));
+    let own = figures.cases.first()?;
+    let envelope: Vec<EnvelopeCase> = match c.spec.envelope {
+        Some(_) => figures
+            .cases
+            .iter()
+            .map(|f| EnvelopeCase {
+                load_n: f.load_n,
+                tilt_arcmin: f.tilt_arcmin,
+                p_max_mpa: f.p_max,
+                p_max_at_mm: f.p_max_at_mm,
+                edge_loading: f.edge_loading,
+                approach_um: f.approach_um,
+                centre_line: f
+                    .centre_line
+                    .iter()
+                    .map(|&[x_mm, p_mpa]| CurvePoint { x_mm, p_mpa })
+                    .collect(),
+            })
+            .collect(),
+        None => vec![],
+    };
+    Some(RollerReport {
+        p_max_at_mm: own.p_max_at_mm,
+        edge_loading: own.edge_loading,
+        half_width_mm: own.half_width_mm,
+        crown_drop_end_um: own.crown_drop_end_um,
+        worst_p_max_mpa: c.spec.envelope.as_ref().map(|_| figures.worst_p_max),
+        envelope,
+        tuned,
+    })
+}
+
+/// The contacts of a roller's load cases under the gap change `change` (per point \[mm\]):
+/// its own `own` state, and when the scene has an envelope every further case solved from
+/// scratch, nested under the case's observer. `None` when a case did not converge, with its
+/// termination.
+fn envelope_contacts(
+    c: &Context,
+    own: &ContactState,
+    change: &[f64],
+    report: &mut CaseReport,
+) -> std::result::Result<Vec<ContactState>, Termination> {
+    if c.spec.envelope.is_none() || c.cases.len() < 2 {
+        return Ok(vec![own.clone()]);
+    }
+    let started = std::time::Instant::now();
+    let zeros;
+    let change = if change.is_empty() {
+        zeros = vec![0.0; c.problem.len()];
+        &zeros
+    } else {
+        change
+    };
+    let solved =
+        contopt_roller::solve_cases(&c.cases[1..], change, c.solver, None, &Nested(c.observer));
+    report.time("envelope", started);
+    let states = solved.map_err(|e| Termination::Stalled {
+        reason: e.to_string(),
+    })?;
+    if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+        return Err(s.termination.clone().inside(s.method));
+    }
+    Ok(std::iter::once(own.clone()).chain(states).collect())
+}
+
+/// The contacts of states, for the figures.
+fn contacts<'s>(c: &Context, states: &'s [ContactState]) -> Vec<CaseContact<'s>> {
+    states
+        .iter()
+        .zip(c.cases)
+        .map(|(s, case)| CaseContact {
+            load_n: case.load_n,
+            tilt_arcmin: case.tilt_arcmin,
+            pressure: &s.pressure,
+            approach_mm: s.approach().unwrap_or(0.0),
+        })
+        .collect()
+}

@@ -1,0 +1,171 @@
+//! The first half of a case's run, and all of its check: every value, every combination of
+//! the parts, the memory the case will take — nothing built, nothing solved. What this passes,
+//! the run accepts; what the run would refuse, this refuses, at the key that says so.
+
+use contopt_core::Material;
+use contopt_roller::Roller;
+
+use crate::bodies::{check_pair, BodySpec, Placement, PunchLoad, Side};
+use crate::error::Locator;
+use crate::gap::{GapSpec, Hertz};
+use crate::methods::Check;
+use crate::spec::{CaseSpec, LoadSpec};
+use crate::zone::{Layout, ZoneSpec};
+use crate::SceneError;
+
+/// A case checked and ready to run: its zone's sizes, Hertz's nominal contact, a roller's
+/// geometry, its memory limits and the key of its bodies.
+#[derive(Debug)]
+pub(crate) struct Plan {
+    /// The zone with every size known.
+    pub layout: Layout,
+    /// The pair's modulus E* \[MPa\], when both bodies' compliances are known.
+    pub e_star: Option<f64>,
+    /// Hertz's nominal contact for the gap and the load, where it applies.
+    pub hertz: Option<Hertz>,
+    /// A roller gap's roller, its crown built.
+    pub roller: Option<Roller>,
+    /// The memory limit of dense matrices \[bytes\].
+    pub dense_limit: u64,
+    /// The key of the case's bodies: cases with one key share one build.
+    pub key: String,
+}
+
+/// Checks `spec` and plans its run; `at` places the errors.
+pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
+    let contact = &spec.contact;
+    check_pair(&spec.body, &contact.zone, contact.load).map_err(|e| at.library("", e))?;
+    contact
+        .gap
+        .check(&contact.zone)
+        .map_err(|e| at.library("contact.gap", e))?;
+    let e_star = pair_modulus(&spec.body, &contact.zone);
+    let (force, approach) = load_figures(contact.load);
+    let rough = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, None));
+    let layout = contact
+        .zone
+        .layout(contact.gap.natural_extent(rough))
+        .map_err(|e| at.library("contact.zone", e))?;
+    let length = line_length(&layout);
+    let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
+    for (k, body) in spec.body.iter().enumerate() {
+        let place = placement(spec, &layout, k, at)?;
+        body.kind()
+            .check(&place)
+            .map_err(|e| at.library(&format!("body[{k}]"), e))?;
+    }
+    let roller = roller(spec, force, at)?;
+    let floating = floats(spec);
+    let check = Check {
+        spec,
+        layout: &layout,
+        floating,
+        roller: roller.is_some(),
+    };
+    crate::methods::design(spec)
+        .check(&check)
+        .map_err(|e| at.library("optimisation", e))?;
+    if spec.envelope.is_some() && roller.is_none() {
+        return Err(at.at(
+            "envelope",
+            "only a roller gap has an envelope of load cases",
+        ));
+    }
+    if let Some(sub) = &spec.output.subsurface {
+        sub.check()
+            .map_err(|e| at.library("output.subsurface", e))?;
+    }
+    let solver = spec.solver.build().map_err(|e| at.library("solver", e))?;
+    let dense_limit = crate::budget::dense_limit(spec).map_err(|e| at.library("", e))?;
+    crate::budget::check(spec, &layout, solver.as_ref(), at)?;
+    Ok(Plan {
+        layout,
+        e_star,
+        hertz,
+        roller,
+        dense_limit,
+        key: format!("{:?}", (&contact.zone, &spec.body, contact.load)),
+    })
+}
+
+/// Where body `k` stands.
+pub(crate) fn placement<'a>(
+    spec: &'a CaseSpec,
+    layout: &'a Layout,
+    k: usize,
+    at: &'a Locator,
+) -> Result<Placement<'a>, SceneError> {
+    Ok(Placement {
+        zone: &spec.contact.zone,
+        layout,
+        side: if k == 0 { Side::Below } else { Side::Above },
+        load: spec.contact.load,
+        dir: at.dir(),
+    })
+}
+
+/// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.
+fn pair_modulus(bodies: &[BodySpec], zone: &ZoneSpec) -> Option<f64> {
+    let total: f64 = bodies
+        .iter()
+        .map(|b| b.kind().compliance(zone))
+        .sum::<Option<f64>>()?;
+    (total > 0.0 && total.is_finite()).then(|| 1.0 / total)
+}
+
+/// The contact's force and approach.
+fn load_figures(load: LoadSpec) -> (Option<f64>, Option<f64>) {
+    match load {
+        LoadSpec::ForceN(f) => (Some(f), None),
+        LoadSpec::ApproachMm(a) => (None, Some(a)),
+        LoadSpec::None => (None, None),
+    }
+}
+
+/// The length a line load spreads over: a grid's length along x, a plane body's thickness.
+fn line_length(layout: &Layout) -> Option<f64> {
+    match layout {
+        Layout::Grid { nx, dx, .. } => Some(*nx as f64 * dx),
+        Layout::Strips { thickness, .. } => Some(*thickness),
+        Layout::Faces(f) => match f.analysis {
+            contopt_fem::Analysis::PlaneStress { thickness }
+            | contopt_fem::Analysis::PlaneStrain { thickness } => Some(thickness),
+            contopt_fem::Analysis::Axisymmetric => None,
+        },
+        Layout::Rings(_) => None,
+    }
+}
+
+/// Whether a body floats: pressed by a contact force, or a punch under a pressure.
+fn floats(spec: &CaseSpec) -> bool {
+    matches!(spec.contact.load, LoadSpec::ForceN(_))
+        || spec.body.iter().any(|b| {
+            matches!(
+                b,
+                BodySpec::FePunch(p) if matches!(p.load, PunchLoad::PressureMpa(_))
+            )
+        })
+}
+
+/// A roller gap's roller: two half-spaces on the grid, the raceway first, pressed by a force.
+fn roller(spec: &CaseSpec, force: Option<f64>, at: &Locator) -> Result<Option<Roller>, SceneError> {
+    let GapSpec::Roller(gap) = &spec.contact.gap else {
+        return Ok(None);
+    };
+    let materials: Vec<Material> = spec
+        .body
+        .iter()
+        .filter(|b| matches!(b, BodySpec::HalfSpace(_)))
+        .filter_map(|b| b.kind().material())
+        .collect();
+    let (Some(force), [raceway, roller]) = (force, materials.as_slice()) else {
+        return Err(at.at(
+            "contact.gap",
+            "a roller gap is the contact of two half_space bodies (the raceway first, the \
+             roller second) pressed by contact.load = { force_n }",
+        ));
+    };
+    gap.roller([*raceway, *roller], force, at.dir())
+        .map(Some)
+        .map_err(|e| at.library("contact.gap", e))
+}

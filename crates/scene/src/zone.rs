@@ -1,0 +1,321 @@
+//! The contact zone Ω (`contact.zone`): where the bodies may touch and how finely, shared by
+//! both bodies, so that their points pair one to one. A grid of cells on a half-space
+//! surface, rings of an axisymmetric surface, strips of a plane one, or the element faces of
+//! finite-element bodies along r (or x).
+
+use std::f64::consts::PI;
+
+use contopt_core::{check, Error, Geometry, Interface, Result};
+use contopt_fem::{Analysis, ElementKind, Spacing, MAX_AXIS_ELEMENTS};
+use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace};
+use serde::{Deserialize, Serialize};
+
+/// The most rings or strips of a zone: their dense surface matrix grows with the square.
+pub const MAX_LINE_CELLS: usize = 100_000;
+
+/// The contact zone and its discretisation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ZoneSpec {
+    /// A grid of cells on a flat surface, centred on the origin: x and y along the surface,
+    /// z into the body below.
+    Grid(GridZone),
+    /// Rings of an axisymmetric surface out to a radius, narrowing towards the rim.
+    Rings(RingsZone),
+    /// Strips across the edge of a plane body, narrowing towards both ends.
+    Strips(StripsZone),
+    /// The element faces of finite-element bodies along r (or x) from the axis (or the plane
+    /// of symmetry): the punch's face, which both bodies mesh alike.
+    Faces(FacesZone),
+}
+
+/// A grid zone.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridZone {
+    /// Cells along x and y.
+    pub cells: [usize; 2],
+    /// Cell size along x and y \[mm\]; default: the gap's own extent (a roller's length and
+    /// ±`reach_b`·b across; a sphere's Hertz radius with a margin) over the cells.
+    #[serde(default)]
+    pub cell_mm: Option<[f64; 2]>,
+}
+
+/// A zone of rings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RingsZone {
+    /// Number of rings (r = a·sin(πk/2n)).
+    pub rings: usize,
+    /// Outer radius a \[mm\].
+    pub radius_mm: f64,
+}
+
+/// A zone of strips.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StripsZone {
+    /// Number of strips (x = −a·cos(πk/n)).
+    pub strips: usize,
+    /// Half-width a \[mm\].
+    pub half_width_mm: f64,
+    /// `{ plane_stress = { thickness_mm } }` or `{ plane_strain = { thickness_mm } }`.
+    pub analysis: Analysis,
+}
+
+/// A zone of finite-element faces.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FacesZone {
+    /// `"axisymmetric"`, `{ plane_stress = { thickness_mm } }` or
+    /// `{ plane_strain = { thickness_mm } }`: the analysis of both bodies (a plane model is the
+    /// half x ≥ 0 of a body symmetric about x = 0).
+    pub analysis: Analysis,
+    /// The zone's radius (plane: half-width) \[mm\].
+    pub radius_mm: f64,
+    /// Quadratic elements across it.
+    pub elements: usize,
+    /// Size ratio innermost / outermost element (1, the default: uniform).
+    #[serde(default = "FacesZone::uniform")]
+    pub grading: f64,
+    /// The element, `"q8"` (default) or `"q9"`.
+    #[serde(default = "FacesZone::serendipity")]
+    pub element: ElementKind,
+}
+
+impl FacesZone {
+    fn uniform() -> f64 {
+        1.0
+    }
+
+    fn serendipity() -> ElementKind {
+        ElementKind::Q8
+    }
+
+    /// The element boundaries across the zone, after checking the counts and the grading.
+    pub fn spacing(&self) -> Result<Spacing> {
+        check::count("elements", self.elements, 1, MAX_AXIS_ELEMENTS)?;
+        check::positive("grading", self.grading)?;
+        check::positive("radius_mm", self.radius_mm)?;
+        Spacing::geometric(0.0, self.radius_mm, self.elements, 1.0 / self.grading)
+    }
+
+    /// The size of the outermost element, at the zone's rim \[mm\].
+    pub fn edge_size(&self) -> Result<f64> {
+        let s = self.spacing()?;
+        let c = s.coords();
+        Ok(c[c.len() - 1] - c[c.len() - 2])
+    }
+}
+
+/// A zone with every size known: a grid's cell size resolved from the gap when not given.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Layout {
+    /// `nx` × `ny` cells of `dx` × `dy`, the first cell's centre at `origin`.
+    Grid {
+        nx: usize,
+        ny: usize,
+        dx: f64,
+        dy: f64,
+        origin: [f64; 2],
+    },
+    /// Ring radii from 0 to the rim.
+    Rings(Vec<f64>),
+    /// Strip edges from −a to a, in a plane body of `thickness`.
+    Strips { edges: Vec<f64>, thickness: f64 },
+    /// Finite-element faces.
+    Faces(FacesZone),
+}
+
+impl ZoneSpec {
+    /// The zone with its sizes resolved; `natural` is the gap's own half-extent along x and y
+    /// \[mm\], which a grid without `cell_mm` spans.
+    pub fn layout(&self, natural: [Option<f64>; 2]) -> Result<Layout> {
+        Ok(match self {
+            ZoneSpec::Grid(g) => grid_layout(g, natural)?,
+            ZoneSpec::Rings(r) => {
+                check::positive("radius_mm", r.radius_mm)?;
+                let count = check::count("rings", r.rings, 1, MAX_LINE_CELLS)?;
+                Layout::Rings(clustered(count, r.radius_mm, |t| t.sin(), 0.5))
+            }
+            ZoneSpec::Strips(s) => {
+                check::positive("half_width_mm", s.half_width_mm)?;
+                let count = check::count("strips", s.strips, 1, MAX_LINE_CELLS)?;
+                let thickness = plane_thickness(&s.analysis)?;
+                Layout::Strips {
+                    edges: clustered(count, s.half_width_mm, |t| -t.cos(), 1.0),
+                    thickness,
+                }
+            }
+            ZoneSpec::Faces(f) => {
+                f.spacing()?;
+                check_analysis(&f.analysis)?;
+                Layout::Faces(f.clone())
+            }
+        })
+    }
+
+    /// The number of interface points, `None` when it overflows (a finite-element face
+    /// holds three Gauss points).
+    pub fn points(&self) -> Option<usize> {
+        match self {
+            ZoneSpec::Grid(g) => g.cells[0].checked_mul(g.cells[1]),
+            ZoneSpec::Rings(r) => Some(r.rings),
+            ZoneSpec::Strips(s) => Some(s.strips),
+            ZoneSpec::Faces(f) => f.elements.checked_mul(3),
+        }
+    }
+
+    /// How the surface measure is formed.
+    pub fn geometry(&self) -> Geometry {
+        match self {
+            ZoneSpec::Grid(_) => Geometry::Surface,
+            ZoneSpec::Rings(_) => Geometry::Axisymmetric,
+            ZoneSpec::Strips(s) => analysis_geometry(&s.analysis),
+            ZoneSpec::Faces(f) => analysis_geometry(&f.analysis),
+        }
+    }
+
+    /// Its name in messages.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ZoneSpec::Grid(_) => "grid",
+            ZoneSpec::Rings(_) => "rings",
+            ZoneSpec::Strips(_) => "strips",
+            ZoneSpec::Faces(_) => "faces",
+        }
+    }
+}
+
+impl Layout {
+    /// The surface of the body below, when the zone alone defines it (a grid, rings, strips);
+    /// `None` for finite-element faces, whose body meshes them.
+    pub fn surface(&self) -> Option<Result<Interface>> {
+        Some(match self {
+            Layout::Grid {
+                nx,
+                ny,
+                dx,
+                dy,
+                origin,
+            } => HalfSpace::cells_interface(*nx, *ny, *dx, *dy, *origin),
+            Layout::Rings(edges) => AxisymmetricHalfSpace::rings_interface(edges),
+            Layout::Strips { edges, thickness } => HalfPlane::strips_interface(edges, *thickness),
+            Layout::Faces(_) => return None,
+        })
+    }
+
+    /// How far the zone reaches from its centre along each surface axis \[mm\] (x or r, y).
+    pub fn half_extent(&self) -> [f64; 2] {
+        match self {
+            Layout::Grid { nx, ny, dx, dy, .. } => [0.5 * *nx as f64 * dx, 0.5 * *ny as f64 * dy],
+            Layout::Rings(edges) => [edges.last().copied().unwrap_or(0.0), 0.0],
+            Layout::Strips { edges, .. } => [edges.last().copied().unwrap_or(0.0), 0.0],
+            Layout::Faces(f) => [f.radius_mm, 0.0],
+        }
+    }
+
+    /// The size of a cell at the zone's edge along each surface axis \[mm\] (0 along an axis
+    /// the zone does not extend in).
+    pub fn edge_cell(&self) -> [f64; 2] {
+        let last = |e: &[f64]| e[e.len() - 1] - e[e.len() - 2];
+        match self {
+            Layout::Grid { dx, dy, .. } => [*dx, *dy],
+            Layout::Rings(edges) | Layout::Strips { edges, .. } => [last(edges), 0.0],
+            Layout::Faces(f) => [f.edge_size().unwrap_or(f.radius_mm), 0.0],
+        }
+    }
+
+    /// The zone as a grid, when it is one.
+    pub fn grid(&self) -> Option<(usize, usize, f64, f64, [f64; 2])> {
+        match *self {
+            Layout::Grid {
+                nx,
+                ny,
+                dx,
+                dy,
+                origin,
+            } => Some((nx, ny, dx, dy, origin)),
+            _ => None,
+        }
+    }
+}
+
+/// A grid's layout: the cell size given, or the gap's own extent over the cells.
+fn grid_layout(g: &GridZone, natural: [Option<f64>; 2]) -> Result<Layout> {
+    let [nx, ny] = g.cells;
+    check::count("cells[0]", nx, 1, usize::MAX)?;
+    check::count("cells[1]", ny, 1, usize::MAX)?;
+    let cell = match g.cell_mm {
+        Some([dx, dy]) => [
+            check::positive("cell_mm[0]", dx)?,
+            check::positive("cell_mm[1]", dy)?,
+        ],
+        None => {
+            let spans = [
+                natural[0].map(|h| 2.0 * h / nx as f64),
+                natural[1].map(|h| 2.0 * h / ny as f64),
+            ];
+            match spans {
+                [Some(dx), Some(dy)] => [dx, dy],
+                _ => {
+                    return Err(Error::invalid(
+                        "cell_mm",
+                        "missing",
+                        "give the cell size: this gap has no extent of its own to span",
+                    ))
+                }
+            }
+        }
+    };
+    Ok(Layout::Grid {
+        nx,
+        ny,
+        dx: cell[0],
+        dy: cell[1],
+        origin: [
+            -0.5 * (nx as f64 - 1.0) * cell[0],
+            -0.5 * (ny as f64 - 1.0) * cell[1],
+        ],
+    })
+}
+
+/// `count` + 1 edges a·f(π k / (2 count) · span), narrowing towards the rim.
+fn clustered(count: usize, size: f64, f: impl Fn(f64) -> f64, span: f64) -> Vec<f64> {
+    (0..=count)
+        .map(|k| size * f(PI * span * k as f64 / count as f64))
+        .collect()
+}
+
+/// The thickness of a plane analysis; an axisymmetric one is refused for strips.
+fn plane_thickness(analysis: &Analysis) -> Result<f64> {
+    match *analysis {
+        Analysis::PlaneStress { thickness } | Analysis::PlaneStrain { thickness } => {
+            check::positive("analysis.thickness_mm", thickness)
+        }
+        Analysis::Axisymmetric => Err(Error::invalid(
+            "analysis",
+            "axisymmetric",
+            "strips lie in a plane: plane_stress or plane_strain (rings are the axisymmetric \
+             zone)",
+        )),
+    }
+}
+
+/// An analysis whose thickness, if it has one, is positive and finite.
+fn check_analysis(analysis: &Analysis) -> Result<()> {
+    match analysis {
+        Analysis::Axisymmetric => Ok(()),
+        _ => plane_thickness(analysis).map(|_| ()),
+    }
+}
+
+/// The geometry of the surface measure under an analysis.
+fn analysis_geometry(analysis: &Analysis) -> Geometry {
+    match *analysis {
+        Analysis::Axisymmetric => Geometry::Axisymmetric,
+        Analysis::PlaneStress { thickness } | Analysis::PlaneStrain { thickness } => {
+            Geometry::Plane { thickness }
+        }
+    }
+}
