@@ -3,30 +3,30 @@
 //! Elastic contact analysis and contact-pressure optimisation after I. Páczelt,
 //! *Some new developments in contact pressure optimization* (1994).
 //!
-//! This facade re-exports the workspace's crates:
-//! - [`core`]: the [`ElasticBody`] trait, the contact [`Interface`], the [`Error`] type;
+//! This facade re-exports the workspace's crates, and [`prelude`] the names a program needs:
+//! - [`core`]: the [`ElasticBody`] trait, the contact [`Interface`], [`Termination`], the
+//!   observers ([`core::observe`]), the checks, the [`Error`] type, and [`faer`] (a body that
+//!   returns its own influence matrix needs no faer of its own);
 //! - [`fem`]: quadratic isoparametric finite-element bodies (axisymmetric, plane stress,
 //!   plane strain) and the structured mesh generator;
-//! - [`greens`]: bodies from closed-form Green's functions: the axisymmetric half-space and
-//!   the half-plane;
-//! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies (their
-//!   influence operators; dense matrices on demand) and the
-//!   [`ContactSolver`](contact::ContactSolver)s: QP, active set, penalty, augmented Lagrangian,
-//!   and the matrix-free Polonsky–Keer;
+//! - [`greens`]: bodies from closed-form Green's functions (half-space grids, rings, strips) and
+//!   the Winkler bed;
+//! - [`contact`]: the [`InterfaceProblem`](contact::InterfaceProblem) of two bodies and the
+//!   [`ContactSolver`](contact::ContactSolver)s, each built from its settings
+//!   ([`SolverSettings`](contact::SolverSettings));
 //! - [`optimise`]: pressure [`Controller`](optimise::Controller)s and the
-//!   [`Optimisation`](optimise::Optimisation) of the initial gap (§3): the iteration, the LP
-//!   (3.5) and the load split;
-//! - [`roller`]: bearing-roller geometry and crown profiles;
-//! - [`scene`]: scene files (TOML/JSON) that build the bodies, solve and optimise, the one
-//!   path to the paper's Tables 1–3, and the [`Report`](scene::Report) of a run;
-//! - [`report`]: what users see of a run: tables, CSV and the plots (SVG and PNG).
+//!   [`Optimisation`](optimise::Optimisation) of the initial gap (§3);
+//! - [`roller`]: bearing rollers: crowns, and the designs of a crown for an envelope of loads;
+//! - [`scene`] (feature `scene`, on by default): scene files composed of a zone, two bodies, a
+//!   gap, a load, a solver and a design, and their run;
+//! - [`results`] (with `scene` or `plot`): what a run reports, its schema and JSON Schema;
+//! - [`report`] (feature `plot`, on by default): tables, CSV files and charts.
 //!
-//! The paper's printed tables and the closed forms the code is checked against live outside
-//! the library, in the `contopt-validation` crate (`validation/`), used by the tests, the
-//! examples and `cargo xtask book`.
+//! `contopt = { …, default-features = false }` leaves the scene reader and the charts out.
 //!
 //! ```
-//! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Material, Mesh, Spacing};
+//! use contopt::prelude::*;
+//! use contopt::fem::{Analysis, Component, ElementKind, FeModel, Mesh, Spacing};
 //!
 //! // A 10 × 10 mm plane-stress plate, 1 mm thick, pulled by 100 MPa.
 //! let s = Spacing::uniform(0.0, 10.0, 2)?;
@@ -44,15 +44,42 @@
 
 pub use contopt_contact as contact;
 pub use contopt_core as core;
+pub use contopt_core::faer;
 pub use contopt_core::{
     ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Peak, Residuals,
     Result, RigidBody, RigidMode, Section, SectionAxis, SectionField, StressPeaks, StressTensor,
-    Subsurface, SubsurfaceRequest,
+    Subsurface, SubsurfaceRequest, Termination,
 };
 pub use contopt_fem as fem;
 pub use contopt_greens as greens;
 pub use contopt_optimise as optimise;
 pub use contopt_optimise::Region;
+#[cfg(feature = "plot")]
 pub use contopt_report as report;
+#[cfg(any(feature = "scene", feature = "plot"))]
+pub use contopt_results as results;
 pub use contopt_roller as roller;
+#[cfg(feature = "scene")]
 pub use contopt_scene as scene;
+
+/// The names a program that builds bodies, solves contacts and optimises gaps needs:
+/// `use contopt::prelude::*;`.
+pub mod prelude {
+    pub use contopt_contact::{
+        ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, Auto,
+        ContactSolver, FullPenalty, InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer,
+        PolonskyKeerSettings, Qp, QpSettings, SolverSettings,
+    };
+    pub use contopt_core::observe::{Event, Flow, Method, Nested, Observer, Silent};
+    pub use contopt_core::{
+        ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Result,
+        RigidBody, RigidMode, Termination,
+    };
+    pub use contopt_optimise::{
+        Constant, Controller, ControllerSettings, IterationSettings, LinearProgrammeSettings,
+        LoadSplitSettings, Mode, Optimisation, OptimisationMethod, Optimum, Profile, Reference,
+        Region, SearchSettings,
+    };
+    #[cfg(feature = "scene")]
+    pub use contopt_scene::{Case, Scene, SceneError};
+}

@@ -46,7 +46,7 @@ impl HertzSphere {
     /// along z \[mm\].
     pub fn gaps(&self, interface: &contopt_core::Interface) -> Vec<f64> {
         interface
-            .points
+            .points()
             .iter()
             .map(|x| self.gap(x[0].hypot(x[1])))
             .collect()

@@ -4,8 +4,9 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use contopt_contact::InterfaceProblem;
-use contopt_core::{ElasticBody, Result, RigidBody};
+use contopt_core::Result;
 use contopt_fem::{Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Spacing};
+use contopt_scene::{Format, Scene, SceneError};
 
 /// The paper's base block (r ≤ 100 mm, height 50 mm, clamped bottom, axisymmetric Q8) with 67
 /// uniform faces under the punch (r ≤ 50 mm) and `outer` × `layers` graded elements elsewhere,
@@ -73,24 +74,30 @@ pub fn peak_resident_mib() -> f64 {
         .map_or(f64::NAN, |kib| kib / 1024.0)
 }
 
-/// Hertz's contact of the benchmarks on a finite-element block: a rigid cylinder of radius
-/// 100 mm pressed by 4E*/(3R) N/mm (a contact half-width of 1 mm) into the clamped plane block
-/// of [`half_space_block`](contopt_scene::geometry::half_space_block) (1.5 mm contact zone,
-/// `faces` quadratic faces of three points each, 30 mm block), steel E = 2·10⁵ MPa, ν = 0.3.
-pub fn hertz_on_block(faces: usize) -> Result<InterfaceProblem<'static>> {
+/// Hertz's contact of the benchmarks on a finite-element block: a rigid sphere of radius
+/// 100 mm pressed by 4E*/(3R) N into the clamped axisymmetric block of a scene's `fe_block`
+/// (1.5 mm contact zone of `faces` quadratic faces, three points each; 30 mm block), steel
+/// E = 2·10⁵ MPa, ν = 0.3.
+pub fn hertz_on_block(faces: usize) -> std::result::Result<InterfaceProblem<'static>, SceneError> {
     const E: f64 = 2.0e5;
     const NU: f64 = 0.3;
     const RADIUS: f64 = 100.0;
-    let (model, contact) =
-        contopt_scene::geometry::half_space_block(1.5, faces, 30.0, Material::new(E, NU)?)?;
-    let block = FeBody::new("block", model, &contact)?;
     let force = 4.0 * E / (1.0 - NU * NU) / (3.0 * RADIUS);
-    let gap: Vec<f64> = block
-        .interface()
-        .points
-        .iter()
-        .map(|x| x[0] * x[0] / (2.0 * RADIUS))
-        .collect();
-    let sphere = RigidBody::pressed("sphere", block.interface(), [0.0, 1.0, 0.0], force)?;
-    InterfaceProblem::owned(Box::new(block), Box::new(sphere), &gap)
+    let text = format!(
+        r#"name = "hertz-on-block"
+[contact]
+zone = {{ kind = "faces", analysis = "axisymmetric", radius_mm = 1.5, elements = {faces} }}
+gap = {{ kind = "sphere", radius_mm = {RADIUS:?} }}
+load = {{ force_n = {force:?} }}
+[[body]]
+kind = "fe_block"
+material = {{ e_mpa = {E:?}, nu = {NU:?} }}
+size_mm = 30.0
+[[body]]
+kind = "rigid"
+name = "sphere"
+"#
+    );
+    let scene = Scene::parse(&text, Format::Toml, std::path::Path::new("hertz-on-block"))?;
+    scene.cases()[0].problem()
 }

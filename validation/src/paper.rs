@@ -1,10 +1,8 @@
 //! The paper's examples (§4, Tables 1–3): the printed values, and the bundled scenes
 //! `paper-table1`, `paper-table2` and `paper-table3` run on a chosen mesh.
 
-use std::path::Path;
-
 use contopt_optimise::{Controller, Profile};
-use contopt_scene::{CaseReport, Format, Scene, SceneError, BUNDLED};
+use contopt_scene::{CaseReport, Scene, SceneError};
 
 /// The L₁ values of the tables \[mm\].
 pub const L1: [f64; 5] = [0.0, 20.0, 30.0, 40.0, 50.0];
@@ -101,64 +99,24 @@ pub const TABLE2: [(f64, &[PrintedRow]); 5] = [
 /// contact radius, as many layers through each body.
 pub const MESHES: [usize; 3] = [18, 36, 72];
 
-/// A table's scene, as bundled.
-pub fn bundled(name: &str) -> Result<&'static str, SceneError> {
-    BUNDLED
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, text)| *text)
-        .ok_or_else(|| SceneError::Parse {
-            file: name.into(),
-            message: format!("no bundled scene {name:?}"),
-        })
-}
-
-/// The bundled scene `name` with `elements` quadratic elements across the contact radius (and as
-/// many layers), and `overrides` of other keys: a dotted path and its TOML value, or `None` to
-/// remove the key.
+/// The bundled scene `name` with `elements` quadratic elements across the contact zone (and as
+/// many layers through each body), and `edits` of other keys: a dotted path and its TOML
+/// value, or `None` to remove a top-level key.
 pub fn scene(
     name: &str,
     elements: usize,
-    overrides: &[(&str, Option<toml::Value>)],
+    edits: &[(&str, Option<&str>)],
 ) -> Result<Scene, SceneError> {
-    let file = Path::new(name);
-    let parse = |message: String| SceneError::Parse {
-        file: file.into(),
-        message,
-    };
-    let mut tree: toml::Table = toml::from_str(bundled(name)?).map_err(|e| parse(e.to_string()))?;
-    let elements = Some(toml::Value::Integer(elements as i64));
-    set(&mut tree, "problem.mesh.elements", elements.clone()).map_err(parse)?;
-    set(&mut tree, "problem.mesh.layers", elements).map_err(parse)?;
-    for (key, value) in overrides {
-        set(&mut tree, key, value.clone()).map_err(parse)?;
-    }
-    let text = toml::to_string(&tree).map_err(|e| parse(e.to_string()))?;
-    Scene::parse(&text, Format::Toml, file)
-}
-
-/// Sets the dotted `key` of `tree` to `value` (removes it for `None`); the tables on the way
-/// must exist.
-fn set(tree: &mut toml::Table, key: &str, value: Option<toml::Value>) -> Result<(), String> {
-    let (path, last) = key.rsplit_once('.').unwrap_or(("", key));
-    let mut table = tree;
-    for part in path.split('.').filter(|p| !p.is_empty()) {
-        table = table
-            .get_mut(part)
-            .and_then(toml::Value::as_table_mut)
-            .ok_or_else(|| format!("the scene has no table {part:?} on the way to {key}"))?;
-    }
-    match value {
-        Some(value) => table.insert(last.into(), value),
-        None => table.remove(last),
-    };
-    Ok(())
+    let elements = elements.to_string();
+    let mut all = vec![("contact.zone.elements", Some(elements.as_str()))];
+    all.extend_from_slice(edits);
+    Scene::bundled_with(name, &all)
 }
 
 /// Runs every case of `scene` (one per L₁ of the sweep), in sweep order, building the bodies
 /// once.
 pub fn run(scene: &Scene) -> Result<Vec<CaseReport>, SceneError> {
-    scene.run()?.collect()
+    scene.run().collect()
 }
 
 /// p_max of a given load from equilibrium alone: the punch's load p̃·(area) carried by
@@ -218,7 +176,7 @@ pub fn given_load_table(
     );
     for (k, &(l1, p_paper, dh_paper)) in printed.iter().enumerate() {
         let finest = &runs[MESHES.len() - 1][k];
-        let p_max = finest.bound_p_max.unwrap_or(f64::NAN);
+        let p_max = finest.bound_p_max_mpa.unwrap_or(f64::NAN);
         let dh: Vec<f64> = runs
             .iter()
             .map(|r| r[k].dh_max_um.unwrap_or(f64::NAN))
@@ -250,7 +208,7 @@ pub fn given_displacement_table() -> Result<String, SceneError> {
     let iterated = run(&scene("paper-table2", MESHES[0], &[])?)?;
     let lp = MESHES
         .iter()
-        .map(|&m| run(&scene("paper-table2", m, &lp_overrides())?))
+        .map(|&m| run(&scene("paper-table2", m, &LP_EDITS)?))
         .collect::<Result<Vec<_>, _>>()?;
     let mut out = String::new();
     for (k, &l1) in L1.iter().enumerate() {
@@ -263,7 +221,7 @@ pub fn given_displacement_table() -> Result<String, SceneError> {
         let (_, p_paper, dh_paper, ..) = rows[rows.len() - 1];
         let p: Vec<f64> = lp
             .iter()
-            .map(|r| r[k].bound_p_max.unwrap_or(f64::NAN))
+            .map(|r| r[k].bound_p_max_mpa.unwrap_or(f64::NAN))
             .collect();
         let dh: Vec<f64> = lp
             .iter()
@@ -288,20 +246,11 @@ pub fn given_displacement_table() -> Result<String, SceneError> {
 }
 
 /// The linear programme (3.5) with the active set as its contact solver, in place of a scene's
-/// optimisation mode and solver.
-fn lp_overrides() -> [(&'static str, Option<toml::Value>); 2] {
-    [
-        ("optimisation.mode", Some("linear_programme".into())),
-        ("solver", Some(toml::Value::Table(solver("active_set")))),
-    ]
-}
-
-/// A solver table `{ kind = … }` of a scene.
-fn solver(kind: &str) -> toml::Table {
-    let mut table = toml::Table::new();
-    table.insert("kind".into(), kind.into());
-    table
-}
+/// method and solver.
+const LP_EDITS: [(&str, Option<&str>); 2] = [
+    ("optimisation.method", Some("\"linear_programme\"")),
+    ("solver", Some("\"active_set\"")),
+];
 
 /// The rows of one case's iteration beside the printed ones, "ours [paper]".
 fn iteration_rows(case: &CaseReport, printed: &[PrintedRow]) -> String {
@@ -310,10 +259,10 @@ fn iteration_rows(case: &CaseReport, printed: &[PrintedRow]) -> String {
         "{:>3} {:>18} {:>20} {:>24} {:>9} {:>9}\n",
         "k", "p_max MPa", "Δh_max µm", "TOLH mm²", "iterp", "iterd"
     );
-    if let Some(error) = case.error.as_ref().filter(|_| !case.converged) {
-        let _ = writeln!(out, "    our iteration stopped: {error}");
+    if !case.is_solved() {
+        let _ = writeln!(out, "    our iteration stopped: {}", case.termination);
     }
-    let ours = &case.iterations;
+    let ours = &case.passes;
     for k in 0..ours.len().max(printed.len()) {
         let (mine, theirs) = (ours.get(k), printed.get(k));
         let cell = |a: Option<String>, b: Option<String>| {
@@ -325,7 +274,7 @@ fn iteration_rows(case: &CaseReport, printed: &[PrintedRow]) -> String {
             "{:>3} {:>18} {:>20} {:>24} {:>9} {:>9}",
             k + 1,
             cell(
-                mine.map(|r| format!("{:.1}", r.bound_p_max)),
+                mine.map(|r| format!("{:.1}", r.bound_p_max_mpa)),
                 theirs.map(|r| format!("{:.1}", r.1))
             ),
             cell(
@@ -333,7 +282,7 @@ fn iteration_rows(case: &CaseReport, printed: &[PrintedRow]) -> String {
                 theirs.map(|r| format!("{:.2}", r.2))
             ),
             cell(
-                mine.map(|r| format!("{:.3e}", r.tolh)),
+                mine.map(|r| format!("{:.3e}", r.tolh_mm2)),
                 theirs.map(|r| format!("{:.3e}", r.3))
             ),
             cell(
@@ -352,17 +301,15 @@ fn iteration_rows(case: &CaseReport, printed: &[PrintedRow]) -> String {
 /// One L₁ of the bundled scene `name` on `elements` elements: by the scene's own method, or by
 /// the linear programme (3.5) with the active set when `lp`.
 pub fn case(name: &str, elements: usize, l1: f64, lp: bool) -> Result<CaseReport, SceneError> {
-    let mut overrides = vec![
+    let l1 = format!("{l1:?}");
+    let mut edits = vec![
         ("sweep", None),
-        (
-            "optimisation.controller.l1_mm",
-            Some(toml::Value::Float(l1)),
-        ),
+        ("optimisation.controller.l1_mm", Some(l1.as_str())),
     ];
     if lp {
-        overrides.extend(lp_overrides());
+        edits.extend(LP_EDITS);
     }
-    let cases = run(&scene(name, elements, &overrides)?)?;
+    let cases = run(&scene(name, elements, &edits)?)?;
     Ok(cases
         .into_iter()
         .next()

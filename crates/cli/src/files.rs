@@ -8,6 +8,21 @@ use std::path::{Path, PathBuf};
 /// The list of the files a run wrote, kept in the folder for the next run.
 pub const MANIFEST: &str = ".contopt-results";
 
+/// Refuses an `--out` that names something other than a folder (a regular file, say), before
+/// anything is solved.
+pub fn check_out(out: &Path) -> Result<()> {
+    match std::fs::metadata(out) {
+        Ok(m) if !m.is_dir() => Err(Error::new(
+            ErrorKind::AlreadyExists,
+            format!(
+                "--out {} is a file, not a folder: give the folder the results go to",
+                out.display()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// The folder a scene's results go to, created (with `out`) when missing.
 pub struct ResultsDir {
     dir: PathBuf,

@@ -5,20 +5,25 @@
 //!   [`contopt_report::write()`] to `DIR/<name>/` (`result.json`, `interface.csv`, the charts as
 //!   SVG and PNG), then prints a table (or, with `--json`, the report as one JSON document on
 //!   stdout). Files go only into `DIR/<name>/`, never through a symbolic link.
-//! - `contopt check <scene>`: reads and checks the scene without solving;
-//! - `contopt list`: the bundled scenes, which `run` and `check` also take by name.
+//! - `contopt check <scene>`: reads and checks the scene exactly as `run` does, without
+//!   solving;
+//! - `contopt list`: the bundled scenes; `contopt show <name>`: one as a template to copy;
+//! - `contopt schema`: the JSON Schema of `result.json`.
 //!
-//! Exit status: see [`EXIT_CODES`].
+//! A scene is a file, or a bundled scene's name. A name that is both (a file or folder of that
+//! name here) is refused, saying how to choose. Exit status: see [`EXIT_CODES`].
 
 mod files;
 mod progress;
+mod source;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use contopt_scene::{CaseReport, Format, Report, Scene, SceneError, BUNDLED};
+use contopt_results::{CaseReport, Report, SCHEMA_VERSION};
+use contopt_scene::{Scene, BUNDLED};
 use files::ResultsDir;
 use progress::Progress;
 
@@ -26,14 +31,16 @@ use progress::Progress;
 const EXIT_BAD_INPUT: u8 = 1;
 /// A usage error: an unknown option or a missing argument (clap's code).
 const EXIT_USAGE: u8 = 2;
-/// Some case did not converge (its report says how far it got).
-const EXIT_NOT_CONVERGED: u8 = 3;
+/// Some case did not converge, or its answer lies outside the model's limits (its report
+/// says why and how far it got, or what the model needs).
+const EXIT_NOT_SOLVED: u8 = 3;
 /// The results could not be written.
 const EXIT_WRITE: u8 = 4;
 
 /// The exit codes, as `--help` shows them.
 const EXIT_CODES: &str = "Exit status: 0 success; 1 bad scene (unreadable, invalid or too large); \
-2 usage error; 3 some case did not converge; 4 the results could not be written.";
+2 usage error; 3 some case did not converge or left the model's limits (a contact that reaches \
+the edge of its zone); 4 the results could not be written.";
 
 #[derive(Parser)]
 #[command(
@@ -53,6 +60,9 @@ enum Command {
     Run {
         /// Scene file (.toml or .json) or bundled name.
         scene: String,
+        /// The scene is the bundled one of that name, whatever lies in this folder.
+        #[arg(long)]
+        bundled: bool,
         /// Print the report as JSON on stdout (and nothing else there).
         #[arg(long)]
         json: bool,
@@ -65,13 +75,23 @@ enum Command {
         #[arg(long, default_value = "results")]
         out: PathBuf,
     },
-    /// Read and check a scene without solving.
+    /// Read and check a scene as `run` would, without solving.
     Check {
         /// Scene file or bundled name.
         scene: String,
+        /// The scene is the bundled one of that name.
+        #[arg(long)]
+        bundled: bool,
     },
     /// List the bundled scenes.
     List,
+    /// Print a bundled scene, a template to copy and change.
+    Show {
+        /// The bundled scene's name.
+        name: String,
+    },
+    /// Print the JSON Schema of result.json and of `run --json`.
+    Schema,
 }
 
 fn main() -> ExitCode {
@@ -85,18 +105,30 @@ fn main() -> ExitCode {
     match cli.command {
         Command::List => {
             let mut text = String::new();
-            for (name, scene) in BUNDLED {
-                let description = Scene::parse(scene, Format::Toml, Path::new(name))
-                    .map(|s| s.spec.description)
+            for b in BUNDLED {
+                let description = Scene::bundled(b.name)
+                    .map(|s| s.description)
                     .unwrap_or_default();
-                text += &format!("{name:<16} {description}\n");
+                text += &format!("{:<20} {description}\n", b.name);
             }
             emit(&text);
             ExitCode::SUCCESS
         }
-        Command::Check { scene } => match load(&scene) {
+        Command::Show { name } => match contopt_scene::BUNDLED.iter().find(|b| b.name == name) {
+            Some(b) => {
+                emit(b.text);
+                ExitCode::SUCCESS
+            }
+            None => fail(&source::not_bundled(&name)),
+        },
+        Command::Schema => {
+            let schema = serde_json::to_string_pretty(&contopt_results::schema());
+            emit(&(schema.unwrap_or_default() + "\n"));
+            ExitCode::SUCCESS
+        }
+        Command::Check { scene, bundled } => match source::load(&scene, bundled) {
             Ok(s) => {
-                let cases = s.cases().map(|c| c.len()).unwrap_or(0);
+                let cases = s.cases().len();
                 emit(&format!("{}: ok ({cases} case(s))\n", s.file.display()));
                 ExitCode::SUCCESS
             }
@@ -104,17 +136,19 @@ fn main() -> ExitCode {
         },
         Command::Run {
             scene,
+            bundled,
             json,
             quiet,
             out,
-        } => match load(&scene).and_then(|s| run(&s, Print { json, quiet }, &out)) {
-            Ok(code) => ExitCode::from(code),
+        } => match source::load(&scene, bundled) {
+            Ok(s) => run(&s, Print { json, quiet }, &out),
             Err(e) => fail(&e),
         },
     }
 }
 
-fn fail(e: &SceneError) -> ExitCode {
+/// Prints an error and gives the bad-input status.
+fn fail(e: &dyn std::fmt::Display) -> ExitCode {
     eprintln!("error: {e}");
     ExitCode::from(EXIT_BAD_INPUT)
 }
@@ -130,22 +164,6 @@ fn emit(text: &str) {
     }
 }
 
-/// A scene file, or a bundled scene by name.
-fn load(scene: &str) -> Result<Scene, SceneError> {
-    let path = Path::new(scene);
-    if path.exists() {
-        return Scene::load(path);
-    }
-    match BUNDLED.iter().find(|(name, _)| *name == scene) {
-        Some((name, text)) => Scene::parse(
-            text,
-            Format::Toml,
-            &Path::new("scenes").join(format!("{name}.toml")),
-        ),
-        None => Scene::load(path),
-    }
-}
-
 /// What a run prints.
 #[derive(Clone, Copy)]
 struct Print {
@@ -156,19 +174,25 @@ struct Print {
 }
 
 /// Runs every case, writes the results and prints them; the exit code.
-fn run(scene: &Scene, print: Print, out: &Path) -> Result<u8, SceneError> {
+fn run(scene: &Scene, print: Print, out: &Path) -> ExitCode {
+    if let Err(e) = files::check_out(out) {
+        eprintln!("error: {e}");
+        return ExitCode::from(EXIT_WRITE);
+    }
+    let cases = match solve(scene, print.quiet) {
+        Ok(cases) => cases,
+        Err(e) => return fail(&e),
+    };
     let report = Report {
-        scene: scene.spec.name.clone(),
-        cases: solve(scene, print.quiet)?,
+        schema_version: SCHEMA_VERSION,
+        scene: scene.name.clone(),
+        description: scene.description.clone(),
+        cases,
     };
     if !print.quiet {
-        for c in &report.cases {
-            for w in &c.warnings {
-                eprintln!("warning: {}: {w}", c.label);
-            }
-        }
+        warn(&report);
     }
-    let written = ResultsDir::create(out, &scene.spec.name).and_then(|mut dir| {
+    let written = ResultsDir::create(out, &scene.name).and_then(|mut dir| {
         contopt_report::write(&report, &mut dir)?;
         dir.finish()
     });
@@ -183,24 +207,38 @@ fn run(scene: &Scene, print: Print, out: &Path) -> Result<u8, SceneError> {
         Err(e) => {
             eprintln!(
                 "error: could not write the results to {}: {e}",
-                out.join(&scene.spec.name).display()
+                out.join(&scene.name).display()
             );
-            return Ok(EXIT_WRITE);
+            return ExitCode::from(EXIT_WRITE);
         }
     }
-    let converged = report.cases.iter().all(|c| c.converged);
-    Ok(if converged { 0 } else { EXIT_NOT_CONVERGED })
+    let solved = report.cases.iter().all(CaseReport::is_solved);
+    ExitCode::from(if solved { 0 } else { EXIT_NOT_SOLVED })
+}
+
+/// Each case's warnings, and why a case is not solved, on stderr.
+fn warn(report: &Report) {
+    for c in &report.cases {
+        for w in &c.warnings {
+            eprintln!("warning: {}: {w}", c.label);
+        }
+        if let Some(limit) = &c.limit {
+            eprintln!("error: {}: {}", c.label, limit.message);
+        } else if !c.is_solved() {
+            eprintln!("error: {}: did not converge: {}", c.label, c.termination);
+        }
+    }
 }
 
 /// Runs the cases in turn under a progress bar, cleared when they end (or one fails); cases
 /// that share their bodies share one build of them ([`Scene::run_observed`]).
-fn solve(scene: &Scene, quiet: bool) -> Result<Vec<CaseReport>, SceneError> {
+fn solve(scene: &Scene, quiet: bool) -> Result<Vec<CaseReport>, contopt_scene::SceneError> {
     let progress = Progress::new(quiet);
-    let mut run = scene.run_observed(&progress)?;
+    let mut run = scene.run_observed(&progress);
     progress.cases(run.len());
     let mut reports = Vec::with_capacity(run.len());
     for k in 0..run.len() {
-        progress.start(&run.cases()[k]);
+        progress.start(&run.cases()[k].label);
         match run.next() {
             Some(report) => reports.push(report?),
             None => break,

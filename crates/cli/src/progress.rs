@@ -1,30 +1,27 @@
-//! The progress of a run on stderr: a bar over the scene's cases, with the current case, the
-//! optimisation's step and the contact solver's iteration, from the observer each case runs
-//! under. Hidden when stderr is not a terminal (indicatif draws nothing there) and with
+//! The progress of a run on stderr: a bar over the scene's cases, with the current case and
+//! every method running in it, outermost first (`L1 = 30 mm · gap iteration (§3.2) step 4 ·
+//! Polonsky–Keer solve iteration 127`), from the events the case's methods report with their
+//! nesting level. Hidden when stderr is not a terminal (indicatif draws nothing there) and with
 //! `--quiet`; cleared when the run ends.
 
-use std::cell::{Cell, RefCell};
+use std::cell::RefCell;
 use std::time::Duration;
 
-use contopt_core::observe::{Flow, Iteration, Observer};
-use contopt_scene::Case;
+use contopt_core::observe::{Event, Flow, Method, Observer};
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// How often the bar redraws while a case runs, so that the elapsed time moves on.
 const TICK: Duration = Duration::from_millis(200);
 
-/// The bar: `[00:00:12] ███████░░░░ 3/5 cases  L1 = 30 mm · optimisation step 4 ·
-/// polonsky_keer iteration 127`.
+/// The bar: `[00:00:12] ███████░░░░ 3/5 cases  L1 = 30 mm · …`.
 const TEMPLATE: &str = "[{elapsed_precise}] {bar:24} {pos}/{len} cases  {wide_msg}";
 
-/// The progress bar over a scene's cases, and the observer of each case's iterations.
+/// The progress bar over a scene's cases, and the observer of each case's methods.
 pub struct Progress {
     bar: ProgressBar,
     case: RefCell<String>,
-    /// The outer method (the optimisation, a roller's crown search) and its step.
-    step: Cell<(&'static str, usize)>,
-    /// The contact solver that reported last, and its iteration.
-    solver: RefCell<(String, usize)>,
+    /// The method running at each level and its iteration.
+    methods: RefCell<Vec<(Method, usize)>>,
 }
 
 impl Progress {
@@ -41,8 +38,7 @@ impl Progress {
         Self {
             bar,
             case: Default::default(),
-            step: Cell::new(("", 0)),
-            solver: Default::default(),
+            methods: Default::default(),
         }
     }
 
@@ -52,10 +48,9 @@ impl Progress {
     }
 
     /// A case begins.
-    pub fn start(&self, case: &Case) {
-        *self.case.borrow_mut() = contopt_report::words::legend(&case.label, &case.params);
-        self.step.set(("", 0));
-        *self.solver.borrow_mut() = Default::default();
+    pub fn start(&self, label: &str) {
+        *self.case.borrow_mut() = label.to_string();
+        self.methods.borrow_mut().clear();
         self.show();
         self.bar.enable_steady_tick(TICK);
     }
@@ -67,31 +62,23 @@ impl Progress {
 
     fn show(&self) {
         let mut message = self.case.borrow().clone();
-        let (outer, step) = self.step.get();
-        if step > 0 {
-            message += &format!(" · {outer} step {step}");
-        }
-        let (method, k) = &*self.solver.borrow();
-        if *k > 0 {
-            message += &format!(" · {method} iteration {k}");
+        for (method, k) in self.methods.borrow().iter() {
+            message += &format!(" · {method} {k}");
         }
         self.bar.set_message(message);
     }
 }
 
 impl Observer for Progress {
-    fn observe(&self, iteration: &Iteration) -> Flow {
-        let outer = contopt_scene::OUTER_METHODS
-            .iter()
-            .find(|m| **m == iteration.method);
-        if let Some(outer) = outer {
-            self.step.set((outer, iteration.iteration));
-        } else {
-            let mut solver = self.solver.borrow_mut();
-            if solver.0 != iteration.method {
-                solver.0 = iteration.method.to_string();
+    /// Keeps the method at the event's level and drops the deeper ones (they ended); a
+    /// method's last event takes it off the line.
+    fn observe(&self, event: &Event) -> Flow {
+        {
+            let mut methods = self.methods.borrow_mut();
+            methods.truncate(event.level);
+            if event.end.is_none() {
+                methods.push((event.method, event.iteration));
             }
-            solver.1 = iteration.iteration;
         }
         self.show();
         Flow::Continue

@@ -31,6 +31,11 @@ impl Built {
         self.took
     }
 
+    /// The two bodies, the first below the zone.
+    pub fn into_bodies(self) -> [Box<dyn ElasticBody>; 2] {
+        self.bodies
+    }
+
     /// The same bodies for a later case, which does not pay for their build.
     pub(crate) fn reused(self) -> Self {
         Self {

@@ -145,9 +145,53 @@ impl Scene {
         }
     }
 
-    /// Reads scene text and checks every case as its run would, without solving; `file`
-    /// names it in messages and its folder is where the files a scene names are read.
-    pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
+    /// The bundled scene `name` with `edits`: dotted keys and their TOML values
+    /// (`("contact.zone.elements", Some("36"))`), or `None` to remove a key — a study of a
+    /// bundled scene from Rust.
+    pub fn bundled_with(name: &str, edits: &[(&str, Option<&str>)]) -> Result<Self, SceneError> {
+        let file = Path::new("scenes").join(format!("{name}.toml"));
+        let scene = bundled::find(name).ok_or_else(|| {
+            let locator = Locator::new(&file, "".into(), Arc::new(Node::table::<&str>([])), None);
+            locator.at("", format!("no bundled scene {name:?}"))
+        })?;
+        Self::parse_with(scene.text, Format::Toml, &file, edits)
+    }
+
+    /// [`Scene::parse`] with `edits` made to the text's keys first (see
+    /// [`Scene::bundled_with`]).
+    pub fn parse_with(
+        text: &str,
+        format: Format,
+        file: &Path,
+        edits: &[(&str, Option<&str>)],
+    ) -> Result<Self, SceneError> {
+        let (text, tree) = Self::read(text, format, file)?;
+        let mut tree = tree;
+        let whole = Locator::new(file, text.clone(), Arc::new(tree.clone()), None);
+        for (key, value) in edits {
+            match value {
+                None => {
+                    let removed = match key.rsplit_once('.') {
+                        Some(_) => None,
+                        None => tree.remove(key),
+                    };
+                    if removed.is_none() {
+                        return Err(whole.at(key, "an edit removes top-level keys only"));
+                    }
+                }
+                Some(value) => {
+                    let holder = Node::parse_toml(&format!("value = {value}"))
+                        .map_err(|e| whole.at(key, format!("the edit's value: {e}")))?;
+                    let node = holder.get("value").cloned().unwrap_or(holder);
+                    tree.insert(key, node).map_err(|e| whole.input(e))?;
+                }
+            }
+        }
+        Self::from_tree(text, tree, file)
+    }
+
+    /// The text read into a tree within the scene's limits.
+    fn read(text: &str, format: Format, file: &Path) -> Result<(Arc<str>, Node), SceneError> {
         let limits = Limits {
             max_bytes: MAX_TEXT_BYTES,
             max_depth: MAX_NESTING,
@@ -160,6 +204,18 @@ impl Scene {
             Format::Json => Node::parse_json_with(&text, &limits),
         }
         .map_err(|e| whole.input(e))?;
+        Ok((text, tree))
+    }
+
+    /// Reads scene text and checks every case as its run would, without solving; `file`
+    /// names it in messages and its folder is where the files a scene names are read.
+    pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
+        let (text, tree) = Self::read(text, format, file)?;
+        Self::from_tree(text, tree, file)
+    }
+
+    /// The scene of a tree read from `text`.
+    fn from_tree(text: Arc<str>, tree: Node, file: &Path) -> Result<Self, SceneError> {
         let whole = Locator::new(file, text.clone(), Arc::new(tree.clone()), None);
         let inputs = cases::expand(tree, &whole)?;
         let single = inputs.len() == 1 && inputs[0].named.is_none();

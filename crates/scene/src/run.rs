@@ -169,9 +169,20 @@ impl Case {
         Ok(report)
     }
 
-    /// The initial gap at the first body's points: the gap's shape less the approach; where
-    /// the gap is open for good, out of reach.
-    fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
+    /// The case's contact problem, its bodies built and owned: to solve with any solver or
+    /// optimise from Rust.
+    pub fn problem(&self) -> Result<InterfaceProblem<'static>, SceneError> {
+        let built = self.build()?;
+        let gap = self.initial_gap(&built)?;
+        let [first, second] = built.into_bodies();
+        InterfaceProblem::owned(first, second, &gap)
+            .map(|p| p.with_dense_limit(self.plan.dense_limit))
+            .map_err(|e| self.locator.library("body", e))
+    }
+
+    /// The initial gap at the first body's points \[mm\]: the gap's shape less the approach;
+    /// where the gap is open for good (beyond a flat punch's rim), out of reach.
+    pub fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
         let at = &self.locator;
         let contact = &self.spec.contact;
         let interface = built.first().interface();

@@ -89,8 +89,9 @@ pub(crate) fn compute(
         bodies: vec![],
     };
     let count = if shared { 1 } else { 2 };
-    for body in &bodies[..count] {
-        if let Some(found) = body.subsurface(pressure, &request)? {
+    for (k, body) in bodies[..count].iter().enumerate() {
+        let own = own_order(bodies, k, pressure)?;
+        if let Some(found) = body.subsurface(&own, &request)? {
             let name = if shared {
                 format!("{} and {}", bodies[0].name(), bodies[1].name())
             } else {
@@ -104,6 +105,22 @@ pub(crate) fn compute(
         }
     }
     Ok(Some(report))
+}
+
+/// The pressure at body `k`'s points in its own order: the first body's as given (the
+/// interface problem lists its points so), the second's paired by position (its faces may list
+/// their Gauss points the other way round, as a punch's bottom faces do against a base's top).
+fn own_order(bodies: [&dyn ElasticBody; 2], k: usize, pressure: &[f64]) -> Result<Vec<f64>> {
+    if k == 0 {
+        return Ok(pressure.to_vec());
+    }
+    let (first, second) = (bodies[0].interface(), bodies[1].interface());
+    let pair = first.partners(second, bodies[0].name(), bodies[1].name())?;
+    let mut own = vec![0.0; pressure.len()];
+    for (i, &j) in pair.iter().enumerate() {
+        own[j] = pressure[i];
+    }
+    Ok(own)
 }
 
 /// The depths and sections of the scene, with their defaults from the contact area.

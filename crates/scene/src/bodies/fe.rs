@@ -294,10 +294,10 @@ impl FePunch {
     fn check_load(&self) -> Result<()> {
         match self.load {
             PunchLoad::PressureMpa(p) => {
-                check::finite("pressure_mpa", p)?;
+                check::finite("load.pressure_mpa", p)?;
                 if p <= 0.0 {
                     return Err(Error::invalid(
-                        "pressure_mpa",
+                        "load.pressure_mpa",
                         p,
                         "must press the punch onto the base (compressive, above zero): a \
                          frictionless contact cannot carry a pull",
@@ -305,7 +305,7 @@ impl FePunch {
                 }
                 Ok(())
             }
-            PunchLoad::DisplacementMm(w) => check::finite("displacement_mm", w).map(|_| ()),
+            PunchLoad::DisplacementMm(w) => check::finite("load.displacement_mm", w).map(|_| ()),
         }
     }
 

@@ -1,0 +1,224 @@
+//! The wrong answers and unclear errors a new user found in minutes with scenes written from the
+//! book alone (issue 22), each a test: a contact that runs off its grid, a contact resolved by
+//! three cells, stresses below a punch, a NaN or a string where a number belongs, a value
+//! reported on another body's line, a scene `check` passed that `run` refused, a controller's
+//! L2 written as a roller's whole length.
+
+use std::path::Path;
+
+use contopt_results::CaseStatus;
+use contopt_scene::{Format, Scene, SceneError};
+
+fn parse(text: &str) -> Result<Scene, SceneError> {
+    Scene::parse(text, Format::Toml, Path::new("mine.toml"))
+}
+
+/// The error's text and its place (line, column).
+fn refused(text: &str) -> (String, (usize, usize)) {
+    let e = parse(text).expect_err("the scene must be refused");
+    let place = e.located().and_then(|l| l.place).expect("a place in the file");
+    (e.to_string(), place)
+}
+
+/// The line (from 1) of the first line of `text` holding `needle`.
+fn line_of(text: &str, needle: &str) -> usize {
+    1 + text.lines().position(|l| l.contains(needle)).expect(needle)
+}
+
+/// A rigid sphere (R = 50 mm) at `force` N on a half-space grid of `cells` × `cells` cells of
+/// `cell` mm, steel.
+fn sphere(force: f64, cells: usize, cell: f64) -> String {
+    format!(
+        r#"name = "sphere"
+[contact]
+zone = {{ kind = "grid", cells = [{cells}, {cells}], cell_mm = [{cell}, {cell}] }}
+gap = {{ kind = "sphere", radius_mm = 50.0 }}
+load = {{ force_n = {force:?} }}
+
+[[body]]
+kind = "half_space"
+material = {{ e_mpa = 2.0e5, nu = 0.3 }}
+
+[[body]]
+kind = "rigid"
+"#
+    )
+}
+
+/// Hertz's contact radius of the sphere of [`sphere`] \[mm\].
+fn hertz_radius(force: f64) -> f64 {
+    let e_star = 2.0e5 / (1.0 - 0.09);
+    (3.0 * force * 50.0 / (4.0 * e_star)).cbrt()
+}
+
+/// 20 kN on a ±1.25 mm grid: Hertz's contact (a = 1.51 mm) runs off it. The old answer was a
+/// p_max 59 % above Hertz's with exit 0; now the case is outside the model, naming the edge and
+/// the size the grid needs, and it does not pass for solved.
+#[test]
+fn a_contact_that_runs_off_its_grid_is_outside_the_model() {
+    let scene = parse(&sphere(20_000.0, 100, 0.025)).unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert_eq!(report.status, CaseStatus::OutsideModel, "{report:#?}");
+    assert!(!report.is_solved());
+    let limit = report.limit.as_ref().unwrap();
+    let a = hertz_radius(20_000.0);
+    assert!((limit.extent_mm - 1.25).abs() < 1e-9, "{limit:?}");
+    assert!(limit.needed_mm >= 1.25 * a, "{limit:?}");
+    assert!(limit.message.contains("edge") && limit.edge.contains("1.25"), "{limit:?}");
+    let hertz = report.hertz.as_ref().unwrap();
+    assert!((hertz.half_width_mm / a - 1.0).abs() < 1e-12);
+    // On a grid that holds it, the same contact is solved and within 1 % of Hertz's p₀.
+    let fits = parse(&sphere(20_000.0, 100, 0.04)).unwrap().cases()[0].run().unwrap();
+    assert_eq!(fits.status, CaseStatus::Solved, "{:?}", fits.limit);
+    let p0 = fits.hertz.as_ref().unwrap().p0_mpa;
+    assert!((fits.p_max_mpa.unwrap() / p0 - 1.0).abs() < 0.01, "{:?} vs {p0}", fits.p_max_mpa);
+}
+
+/// A roller's load typed in kN for N (12 instead of 12 000), ISO's crown: the contact is a
+/// few cells long, and the crown squeezes it wider across than the nominal load's Hertz width
+/// the grid was sized by. It used to report 222 MPa with exit 0; now it does not pass for
+/// solved: it is outside the model at the grid's edge across, with Hertz's nominal figures.
+#[test]
+fn a_roller_load_in_the_wrong_unit_does_not_pass() {
+    let text = r#"name = "roller"
+[contact]
+zone = { kind = "grid", cells = [40, 21] }
+gap = { kind = "roller", diameter_mm = 10.0, length_mm = 10.0, profile = "iso" }
+load = { force_n = 12.0 }
+
+[[body]]
+kind = "half_space"
+material = { e_mpa = 2.1e5, nu = 0.3 }
+
+[[body]]
+kind = "half_space"
+material = { e_mpa = 2.1e5, nu = 0.3 }
+"#;
+    let report = parse(text).unwrap().cases()[0].run().unwrap();
+    assert!(report.termination.is_converged(), "{:?}", report.termination);
+    assert_eq!(report.status, CaseStatus::OutsideModel);
+    let limit = report.limit.as_ref().unwrap();
+    assert!(limit.edge.starts_with('y'), "{limit:?}");
+    let hertz = report.hertz.as_ref().unwrap();
+    assert_eq!(hertz.contact, "line");
+    assert!(limit.needed_mm > limit.extent_mm && hertz.half_width_mm < limit.extent_mm);
+}
+
+/// A Hertz contact three cells wide: solved, with a warning that gives the number of cells
+/// and the cell size that would resolve it.
+#[test]
+fn a_contact_of_a_few_cells_warns_with_the_number() {
+    let report = parse(&sphere(1000.0, 16, 0.2)).unwrap().cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?} {:?}", report.termination, report.limit);
+    let resolution = report.resolution.as_ref().unwrap();
+    assert!(resolution.cells < 8.0, "{resolution:?}");
+    let warning = report.warnings.iter().find(|w| w.contains("cells")).unwrap();
+    assert!(warning.contains(&format!("{:.1} cells", resolution.cells)), "{warning}");
+    let fine = parse(&sphere(1000.0, 64, 0.02)).unwrap().cases()[0].run().unwrap();
+    assert!(fine.is_solved() && fine.warnings.is_empty(), "{:?}", fine.warnings);
+}
+
+/// Stresses below the surface of the paper's punch on its base: the run used to refuse them
+/// ("a resultant off by 6.42e2 N … (solve the contact first)") after `check` passed.
+#[test]
+fn subsurface_stresses_under_the_papers_punch() {
+    let scene = Scene::bundled_with(
+        "paper-table1",
+        &[
+            ("sweep", None),
+            ("contact.zone.elements", Some("6")),
+            ("output", Some("{ subsurface = { depths = 8 } }")),
+        ],
+    )
+    .unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    let sub = report.subsurface.as_ref().expect("stresses below the surface");
+    let names: Vec<&str> = sub.bodies.iter().map(|b| b.body.as_str()).collect();
+    assert_eq!(names, ["base", "punch"]);
+    // Under 100 MPa the punch's compression is of the order of the load.
+    let punch = &sub.bodies[1].peaks.min_principal;
+    assert!(punch.value_mpa < -50.0 && punch.value_mpa > -2000.0, "{punch:?}");
+}
+
+/// `pressure_mpa = nan` in a swept scene: the error names the key and its own line, not the
+/// sweep's key (it was "sweep value 0.0 for optimisation.controller.l1_mm: invalid type: null").
+#[test]
+fn a_nan_is_refused_at_its_key() {
+    let text = contopt_scene::BUNDLED[0]
+        .text
+        .replace("load = { pressure_mpa = 100.0 }", "load = { pressure_mpa = nan }");
+    let (message, (line, _)) = refused(&text);
+    assert_eq!(line, line_of(&text, "pressure_mpa = nan"), "{message}");
+    assert!(message.contains("body[1].load.pressure_mpa"), "{message}");
+    assert!(message.contains("NaN") && !message.contains("sweep"), "{message}");
+}
+
+/// `force_n = "1 kN"`: the key, its line and column, the value and the type wanted (it was
+/// "TOML parse error at line 4 … [problem] … invalid type: string").
+#[test]
+fn a_string_for_a_number_is_refused_at_its_key() {
+    let text = sphere(1000.0, 16, 0.05).replace("force_n = 1000.0", "force_n = \"1 kN\"");
+    let (message, (line, column)) = refused(&text);
+    let at = line_of(&text, "\"1 kN\"");
+    assert_eq!(line, at, "{message}");
+    let expected = text.lines().nth(at - 1).unwrap().find("\"1 kN\"").unwrap() + 1;
+    assert_eq!(column, expected, "{message}");
+    assert!(
+        message.contains("contact.load.force_n") && message.contains("\"1 kN\"")
+            && message.contains("f64"),
+        "{message}"
+    );
+}
+
+/// An invalid ν of the base is reported on the base's line, not on the first `nu =` of the
+/// file (the punch's).
+#[test]
+fn a_bad_material_is_reported_on_its_own_body() {
+    let text = contopt_scene::BUNDLED[0].text.replacen("nu = 0.3", "nu = 0.3 ", 1);
+    let base = text.find("kind = \"fe_base\"").unwrap();
+    let bad = format!("{}{}", &text[..base], text[base..].replacen("nu = 0.3", "nu = 0.5", 1));
+    let (message, (line, _)) = refused(&bad);
+    let base_line = line_of(&bad, "kind = \"fe_base\"");
+    assert!(line > base_line && line < base_line + 4, "{line}: {message}");
+    assert!(message.contains("body[0].material") && message.contains("0.5"), "{message}");
+}
+
+/// What `run` refuses, `check` (reading the scene) refuses first, in words — not a Rust enum's
+/// name: a given load where nothing floats, a robust crown without an envelope.
+#[test]
+fn check_refuses_what_run_would() {
+    let displaced = contopt_scene::BUNDLED[1]
+        .text
+        .replace("kind = \"given_displacement\"", "kind = \"given_load\"");
+    let (message, _) = refused(&displaced);
+    assert!(message.contains("floating body") && !message.contains("GivenLoad"), "{message}");
+    let roller = contopt_scene::BUNDLED
+        .iter()
+        .find(|b| b.name == "roller-study")
+        .unwrap()
+        .text;
+    let robust = roller.replace(
+        "optimisation = { method = \"load_split\", controller = { kind = \"cubic\", l1_mm = 0.0",
+        "optimisation = { method = \"envelope_split\", controller = { kind = \"cubic\", l1_mm = 0.0",
+    );
+    let (message, _) = refused(&robust);
+    assert!(message.contains("[envelope]"), "{message}");
+}
+
+/// A controller whose L2 is a roller's whole length (10 mm) where it is measured from the
+/// middle (5 mm) is refused, naming the key.
+#[test]
+fn a_controller_beyond_the_zone_is_refused() {
+    let roller = contopt_scene::BUNDLED
+        .iter()
+        .find(|b| b.name == "roller-study")
+        .unwrap()
+        .text;
+    let long = roller.replace("l1_mm = 2.0, l2_mm = 5.0", "l1_mm = 2.0, l2_mm = 10.0");
+    let (message, _) = refused(&long);
+    assert!(
+        message.contains("optimisation.controller.l2_mm") && message.contains("half length"),
+        "{message}"
+    );
+}
