@@ -14,6 +14,19 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, Mat, MatMut, Par, Side};
 
+thread_local! {
+    /// The numeric factorisations made on this thread so far.
+    static FACTORISATIONS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// The numeric factorisations of stiffness matrices made on the calling thread so far: what a
+/// test counts to prove that a step built nothing (a check that factorises no body), or that
+/// cases sharing their bodies share one factorisation. Counted per thread, so that tests running
+/// side by side do not see each other's.
+pub fn factorisations() -> u64 {
+    FACTORISATIONS.with(std::cell::Cell::get)
+}
+
 /// A numeric Cholesky factor with its symbolic analysis kept for reuse.
 pub(crate) struct Factor {
     symbolic: SymbolicCholesky<usize>,
@@ -82,6 +95,7 @@ impl Factor {
     /// Numeric refactorisation of a matrix with the pattern of the first, reusing the
     /// symbolic analysis (ordering, elimination tree, supernodes).
     pub fn refactor(&mut self, a: SparseColMatRef<'_, usize, f64>, body: &str) -> Result<()> {
+        FACTORISATIONS.with(|count| count.set(count.get() + 1));
         let mut mem = MemBuffer::new(
             self.symbolic
                 .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),

@@ -24,6 +24,7 @@ pub use analysis::Analysis;
 pub use body::{BuildStats, FeBody};
 pub use contopt_core::Material;
 pub use element::ElementKind;
+pub use factor::factorisations;
 pub use mesh::{body_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
 pub use model::{Component, FeModel};
 pub use solution::{Solution, Stress};

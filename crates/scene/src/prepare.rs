@@ -5,7 +5,7 @@
 use contopt_core::Material;
 use contopt_roller::Roller;
 
-use crate::bodies::{check_pair, BodySpec, Placement, PunchLoad, Side};
+use crate::bodies::{check_load, check_pair, BodySpec, Placement, PunchLoad, Side};
 use crate::error::Locator;
 use crate::gap::{GapSpec, Hertz};
 use crate::methods::Check;
@@ -34,7 +34,7 @@ pub(crate) struct Plan {
 /// Checks `spec` and plans its run; `at` places the errors.
 pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
     let contact = &spec.contact;
-    check_pair(&spec.body, &contact.zone, contact.load).map_err(|e| at.library("", e))?;
+    check_pair(&spec.body, &contact.zone).map_err(|e| at.library("", e))?;
     contact
         .gap
         .check(&contact.zone)
@@ -54,6 +54,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
             .check(&place)
             .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
+    check_load(spec.body[1].kind(), &contact.zone, contact.load).map_err(|e| at.library("", e))?;
     let roller = roller(spec, force, at)?;
     let floating = floats(spec);
     let check = Check {

@@ -110,3 +110,87 @@ impl OmegaVSpec {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Ω_v's shapes on the contact surface: a finite-element face's points (r, z) with normal y
+    /// are placed by r; a grid's (x, y) with normal z by both.
+    #[test]
+    fn omega_v_regions_contain_their_points() {
+        let face = |r: f64| ([r, 50.0, 0.0], [0.0, -1.0, 0.0]);
+        let disc = OmegaVSpec::Disc {
+            centre_mm: [0.0, 0.0],
+            radius_mm: 30.0,
+        };
+        let strip = OmegaVSpec::Strip {
+            axis: 0,
+            from_mm: 0.0,
+            to_mm: 30.0,
+        };
+        for r in [0.0, 10.0, 29.9, 30.1, 49.0] {
+            let (x, n) = face(r);
+            assert_eq!(disc.contains(x, n), r <= 30.0, "{r}");
+            assert_eq!(strip.contains(x, n), r <= 30.0, "{r}");
+        }
+        let grid = |x: f64, y: f64| ([x, y, 0.0], [0.0, 0.0, 1.0]);
+        let unit = OmegaVSpec::Box {
+            from_mm: [-1.0, -0.5],
+            to_mm: [1.0, 0.5],
+        };
+        let across = OmegaVSpec::Strip {
+            axis: 1,
+            from_mm: -0.5,
+            to_mm: 0.5,
+        };
+        let round = OmegaVSpec::Disc {
+            centre_mm: [1.0, 0.0],
+            radius_mm: 1.0,
+        };
+        for (x, y, in_box, in_strip, in_disc) in [
+            (0.0, 0.0, true, true, true),
+            (1.5, 0.2, false, true, true),
+            (0.5, 0.8, false, false, true),
+            (-0.5, 0.4, true, true, false),
+        ] {
+            let (p, n) = grid(x, y);
+            assert_eq!(
+                (
+                    unit.contains(p, n),
+                    across.contains(p, n),
+                    round.contains(p, n)
+                ),
+                (in_box, in_strip, in_disc),
+                "({x}, {y})"
+            );
+        }
+        for (region, key) in [
+            (
+                OmegaVSpec::Disc {
+                    centre_mm: [0.0, 0.0],
+                    radius_mm: 0.0,
+                },
+                "radius_mm",
+            ),
+            (
+                OmegaVSpec::Strip {
+                    axis: 2,
+                    from_mm: 0.0,
+                    to_mm: 1.0,
+                },
+                "axis",
+            ),
+            (
+                OmegaVSpec::Box {
+                    from_mm: [0.0, 1.0],
+                    to_mm: [1.0, 0.0],
+                },
+                "to_mm",
+            ),
+        ] {
+            let e = region.check().unwrap_err().to_string();
+            assert!(e.contains(key), "{e}");
+        }
+    }
+}

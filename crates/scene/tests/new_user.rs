@@ -16,7 +16,10 @@ fn parse(text: &str) -> Result<Scene, SceneError> {
 /// The error's text and its place (line, column).
 fn refused(text: &str) -> (String, (usize, usize)) {
     let e = parse(text).expect_err("the scene must be refused");
-    let place = e.located().and_then(|l| l.place).expect("a place in the file");
+    let place = e
+        .located()
+        .and_then(|l| l.place)
+        .expect("a place in the file");
     (e.to_string(), place)
 }
 
@@ -64,14 +67,23 @@ fn a_contact_that_runs_off_its_grid_is_outside_the_model() {
     let a = hertz_radius(20_000.0);
     assert!((limit.extent_mm - 1.25).abs() < 1e-9, "{limit:?}");
     assert!(limit.needed_mm >= 1.25 * a, "{limit:?}");
-    assert!(limit.message.contains("edge") && limit.edge.contains("1.25"), "{limit:?}");
+    assert!(
+        limit.message.contains("edge") && limit.edge.contains("1.25"),
+        "{limit:?}"
+    );
     let hertz = report.hertz.as_ref().unwrap();
     assert!((hertz.half_width_mm / a - 1.0).abs() < 1e-12);
     // On a grid that holds it, the same contact is solved and within 1 % of Hertz's p₀.
-    let fits = parse(&sphere(20_000.0, 100, 0.04)).unwrap().cases()[0].run().unwrap();
+    let fits = parse(&sphere(20_000.0, 100, 0.04)).unwrap().cases()[0]
+        .run()
+        .unwrap();
     assert_eq!(fits.status, CaseStatus::Solved, "{:?}", fits.limit);
     let p0 = fits.hertz.as_ref().unwrap().p0_mpa;
-    assert!((fits.p_max_mpa.unwrap() / p0 - 1.0).abs() < 0.01, "{:?} vs {p0}", fits.p_max_mpa);
+    assert!(
+        (fits.p_max_mpa.unwrap() / p0 - 1.0).abs() < 0.01,
+        "{:?} vs {p0}",
+        fits.p_max_mpa
+    );
 }
 
 /// A roller's load typed in kN for N (12 instead of 12 000), ISO's crown: the contact is a
@@ -95,7 +107,11 @@ kind = "half_space"
 material = { e_mpa = 2.1e5, nu = 0.3 }
 "#;
     let report = parse(text).unwrap().cases()[0].run().unwrap();
-    assert!(report.termination.is_converged(), "{:?}", report.termination);
+    assert!(
+        report.termination.is_converged(),
+        "{:?}",
+        report.termination
+    );
     assert_eq!(report.status, CaseStatus::OutsideModel);
     let limit = report.limit.as_ref().unwrap();
     assert!(limit.edge.starts_with('y'), "{limit:?}");
@@ -108,14 +124,34 @@ material = { e_mpa = 2.1e5, nu = 0.3 }
 /// and the cell size that would resolve it.
 #[test]
 fn a_contact_of_a_few_cells_warns_with_the_number() {
-    let report = parse(&sphere(1000.0, 16, 0.2)).unwrap().cases()[0].run().unwrap();
-    assert!(report.is_solved(), "{:?} {:?}", report.termination, report.limit);
+    let report = parse(&sphere(1000.0, 16, 0.2)).unwrap().cases()[0]
+        .run()
+        .unwrap();
+    assert!(
+        report.is_solved(),
+        "{:?} {:?}",
+        report.termination,
+        report.limit
+    );
     let resolution = report.resolution.as_ref().unwrap();
     assert!(resolution.cells < 8.0, "{resolution:?}");
-    let warning = report.warnings.iter().find(|w| w.contains("cells")).unwrap();
-    assert!(warning.contains(&format!("{:.1} cells", resolution.cells)), "{warning}");
-    let fine = parse(&sphere(1000.0, 64, 0.02)).unwrap().cases()[0].run().unwrap();
-    assert!(fine.is_solved() && fine.warnings.is_empty(), "{:?}", fine.warnings);
+    let warning = report
+        .warnings
+        .iter()
+        .find(|w| w.contains("cells"))
+        .unwrap();
+    assert!(
+        warning.contains(&format!("{:.1} cells", resolution.cells)),
+        "{warning}"
+    );
+    let fine = parse(&sphere(1000.0, 64, 0.02)).unwrap().cases()[0]
+        .run()
+        .unwrap();
+    assert!(
+        fine.is_solved() && fine.warnings.is_empty(),
+        "{:?}",
+        fine.warnings
+    );
 }
 
 /// Stresses below the surface of the paper's punch on its base: the run used to refuse them
@@ -133,25 +169,35 @@ fn subsurface_stresses_under_the_papers_punch() {
     .unwrap();
     let report = scene.cases()[0].run().unwrap();
     assert!(report.is_solved(), "{:?}", report.termination);
-    let sub = report.subsurface.as_ref().expect("stresses below the surface");
+    let sub = report
+        .subsurface
+        .as_ref()
+        .expect("stresses below the surface");
     let names: Vec<&str> = sub.bodies.iter().map(|b| b.body.as_str()).collect();
     assert_eq!(names, ["base", "punch"]);
     // Under 100 MPa the punch's compression is of the order of the load.
     let punch = &sub.bodies[1].peaks.min_principal;
-    assert!(punch.value_mpa < -50.0 && punch.value_mpa > -2000.0, "{punch:?}");
+    assert!(
+        punch.value_mpa < -50.0 && punch.value_mpa > -2000.0,
+        "{punch:?}"
+    );
 }
 
 /// `pressure_mpa = nan` in a swept scene: the error names the key and its own line, not the
 /// sweep's key (it was "sweep value 0.0 for optimisation.controller.l1_mm: invalid type: null").
 #[test]
 fn a_nan_is_refused_at_its_key() {
-    let text = contopt_scene::BUNDLED[0]
-        .text
-        .replace("load = { pressure_mpa = 100.0 }", "load = { pressure_mpa = nan }");
+    let text = contopt_scene::BUNDLED[0].text.replace(
+        "load = { pressure_mpa = 100.0 }",
+        "load = { pressure_mpa = nan }",
+    );
     let (message, (line, _)) = refused(&text);
     assert_eq!(line, line_of(&text, "pressure_mpa = nan"), "{message}");
     assert!(message.contains("body[1].load.pressure_mpa"), "{message}");
-    assert!(message.contains("NaN") && !message.contains("sweep"), "{message}");
+    assert!(
+        message.contains("NaN") && !message.contains("sweep"),
+        "{message}"
+    );
 }
 
 /// `force_n = "1 kN"`: the key, its line and column, the value and the type wanted (it was
@@ -165,7 +211,8 @@ fn a_string_for_a_number_is_refused_at_its_key() {
     let expected = text.lines().nth(at - 1).unwrap().find("\"1 kN\"").unwrap() + 1;
     assert_eq!(column, expected, "{message}");
     assert!(
-        message.contains("contact.load.force_n") && message.contains("\"1 kN\"")
+        message.contains("contact.load.force_n")
+            && message.contains("\"1 kN\"")
             && message.contains("f64"),
         "{message}"
     );
@@ -175,13 +222,25 @@ fn a_string_for_a_number_is_refused_at_its_key() {
 /// file (the punch's).
 #[test]
 fn a_bad_material_is_reported_on_its_own_body() {
-    let text = contopt_scene::BUNDLED[0].text.replacen("nu = 0.3", "nu = 0.3 ", 1);
+    let text = contopt_scene::BUNDLED[0]
+        .text
+        .replacen("nu = 0.3", "nu = 0.3 ", 1);
     let base = text.find("kind = \"fe_base\"").unwrap();
-    let bad = format!("{}{}", &text[..base], text[base..].replacen("nu = 0.3", "nu = 0.5", 1));
+    let bad = format!(
+        "{}{}",
+        &text[..base],
+        text[base..].replacen("nu = 0.3", "nu = 0.5", 1)
+    );
     let (message, (line, _)) = refused(&bad);
     let base_line = line_of(&bad, "kind = \"fe_base\"");
-    assert!(line > base_line && line < base_line + 4, "{line}: {message}");
-    assert!(message.contains("body[0].material") && message.contains("0.5"), "{message}");
+    assert!(
+        line > base_line && line < base_line + 4,
+        "{line}: {message}"
+    );
+    assert!(
+        message.contains("body[0].material") && message.contains("0.5"),
+        "{message}"
+    );
 }
 
 /// What `run` refuses, `check` (reading the scene) refuses first, in words — not a Rust enum's
@@ -192,7 +251,10 @@ fn check_refuses_what_run_would() {
         .text
         .replace("kind = \"given_displacement\"", "kind = \"given_load\"");
     let (message, _) = refused(&displaced);
-    assert!(message.contains("floating body") && !message.contains("GivenLoad"), "{message}");
+    assert!(
+        message.contains("floating body") && !message.contains("GivenLoad"),
+        "{message}"
+    );
     let roller = contopt_scene::BUNDLED
         .iter()
         .find(|b| b.name == "roller-study")

@@ -137,9 +137,9 @@ pub trait BodyKind {
     }
 }
 
-/// The pair's checks: two bodies, not both rigid, the load taken by the body above, and the
-/// finite-element faces meshed by a finite-element body.
-pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+/// The pair's checks: two bodies, not both rigid, and the finite-element faces meshed by a
+/// finite-element body.
+pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec) -> Result<()> {
     if bodies.len() != 2 {
         return Err(Error::invalid(
             "body",
@@ -163,11 +163,11 @@ pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec, load: LoadSpec) -> Resul
              fe_punch); give one, or a grid, rings or strips",
         ));
     }
-    check_load(above, zone, load)
+    Ok(())
 }
 
 /// The contact's load fits the body above.
-fn check_load(above: &dyn BodyKind, zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+pub fn check_load(above: &dyn BodyKind, zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
     match (load, above.takes(zone)) {
         (LoadSpec::ForceN(f), Takes::Force) => {
             contopt_core::check::positive("contact.load.force_n", f).map(|_| ())
