@@ -11,10 +11,12 @@
 //!
 //! This crate knows nothing of bodies or solvers: a chart or a table needs only it.
 
+mod doc;
 mod settle;
 mod validate;
 pub mod words;
 
+pub use doc::schema_markdown;
 pub use validate::violations;
 
 use std::collections::BTreeMap;

@@ -1,0 +1,1 @@
+fn main(){ print!("{}", contopt_results::schema_markdown()); }
