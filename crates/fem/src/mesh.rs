@@ -1,6 +1,7 @@
 //! Meshes of quadratic quadrilaterals and a structured generator with grading.
 
 use contopt_core::{memory, Error, Result, GEOMETRY_TOLERANCE};
+use nalgebra::Matrix2;
 
 use crate::element::{ElementKind, FACE_NODES};
 
@@ -335,18 +336,19 @@ impl Mesh {
         Ok(())
     }
 
-    /// Jacobian [[∂x/∂ξ, ∂y/∂ξ], [∂x/∂η, ∂y/∂η]] and its determinant.
-    pub(crate) fn jacobian(&self, e: usize, xi: f64, eta: f64) -> ([[f64; 2]; 2], f64) {
+    /// Jacobian J = [[∂x/∂ξ, ∂y/∂ξ], [∂x/∂η, ∂y/∂η]] = Σₐ (∂Nₐ/∂ξ, ∂Nₐ/∂η)ᵀ (xₐ, yₐ) of
+    /// element `e` at (ξ, η), and its determinant.
+    pub(crate) fn jacobian(&self, e: usize, xi: f64, eta: f64) -> (Matrix2<f64>, f64) {
         let s = self.kind.shape(xi, eta);
-        let mut j = [[0.0; 2]; 2];
+        let mut j = Matrix2::zeros();
         for (a, &n) in self.elements[e].iter().enumerate() {
             let p = self.nodes[n];
             for c in 0..2 {
-                j[0][c] += s.dxi[a] * p[c];
-                j[1][c] += s.deta[a] * p[c];
+                j[(0, c)] += s.dxi[a] * p[c];
+                j[(1, c)] += s.deta[a] * p[c];
             }
         }
-        (j, j[0][0] * j[1][1] - j[0][1] * j[1][0])
+        (j, j.determinant())
     }
 
     /// A structured mesh of the rectangle `x × y`; mid-side nodes sit at the midpoints.

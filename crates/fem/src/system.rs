@@ -5,8 +5,9 @@ use std::time::{Duration, Instant};
 use contopt_core::{Error, Result};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Side};
+use nalgebra::{Matrix4, SMatrix};
 
-use crate::element::{GAUSS3, MAX_NODES};
+use crate::element::{ElementKind, GAUSS3, MAX_NODES};
 use crate::factor::Factor;
 use crate::{Analysis, FeModel};
 
@@ -55,12 +56,15 @@ pub(crate) struct System {
 }
 
 /// Gradient operator at a point of an element: shape functions, their x/y derivatives,
-/// the integration measure, and the radius (for the hoop strain).
+/// the integration measure, and the position (its radius for the hoop strain).
 pub(crate) struct PointB {
+    /// Nₐ (zero past the element's nodes).
     pub n: [f64; MAX_NODES],
-    pub dx: [f64; MAX_NODES],
-    pub dy: [f64; MAX_NODES],
+    /// ∂Nₐ/∂x (row 0) and ∂Nₐ/∂y (row 1): J⁻¹ (∂Nₐ/∂ξ, ∂Nₐ/∂η)ᵀ.
+    pub grad: SMatrix<f64, 2, MAX_NODES>,
+    /// Position (x, y), or (r, z) in axisymmetry.
     pub x: [f64; 2],
+    /// Integration weight: measure · det J · Gauss weight.
     pub dv: f64,
 }
 
@@ -176,86 +180,96 @@ pub(crate) fn point_b(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> R
     let mesh = &model.mesh;
     let (j, det) = mesh.jacobian(e, xi, eta);
     let s = mesh.kind().shape(xi, eta);
-    if !(det > 0.0) {
-        return Err(Error::Mesh(format!("element {e} has a singular Jacobian")));
-    }
-    let jinv = [
-        [j[1][1] / det, -j[0][1] / det],
-        [-j[1][0] / det, j[0][0] / det],
-    ];
-    let mut b = PointB {
-        n: s.n,
-        dx: [0.0; MAX_NODES],
-        dy: [0.0; MAX_NODES],
-        x: [0.0; 2],
-        dv: 0.0,
-    };
+    let jinv = j
+        .try_inverse()
+        .filter(|_| det > 0.0)
+        .ok_or_else(|| Error::Mesh(format!("element {e} has a singular Jacobian")))?;
+    let natural = SMatrix::<f64, 2, MAX_NODES>::from_rows(&[s.dxi.into(), s.deta.into()]);
+    let mut x = [0.0; 2];
     for (a, &node) in mesh.elements()[e].iter().enumerate() {
-        b.dx[a] = jinv[0][0] * s.dxi[a] + jinv[0][1] * s.deta[a];
-        b.dy[a] = jinv[1][0] * s.dxi[a] + jinv[1][1] * s.deta[a];
         let p = mesh.nodes()[node];
-        b.x[0] += s.n[a] * p[0];
-        b.x[1] += s.n[a] * p[1];
+        x[0] += s.n[a] * p[0];
+        x[1] += s.n[a] * p[1];
     }
-    b.dv = model.analysis.measure(b.x[0]) * det * w;
-    Ok(b)
+    Ok(PointB {
+        n: s.n,
+        grad: jinv * natural,
+        x,
+        dv: model.analysis.measure(x[0]) * det * w,
+    })
+}
+
+/// The elasticity matrix D of the model ([`Analysis::elasticity`]).
+fn elasticity(model: &FeModel) -> Matrix4<f64> {
+    let d = model.analysis.elasticity(&model.material);
+    Matrix4::from_fn(|i, k| d[i][k])
 }
 
 /// Strain-displacement rows of node `a`: (coefficient of u_x, coefficient of u_y) for each
 /// strain component, in the order of [`Analysis::elasticity`].
 pub(crate) fn strain_rows(analysis: Analysis, b: &PointB, a: usize) -> [[f64; 2]; 4] {
+    let (dx, dy) = (b.grad[(0, a)], b.grad[(1, a)]);
     match analysis {
-        Analysis::Axisymmetric => [
-            [b.dx[a], 0.0],
-            [0.0, b.dy[a]],
-            [b.n[a] / b.x[0], 0.0],
-            [b.dy[a], b.dx[a]],
-        ],
-        _ => [
-            [b.dx[a], 0.0],
-            [0.0, b.dy[a]],
-            [b.dy[a], b.dx[a]],
-            [0.0, 0.0],
-        ],
+        Analysis::Axisymmetric => [[dx, 0.0], [0.0, dy], [b.n[a] / b.x[0], 0.0], [dy, dx]],
+        _ => [[dx, 0.0], [0.0, dy], [dy, dx], [0.0, 0.0]],
     }
 }
 
-/// Element stiffness ∫ Bᵀ D B dV by 3 × 3 Gauss quadrature.
-fn element_stiffness(
+/// Strain-displacement matrix B (4 × `M`) at a point: the strain rows ([`strain_rows`]) of
+/// the element's nodes side by side, ε = B uₑ for the element's `M` = 2·nodes displacements
+/// uₑ = (u_x, u_y) node after node. Plane analyses leave the fourth row zero.
+fn strain_matrix<const M: usize>(analysis: Analysis, b: &PointB) -> SMatrix<f64, 4, M> {
+    let mut bm = SMatrix::zeros();
+    for a in 0..M / 2 {
+        for (k, row) in strain_rows(analysis, b, a).iter().enumerate() {
+            bm[(k, 2 * a)] = row[0];
+            bm[(k, 2 * a + 1)] = row[1];
+        }
+    }
+    bm
+}
+
+/// Element stiffness Kₑ = ∫ Bᵀ D B dV by 3 × 3 Gauss quadrature, `M` = 2·nodes.
+fn element_stiffness<const M: usize>(
     model: &FeModel,
     e: usize,
-    d: &[[f64; 4]; 4],
-    ke: &mut [[f64; 2 * MAX_NODES]; 2 * MAX_NODES],
-) -> Result<()> {
-    let nn = model.mesh.kind().n_nodes();
-    let ns = model.analysis.n_strain();
-    for row in ke.iter_mut() {
-        row.fill(0.0);
-    }
+    d: &Matrix4<f64>,
+) -> Result<SMatrix<f64, M, M>> {
+    let mut ke = SMatrix::<f64, M, M>::zeros();
     for &(xi, wx) in &GAUSS3 {
         for &(eta, wy) in &GAUSS3 {
             let b = point_b(model, e, xi, eta, wx * wy)?;
-            let rows: [[[f64; 2]; 4]; MAX_NODES] =
-                std::array::from_fn(|a| strain_rows(model.analysis, &b, a));
-            let rows = &rows[..nn];
-            for a in 0..nn {
-                for ca in 0..2 {
-                    // (D B)_{:, (a, ca)}
-                    let mut db = [0.0; 4];
-                    for (i, dbi) in db.iter_mut().enumerate().take(ns) {
-                        *dbi = (0..ns).map(|k| d[i][k] * rows[a][k][ca]).sum::<f64>() * b.dv;
-                    }
-                    for (bn, row_b) in rows.iter().enumerate() {
-                        for cb in 0..2 {
-                            ke[2 * bn + cb][2 * a + ca] +=
-                                (0..ns).map(|k| row_b[k][cb] * db[k]).sum::<f64>();
-                        }
-                    }
-                }
-            }
+            let bm = strain_matrix::<M>(model.analysis, &b);
+            ke.gemm_tr(1.0, &bm, &(d * bm * b.dv), 1.0);
         }
     }
-    Ok(())
+    Ok(ke)
+}
+
+impl FeModel {
+    /// The stiffness matrix Kₑ = ∫ Bᵀ D B dV of element `e` (3 × 3 Gauss points), of order
+    /// 2·nodes, its unknowns (u_x, u_y) node after node in the element's local order
+    /// ([`crate::element`]). Errors: no such element, or a singular Jacobian.
+    pub fn element_stiffness(&self, e: usize) -> Result<Mat<f64>> {
+        let n = self.mesh.elements().len();
+        if e >= n {
+            return Err(Error::invalid(
+                "element",
+                e,
+                format!("no such element (mesh has {n})"),
+            ));
+        }
+        let d = elasticity(self);
+        match self.mesh.kind() {
+            ElementKind::Q8 => element_stiffness::<16>(self, e, &d).map(to_mat),
+            ElementKind::Q9 => element_stiffness::<18>(self, e, &d).map(to_mat),
+        }
+    }
+}
+
+/// A fixed-size matrix copied into a faer matrix.
+fn to_mat<const M: usize>(k: SMatrix<f64, M, M>) -> Mat<f64> {
+    Mat::from_fn(M, M, |i, j| k[(i, j)])
 }
 
 /// The upper triangle of a stiffness matrix as (row, column) pairs and values (duplicates
@@ -279,29 +293,39 @@ impl Triplets {
 /// Assembles the element stiffnesses over the free unknowns of `dofs`, numbered from
 /// `offset`.
 pub(crate) fn assemble(model: &FeModel, dofs: &[Dof], offset: usize) -> Result<Triplets> {
-    let d = model.analysis.elasticity(&model.material);
-    let nn = model.mesh.kind().n_nodes();
+    match model.mesh.kind() {
+        ElementKind::Q8 => assemble_elements::<16>(model, dofs, offset),
+        ElementKind::Q9 => assemble_elements::<18>(model, dofs, offset),
+    }
+}
+
+/// [`assemble`] for elements of `M` = 2·nodes unknowns.
+fn assemble_elements<const M: usize>(
+    model: &FeModel,
+    dofs: &[Dof],
+    offset: usize,
+) -> Result<Triplets> {
+    let d = elasticity(model);
     let n_el = model.mesh.elements().len();
-    let per = (2 * nn) * (2 * nn + 1) / 2;
+    let per = M * (M + 1) / 2;
     let n_free = dofs.iter().filter(|d| matches!(d, Dof::Free(_))).count();
     let mut t = Triplets {
         idx: Vec::with_capacity(n_el * per),
         val: Vec::with_capacity(n_el * per),
         prescribed_load: vec![0.0; n_free],
     };
-    let mut ke = [[0.0; 2 * MAX_NODES]; 2 * MAX_NODES];
     for (e, conn) in model.mesh.elements().iter().enumerate() {
-        element_stiffness(model, e, &d, &mut ke)?;
+        let ke = element_stiffness::<M>(model, e, &d)?;
         let g = |k: usize| 2 * conn[k / 2] + k % 2;
-        for kb in 0..2 * nn {
+        for kb in 0..M {
             let Dof::Free(j) = dofs[g(kb)] else { continue };
-            for ka in 0..2 * nn {
+            for ka in 0..M {
                 match dofs[g(ka)] {
                     Dof::Free(i) if i <= j => {
                         t.idx.push(Pair::new(offset + i, offset + j));
-                        t.val.push(ke[ka][kb]);
+                        t.val.push(ke[(ka, kb)]);
                     }
-                    Dof::Prescribed(v) if v != 0.0 => t.prescribed_load[j] += ke[kb][ka] * v,
+                    Dof::Prescribed(v) if v != 0.0 => t.prescribed_load[j] += ke[(kb, ka)] * v,
                     _ => {}
                 }
             }
@@ -431,4 +455,69 @@ fn pins(modes: &[Mode], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
         }
     }
     chosen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Material, Mesh, Spacing};
+
+    /// Round-off of a stiffness entry, of the strain energy and of the forces of a rigid
+    /// motion, relative to the largest entry (or the energy).
+    const ROUND_OFF: f64 = 1e-12;
+
+    #[test]
+    fn element_stiffness_is_symmetric_and_integrates_a_uniform_strain() {
+        // One plane-stress parallelogram, 2 mm thick: the affine map (det 0.96) of a 3 × 2
+        // rectangle, so det J is constant and the 3 × 3 Gauss points integrate the energy of
+        // a uniform strain exactly.
+        let thickness = 2.0;
+        let analysis = Analysis::PlaneStress { thickness };
+        let material = Material::new(2e5, 0.3).unwrap();
+        let area = 6.0 * 0.96;
+        for kind in [ElementKind::Q8, ElementKind::Q9] {
+            let rectangle = Mesh::rectangle(
+                kind,
+                &Spacing::uniform(0.0, 3.0, 1).unwrap(),
+                &Spacing::uniform(0.0, 2.0, 1).unwrap(),
+            )
+            .unwrap();
+            let mesh = rectangle
+                .map(|p| [p[0] + 0.4 * p[1], p[1] + 0.1 * p[0]])
+                .unwrap();
+            let model = FeModel::new(mesh, material, analysis).unwrap();
+            let k = model.element_stiffness(0).unwrap();
+            let n = 2 * kind.n_nodes();
+            assert_eq!((k.nrows(), k.ncols()), (n, n));
+            let largest = (0..n).map(|i| k[(i, i)]).fold(0.0, f64::max);
+            for i in 0..n {
+                for j in 0..n {
+                    assert!((k[(i, j)] - k[(j, i)]).abs() <= ROUND_OFF * largest);
+                }
+            }
+            // u = (1e-3 x + 2e-4 y, −3e-4 x + 5e-4 y): uᵀ K u = εᵀ D ε · area · thickness.
+            let field = |p: [f64; 2]| [1e-3 * p[0] + 2e-4 * p[1], -3e-4 * p[0] + 5e-4 * p[1]];
+            let rotation = |p: [f64; 2]| [-p[1], p[0]];
+            let nodal = |f: &dyn Fn([f64; 2]) -> [f64; 2]| -> Vec<f64> {
+                model.mesh.elements()[0]
+                    .iter()
+                    .flat_map(|&a| f(model.mesh.nodes()[a]))
+                    .collect()
+            };
+            let (u, r) = (nodal(&field), nodal(&rotation));
+            let ku = |v: &[f64], i: usize| (0..n).map(|j| k[(i, j)] * v[j]).sum::<f64>();
+            let energy: f64 = (0..n).map(|i| u[i] * ku(&u, i)).sum();
+            let strain = [1e-3, 5e-4, 2e-4 - 3e-4];
+            let d = analysis.elasticity(&material);
+            let want = (0..3)
+                .map(|i| (0..3).map(|j| strain[i] * d[i][j] * strain[j]).sum::<f64>())
+                .sum::<f64>()
+                * area
+                * thickness;
+            assert!((energy - want).abs() <= ROUND_OFF * want, "{energy} {want}");
+            let scale = largest * r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            assert!((0..n).all(|i| ku(&r, i).abs() <= ROUND_OFF * scale));
+            assert!(model.element_stiffness(1).is_err());
+        }
+    }
 }
