@@ -1,5 +1,12 @@
-//! What users see of a contopt run, in one place: the charts, the table printed after a run,
-//! and the files a scene's [`Report`](contopt_scene::Report) becomes ([`write()`]).
+//! What users see of a contopt run, in one place: the charts, the table printed after a run
+//! ([`table()`]), and the files a run's [`Report`](contopt_results::Report) becomes
+//! ([`write()`]: `result.json`, the CSV files and the charts). It depends on the result types
+//! of `contopt-results` only, not on the bodies or solvers that produced them.
+//!
+//! One unit per kind of quantity, as in `result.json`: pressures and stresses in MPa,
+//! positions and sizes in mm, gaps, gap changes and displacements in µm; the CSV columns carry
+//! the unit in their names as the JSON fields do (`p_mpa`, `x_mm`, `d_um`). A case is named by
+//! its `label` in the table, the CSV files and the charts' legends alike.
 //!
 //! Charts — [`LineChart`] (with dashed reference curves: the closed form beside a computed
 //! pressure), [`heat_map`] and [`section_map`] (a value over a grid of cells, with a colour
@@ -7,9 +14,10 @@
 //! PNG is that SVG rasterised by `resvg` ([`Figure::png`]). Both use one embedded font, so a
 //! machine with no fonts installed draws the same picture. Ticks sit at round values
 //! (1, 2, 5 × 10ᵏ), the axis descriptions carry units and are laid out from the measured
-//! width of the tick labels so that neither overlaps nor is cut off, legends use the paper's
-//! words ([`words`]: `L1 = 20 mm`, `ν = 0.3`, `E = 2·10⁵ MPa`), points that are not finite
-//! are skipped and a one-value range is widened.
+//! width of the tick labels so that neither overlaps nor is cut off, legends are the cases'
+//! labels, in the paper's words as the scene writes them (`L1 = 20 mm`, `ν = 0.3`,
+//! `E = 2·10⁵ MPa`; [`contopt_results::words`]), points that are not finite are skipped and a
+//! one-value range is widened.
 //!
 //! ```
 //! use contopt_report::LineChart;
@@ -49,7 +57,6 @@ mod scale;
 mod style;
 mod table;
 mod ticks;
-pub mod words;
 
 pub use figure::{Figure, PNG_SCALE};
 pub use line::LineChart;

@@ -11,7 +11,9 @@ use plotters::style::{Color, RGBColor};
 use crate::figure::{self, Area, Drawn, Entry, Figure, Margins};
 use crate::scale::Scale;
 use crate::style::{self, LABEL_SIZE, TICK_LENGTH, TICK_SIZE};
-use crate::ticks::{decades, power_of_ten};
+use contopt_results::words::power_of_ten;
+
+use crate::ticks::decades;
 
 /// A panel's size inside its axes \[px\].
 const PLOT: (f64, f64) = (380.0, 300.0);

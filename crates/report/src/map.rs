@@ -263,7 +263,7 @@ impl ColourBar {
 
     fn label(&self, v: f64) -> String {
         if v == self.top {
-            crate::words::significant(v, BAR_DIGITS)
+            contopt_results::words::significant(v, BAR_DIGITS)
         } else {
             self.axis.label(v)
         }

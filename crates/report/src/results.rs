@@ -3,15 +3,19 @@
 //! pressure over a two-dimensional region, a roller envelope's centre lines, and the
 //! stresses on each vertical section below the surface (CSV and von Mises maps). Every chart
 //! is written as SVG and PNG.
+//!
+//! Units are those of `result.json`, one per kind of quantity and written in the CSV columns'
+//! names as in its fields': pressures and stresses in MPa (`_mpa`), positions and sizes in mm
+//! (`_mm`), gaps and gap changes in µm (`_um`). A case is named by its `label` everywhere.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::io;
 
-use contopt_core::SectionAxis;
-use contopt_scene::{BodyStresses, CaseReport, PointReport, Report};
+use contopt_core::{SectionAxis, SectionField};
+use contopt_results::words::number;
+use contopt_results::{BodyStresses, CaseReport, CaseStatus, CurvePoint, Point, Report};
 
-use crate::words::{case_legend, number};
 use crate::{heat_map, section_map, Figure, LineChart};
 
 /// Where a report's files go: a results folder, or memory.
@@ -37,6 +41,9 @@ const SAME_ROW: f64 = 1e-9;
 /// (a two-dimensional region), `envelope_<case>` (a roller's envelope), `subsurface_<case>.csv`
 /// and `mises_<case>_<section>` (stresses below the surface); cases and sections numbered
 /// from 1.
+///
+/// The charts draw the cases whose methods converged, those outside the model's limits too
+/// (their legend says so); `interface.csv` holds every case's points.
 pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(io::Error::other)?;
     sink.put("result.json", json.as_bytes())?;
@@ -68,14 +75,22 @@ fn put(sink: &mut dyn Sink, stem: &str, figure: &Figure) -> io::Result<()> {
     Ok(())
 }
 
+/// The header of `interface.csv`: the fields of `result.json`'s interface points, the
+/// coordinates `x_mm` spread over three columns.
+const INTERFACE_HEADER: &str = "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um\n";
+
 /// The fields at every interface point of every case.
 fn interface_csv(report: &Report) -> String {
-    let mut csv = String::from("case,x,y,z,p_mpa,d_mm,dh_mm\n");
+    let mut csv = String::from(INTERFACE_HEADER);
     for c in &report.cases {
         let label = csv_field(&c.label);
         for q in &c.interface {
-            let [x, y, z] = q.x;
-            let _ = writeln!(csv, "{label},{x},{y},{z},{},{},{}", q.p, q.d, q.dh);
+            let [x, y, z] = q.x_mm;
+            let _ = writeln!(
+                csv,
+                "{label},{x},{y},{z},{},{},{}",
+                q.p_mpa, q.d_um, q.dh_um
+            );
         }
     }
     csv
@@ -91,22 +106,41 @@ pub fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
     }
 }
 
+/// Whether the case's methods converged: solved, or outside the model's limits (an answer
+/// that the zone cuts short, still worth seeing).
+fn converged(case: &CaseReport) -> bool {
+    case.status != CaseStatus::NotConverged
+}
+
+/// A case's name in a chart's legend: its label, and whether it lies outside the model.
+fn legend(case: &CaseReport) -> String {
+    match case.status {
+        CaseStatus::OutsideModel => format!("{} (outside the model)", case.label),
+        _ => case.label.clone(),
+    }
+}
+
 /// `field` along the row of a case's interface points nearest the x axis (all of them on an
 /// axisymmetric or plane body), sorted by x.
-fn along_x(case: &CaseReport, field: impl Fn(&PointReport) -> f64) -> Vec<(f64, f64)> {
+fn along_x(case: &CaseReport, field: impl Fn(&Point) -> f64) -> Vec<(f64, f64)> {
     let near = case
         .interface
         .iter()
-        .map(|q| q.x[1].abs())
+        .map(|q| q.x_mm[1].abs())
         .fold(f64::INFINITY, f64::min);
     let mut line: Vec<(f64, f64)> = case
         .interface
         .iter()
-        .filter(|q| q.x[1].abs() <= near + SAME_ROW)
-        .map(|q| (q.x[0], field(q)))
+        .filter(|q| q.x_mm[1].abs() <= near + SAME_ROW)
+        .map(|q| (q.x_mm[0], field(q)))
         .collect();
     line.sort_by(|a, b| a.0.total_cmp(&b.0));
     line
+}
+
+/// A pressure curve as (x, p).
+fn curve(points: &[CurvePoint]) -> Vec<(f64, f64)> {
+    points.iter().map(|c| (c.x_mm, c.p_mpa)).collect()
 }
 
 /// The contact pressure along x of every converged case, each with its closed form dashed
@@ -123,16 +157,15 @@ fn pressure_chart(report: &Report) -> Option<LineChart> {
     if let Some(top) = limit {
         chart = chart.clip_above(top);
     }
-    for c in report.cases.iter().filter(|c| c.converged) {
-        chart = chart.line(&case_legend(c), &along_x(c, |q| q.p));
+    for c in report.cases.iter().filter(|c| converged(c)) {
+        chart = chart.line(&legend(c), &along_x(c, |q| q.p_mpa));
         if let Some(r) = &c.reference {
-            let points: Vec<(f64, f64)> = r.points.iter().map(|p| (p[0], p[1])).collect();
             let label = if report.cases.len() > 1 {
-                format!("{} ({})", r.label, case_legend(c))
+                format!("{} ({})", r.label, c.label)
             } else {
                 r.label.clone()
             };
-            chart = chart.reference(&label, &points);
+            chart = chart.reference(&label, &curve(&r.points));
         }
     }
     (!chart.is_empty()).then_some(chart)
@@ -148,8 +181,8 @@ fn spike_limit(report: &Report) -> Option<f64> {
     let mut positive: Vec<f64> = report
         .cases
         .iter()
-        .filter(|c| c.converged)
-        .flat_map(|c| along_x(c, |q| q.p))
+        .filter(|c| converged(c))
+        .flat_map(|c| along_x(c, |q| q.p_mpa))
         .map(|p| p.1)
         .filter(|&p| p > 0.0 && p.is_finite())
         .collect();
@@ -159,14 +192,15 @@ fn spike_limit(report: &Report) -> Option<f64> {
     (largest > SPIKE * median).then(|| crate::ticks::Axis::between(0.0, SPIKE * median).hi)
 }
 
-/// The gap change Δh along x of every converged case, when one of them changes the gap.
+/// The gap change Δh \[µm\] along x of every converged case, when one of them changes the
+/// gap.
 fn gap_change_chart(report: &Report) -> Option<LineChart> {
-    let changes = |c: &&CaseReport| c.converged && c.interface.iter().any(|q| q.dh != 0.0);
+    let changes = |c: &&CaseReport| converged(c) && c.interface.iter().any(|q| q.dh_um != 0.0);
     report.cases.iter().find(changes)?;
     let title = format!("{}: gap change", report.scene);
     let mut chart = LineChart::new(&title, "x [mm]", "Δh [µm]");
-    for c in report.cases.iter().filter(|c| c.converged) {
-        chart = chart.line(&case_legend(c), &along_x(c, |q| 1e3 * q.dh));
+    for c in report.cases.iter().filter(|c| converged(c)) {
+        chart = chart.line(&legend(c), &along_x(c, |q| q.dh_um));
     }
     (!chart.is_empty()).then_some(chart)
 }
@@ -174,20 +208,20 @@ fn gap_change_chart(report: &Report) -> Option<LineChart> {
 /// A map of the pressure over a case's two-dimensional region (its points off one row);
 /// none for a line of points or a case that did not converge.
 fn pressure_map(report: &Report, case: &CaseReport) -> io::Result<Option<Figure>> {
-    let first_y = case.interface.first().map_or(0.0, |q| q.x[1]);
+    let first_y = case.interface.first().map_or(0.0, |q| q.x_mm[1]);
     let flat = case
         .interface
         .iter()
-        .all(|q| (q.x[1] - first_y).abs() < SAME_ROW);
-    if !case.converged || flat {
+        .all(|q| (q.x_mm[1] - first_y).abs() < SAME_ROW);
+    if !converged(case) || flat {
         return Ok(None);
     }
     let points: Vec<(f64, f64, f64)> = case
         .interface
         .iter()
-        .map(|q| (q.x[0], q.x[1], q.p))
+        .map(|q| (q.x_mm[0], q.x_mm[1], q.p_mpa))
         .collect();
-    let peak = case.p_max.map_or(String::new(), |p| {
+    let peak = case.p_max_mpa.map_or(String::new(), |p| {
         format!(", largest {} MPa", number(p.round()))
     });
     let title = format!(
@@ -221,8 +255,7 @@ fn envelope_chart(report: &Report, case: &CaseReport) -> Option<LineChart> {
             number(e.load_n / nominal),
             number(e.tilt_arcmin)
         );
-        let points: Vec<(f64, f64)> = e.centre_line.iter().map(|p| (p[0], p[1])).collect();
-        chart = chart.line(&label, &points);
+        chart = chart.line(&label, &curve(&e.centre_line));
     }
     Some(chart)
 }
@@ -232,13 +265,15 @@ fn of_case(report: &Report, case: &CaseReport) -> String {
     if case.label == report.scene {
         String::new()
     } else {
-        format!(", {}", case_legend(case))
+        format!(", {}", legend(case))
     }
 }
 
-/// The header of `subsurface_<case>.csv`.
-const SECTION_HEADER: &str = "body,section,along,at_mm,position_mm,depth_mm,sxx_mpa,syy_mpa,\
-szz_mpa,sxy_mpa,sxz_mpa,syz_mpa,von_mises_mpa,tresca_mpa,s1_mpa,s3_mpa\n";
+/// The header of `subsurface_<case>.csv`: the case, the body, the section (its name, as the
+/// title of its map says it), the point (x, y along the surface, as `result.json`'s peaks
+/// write them; r and 0 on an axisymmetric body) and its depth, then the stresses.
+const SECTION_HEADER: &str = "case,body,section,x_mm,y_mm,depth_mm,sxx_mpa,syy_mpa,szz_mpa,\
+sxy_mpa,sxz_mpa,syz_mpa,von_mises_mpa,tresca_mpa,s1_mpa,s3_mpa\n";
 
 /// The stresses on each vertical section below each body of case `number`: one CSV,
 /// `subsurface_<case>.csv`, and a von Mises map per section, `mises_<case>_<section>`
@@ -258,7 +293,7 @@ fn sections(
         .iter()
         .flat_map(|b| b.sections.iter().map(move |f| (b, f)));
     for (n, (body, field)) in all.enumerate() {
-        let map = section(report, case, body, field, n + 1, &mut csv)?;
+        let map = section(report, case, body, field, &mut csv)?;
         put(sink, &format!("mises_{number}_{}", n + 1), &map)?;
     }
     if sub.bodies.iter().any(|b| !b.sections.is_empty()) {
@@ -267,44 +302,108 @@ fn sections(
     Ok(())
 }
 
-/// Appends section `n`'s rows to `csv` and draws its von Mises map.
+/// The two-dimensional model a case's bodies are, which has one section, its own plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Model {
+    /// Axisymmetric: the section runs along r.
+    Axisymmetric,
+    /// Plane stress or strain: the section runs along x.
+    Plane,
+}
+
+/// The two-dimensional model of a case's bodies, from the zone of its resolved inputs
+/// (`contact.zone`: rings are axisymmetric, strips plane, finite-element faces as their
+/// `analysis` says); `None` for a grid on a surface, and when the inputs do not say.
+fn model(case: &CaseReport) -> Option<Model> {
+    let zone = case.input.pointer("/contact/zone")?.as_object()?;
+    // `{"rings": {…}}` as the scene writes it, or `{"kind": "rings", …}` as a scene file does.
+    let (kind, content) = match zone.get("kind").and_then(|k| k.as_str()) {
+        Some(kind) => (kind, zone),
+        None => {
+            let (kind, content) = zone.iter().next().filter(|_| zone.len() == 1)?;
+            (kind.as_str(), content.as_object()?)
+        }
+    };
+    match kind {
+        "rings" => Some(Model::Axisymmetric),
+        "strips" => Some(Model::Plane),
+        "faces" => match content.get("analysis").and_then(|a| a.as_str()) {
+            Some("axisymmetric") => Some(Model::Axisymmetric),
+            _ => Some(Model::Plane),
+        },
+        _ => None,
+    }
+}
+
+/// A coordinate \[mm\] in a section's name: four decimals, never `-0.0000`.
+fn mm(v: f64) -> String {
+    let v = if v.abs() < 5e-5 { 0.0 } else { v };
+    format!("{v:.4}")
+}
+
+/// A section's name in the CSV and in its map's title (`along x at y = 0.0000 mm`; the
+/// body's own plane on a plane or axisymmetric body), and the coordinate along it.
+fn name(field: &SectionField, model: Option<Model>) -> (String, &'static str) {
+    let at = mm(field.section.at);
+    match (model, field.section.axis) {
+        (Some(Model::Axisymmetric), _) => ("the body's plane along r (axisymmetric)".into(), "r"),
+        (Some(Model::Plane), _) => ("the body's plane along x (plane model)".into(), "x"),
+        (None, SectionAxis::X) => (format!("along x at y = {at} mm"), "x"),
+        (None, SectionAxis::Y) => (format!("along y at x = {at} mm"), "y"),
+    }
+}
+
+/// Where `position` along a section lies on the surface, (x, y) \[mm\]: on a plane or
+/// axisymmetric body (x or r, 0), as `result.json`'s peaks write it.
+fn on_surface(field: &SectionField, model: Option<Model>, position: f64) -> (f64, f64) {
+    match (model, field.section.axis) {
+        (Some(_), _) => (position, 0.0),
+        (None, SectionAxis::X) => (position, field.section.at),
+        (None, SectionAxis::Y) => (field.section.at, position),
+    }
+}
+
+/// Appends a section's rows to `csv` and draws its von Mises map.
 fn section(
     report: &Report,
     case: &CaseReport,
     body: &BodyStresses,
-    field: &contopt_core::SectionField,
-    n: usize,
+    field: &SectionField,
     csv: &mut String,
 ) -> io::Result<Figure> {
-    let (along, across) = match field.section.axis {
-        SectionAxis::X => ("x", "y"),
-        SectionAxis::Y => ("y", "x"),
-    };
-    let name = csv_field(&body.body);
-    let at = field.section.at;
+    let model = model(case);
+    let (section, along) = name(field, model);
+    let start = format!(
+        "{},{},{}",
+        csv_field(&case.label),
+        csv_field(&body.body),
+        csv_field(&section)
+    );
     let mut points = Vec::with_capacity(field.tensors.len());
     for (kd, depth) in field.depths.iter().enumerate() {
         for (i, position) in field.positions.iter().enumerate() {
             let t = field.at(kd, i);
             let [s1, _, s3] = t.principal();
             let (mises, tresca) = (t.von_mises(), t.tresca());
+            let (x, y) = on_surface(field, model, *position);
             let _ = writeln!(
                 csv,
-                "{name},{n},{along},{at},{position},{depth},{},{},{},{},{},{},{mises},{tresca},{s1},{s3}",
+                "{start},{x},{y},{depth},{},{},{},{},{},{},{mises},{tresca},{s1},{s3}",
                 t.xx, t.yy, t.zz, t.xy, t.xz, t.yz
             );
             points.push((*position, *depth, mises));
         }
     }
     let of_case = of_case(report, case);
-    let shown = format!("{at:.3}").replace('-', "−");
     let (top, depth) = points
         .iter()
         .fold((0.0, 0.0), |m, p| if p.2 > m.0 { (p.2, p.1) } else { m });
+    let within = if model.is_some() { "in " } else { "" };
     let title = format!(
-        "von Mises stress below the {}{of_case}, along {along} at {across} = {shown} mm\n\
+        "von Mises stress below the {}{of_case}, {within}{}\n\
          largest {top:.0} MPa at depth {depth:.3} mm",
-        body.body
+        body.body,
+        section.replace('-', "−")
     );
     section_map(
         &title,
@@ -316,33 +415,76 @@ fn section(
 
 #[cfg(test)]
 mod tests {
+    use contopt_core::{Section, StressTensor, Termination};
+    use contopt_results::{
+        ModelLimit, Peak, Peaks, ReferenceCurve, SubsurfaceReport, SCHEMA_VERSION,
+    };
+
     use super::*;
 
-    /// A swept scene of two cases along a line of points, the first with a closed form.
-    fn report() -> Report {
-        let points = |scale: f64| -> Vec<serde_json::Value> {
-            (0..11)
-                .map(|i| {
-                    let x = 0.1 * i as f64;
-                    let p = scale * (1.0 - x * x).max(0.0);
-                    serde_json::json!({"x": [x, 0.0, 0.0], "p": p, "d": 0.0, "dh": 1e-3 * x})
-                })
-                .collect()
-        };
-        let case = |l1: f64, scale: f64| {
-            serde_json::json!({
-                "label": format!("l1_mm = {l1}"), "params": {"l1_mm": l1}, "p_max": scale,
-                "dh_max_um": 1.0, "converged": true, "error": null, "iterations": [],
-                "interface": points(scale), "timings_ms": {},
-                "reference": {"label": "Hertz: p₀ = 100 MPa", "points": [[0.0, 100.0], [1.0, 0.0]]},
+    /// A solved case along a line of 11 points, x from 0 to 1 mm: p = scale·(1 − x²) MPa,
+    /// Δh = 2x µm, with a closed form.
+    fn case(label: &str, l1: f64, scale: f64) -> CaseReport {
+        let params = BTreeMap::from([("optimisation.controller.l1_mm".to_string(), l1)]);
+        let mut c = CaseReport::new(label, &params, serde_json::Value::Null);
+        c.status = CaseStatus::Solved;
+        c.termination = Termination::Converged;
+        c.dh_max_um = Some(2.0);
+        c.interface = (0..11)
+            .map(|i| {
+                let x = 0.1 * i as f64;
+                Point {
+                    x_mm: [x, 0.0, 0.0],
+                    p_mpa: scale * (1.0 - x * x).max(0.0),
+                    d_um: 0.0,
+                    dh_um: 2.0 * x,
+                }
             })
-        };
-        let cases = [case(0.0, 100.0), case(20.0, 80.0)];
-        serde_json::from_value(serde_json::json!({"scene": "s", "cases": cases})).unwrap()
+            .collect();
+        c.reference = Some(ReferenceCurve {
+            label: "Hertz: p₀ = 100 MPa".into(),
+            points: vec![
+                CurvePoint {
+                    x_mm: 0.0,
+                    p_mpa: 100.0,
+                },
+                CurvePoint {
+                    x_mm: 1.0,
+                    p_mpa: 0.0,
+                },
+            ],
+        });
+        c.settle();
+        c
+    }
+
+    /// A swept scene of two cases, labelled as the scene labels a sweep.
+    fn report() -> Report {
+        Report {
+            schema_version: SCHEMA_VERSION,
+            scene: "s".into(),
+            description: "two cases".into(),
+            cases: vec![
+                case("L1 = 0 mm", 0.0, 100.0),
+                case("L1 = 20 mm", 20.0, 80.0),
+            ],
+        }
+    }
+
+    fn text(files: &BTreeMap<String, Vec<u8>>, name: &str) -> String {
+        String::from_utf8(files[name].clone()).unwrap()
+    }
+
+    /// The texts of a chart's SVG, apostrophes unescaped.
+    fn texts(svg: &str) -> Vec<String> {
+        crate::figure::check::text_boxes(svg)
+            .into_iter()
+            .map(|b| b.text.replace("&apos;", "'"))
+            .collect()
     }
 
     /// The files of a line of points: the JSON, the CSV, p and Δh as SVG and PNG; the legend
-    /// in the paper's words, the closed form beside its case; nothing non-finite.
+    /// the cases' labels, the closed form beside its case; nothing non-finite.
     #[test]
     fn writes_the_files_of_a_report() {
         let mut files = BTreeMap::new();
@@ -359,7 +501,7 @@ mod tests {
                 "result.json"
             ]
         );
-        let p = String::from_utf8(files["p.svg"].clone()).unwrap();
+        let p = text(&files, "p.svg");
         for text in [
             "L1 = 0 mm",
             "L1 = 20 mm",
@@ -370,15 +512,43 @@ mod tests {
         }
         assert!(!p.contains("NaN") && !p.contains("inf"));
         assert_eq!(&files["p.png"][1..4], b"PNG");
-        let csv = String::from_utf8(files["interface.csv"].clone()).unwrap();
-        assert_eq!(csv.lines().count(), 1 + 2 * 11);
-        assert!(csv
-            .lines()
-            .nth(1)
-            .unwrap()
-            .starts_with("l1_mm = 0,0,0,0,100,0,0"));
         let json: Report = serde_json::from_slice(&files["result.json"]).unwrap();
+        assert_eq!(json.schema_version, SCHEMA_VERSION);
         assert_eq!(json.cases[1].reference, report().cases[1].reference);
+        let (read, wrote) = (&json.cases[1].interface, &report().cases[1].interface);
+        assert_eq!(read.len(), wrote.len());
+        for (a, b) in read.iter().zip(wrote) {
+            assert!((a.p_mpa - b.p_mpa).abs() < 1e-12 && (a.dh_um - b.dh_um).abs() < 1e-12);
+        }
+    }
+
+    /// The gap-change chart is in µm, as the JSON: Δh runs to 2 µm, so does its axis.
+    #[test]
+    fn the_gap_change_is_drawn_in_micrometres() {
+        let mut files = BTreeMap::new();
+        write(&report(), &mut files).unwrap();
+        let dh = texts(&text(&files, "dh.svg"));
+        assert!(dh.iter().any(|t| t == "Δh [µm]"), "{dh:?}");
+        assert!(dh.iter().any(|t| t == "2.0"), "{dh:?}");
+        assert!(!dh.iter().any(|t| t == "2000" || t == "0.002"), "{dh:?}");
+    }
+
+    /// `interface.csv`: units in the header, as the JSON's field names; the case's label in
+    /// the first column, quoted when it holds a comma; gaps in µm.
+    #[test]
+    fn interface_csv_has_units_and_the_case_label() {
+        let mut r = report();
+        r.cases[1].label = "F = 1000 N, ν = 0.3".into();
+        r.cases[1].interface[0].d_um = 3.5;
+        let mut files = BTreeMap::new();
+        write(&r, &mut files).unwrap();
+        let csv = text(&files, "interface.csv");
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um");
+        assert_eq!(lines.len(), 1 + 2 * 11);
+        assert_eq!(lines[1], "L1 = 0 mm,0,0,0,100,0,0");
+        assert_eq!(lines[12], "\"F = 1000 N, ν = 0.3\",0,0,0,80,3.5,0");
+        assert_eq!(lines[13], "\"F = 1000 N, ν = 0.3\",0.1,0,0,79.2,0,0.2");
     }
 
     /// A grid of points becomes a map per case; a case that did not converge draws nothing.
@@ -386,18 +556,197 @@ mod tests {
     fn a_region_is_mapped() {
         let mut r = report();
         r.cases[0].interface = (0..25)
-            .map(|k| PointReport {
-                x: [(k % 5) as f64, (k / 5) as f64, 0.0],
-                p: if k == 12 { 10.0 } else { 0.0 },
-                d: 0.0,
-                dh: 0.0,
+            .map(|k| Point {
+                x_mm: [(k % 5) as f64, (k / 5) as f64, 0.0],
+                p_mpa: if k == 12 { 10.0 } else { 0.0 },
+                d_um: 0.0,
+                dh_um: 0.0,
             })
             .collect();
-        r.cases[1].converged = false;
+        r.cases[1].status = CaseStatus::NotConverged;
         let mut files = BTreeMap::new();
         write(&r, &mut files).unwrap();
         assert!(files.contains_key("p_map_1.svg") && files.contains_key("p_map_1.png"));
         assert!(!files.contains_key("p_map_2.svg") && !files.contains_key("dh.svg"));
+    }
+
+    /// A case outside the model is drawn, its legend saying so; one that did not converge is
+    /// not.
+    #[test]
+    fn charts_say_which_case_lies_outside_the_model() {
+        let mut r = report();
+        r.cases[0].status = CaseStatus::OutsideModel;
+        r.cases[0].limit = Some(ModelLimit {
+            edge: "x = +1 mm".into(),
+            extent_mm: 1.0,
+            needed_mm: 1.5,
+            message: "the contact reaches the zone's edge".into(),
+        });
+        r.cases[1].status = CaseStatus::NotConverged;
+        let mut files = BTreeMap::new();
+        write(&r, &mut files).unwrap();
+        let p = texts(&text(&files, "p.svg"));
+        assert!(
+            p.iter().any(|t| t == "L1 = 0 mm (outside the model)"),
+            "{p:?}"
+        );
+        assert!(!p.iter().any(|t| t.contains("L1 = 20 mm")), "{p:?}");
+    }
+
+    /// One body's stresses on one section: a σ_zz of −(1 + k) at depth k, 2 positions × 2
+    /// depths.
+    fn stresses(section: Section) -> SubsurfaceReport {
+        let peak = Peak {
+            value_mpa: 1.0,
+            x_mm: 0.0,
+            y_mm: 0.0,
+            depth_mm: 0.1,
+        };
+        let tensor = |k: usize| StressTensor {
+            zz: -(1.0 + k as f64),
+            ..Default::default()
+        };
+        SubsurfaceReport {
+            depths_mm: vec![0.1, 0.2],
+            bodies: vec![BodyStresses {
+                body: "half-space".into(),
+                peaks: Peaks {
+                    von_mises: peak,
+                    tresca: peak,
+                    max_principal: peak,
+                    min_principal: peak,
+                },
+                sections: vec![SectionField {
+                    section,
+                    positions: vec![-0.1, 0.1],
+                    depths: vec![0.1, 0.2],
+                    tensors: vec![tensor(0), tensor(0), tensor(1), tensor(1)],
+                }],
+            }],
+        }
+    }
+
+    /// The numbers of a CSV row after its first fields, `start`.
+    fn numbers(row: &str, start: &str) -> Vec<f64> {
+        let rest = row
+            .strip_prefix(start)
+            .unwrap_or_else(|| panic!("{row} does not start with {start}"));
+        rest.split(',').map(|v| v.parse().unwrap()).collect()
+    }
+
+    /// `got` equals `want` to 10⁻⁷ (the principal stresses are solved for, to about 10⁻⁸
+    /// where two are equal).
+    fn assert_near(got: &[f64], want: &[f64]) {
+        assert_eq!(got.len(), want.len(), "{got:?}");
+        for (g, w) in got.iter().zip(want) {
+            assert!((g - w).abs() < 1e-7, "{got:?} against {want:?}");
+        }
+    }
+
+    /// `subsurface_<case>.csv` names the case (quoted when it holds a comma), the body and
+    /// the section of each row, with the surface point (x, y) of a section along y at x =
+    /// 0.25 mm; its map's title names the same section.
+    #[test]
+    fn subsurface_rows_name_their_case_and_section() {
+        let mut r = report();
+        r.cases[1].label = "F = 1000 N, ν = 0.3".into();
+        r.cases[1].subsurface = Some(stresses(Section {
+            axis: SectionAxis::Y,
+            at: 0.25,
+        }));
+        let mut files = BTreeMap::new();
+        write(&r, &mut files).unwrap();
+        assert!(!files.contains_key("subsurface_1.csv"));
+        let csv = text(&files, "subsurface_2.csv");
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(
+            lines[0],
+            "case,body,section,x_mm,y_mm,depth_mm,sxx_mpa,syy_mpa,szz_mpa,sxy_mpa,sxz_mpa,\
+             syz_mpa,von_mises_mpa,tresca_mpa,s1_mpa,s3_mpa"
+        );
+        assert_eq!(lines.len(), 1 + 4);
+        let case = "\"F = 1000 N, ν = 0.3\",half-space,along y at x = 0.2500 mm,";
+        assert_near(
+            &numbers(lines[1], case),
+            &[
+                0.25, -0.1, 0.1, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0, 0.5, 0.0, -1.0,
+            ],
+        );
+        assert_near(
+            &numbers(lines[4], case),
+            &[
+                0.25, 0.1, 0.2, 0.0, 0.0, -2.0, 0.0, 0.0, 0.0, 2.0, 1.0, 0.0, -2.0,
+            ],
+        );
+        let map = text(&files, "mises_2_1.svg");
+        assert!(map.contains("along y at x = 0.2500 mm"), "{map}");
+        assert!(files.contains_key("mises_2_1.png"));
+    }
+
+    /// On an axisymmetric body (rings, or finite-element faces so analysed) the one section
+    /// is the body's plane, along r, at y = 0; on a plane one along x; on a grid the section
+    /// is named by its line.
+    #[test]
+    fn a_two_dimensional_body_has_its_plane_as_section() {
+        let along_x = Section {
+            axis: SectionAxis::X,
+            at: 0.0,
+        };
+        let zones = [
+            (
+                serde_json::json!({"rings": {"rings": 40, "radius_mm": 1.0}}),
+                "the body's plane along r (axisymmetric)",
+            ),
+            (
+                serde_json::json!({"faces": {"analysis": "axisymmetric", "radius_mm": 1.0}}),
+                "the body's plane along r (axisymmetric)",
+            ),
+            (
+                serde_json::json!({"faces": {"analysis": {"plane_strain": {"thickness_mm": 1.0}}}}),
+                "the body's plane along x (plane model)",
+            ),
+            (
+                serde_json::json!({"kind": "strips", "strips": 40}),
+                "the body's plane along x (plane model)",
+            ),
+            (
+                serde_json::json!({"grid": {"cells": [8, 8]}}),
+                "along x at y = 0.0000 mm",
+            ),
+        ];
+        for (zone, name) in zones {
+            let mut r = report();
+            r.cases[0].input = serde_json::json!({"contact": {"zone": zone}});
+            r.cases[0].subsurface = Some(stresses(along_x));
+            let mut files = BTreeMap::new();
+            write(&r, &mut files).unwrap();
+            let csv = text(&files, "subsurface_1.csv");
+            let row = csv.lines().nth(1).unwrap();
+            let start = format!("L1 = 0 mm,half-space,{name},");
+            assert_near(&numbers(row, &start)[..3], &[-0.1, 0.0, 0.1]);
+            let map = text(&files, "mises_1_1.svg");
+            let title = if name.starts_with("the body's") {
+                format!("L1 = 0 mm, in {name}")
+            } else {
+                format!("L1 = 0 mm, {name}")
+            };
+            let lines = texts(&map);
+            assert!(
+                lines.iter().any(|t| t.contains(&title)),
+                "{title} in {lines:?}"
+            );
+            let axis = if name.contains("along r") {
+                "r [mm] along the section"
+            } else {
+                "x [mm] along the section"
+            };
+            assert!(
+                texts(&text(&files, "mises_1_1.svg"))
+                    .iter()
+                    .any(|t| t == axis),
+                "{name}"
+            );
+        }
     }
 
     #[test]

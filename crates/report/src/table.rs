@@ -1,11 +1,13 @@
-//! The tables printed after a run: per case p_max, the bound, Δh_max, steps and time; a
-//! roller study's figures and its envelope; the largest stresses below the surface.
+//! The tables printed after a run: per case p_max, the bound, Δh_max, passes and time; a
+//! roller study's figures and its envelope; the largest stresses below the surface. A case is
+//! named by its label; under its row, how it ended when it did not converge or lies outside
+//! the model, and Hertz's nominal contact where Hertz applies. Warnings are not part of the
+//! table (`contopt run` prints them on their own).
 
 use std::fmt::Write;
 
-use contopt_scene::Report;
-
-use crate::words::case_legend;
+use contopt_results::words::significant;
+use contopt_results::{CaseReport, CaseStatus, Report};
 
 /// The table of a report: the cases (a roller study's own columns when it has rollers), then
 /// the stresses below the surface when some case computed them.
@@ -18,35 +20,63 @@ pub fn table(report: &Report) -> String {
     cases + &subsurface_table(report)
 }
 
-/// p_max (the largest pressure), the optimisation's bound p̂ and Δh_max, its steps and the
-/// time of each case.
+/// p_max (the largest pressure), the optimisation's bound p̂ and Δh_max, its passes and the
+/// time of each case, with the [`notes`] under it.
 fn case_table(report: &Report) -> String {
     let width = label_width(report);
     let mut s = format!(
         "{:<width$} {:>12} {:>12} {:>12} {:>6} {:>10}\n",
-        "case", "p_max MPa", "bound MPa", "Δh_max µm", "steps", "time ms"
+        "case", "p_max MPa", "bound MPa", "Δh_max µm", "passes", "time ms"
     );
     for c in &report.cases {
-        let total: f64 = c.timings_ms.values().sum();
         let _ = writeln!(
             s,
             "{:<width$} {:>12} {:>12} {:>12} {:>6} {:>10.0}",
-            case_legend(c),
-            significant(c.p_max),
-            significant(c.bound_p_max),
-            significant(c.dh_max_um),
-            c.iterations.len(),
-            total
+            c.label,
+            figure(c.p_max_mpa),
+            figure(c.bound_p_max_mpa),
+            figure(c.dh_max_um),
+            c.passes.len(),
+            total_ms(c)
         );
-        if let Some(e) = &c.error {
-            let _ = writeln!(s, "  not converged: {e}");
-        }
+        s += &notes(c);
     }
     s
 }
 
+/// The lines under a case's row: how it ended when it did not converge (the termination's
+/// words) or lies outside the model (the limit's message), and Hertz's nominal contact.
+fn notes(case: &CaseReport) -> String {
+    let mut s = String::new();
+    match case.status {
+        CaseStatus::Solved => {}
+        CaseStatus::NotConverged => {
+            let _ = writeln!(s, "  not converged: {}", case.termination);
+        }
+        CaseStatus::OutsideModel => {
+            let why = case.limit.as_ref().map_or("", |l| l.message.as_str());
+            let _ = writeln!(s, "  outside the model: {why}");
+        }
+    }
+    if let Some(h) = &case.hertz {
+        let half_width = if h.contact == "line" { "b" } else { "a" };
+        let _ = writeln!(
+            s,
+            "  Hertz: p₀ = {} MPa, {half_width} = {} mm",
+            significant(h.p0_mpa, 4),
+            significant(h.half_width_mm, 4)
+        );
+    }
+    s
+}
+
+/// The wall time of a case's stages \[ms\].
+fn total_ms(case: &CaseReport) -> f64 {
+    case.timings_ms.values().sum()
+}
+
 /// A value to six significant digits, in scientific notation outside 10⁻³…10⁶; `-` for none.
-fn significant(v: Option<f64>) -> String {
+fn figure(v: Option<f64>) -> String {
     match v {
         None => "-".into(),
         Some(0.0) => "0".into(),
@@ -63,14 +93,15 @@ fn label_width(report: &Report) -> usize {
     report
         .cases
         .iter()
-        .map(|c| case_legend(c).chars().count())
+        .map(|c| c.label.chars().count())
         .max()
         .unwrap_or(4)
         .max(4)
 }
 
 /// The table of a roller study: per case p_max and where it sits, edge loading, the approach,
-/// the contact half-widths at mid-length and at the ends, and the crown's drop at the ends.
+/// the contact half-widths at mid-length and at the ends, and the crown's drop at the ends,
+/// with the [`notes`] under it.
 fn roller_table(report: &Report) -> String {
     let width = label_width(report);
     let mut s = format!(
@@ -90,31 +121,37 @@ fn roller_table(report: &Report) -> String {
         "", "", "", "", "", "mid / ends"
     );
     for c in &report.cases {
-        let total: f64 = c.timings_ms.values().sum();
-        match (&c.roller, c.p_max) {
+        match (&c.roller, c.p_max_mpa) {
             (Some(r), Some(p)) => {
                 let _ = writeln!(
                     s,
                     "{:<width$} {:>10.1} {:>14} {:>5} {:>12} {:>16} {:>12.3} {:>8.0}",
-                    case_legend(c),
+                    c.label,
                     p,
                     format!("{:.2}, {:.3}", r.p_max_at_mm[0], r.p_max_at_mm[1]),
                     if r.edge_loading { "yes" } else { "no" },
                     c.approach_um.map_or("-".into(), |a| format!("{a:.3}")),
                     format!("{:.4} / {:.4}", r.half_width_mm[0], r.half_width_mm[1]),
                     r.crown_drop_end_um,
-                    total
+                    total_ms(c)
                 );
             }
             _ => {
                 let _ = writeln!(
                     s,
-                    "{:<width$} not converged: {}",
-                    case_legend(c),
-                    c.error.as_deref().unwrap_or("?")
+                    "{:<width$} {:>10} {:>14} {:>5} {:>12} {:>16} {:>12} {:>8.0}",
+                    c.label,
+                    "-",
+                    "-",
+                    "-",
+                    "-",
+                    "-",
+                    "-",
+                    total_ms(c)
                 );
             }
         }
+        s += &notes(c);
     }
     s + &envelope_table(report, width)
 }
@@ -145,22 +182,18 @@ fn envelope_table(report: &Report, width: usize) -> String {
         let Some(r) = c.roller.as_ref().filter(|r| !r.envelope.is_empty()) else {
             continue;
         };
-        let _ = write!(s, "{:<width$}", case_legend(c));
+        let _ = write!(s, "{:<width$}", c.label);
         for e in &r.envelope {
             let mark = if e.edge_loading { "*" } else { " " };
-            let _ = write!(s, " {:>9.1}{mark}", e.p_max);
+            let _ = write!(s, " {:>9.1}{mark}", e.p_max_mpa);
         }
-        let worst = r.worst_p_max.map_or("-".into(), |p| format!("{p:.1}"));
+        let worst = r.worst_p_max_mpa.map_or("-".into(), |p| format!("{p:.1}"));
         let _ = writeln!(s, " {worst:>10}");
         if let Some(t) = &r.tuned {
             let _ = writeln!(
                 tuned,
                 "{}: K1 = {:.4}, K2 = {:.4}, z_m = {:.4} µm ({} crowns searched)",
-                case_legend(c),
-                t.k1,
-                t.k2,
-                1e3 * t.z_m_mm,
-                t.evaluations
+                c.label, t.k1, t.k2, t.z_m_um, t.evaluations
             );
         }
     }
@@ -185,15 +218,15 @@ fn subsurface_table(report: &Report) -> String {
             let _ = writeln!(
                 s,
                 "{:<width$} {:<22} {:>10.1} {:>8.4} {:>16} {:>10.1} {:>8.4} {:>10.1} {:>10.1}",
-                case_legend(c),
+                c.label,
                 b.body,
-                p.von_mises.value,
-                p.von_mises.depth,
-                format!("{:.3}, {:.3}", p.von_mises.x, p.von_mises.y),
-                p.tresca.value,
-                p.tresca.depth,
-                p.max_principal.value,
-                p.min_principal.value
+                p.von_mises.value_mpa,
+                p.von_mises.depth_mm,
+                format!("{:.3}, {:.3}", p.von_mises.x_mm, p.von_mises.y_mm),
+                p.tresca.value_mpa,
+                p.tresca.depth_mm,
+                p.max_principal.value_mpa,
+                p.min_principal.value_mpa
             );
         }
     }
@@ -202,47 +235,249 @@ fn subsurface_table(report: &Report) -> String {
 
 #[cfg(test)]
 mod tests {
+    use std::collections::BTreeMap;
+
+    use contopt_core::Termination;
+    use contopt_results::{
+        EnvelopeCase, Hertz, ModelLimit, RollerReport, TunedProfile, SCHEMA_VERSION,
+    };
+
     use super::*;
 
-    /// A case: its label, its swept parameter and its p_max (none: not converged).
-    type Case<'a> = (&'a str, Option<(&'a str, f64)>, Option<f64>);
-
-    /// A report of `cases` read from JSON, as `result.json` holds it.
-    fn report(cases: &[Case]) -> Report {
-        let cases: Vec<serde_json::Value> = cases
-            .iter()
-            .map(|(label, param, p_max)| {
-                let params: serde_json::Map<String, serde_json::Value> = param
-                    .iter()
-                    .map(|(k, v)| (k.to_string(), (*v).into()))
-                    .collect();
-                serde_json::json!({
-                    "label": label, "params": params, "p_max": p_max, "dh_max_um": null,
-                    "converged": p_max.is_some(), "error": p_max.map_or(Some("diverged"), |_| None),
-                    "iterations": [], "interface": [], "timings_ms": {"solve": 12.0},
-                })
-            })
-            .collect();
-        serde_json::from_value(serde_json::json!({"scene": "s", "cases": cases})).unwrap()
+    /// A case labelled `label`: solved with `p_max` when given, else not converged, stalled.
+    fn case(label: &str, p_max: Option<f64>) -> CaseReport {
+        let params = BTreeMap::from([("optimisation.controller.l1_mm".to_string(), 20.0)]);
+        let mut c = CaseReport::new(label, &params, serde_json::Value::Null);
+        c.timings_ms.insert("solve".into(), 12.0);
+        match p_max {
+            Some(p) => {
+                c.status = CaseStatus::Solved;
+                c.termination = Termination::Converged;
+                c.p_max_mpa = Some(p);
+            }
+            None => {
+                c.termination = Termination::Stalled {
+                    reason: "the contact set kept cycling".into(),
+                };
+            }
+        }
+        c
     }
 
-    /// The case column names a sweep's cases in the paper's words and fits the longest; a
-    /// case that did not converge says why.
+    fn report(cases: Vec<CaseReport>) -> Report {
+        Report {
+            schema_version: SCHEMA_VERSION,
+            scene: "s".into(),
+            description: String::new(),
+            cases,
+        }
+    }
+
+    /// A case outside the model: converged, its contact at the zone's edge.
+    fn outside(label: &str) -> CaseReport {
+        let mut c = case(label, Some(950.0));
+        c.status = CaseStatus::OutsideModel;
+        c.limit = Some(ModelLimit {
+            edge: "x = +1.25 mm".into(),
+            extent_mm: 1.25,
+            needed_mm: 1.6,
+            message: "the contact reaches the zone's edge at x = +1.25 mm: make it reach \
+                      1.6 mm at least"
+                .into(),
+        });
+        c
+    }
+
+    /// The case column holds each case's label as it is and fits the longest; a case that
+    /// did not converge says how it ended, one outside the model why; warnings stay out.
     #[test]
-    fn cases_in_the_papers_words() {
-        let r = report(&[
-            ("l1_mm = 20", Some(("l1_mm", 20.0)), Some(196.9)),
-            ("l1_mm = 30", Some(("l1_mm", 30.0)), None),
+    fn cases_by_their_labels_and_how_they_ended() {
+        let mut step_limit = case("F = 1000 N, ν = 0.3", None);
+        step_limit.termination = Termination::StepLimit {
+            steps: 200,
+            measure: 3e-4,
+            tolerance: 1e-6,
+        };
+        let mut solved = case("L1 = 20 mm", Some(196.9));
+        solved.warnings = vec!["only 5 cells across the half-width".into()];
+        solved.passes = vec![
+            contopt_results::Pass {
+                k: 1,
+                bound_p_max_mpa: 200.0,
+                dh_max_um: 1.0,
+                tolh_mm2: 1e-6,
+                iterp: 3,
+                iterd: 4,
+            };
+            3
+        ];
+        let r = report(vec![
+            solved,
+            case("L1 = 30 mm", None),
+            step_limit,
+            outside("L1 = 40 mm"),
         ]);
         let text = table(&r);
         let lines: Vec<&str> = text.lines().collect();
-        assert!(lines[0].starts_with("case          p_max MPa"), "{text}");
-        assert!(lines[1].starts_with("L1 = 20 mm"), "{text}");
         assert!(
-            lines[1].contains("196.900") && lines[1].contains(" 12"),
+            lines[0].starts_with("case                   p_max MPa"),
             "{text}"
         );
-        assert!(lines[2].starts_with("L1 = 30 mm") && lines[3].contains("not converged: diverged"));
-        assert!(!text.contains("NaN"));
+        assert!(lines[1].starts_with("L1 = 20 mm "), "{text}");
+        assert!(
+            lines[1].contains("196.900") && lines[1].contains(" 3 ") && lines[1].ends_with(" 12"),
+            "{text}"
+        );
+        assert!(lines[2].starts_with("L1 = 30 mm ") && lines[2].contains(" - "));
+        assert_eq!(
+            lines[3],
+            "  not converged: stalled: the contact set kept cycling"
+        );
+        assert!(lines[4].starts_with("F = 1000 N, ν = 0.3 "), "{text}");
+        assert!(
+            lines[5].starts_with("  not converged: stopped at its limit of 200 steps"),
+            "{text}"
+        );
+        assert!(lines[6].starts_with("L1 = 40 mm ") && lines[6].contains("950.000"));
+        assert_eq!(
+            lines[7],
+            "  outside the model: the contact reaches the zone's edge at x = +1.25 mm: make it \
+             reach 1.6 mm at least"
+        );
+        assert_eq!(lines.len(), 8, "{text}");
+        assert!(!text.contains("cells across") && !text.contains("NaN"));
+    }
+
+    /// Hertz's nominal p₀ and half-width under the case they belong to: a for a point
+    /// contact, b for a line.
+    #[test]
+    fn hertz_beside_each_case() {
+        let mut sphere = case("R = 10 mm", Some(4510.2));
+        sphere.hertz = Some(Hertz {
+            contact: "point".into(),
+            p0_mpa: 4538.46,
+            half_width_mm: 0.324371,
+        });
+        let mut cylinder = case("Q = 1000 N", Some(1200.0));
+        cylinder.hertz = Some(Hertz {
+            contact: "line".into(),
+            p0_mpa: 1187.2,
+            half_width_mm: 0.05361,
+        });
+        let text = table(&report(vec![sphere, case("plain", Some(1.0)), cylinder]));
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[1].starts_with("R = 10 mm "), "{text}");
+        assert_eq!(lines[2], "  Hertz: p₀ = 4538 MPa, a = 0.3244 mm");
+        assert!(lines[3].starts_with("plain "), "{text}");
+        assert!(lines[4].starts_with("Q = 1000 N "), "{text}");
+        assert_eq!(lines[5], "  Hertz: p₀ = 1187 MPa, b = 0.05361 mm");
+        assert_eq!(lines.len(), 6, "{text}");
+    }
+
+    /// A roller study: its own columns, Hertz's figures and a case that did not converge
+    /// under their rows, the envelope in MPa and the tuned profile's drop in µm.
+    #[test]
+    fn a_roller_study() {
+        let envelope = |p: f64, edge: bool| EnvelopeCase {
+            load_n: 1000.0,
+            tilt_arcmin: 0.0,
+            p_max_mpa: p,
+            p_max_at_mm: [0.0, 0.0],
+            edge_loading: edge,
+            approach_um: 5.0,
+            centre_line: vec![],
+        };
+        let mut roller = case("ISO/TS 16281", Some(1500.0));
+        roller.approach_um = Some(4.25);
+        roller.hertz = Some(Hertz {
+            contact: "line".into(),
+            p0_mpa: 1412.0,
+            half_width_mm: 0.1123,
+        });
+        roller.roller = Some(RollerReport {
+            p_max_at_mm: [4.95, 0.0],
+            edge_loading: true,
+            half_width_mm: [0.11, 0.13],
+            crown_drop_end_um: 2.5,
+            envelope: vec![envelope(1500.0, true), envelope(1600.5, false)],
+            worst_p_max_mpa: Some(1600.5),
+            tuned: Some(TunedProfile {
+                k1: 1.1,
+                k2: 0.5,
+                z_m_um: 7.25,
+                evaluations: 40,
+            }),
+        });
+        let text = table(&report(vec![roller, case("Fujiwara–Kawase", None)]));
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].contains("approach µm") && lines[0].contains("end drop µm"));
+        assert!(lines[2].starts_with("ISO/TS 16281 "), "{text}");
+        for figure in [
+            "1500.0",
+            "4.95, 0.000",
+            "yes",
+            "4.250",
+            "0.1100 / 0.1300",
+            "2.500",
+        ] {
+            assert!(lines[2].contains(figure), "{figure} in {text}");
+        }
+        assert_eq!(lines[3], "  Hertz: p₀ = 1412 MPa, b = 0.1123 mm");
+        assert!(lines[4].starts_with("Fujiwara–Kawase ") && lines[4].contains(" - "));
+        assert_eq!(
+            lines[5],
+            "  not converged: stalled: the contact set kept cycling"
+        );
+        let envelope = lines
+            .iter()
+            .position(|l| l.starts_with("p_max MPa over"))
+            .unwrap();
+        let row = lines[envelope + 2];
+        assert!(row.starts_with("ISO/TS 16281 "), "{text}");
+        assert!(row.contains("1500.0*") && row.contains("1600.5 ") && row.ends_with("1600.5"));
+        assert_eq!(
+            lines[envelope + 3],
+            "ISO/TS 16281: K1 = 1.1000, K2 = 0.5000, z_m = 7.2500 µm (40 crowns searched)"
+        );
+    }
+
+    /// The largest stresses below the surface by case and body, in MPa and mm.
+    #[test]
+    fn stresses_below_the_surface() {
+        use contopt_results::{BodyStresses, Peak, Peaks, SubsurfaceReport};
+        let peak = |value_mpa: f64, depth_mm: f64| Peak {
+            value_mpa,
+            x_mm: 0.5,
+            y_mm: -0.25,
+            depth_mm,
+        };
+        let mut c = case("L1 = 20 mm", Some(4500.0));
+        c.subsurface = Some(SubsurfaceReport {
+            depths_mm: vec![0.1, 0.2],
+            bodies: vec![BodyStresses {
+                body: "half-space".into(),
+                peaks: Peaks {
+                    von_mises: peak(2814.04, 0.156),
+                    tresca: peak(1407.0, 0.1561),
+                    max_principal: peak(120.0, 0.0),
+                    min_principal: peak(-4538.0, 0.0),
+                },
+                sections: vec![],
+            }],
+        });
+        let text = table(&report(vec![c]));
+        let row = text.lines().last().unwrap();
+        assert!(row.starts_with("L1 = 20 mm half-space "), "{text}");
+        for figure in [
+            "2814.0",
+            "0.1560",
+            "0.500, -0.250",
+            "1407.0",
+            "0.1561",
+            "120.0",
+            "-4538.0",
+        ] {
+            assert!(row.contains(figure), "{figure} in {text}");
+        }
     }
 }

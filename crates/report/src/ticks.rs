@@ -1,5 +1,7 @@
 //! Axes with ticks at round values, 1, 2 or 5 × 10ᵏ apart, and their labels.
 
+use contopt_results::words::power_of_ten;
+
 /// The fewest and most intervals between ticks on an axis.
 const INTERVALS: (usize, usize) = (4, 10);
 
@@ -135,20 +137,6 @@ fn scientific(v: f64, step: f64) -> String {
     }
 }
 
-/// `10ⁿ` with the exponent in superscript digits.
-pub(crate) fn power_of_ten(n: i32) -> String {
-    format!("10{}", superscript(n))
-}
-
-/// An integer in superscript digits (`⁻³`).
-pub(crate) fn superscript(n: i32) -> String {
-    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    n.to_string()
-        .chars()
-        .map(|c| c.to_digit(10).map_or('⁻', |d| DIGITS[d as usize]))
-        .collect()
-}
-
 /// The decades that hold the positive finite `values`: (⌊log₁₀ min⌋, ⌈log₁₀ max⌉), at least
 /// one apart; (0, 1) without any.
 pub(crate) fn decades(values: impl Iterator<Item = f64>) -> (i32, i32) {
@@ -232,6 +220,5 @@ mod tests {
         assert_eq!(decades([1e-3, 0.2, 3.0, 0.0, -1.0].into_iter()), (-3, 1));
         assert_eq!(decades([5.0].into_iter()), (0, 1));
         assert_eq!(decades([0.0].into_iter()), (0, 1));
-        assert_eq!(power_of_ten(-3), "10⁻³");
     }
 }
