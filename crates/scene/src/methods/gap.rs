@@ -69,7 +69,9 @@ impl Design for Gap {
             solver,
             termination: optimum.termination.clone(),
             bound_p_max: Some(optimum.p_max),
-            dh_max: Some(optimum.dh_max()),
+            // The paper's Δh_max is the last pass's (Table 2): the change that pass computed,
+            // within √TOLH of the one the returned contact was solved with.
+            dh_max: Some(optimum.passes.last().map_or(optimum.dh_max(), |p| p.dh_max)),
             passes: optimum.passes.clone(),
             pressure: optimum.pressure.clone(),
             gap: optimum.gap.clone(),
