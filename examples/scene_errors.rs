@@ -48,6 +48,10 @@ fn mistakes() -> Vec<(&'static str, String)> {
             changed("roller", "l2_mm = 5.0", "l2_mm = 10.0"),
         ),
         (
+            "the dense linear programme on a roller of 21 000 points",
+            changed("roller", "method = \"load_split\"", "method = \"linear_programme\""),
+        ),
+        (
             "a fraction in a sweep over an integer",
             changed("paper-table1", "key = \"optimisation.controller.l1_mm\"\nvalues = [0.0, 20.0, 30.0, 40.0, 50.0]", "key = \"contact.zone.elements\"\nvalues = [6, 12.5]"),
         ),

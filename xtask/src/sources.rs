@@ -120,6 +120,15 @@ pub const SOURCES: &[Source] = &[
         &[],
     ),
     scene(
+        &["run", "winkler-bed", "--out", "{out}"],
+        "winkler-bed",
+        false,
+        &[],
+    ),
+    // The scenes chapter's errors and the results' reference, from the code.
+    example(&["--example", "scene_errors"], "scene_errors", false),
+    example(&["--example", "result_schema"], "result_schema", false),
+    scene(
         &["run", "roller-study", "--out", "{out}"],
         "roller-study",
         false,

@@ -24,7 +24,12 @@ impl Design for Gap {
     /// and the linear programme's pin none or one; a roller starts straight.
     fn check(&self, c: &Check) -> Result<()> {
         check_controller(c)?;
-        let name = self.0.method().id();
+        let name = match self.0 {
+            OptimisationMethod::GivenLoad(_) => "given_load",
+            OptimisationMethod::GivenDisplacement(_) => "given_displacement",
+            OptimisationMethod::LinearProgramme(_) => "linear_programme",
+            OptimisationMethod::LoadSplit(_) => "load_split",
+        };
         match (&self.0, c.floating) {
             (OptimisationMethod::GivenLoad(s), true) => s.check()?,
             (OptimisationMethod::GivenDisplacement(s), false) => s.check()?,
