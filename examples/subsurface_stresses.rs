@@ -30,7 +30,7 @@ fn grid(n: [usize; 2], h: [f64; 2], pressure: impl Fn(f64, f64) -> f64) -> (Half
         .expect("a valid grid");
     let p = body
         .interface()
-        .points
+        .points()
         .iter()
         .map(|x| pressure(x[0], x[1]))
         .collect();
