@@ -20,7 +20,10 @@ const E: f64 = 2.0e5;
 fn solvers() -> Vec<(&'static str, Box<dyn ContactSolver>)> {
     let c = E * 1e4;
     vec![
-        ("QP (clarabel)", Box::new(Qp::new(QpSettings::default()).unwrap())),
+        (
+            "QP (clarabel)",
+            Box::new(Qp::new(QpSettings::default()).unwrap()),
+        ),
         (
             "active set",
             Box::new(ActiveSet::new(ActiveSetSettings::default()).unwrap()),

@@ -40,7 +40,9 @@ fn solvers() -> Result<[(&'static str, Box<dyn ContactSolver>); 4]> {
         ),
         (
             "augmented Lagrangian",
-            Box::new(AugmentedLagrangian::new(AugmentedLagrangianSettings::new(C))?),
+            Box::new(AugmentedLagrangian::new(AugmentedLagrangianSettings::new(
+                C,
+            ))?),
         ),
         (
             "penalty",

@@ -159,7 +159,10 @@ fn main() {
     if let [flag, case, n] = args.as_slice() {
         if flag == "--one" || flag == "--one-row" {
             let n = n.parse().expect("N is a number");
-            println!("{}", format_row(case, n, &run(case, n), flag == "--one-row"));
+            println!(
+                "{}",
+                format_row(case, n, &run(case, n), flag == "--one-row")
+            );
             return;
         }
     }

@@ -121,9 +121,7 @@ fn optimum(
         Route::Split => {
             opt.load_split(&PolonskyKeer::new(PolonskyKeerSettings::default())?, &split)
         }
-        Route::DenseSplit => {
-            opt.load_split(&ActiveSet::new(ActiveSetSettings::default())?, &split)
-        }
+        Route::DenseSplit => opt.load_split(&ActiveSet::new(ActiveSetSettings::default())?, &split),
         Route::DenseLp => opt.linear_programme(
             &ActiveSet::new(ActiveSetSettings::default())?,
             &LinearProgrammeSettings::default(),

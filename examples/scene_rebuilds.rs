@@ -62,9 +62,7 @@ fn seconds(reports: &[CaseReport], key: &str) -> Vec<f64> {
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let elements: usize = match std::env::args().nth(1) {
-        Some(arg) => arg
-            .parse()
-            .map_err(|e| format!("elements {arg:?}: {e}"))?,
+        Some(arg) => arg.parse().map_err(|e| format!("elements {arg:?}: {e}"))?,
         None => 144,
     };
     // The whole scene: parse (checks, builds nothing), then every case.
