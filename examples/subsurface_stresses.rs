@@ -9,10 +9,9 @@
 use std::time::Instant;
 
 use contopt::greens::HalfSpace;
+use contopt::prelude::*;
 use contopt::report::LineChart;
-use contopt::{
-    ElasticBody, Material, Section, SectionAxis, StressTensor, Subsurface, SubsurfaceRequest,
-};
+use contopt::{Section, SectionAxis, StressTensor, Subsurface, SubsurfaceRequest};
 
 const NU: f64 = 0.3;
 
