@@ -12,7 +12,7 @@
 
 use std::time::Instant;
 
-use contopt::contact::{ActiveSet, AugmentedLagrangian, ContactSolver, Penalty, Qp};
+use contopt::prelude::*;
 use contopt_validation::fixtures::hertz_on_block;
 
 /// The block's modulus E [MPa] ([`hertz_on_block`]).
@@ -30,13 +30,29 @@ fn difference(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn main() -> contopt::Result<()> {
-    let solvers: [Box<dyn ContactSolver>; 4] = [
-        Box::new(Qp::default()),
-        Box::new(ActiveSet),
-        Box::new(AugmentedLagrangian::new(C)),
-        Box::new(Penalty { c: C }),
-    ];
+/// The solvers with their labels, the QP (the reference) first.
+fn solvers() -> Result<[(&'static str, Box<dyn ContactSolver>); 4]> {
+    Ok([
+        ("QP (clarabel)", Box::new(Qp::new(QpSettings::default())?)),
+        (
+            "active set",
+            Box::new(ActiveSet::new(ActiveSetSettings::default())?),
+        ),
+        (
+            "augmented Lagrangian",
+            Box::new(AugmentedLagrangian::new(AugmentedLagrangianSettings::new(
+                C,
+            ))?),
+        ),
+        (
+            "penalty",
+            Box::new(Penalty::new(PenaltySettings { c_mpa_per_mm: C })?),
+        ),
+    ])
+}
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let solvers = solvers()?;
     println!(
         "{:>6}  {:<22} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9}",
         "points", "solver", "p error", "d error", "λ error", "iters", "iterp", "iterd", "time ms"
@@ -44,9 +60,10 @@ fn main() -> contopt::Result<()> {
     for faces in FACES {
         let problem = hertz_on_block(faces)?;
         let t = Instant::now();
-        let reference = solvers[0].solve(&problem)?;
+        let reference = solvers[0].1.solve(&problem)?;
         let reference_ms = t.elapsed().as_secs_f64() * 1e3;
-        for (k, solver) in solvers.iter().enumerate() {
+        let approach = reference.approach().unwrap_or(f64::NAN);
+        for (k, (label, solver)) in solvers.iter().enumerate() {
             // The reference (the first solver) is solved once.
             let t = Instant::now();
             let (st, ms) = match k {
@@ -54,8 +71,8 @@ fn main() -> contopt::Result<()> {
                 _ => (solver.solve(&problem)?, t.elapsed().as_secs_f64() * 1e3),
             };
             let dp = difference(&st.pressure, &reference.pressure) / reference.p_max();
-            let dd = difference(&st.gap, &reference.gap) / reference.rigid[0].abs();
-            let dl = (st.rigid[0] / reference.rigid[0] - 1.0).abs();
+            let dd = difference(&st.gap, &reference.gap) / approach.abs();
+            let dl = (st.approach().unwrap_or(f64::NAN) / approach - 1.0).abs();
             // The first solver is the reference: its errors are blank.
             let errors = [dp, dd, dl].map(|e| match k {
                 0 => "—".to_string(),
@@ -64,7 +81,7 @@ fn main() -> contopt::Result<()> {
             println!(
                 "{:>6}  {:<22} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {ms:>9.2}",
                 problem.len(),
-                solver.name(),
+                label,
                 errors[0],
                 errors[1],
                 errors[2],
@@ -72,6 +89,9 @@ fn main() -> contopt::Result<()> {
                 st.iterp,
                 st.iterd
             );
+            if !st.is_converged() {
+                println!("        {label} {}", st.termination);
+            }
         }
     }
     Ok(())

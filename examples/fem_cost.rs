@@ -8,7 +8,7 @@
 
 use std::time::Duration;
 
-use contopt::ElasticBody;
+use contopt::prelude::*;
 use contopt_validation::fixtures::{base_block, PeakAlloc};
 
 #[global_allocator]
@@ -20,7 +20,7 @@ const POINTS: usize = 201;
 /// The meshes: elements outside the punch radius and layers through the height.
 const SIZES: [(usize, usize); 3] = [(13, 20), (83, 55), (233, 110)];
 
-fn main() -> contopt::Result<()> {
+fn main() -> Result<()> {
     println!(
         "{:>9} {:>7} {:>8}  {:>11} {:>14} {:>14} {:>13} {:>9}",
         "unknowns",

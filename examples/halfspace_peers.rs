@@ -9,17 +9,15 @@
 use std::f64::consts::PI;
 use std::time::Instant;
 
-use contopt::contact::{ContactSolver, InterfaceProblem, PolonskyKeer};
 use contopt::greens::HalfSpace;
-use contopt::{ElasticBody, Material, RigidBody};
+use contopt::prelude::*;
 
 const E: f64 = 210e3;
 const NU: f64 = 0.3;
 const L: f64 = 4.0;
 
-/// One run of `case` on an `n` × `n` grid: a JSON row in the peers' fields, or a markdown
-/// table row when `table`.
-fn run(case: &str, n: usize, table: bool) -> String {
+/// One run of `case` on an `n` × `n` grid: its figures.
+fn run(case: &str, n: usize) -> Row {
     let estar = E / (1.0 - NU * NU);
     let h = L / n as f64;
     let origin = -((n / 2) as f64) * h;
@@ -40,7 +38,7 @@ fn run(case: &str, n: usize, table: bool) -> String {
             let force = 4.0 * estar / (3.0 * 100.0);
             let gap = body
                 .interface()
-                .points
+                .points()
                 .iter()
                 .map(|x| (x[0] * x[0] + x[1] * x[1]) / 200.0)
                 .collect();
@@ -54,26 +52,23 @@ fn run(case: &str, n: usize, table: bool) -> String {
         _ => {
             let gap = body
                 .interface()
-                .points
+                .points()
                 .iter()
                 .map(|x| if x[0].hypot(x[1]) <= 1.0 { 0.0 } else { 1.0 })
                 .collect();
             (gap, 1000.0, 1000.0 / (2.0 * PI), 1000.0 / (2.0 * estar))
         }
     };
-    let solver = PolonskyKeer {
+    let solver = PolonskyKeer::new(PolonskyKeerSettings {
         tolerance: 1e-10,
-        ..PolonskyKeer::default()
-    };
+        ..PolonskyKeerSettings::default()
+    })
+    .unwrap();
     let t = Instant::now();
     let indenter =
         RigidBody::pressed("indenter", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
     let problem = InterfaceProblem::new(&body, &indenter, &gap).unwrap();
-    let state = solver
-        .solve(&problem)
-        .unwrap()
-        .solved(solver.name())
-        .unwrap();
+    let state = solver.solve(&problem).unwrap();
     let seconds = t.elapsed().as_secs_f64();
     let p = if case == "hertz" {
         state.p_max()
@@ -82,23 +77,35 @@ fn run(case: &str, n: usize, table: bool) -> String {
     };
     let contact = state.active.iter().filter(|&&c| c).count() as f64 * h * h;
     let carried = body.interface().resultant(&state.pressure);
-    let row = Row {
+    Row {
+        h,
+        force,
+        p_ref,
         seconds,
         setup,
         iterations: state.iterations,
+        converged: state.is_converged(),
         rss: contopt_validation::fixtures::peak_resident_mib(),
         err_force: carried / force - 1.0,
-        err_approach: -state.rigid[0] / approach_ref - 1.0,
+        err_approach: state.approach().unwrap_or(f64::NAN) / approach_ref - 1.0,
         p_max: state.p_max(),
         err_p0: p / p_ref - 1.0,
         err_radius: (contact / PI).sqrt() - 1.0,
         err_area: contact / PI - 1.0,
-    };
+    }
+}
+
+/// A run's figures as a JSON row in the peers' fields, or a markdown table row when `table`.
+fn format_row(case: &str, n: usize, row: &Row, table: bool) -> String {
+    let (h, force, p_ref) = (row.h, row.force, row.p_ref);
     if table {
+        let steps = match row.converged {
+            true => row.iterations.to_string(),
+            false => format!("{} (not converged)", row.iterations),
+        };
         format!(
-            "| {case} | {n} | {:.3} s | {} | {:.0} MiB | {:+.3} % | {:+.3} % |",
+            "| {case} | {n} | {:.3} s | {steps} | {:.0} MiB | {:+.3} % | {:+.3} % |",
             row.seconds,
-            row.iterations,
             row.rss,
             100.0 * row.err_p0,
             100.0 * row.err_radius
@@ -106,13 +113,14 @@ fn run(case: &str, n: usize, table: bool) -> String {
     } else {
         format!(
             "{{\"tool\": \"contopt\", \"version\": \"{}\", \"case\": \"{case}\", \"bc\": \"free (non-periodic)\", \"N\": {n}, \"threads\": 1, \
-             \"seconds\": {:.6}, \"setup_s\": {:.6}, \"iterations\": {}, \"converged\": true, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
+             \"seconds\": {:.6}, \"setup_s\": {:.6}, \"iterations\": {}, \"converged\": {}, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
              \"h_mm\": {h}, \"rel_err_force\": {:e}, \"rel_err_approach\": {:e}, \"p0_ref\": {p_ref}, \"p_max\": {}, \"rel_err_p0\": {:e}, \
              \"rel_err_contact_radius\": {:e}, \"rel_err_contact_area\": {:e}, \"status\": \"ok\"}}",
             env!("CARGO_PKG_VERSION"),
             row.seconds,
             row.setup,
             row.iterations,
+            row.converged,
             row.rss,
             row.err_force,
             row.err_approach,
@@ -126,9 +134,16 @@ fn run(case: &str, n: usize, table: bool) -> String {
 
 /// One run's figures, in the peers' fields.
 struct Row {
+    /// Cell size \[mm\].
+    h: f64,
+    /// Load \[N\].
+    force: f64,
+    /// The closed form's peak (Hertz) or centre (punch) pressure \[MPa\].
+    p_ref: f64,
     seconds: f64,
     setup: f64,
     iterations: usize,
+    converged: bool,
     rss: f64,
     err_force: f64,
     err_approach: f64,
@@ -144,7 +159,10 @@ fn main() {
     if let [flag, case, n] = args.as_slice() {
         if flag == "--one" || flag == "--one-row" {
             let n = n.parse().expect("N is a number");
-            println!("{}", run(case, n, flag == "--one-row"));
+            println!(
+                "{}",
+                format_row(case, n, &run(case, n), flag == "--one-row")
+            );
             return;
         }
     }

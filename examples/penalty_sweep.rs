@@ -6,9 +6,7 @@
 //!
 //! `cargo run --release --example penalty_sweep`
 
-use contopt::contact::{AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, Qp};
-use contopt::scene::geometry::PunchOnBase;
-use contopt::{ContactState, ElasticBody};
+use contopt::prelude::*;
 
 /// The bodies' Young's modulus [MPa], the scale of c.
 const E: f64 = 2.0e5;
@@ -17,10 +15,11 @@ const MAX_STEPS: usize = 5000;
 /// The largest exponent k of c = E·10ᵏ.
 const LARGEST_K: i32 = 12;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let (base, punch) = PunchOnBase::bundled("paper-table1")?.bodies()?;
-    let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()])?;
-    let reference = Qp::default().solve(&problem)?;
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    // The paper's punch on its base, built by the bundled scene (one case: no sweep).
+    let scene = Scene::bundled_with("paper-table1", &[("sweep", None)])?;
+    let problem = scene.cases()[0].problem()?;
+    let reference = Qp::new(QpSettings::default())?.solve(&problem)?;
     let error = |st: &ContactState| {
         st.pressure
             .iter()
@@ -33,17 +32,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("| --- | --- | --- | --- | --- |");
     for k in 0..=LARGEST_K {
         let c = E * 10f64.powi(k);
-        let al = AugmentedLagrangian {
+        let al = AugmentedLagrangian::new(AugmentedLagrangianSettings {
             max_steps: MAX_STEPS,
             accelerate: false,
-            ..AugmentedLagrangian::new(c)
-        }
+            ..AugmentedLagrangianSettings::new(c)
+        })?
         .solve(&problem)?;
-        let penalty = Penalty { c }.solve(&problem)?;
+        let penalty = Penalty::new(PenaltySettings { c_mpa_per_mm: c })?.solve(&problem)?;
+        // A solve that stopped short is shown with how it ended.
+        let steps = match &al.termination {
+            Termination::Converged => al.iterations.to_string(),
+            other => format!("{} ({other})", al.iterations),
+        };
         println!(
-            "| {k} | {:.1e} | {} | {:.1e} | {:.1e} |",
+            "| {k} | {:.1e} | {steps} | {:.1e} | {:.1e} |",
             error(&al),
-            al.iterations,
             error(&penalty),
             penalty.residuals.penetration
         );

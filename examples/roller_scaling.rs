@@ -16,11 +16,9 @@ use std::f64::consts::PI;
 use std::process::Command;
 use std::time::Instant;
 
-use contopt::contact::{ActiveSet, ContactSolver, InterfaceProblem, PolonskyKeer};
 use contopt::greens::HalfSpace;
-use contopt::optimise::{Constant, Controller, Optimisation, Optimum, Profile};
+use contopt::prelude::*;
 use contopt::report::{log_log, Panel};
-use contopt::{ElasticBody, GapShape, Material, Region, RigidBody};
 
 const E: f64 = 1.05e5;
 const NU: f64 = 0.3;
@@ -64,7 +62,7 @@ fn roller_grid(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>) {
     .unwrap();
     let h = body
         .interface()
-        .points
+        .points()
         .iter()
         .map(|x| x[1] * x[1] / (2.0 * RADIUS))
         .collect();
@@ -73,9 +71,9 @@ fn roller_grid(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>) {
 
 /// Ω_v the row nearest y = 0, Ω_nv the rest.
 fn centre_row(body: &HalfSpace) -> Vec<Region> {
-    let dy = body.interface().points[body.cells().0][1] - body.interface().points[0][1];
-    body.interface()
-        .points
+    let points = body.interface().points();
+    let dy = points[body.cells().0][1] - points[0][1];
+    points
         .iter()
         .map(|x| {
             if x[1].abs() < 0.5 * dy {
@@ -89,7 +87,7 @@ fn centre_row(body: &HalfSpace) -> Vec<Region> {
 
 /// How an optimum is found.
 #[derive(Clone, Copy)]
-enum Method {
+enum Route {
     /// The load split with Polonsky–Keer.
     Split,
     /// The load split with the dense active set.
@@ -98,14 +96,15 @@ enum Method {
     DenseLp,
 }
 
-/// The optimum of `body` under the rigid cylinder of gap `h` and `load`, controller `v`.
+/// The optimum of `body` under the rigid cylinder of gap `h` and `load`, controller `v`, and
+/// its time \[s\]; the optimum says how its method ended.
 fn optimum(
     body: &HalfSpace,
     h: &[f64],
     load: f64,
     v: &dyn Controller,
-    method: Method,
-) -> contopt::Result<(Optimum, f64)> {
+    route: Route,
+) -> Result<(Optimum, f64)> {
     let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], load).unwrap();
     let problem = InterfaceProblem::new(body, &roller, h).unwrap();
     let shape = GapShape::extruded(body.interface(), 0).unwrap();
@@ -114,10 +113,19 @@ fn optimum(
         .with_regions(centre_row(body))
         .unwrap();
     let t = Instant::now();
-    let optimum = match method {
-        Method::Split => opt.load_split(&PolonskyKeer::default(), TOLERANCE, 100),
-        Method::DenseSplit => opt.load_split(&ActiveSet, TOLERANCE, 100),
-        Method::DenseLp => opt.linear_programme(&ActiveSet),
+    let split = LoadSplitSettings {
+        tolerance: TOLERANCE,
+        max_iterations: 100,
+    };
+    let optimum = match route {
+        Route::Split => {
+            opt.load_split(&PolonskyKeer::new(PolonskyKeerSettings::default())?, &split)
+        }
+        Route::DenseSplit => opt.load_split(&ActiveSet::new(ActiveSetSettings::default())?, &split),
+        Route::DenseLp => opt.linear_programme(
+            &ActiveSet::new(ActiveSetSettings::default())?,
+            &LinearProgrammeSettings::default(),
+        ),
     }?;
     Ok((optimum, t.elapsed().as_secs_f64()))
 }
@@ -127,13 +135,14 @@ fn optimum(
 fn case(nx: usize, ny: usize, l1: f64) {
     let (body, h) = roller_grid(nx, ny);
     let v = Profile::cubic(l1, 0.5 * LENGTH).unwrap();
-    let (opt, seconds) = optimum(&body, &h, LOAD, &v, Method::Split).unwrap();
+    let (opt, seconds) = optimum(&body, &h, LOAD, &v, Route::Split).unwrap();
+    assert!(opt.is_converged(), "the load split {}", opt.termination);
     let regions = centre_row(&body);
     let iface = body.interface();
     // The largest miss of p = v·p_max on Ω_v, relative to v·p_max, where v > 1 %.
     let miss = (0..iface.len())
         .filter(|&i| regions[i] == Region::OmegaV)
-        .map(|i| (v.value(iface.points[i]), opt.pressure[i]))
+        .map(|i| (v.value(iface.points()[i]), opt.pressure[i]))
         .filter(|(v, _)| *v > 0.01)
         .map(|(v, p)| (p / (v * opt.p_max) - 1.0).abs())
         .fold(0.0, f64::max);
@@ -149,7 +158,7 @@ fn case(nx: usize, ny: usize, l1: f64) {
         peak_mb(),
         opt.p_max,
         opt.dh_max(),
-        opt.iterations.len()
+        opt.passes.len()
     );
 }
 
@@ -255,17 +264,21 @@ fn dense_agreement() {
         .unwrap();
         let h: Vec<f64> = body
             .interface()
-            .points
+            .points()
             .iter()
             .map(|x| x[1] * x[1] / 20.0)
             .collect();
         let v = Constant::new(1.0).unwrap();
-        let (split, split_s) = optimum(&body, &h, 12_000.0, &v, Method::Split).unwrap();
-        for (name, method) in [
-            ("LP (3.5)", Method::DenseLp),
-            ("split, active set", Method::DenseSplit),
+        let (split, split_s) = optimum(&body, &h, 12_000.0, &v, Route::Split).unwrap();
+        assert!(split.is_converged(), "the load split {}", split.termination);
+        for (name, route) in [
+            ("LP (3.5)", Route::DenseLp),
+            ("split, active set", Route::DenseSplit),
         ] {
-            match optimum(&body, &h, 12_000.0, &v, method) {
+            match optimum(&body, &h, 12_000.0, &v, route) {
+                Ok((dense, _)) if !dense.is_converged() => {
+                    println!("| {nx} × {ny} | {name} | {} | | | | |", dense.termination)
+                }
                 Ok((dense, dense_s)) => {
                     let dh = split
                         .dh
@@ -296,21 +309,20 @@ fn straight(grids: &[(usize, usize)]) {
         let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], LOAD).unwrap();
         let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
         let t = Instant::now();
-        let st = PolonskyKeer::default()
-            .solve(&problem)
-            .unwrap()
-            .solved("Polonsky-Keer")
+        let st = PolonskyKeer::new(PolonskyKeerSettings::default())
+            .and_then(|solver| solver.solve(&problem))
             .unwrap();
+        assert!(st.is_converged(), "Polonsky–Keer {}", st.termination);
         let seconds = t.elapsed().as_secs_f64();
         let iface = body.interface();
         let dx = LENGTH / nx as f64;
         // The two columns either side of x = 0.
         let centre: Vec<usize> = (0..iface.len())
-            .filter(|&i| iface.points[i][0].abs() < dx)
+            .filter(|&i| iface.points()[i][0].abs() < dx)
             .collect();
         let q: f64 = centre
             .iter()
-            .map(|&i| iface.weights[i] * st.pressure[i])
+            .map(|&i| iface.weights()[i] * st.pressure[i])
             .sum::<f64>()
             / (2.0 * dx);
         let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);

@@ -10,7 +10,10 @@ use contopt::scene::{Format, Scene, BUNDLED};
 
 /// The text of the bundled scene `name` with `from` replaced by `to` (once).
 fn changed(name: &str, from: &str, to: &str) -> String {
-    let text = BUNDLED.iter().find(|b| b.name == name).map_or("", |b| b.text);
+    let text = BUNDLED
+        .iter()
+        .find(|b| b.name == name)
+        .map_or("", |b| b.text);
     assert!(text.contains(from), "{name} has no {from:?}");
     text.replacen(from, to, 1)
 }
@@ -20,7 +23,11 @@ fn mistakes() -> Vec<(&'static str, String)> {
     vec![
         (
             "a key misspelt",
-            changed("paper-table1", "height_mm = 50.0\nload", "heigth_mm = 50.0\nload"),
+            changed(
+                "paper-table1",
+                "height_mm = 50.0\nload",
+                "heigth_mm = 50.0\nload",
+            ),
         ),
         (
             "a force written with its unit",
@@ -28,7 +35,11 @@ fn mistakes() -> Vec<(&'static str, String)> {
         ),
         (
             "an incompressible base",
-            changed("steel-on-aluminium", "nu = 0.33 }\nradius_mm", "nu = 0.5 }\nradius_mm"),
+            changed(
+                "steel-on-aluminium",
+                "nu = 0.33 }\nradius_mm",
+                "nu = 0.5 }\nradius_mm",
+            ),
         ),
         (
             "a pressure that is not a number, in a swept scene",
@@ -36,8 +47,12 @@ fn mistakes() -> Vec<(&'static str, String)> {
         ),
         (
             "a half-space under element faces",
-            changed("punch-on-block", "kind = \"fe_block\"", "kind = \"half_space\"")
-                .replace("size_mm = 200.0\n", ""),
+            changed(
+                "punch-on-block",
+                "kind = \"fe_block\"",
+                "kind = \"half_space\"",
+            )
+            .replace("size_mm = 200.0\n", ""),
         ),
         (
             "a given load where nothing floats",
@@ -53,7 +68,11 @@ fn mistakes() -> Vec<(&'static str, String)> {
         ),
         (
             "a fraction in a sweep over an integer",
-            changed("paper-table1", "key = \"optimisation.controller.l1_mm\"\nvalues = [0.0, 20.0, 30.0, 40.0, 50.0]", "key = \"contact.zone.elements\"\nvalues = [6, 12.5]"),
+            changed(
+                "paper-table1",
+                "key = \"optimisation.controller.l1_mm\"\nvalues = [0.0, 20.0, 30.0, 40.0, 50.0]",
+                "key = \"contact.zone.elements\"\nvalues = [6, 12.5]",
+            ),
         ),
     ]
 }
@@ -71,7 +90,10 @@ fn main() {
     let report = scene.and_then(|s| s.cases()[0].run());
     match report {
         Ok(r) => match r.limit {
-            Some(limit) => println!("a sphere at 20 kN on the 0.8 mm grid:\n  error: {}", limit.message),
+            Some(limit) => println!(
+                "a sphere at 20 kN on the 0.8 mm grid:\n  error: {}",
+                limit.message
+            ),
             None => println!("a sphere at 20 kN on the 0.8 mm grid: (within the model)"),
         },
         Err(e) => println!("a sphere at 20 kN on the 0.8 mm grid:\n  error: {e}"),

@@ -1,81 +1,114 @@
 //! How much of a scene's run is building its bodies: the bundled Table 2 scene (five values
 //! of L1, one problem) on a finer mesh, run as a whole ([`Scene::run`], which builds the
 //! bodies once for all five cases) against one build of its bodies plus its five
-//! optimisations, and against each case run on its own (a build per case).
+//! optimisations, and against each case run on its own (a build per case). The builds are
+//! counted as well as timed: the pairs of bodies built (`Run::builds`) and the numeric
+//! factorisations of stiffness matrices (`contopt::fem::factorisations`), which a machine's
+//! load does not move.
 //!
 //! `cargo run --release --example scene_rebuilds [elements]` (default 144 elements across the
 //! contact radius, and as many layers).
 
-use std::path::Path;
 use std::time::Instant;
 
-use contopt::scene::{Format, Scene, SceneError, BUNDLED};
+use contopt::fem::factorisations;
+use contopt::prelude::*;
+use contopt::results::CaseReport;
 
 /// The whole run may take at most this much longer than one build and the optimisations.
 const OVERHEAD: f64 = 1.2;
 
-fn main() -> Result<(), SceneError> {
-    let elements: usize = match std::env::args().nth(1) {
-        Some(arg) => arg.parse().map_err(|e| SceneError::Parse {
-            file: "scene_rebuilds".into(),
-            message: format!("elements {arg:?}: {e}"),
-        })?,
-        None => 144,
+/// What a way of running the scene cost: seconds, pairs of bodies built and numeric
+/// factorisations.
+struct Cost {
+    seconds: f64,
+    builds: usize,
+    factorisations: u64,
+}
+
+/// The whole scene by [`Scene::run`]: its reports and cost.
+fn whole(scene: &Scene) -> std::result::Result<(Vec<CaseReport>, Cost), SceneError> {
+    let (start, factorised) = (Instant::now(), factorisations());
+    let mut run = scene.run();
+    let reports = run.by_ref().collect::<std::result::Result<Vec<_>, _>>()?;
+    let cost = Cost {
+        seconds: start.elapsed().as_secs_f64(),
+        builds: run.builds(),
+        factorisations: factorisations() - factorised,
     };
-    let text = BUNDLED
-        .iter()
-        .find(|(name, _)| *name == "paper-table2")
-        .map(|(_, text)| text.replace("elements = 18", &format!("elements = {elements}")))
-        .unwrap_or_default();
-    let file = Path::new("paper-table2.toml");
+    Ok((reports, cost))
+}
 
-    // The whole scene: parse (checks, builds nothing), then every case.
-    let start = Instant::now();
-    let scene = Scene::parse(&text, Format::Toml, file)?;
-    let parsed = start.elapsed().as_secs_f64();
-    let run = scene.run()?;
-    let builds = run.builds();
-    let reports = run.collect::<Result<Vec<_>, _>>()?;
-    let whole = start.elapsed().as_secs_f64();
-
-    let ms = |key: &str| -> Vec<f64> {
-        reports
-            .iter()
-            .map(|r| 1e-3 * r.timings_ms.get(key).copied().unwrap_or(0.0))
-            .collect()
-    };
-    let build = ms("build")[0];
-    let optimisations: f64 = ms("optimise").iter().sum();
-
-    // The old way: each case builds its own bodies.
-    let start = Instant::now();
-    for case in scene.cases()? {
+/// The old way: each case builds its own bodies ([`Case::run`]).
+fn separately(scene: &Scene) -> std::result::Result<Cost, SceneError> {
+    let (start, factorised) = (Instant::now(), factorisations());
+    for case in scene.cases() {
         case.run()?;
     }
-    let separately = start.elapsed().as_secs_f64();
+    Ok(Cost {
+        seconds: start.elapsed().as_secs_f64(),
+        builds: scene.cases().len(),
+        factorisations: factorisations() - factorised,
+    })
+}
+
+/// The time of `key` in each report \[s\].
+fn seconds(reports: &[CaseReport], key: &str) -> Vec<f64> {
+    reports
+        .iter()
+        .map(|r| 1e-3 * r.timings_ms.get(key).copied().unwrap_or(0.0))
+        .collect()
+}
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let elements: usize = match std::env::args().nth(1) {
+        Some(arg) => arg.parse().map_err(|e| format!("elements {arg:?}: {e}"))?,
+        None => 144,
+    };
+    // The whole scene: parse (checks, builds nothing), then every case.
+    let (start, factorised) = (Instant::now(), factorisations());
+    let n = elements.to_string();
+    let scene = Scene::bundled_with("paper-table2", &[("contact.zone.elements", Some(&n))])?;
+    let parsed = start.elapsed().as_secs_f64();
+    let parse_factorisations = factorisations() - factorised;
+    let (reports, run) = whole(&scene)?;
+    let build = seconds(&reports, "build")[0];
+    let optimisations: f64 = seconds(&reports, "optimise").iter().sum();
+    let alone = separately(&scene)?;
 
     println!(
-        "Table 2 scene, {elements} elements across the contact radius: {} cases, {builds} build(s)",
-        reports.len()
+        "Table 2 scene, {elements} elements across the contact radius: {} cases, {} build(s)",
+        reports.len(),
+        run.builds
     );
-    println!("{:<44} {:>9}", "", "time s");
     println!(
-        "{:<44} {:>9.4}",
-        "parse and check (no factorisation)", parsed
+        "{:<44} {:>9} {:>7} {:>15}",
+        "", "time s", "builds", "factorisations"
     );
-    println!("{:<44} {:>9.4}", "one build of the bodies", build);
-    println!("{:<44} {:>9.4}", "the five optimisations", optimisations);
-    println!(
-        "{:<44} {:>9.4}",
-        "one build + the optimisations",
-        build + optimisations
+    let line = |what: &str, s: f64, counts: Option<(usize, u64)>| match counts {
+        Some((b, f)) => println!("{what:<44} {s:>9.4} {b:>7} {f:>15}"),
+        None => println!("{what:<44} {s:>9.4}"),
+    };
+    line(
+        "parse and check (no factorisation)",
+        parsed,
+        Some((0, parse_factorisations)),
     );
-    println!("{:<44} {:>9.4}", "the whole scene (Scene::run)", whole);
-    println!(
-        "{:<44} {:>9.4}",
-        "each case on its own (Case::run)", separately
+    line("one build of the bodies", build, None);
+    line("the five optimisations", optimisations, None);
+    line("one build + the optimisations", build + optimisations, None);
+    let total = parsed + run.seconds;
+    line(
+        "the whole scene (Scene::run)",
+        total,
+        Some((run.builds, run.factorisations)),
     );
-    let ratio = whole / (build + optimisations);
+    line(
+        "each case on its own (Case::run)",
+        alone.seconds,
+        Some((alone.builds, alone.factorisations)),
+    );
+    let ratio = total / (build + optimisations);
     println!("ratio whole / (build + optimisations): {ratio:.3} (at most {OVERHEAD})");
     for r in &reports {
         println!(
@@ -83,7 +116,7 @@ fn main() -> Result<(), SceneError> {
             r.label,
             r.timings_ms.get("build").copied().unwrap_or(0.0),
             r.timings_ms.get("optimise").copied().unwrap_or(0.0),
-            r.bound_p_max.unwrap_or(f64::NAN)
+            r.bound_p_max_mpa.unwrap_or(f64::NAN)
         );
     }
     Ok(())

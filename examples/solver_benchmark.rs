@@ -49,15 +49,13 @@ use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use contopt::contact::{
-    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, Penalty, PolonskyKeer, Qp,
-};
-use contopt::core::Status;
-use contopt::fem::{ElementKind, FeBody};
 use contopt::greens::HalfSpace;
+use contopt::prelude::*;
 use contopt::report::{log_log, Panel};
-use contopt::scene::geometry::{PunchMesh, PunchOnBase};
-use contopt::{ContactState, ElasticBody, Material, Result, RigidBody};
+use contopt::scene::Built;
+
+/// What can fail here: a solve, or a scene.
+type Fallible<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
@@ -72,6 +70,10 @@ const LIMIT: f64 = 30.0;
 const REFERENCE_ELEMENTS: [usize; 3] = [48, 96, 192];
 /// The label of the penalty with the paper's c.
 const PAPER_PENALTY: &str = "penalty, c = E·10⁴ MPa/mm";
+/// The label of Polonsky–Keer, whose errors the tables show beside the resolution.
+const POLONSKY_KEER: &str = "Polonsky-Keer";
+/// The punch's radius in the bundled scene `paper-table1` \[mm\].
+const PUNCH_RADIUS: f64 = 50.0;
 
 /// One measured (or skipped) solve.
 struct Row {
@@ -100,29 +102,41 @@ struct Entry {
 /// The solvers of a case, the active set first (the others are compared with it): the QP, the
 /// penalty with each of `penalties` (label, c), the augmented Lagrangian with the first c, and
 /// Polonsky–Keer.
-fn solvers(penalties: &[(&str, f64)]) -> Vec<Entry> {
-    let entry = |solver: Box<dyn ContactSolver>, growth| Entry {
-        label: solver.name().to_string(),
+fn solvers(penalties: &[(&str, f64)]) -> Result<Vec<Entry>> {
+    let entry = |label: &str, solver: Box<dyn ContactSolver>, growth| Entry {
+        label: label.to_string(),
         solver,
         growth,
     };
     let mut all = vec![
-        entry(Box::new(ActiveSet), 3.0),
-        entry(Box::<Qp>::default(), 3.0),
+        entry(
+            "active set",
+            Box::new(ActiveSet::new(ActiveSetSettings::default())?),
+            3.0,
+        ),
+        entry(
+            "QP (clarabel)",
+            Box::new(Qp::new(QpSettings::default())?),
+            3.0,
+        ),
     ];
     for &(label, c) in penalties {
-        all.push(Entry {
-            label: label.to_string(),
-            solver: Box::new(Penalty { c }),
-            growth: 3.0,
-        });
+        let settings = PenaltySettings { c_mpa_per_mm: c };
+        all.push(entry(label, Box::new(Penalty::new(settings)?), 3.0));
     }
+    let settings = AugmentedLagrangianSettings::new(penalties[0].1);
     all.push(entry(
-        Box::new(AugmentedLagrangian::new(penalties[0].1)),
+        "augmented Lagrangian",
+        Box::new(AugmentedLagrangian::new(settings)?),
         3.0,
     ));
-    all.push(entry(Box::<PolonskyKeer>::default(), 1.5));
-    all
+    let settings = PolonskyKeerSettings::default();
+    all.push(entry(
+        POLONSKY_KEER,
+        Box::new(PolonskyKeer::new(settings)?),
+        1.5,
+    ));
+    Ok(all)
 }
 
 /// The median time of `run` over three runs when one takes at most a second, else one run's,
@@ -159,11 +173,11 @@ trait Case {
     /// Number of interface points.
     fn points(&self) -> usize;
     /// The solvers to run ([`solvers`]).
-    fn solvers(&self) -> Vec<Entry>;
+    fn solvers(&self) -> Result<Vec<Entry>>;
     /// Builds the interface problem and solves it with `solver`: what is timed.
     fn solve(&self, solver: &dyn ContactSolver) -> Result<ContactState>;
     /// The two errors of a solution.
-    fn errors(&self, state: &ContactState) -> Result<(f64, f64)>;
+    fn errors(&self, state: &ContactState) -> Fallible<(f64, f64)>;
 }
 
 /// Runs every solver over the cases that `case` builds at `resolutions`, coarse to fine; a
@@ -172,8 +186,8 @@ trait Case {
 fn benchmark<C: Case>(
     problem: &'static str,
     resolutions: &[usize],
-    case: impl Fn(usize) -> Result<C>,
-) -> Result<Vec<Row>> {
+    case: impl Fn(usize) -> Fallible<C>,
+) -> Fallible<Vec<Row>> {
     let mut rows = vec![];
     // Per solver: the last (points, time), or None once it has stopped climbing.
     let mut last: Vec<Option<(usize, f64)>> = vec![];
@@ -181,7 +195,7 @@ fn benchmark<C: Case>(
         let case = case(resolution)?;
         let n = case.points();
         let mut active_set: Option<Vec<f64>> = None;
-        for (k, entry) in case.solvers().into_iter().enumerate() {
+        for (k, entry) in case.solvers()?.into_iter().enumerate() {
             if last.len() <= k {
                 last.push(Some((n, 0.0)));
             }
@@ -214,9 +228,9 @@ fn benchmark<C: Case>(
                     row.error = Some(e1);
                     row.error2 = Some(e2);
                     row.iterations = Some(state.iterations);
-                    row.converged = Some(state.status == Status::Solved);
-                    if let Status::Stopped(why) = &state.status {
-                        row.note = why.clone();
+                    row.converged = Some(state.is_converged());
+                    if !state.is_converged() {
+                        row.note = state.termination.to_string();
                     }
                     match &active_set {
                         Some(p) => row.vs_active_set = Some(difference(&state.pressure, p)),
@@ -274,7 +288,7 @@ impl Hertz {
             dx,
             [origin, origin],
         )?;
-        let points = &body.interface().points;
+        let points = body.interface().points();
         let gap = points
             .iter()
             .map(|x| (x[0] * x[0] + x[1] * x[1]) / (2.0 * SPHERE))
@@ -318,7 +332,7 @@ impl Case for Hertz {
         self.gap.len()
     }
 
-    fn solvers(&self) -> Vec<Entry> {
+    fn solvers(&self) -> Result<Vec<Entry>> {
         solvers(&[
             ("penalty, c relative to the grid", self.c),
             (PAPER_PENALTY, PAPER_C),
@@ -331,7 +345,7 @@ impl Case for Hertz {
         solver.solve(&problem)
     }
 
-    fn errors(&self, state: &ContactState) -> Result<(f64, f64)> {
+    fn errors(&self, state: &ContactState) -> Fallible<(f64, f64)> {
         let (mut diff, mut norm) = (0.0, 0.0);
         for (p, q) in state.pressure.iter().zip(&self.exact) {
             diff += (p - q).powi(2);
@@ -349,9 +363,10 @@ struct Field {
 }
 
 impl Field {
-    fn new(interface: &contopt::Interface, pressure: &[f64]) -> Self {
+    fn new(interface: &Interface, pressure: &[f64]) -> Self {
+        let (x, w) = (interface.points(), interface.weights());
         let mut points: Vec<(f64, f64, f64)> = (0..pressure.len())
-            .map(|i| (interface.points[i][0], interface.weights[i], pressure[i]))
+            .map(|i| (x[i][0], w[i], pressure[i]))
             .collect();
         points.sort_by(|a, b| a.0.total_cmp(&b.0));
         Self { points }
@@ -360,7 +375,7 @@ impl Field {
     /// The field at `r`, on the face that holds it.
     fn at(&self, r: f64) -> f64 {
         let faces = self.points.len() / 3;
-        let face = ((r / paper().punch.radius * faces as f64) as usize).min(faces - 1);
+        let face = ((r / PUNCH_RADIUS * faces as f64) as usize).min(faces - 1);
         let q = &self.points[3 * face..3 * face + 3];
         (0..3)
             .map(|i| {
@@ -393,12 +408,16 @@ struct Reference {
 }
 
 impl Reference {
-    fn new() -> Result<Self> {
+    fn new() -> Fallible<Self> {
         let mut centres = vec![];
         let mut field = None;
+        let active_set = ActiveSet::new(ActiveSetSettings::default())?;
         for n in REFERENCE_ELEMENTS {
             let case = Table1::new(n, None)?;
-            let state = ActiveSet.solve(&case.problem()?)?.solved("active set")?;
+            let state = active_set.solve(&case.problem()?)?;
+            if !state.is_converged() {
+                return Err(format!("the reference on {n} elements: {}", state.termination).into());
+            }
             let f = case.field(&state)?;
             centres.push(f.at(0.0));
             field = Some(f);
@@ -422,42 +441,44 @@ impl Reference {
     }
 }
 
-/// The paper's axisymmetric punch on its base under 100 MPa: the bundled scene `paper-table1`.
-fn paper() -> PunchOnBase {
-    PunchOnBase::bundled("paper-table1").expect("the bundled scene paper-table1 is valid")
-}
-
-/// Table 1 without optimisation.
+/// Table 1 without optimisation: the paper's axisymmetric punch on its base under 100 MPa,
+/// built by the bundled scene `paper-table1`.
 struct Table1<'r> {
-    base: FeBody,
-    punch: FeBody,
+    /// The base (below the zone) and the punch.
+    bodies: Built,
+    /// The initial gap: zero.
+    gap: Vec<f64>,
     reference: Option<&'r Reference>,
 }
 
 impl<'r> Table1<'r> {
-    /// `elements` contact elements and as many layers in each body.
-    fn new(elements: usize, reference: Option<&'r Reference>) -> Result<Self> {
-        let mesh = PunchMesh::uniform(ElementKind::Q8, elements);
-        let (base, punch) = PunchOnBase { mesh, ..paper() }.bodies()?;
+    /// `elements` uniform contact elements and as many layers in each body.
+    fn new(elements: usize, reference: Option<&'r Reference>) -> Fallible<Self> {
+        let elements = elements.to_string();
+        let edits = [
+            ("contact.zone.elements", Some(elements.as_str())),
+            ("sweep", None),
+        ];
+        let scene = Scene::bundled_with("paper-table1", &edits)?;
+        let case = &scene.cases()[0];
+        let bodies = case.build()?;
+        let gap = case.initial_gap(&bodies)?;
         Ok(Self {
-            base,
-            punch,
+            bodies,
+            gap,
             reference,
         })
     }
 
+    /// A fresh problem of the bodies: no dense matrix built yet.
     fn problem(&self) -> Result<InterfaceProblem<'_>> {
-        InterfaceProblem::new(
-            &self.base,
-            &self.punch,
-            &vec![0.0; self.base.interface().len()],
-        )
+        InterfaceProblem::new(self.bodies.first(), self.bodies.second(), &self.gap)
     }
 
     /// The recovered pressure field of a state.
     fn field(&self, state: &ContactState) -> Result<Field> {
         let p = self.problem()?.recovered_pressure(&state.pressure)?;
-        Ok(Field::new(self.base.interface(), &p))
+        Ok(Field::new(self.bodies.first().interface(), &p))
     }
 
     /// The largest (A w)ᵢᵢ of the interface: a point's displacement under a unit pressure on
@@ -476,10 +497,10 @@ impl<'r> Table1<'r> {
 
 impl Case for Table1<'_> {
     fn points(&self) -> usize {
-        self.base.interface().len()
+        self.gap.len()
     }
 
-    fn solvers(&self) -> Vec<Entry> {
+    fn solvers(&self) -> Result<Vec<Entry>> {
         solvers(&[(PAPER_PENALTY, PAPER_C)])
     }
 
@@ -487,8 +508,10 @@ impl Case for Table1<'_> {
         solver.solve(&self.problem()?)
     }
 
-    fn errors(&self, state: &ContactState) -> Result<(f64, f64)> {
-        let reference = self.reference.expect("a benchmark case has a reference");
+    fn errors(&self, state: &ContactState) -> Fallible<(f64, f64)> {
+        let reference = self
+            .reference
+            .ok_or("a benchmark case of Table 1 has a reference")?;
         let field = self.field(state)?;
         Ok((
             (field.at(0.0) / reference.centre - 1.0).abs(),
@@ -591,7 +614,7 @@ fn pivot(
 fn print_tables(rows: &[Row]) {
     let exact = |at: &[&Row], e: fn(&Row) -> Option<f64>| {
         at.iter()
-            .find(|r| r.solver == PolonskyKeer::default().name())
+            .find(|r| r.solver == POLONSKY_KEER)
             .and_then(|r| e(r))
             .map_or("—".into(), |x| format!("{x:.2e}"))
     };
@@ -687,7 +710,7 @@ fn read_rows(csv: &str) -> Vec<Row> {
         .collect()
 }
 
-fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+fn main() -> Fallible<()> {
     if std::env::args().any(|a| a == "chart") {
         chart(&read_rows(&std::fs::read_to_string(CSV)?))?;
         eprintln!("written: book/src/solver_benchmark.{{svg,png}} from {CSV}");
@@ -710,7 +733,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         "the paper's c times the largest (A w)_ii of its 18-element mesh: {paper_ratio:.3e}\n"
     );
     let reference = Reference::new()?;
-    let mut rows = benchmark("Hertz", hertz_cells, |n| Hertz::new(n, paper_ratio))?;
+    let mut rows = benchmark("Hertz", hertz_cells, |n| Ok(Hertz::new(n, paper_ratio)?))?;
     rows.extend(benchmark("Table 1", table1_elements, |n| {
         Table1::new(n, Some(&reference))
     })?);

@@ -9,10 +9,9 @@
 use std::time::Instant;
 
 use contopt::greens::HalfSpace;
+use contopt::prelude::*;
 use contopt::report::LineChart;
-use contopt::{
-    ElasticBody, Material, Section, SectionAxis, StressTensor, Subsurface, SubsurfaceRequest,
-};
+use contopt::{Section, SectionAxis, StressTensor, Subsurface, SubsurfaceRequest};
 
 const NU: f64 = 0.3;
 
@@ -30,7 +29,7 @@ fn grid(n: [usize; 2], h: [f64; 2], pressure: impl Fn(f64, f64) -> f64) -> (Half
         .expect("a valid grid");
     let p = body
         .interface()
-        .points
+        .points()
         .iter()
         .map(|x| pressure(x[0], x[1]))
         .collect();
