@@ -210,3 +210,48 @@ fn show_prints_a_template_that_check_accepts() {
         assert!(err.contains(b.name), "{err}");
     }
 }
+
+/// Known defects outside the command (the scene crate), each a test that fails until it is
+/// fixed: `check` accepts an `[envelope]` that `run` refuses (its load factors are checked only
+/// when the case runs), so `check` does not refuse all that `run` refuses.
+#[test]
+#[ignore = "scene: prepare does not check [envelope]; check accepts what run refuses"]
+fn check_refuses_a_bad_envelope_as_run_does() {
+    let here = scratch(BIN, "envelope-parity");
+    let text = bundled(
+        "roller-envelope",
+        &[
+            ("cells = [200, 105]", "cells = [20, 11]"),
+            (
+                "load_factors = [0.5, 1.0, 1.5]",
+                "load_factors = [1.0, -0.5]",
+            ),
+        ],
+    );
+    std::fs::write(here.join("bad.toml"), text).unwrap();
+    let needles = ["bad.toml:", "envelope.load_factors[1]", "-0.5"];
+    let ran = fails_with(&in_folder(&here, &["run", "bad.toml"]), 1, &needles);
+    let checked = fails_with(&in_folder(&here, &["check", "bad.toml"]), 1, &needles);
+    assert_eq!(checked, ran);
+}
+
+/// A known defect of the scene crate: a given load where nothing floats is refused naming the
+/// library's method id (`invalid value gap_iteration`), not the value the scene wrote
+/// (`given_load`); `given_displacement`, `load_split` and the roller methods name their own.
+#[test]
+#[ignore = "scene: methods/gap.rs names Method::id() (gap_iteration), not the scene's word"]
+fn a_refused_method_is_named_as_written() {
+    let here = scratch(BIN, "method-words");
+    let text = bundled(
+        "paper-table2",
+        &[("\"given_displacement\"", "\"given_load\"")],
+    );
+    std::fs::write(here.join("given-load.toml"), text).unwrap();
+    let checked = in_folder(&here, &["check", "given-load.toml"]);
+    let err = fails_with(
+        &checked,
+        1,
+        &["optimisation.method: invalid value given_load:"],
+    );
+    assert!(!err.contains("gap_iteration"), "{err}");
+}
