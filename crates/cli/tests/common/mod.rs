@@ -16,9 +16,11 @@ pub fn contopt() -> Command {
     Command::cargo_bin("contopt").unwrap()
 }
 
-/// A fresh scratch folder `name` of the test binary `binary`.
+/// A fresh scratch folder `name` of the test binary `binary`, in Cargo's folder for the
+/// integration tests' files (below the target folder): a rerun replaces it, so runs do not pile
+/// up in the system's temporary folder.
 pub fn scratch(binary: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("contopt-{binary}-{}-{name}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("contopt-{binary}-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
