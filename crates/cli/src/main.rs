@@ -126,7 +126,7 @@ fn main() -> ExitCode {
             emit(&(schema.unwrap_or_default() + "\n"));
             ExitCode::SUCCESS
         }
-        Command::Check { scene, bundled } => match source::load(&scene, bundled) {
+        Command::Check { scene, bundled } => match source::load(&scene, bundled, "check") {
             Ok(s) => {
                 let cases = s.cases().len();
                 emit(&format!("{}: ok ({cases} case(s))\n", s.file.display()));
@@ -140,7 +140,7 @@ fn main() -> ExitCode {
             json,
             quiet,
             out,
-        } => match source::load(&scene, bundled) {
+        } => match source::load(&scene, bundled, "run") {
             Ok(s) => run(&s, Print { json, quiet }, &out),
             Err(e) => fail(&e),
         },

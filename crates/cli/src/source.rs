@@ -18,8 +18,9 @@ pub enum SourceError {
 }
 
 /// The scene `argument` names: a bundled scene (`bundled`, or a bare name with nothing of that
-/// name here), or a file.
-pub fn load(argument: &str, bundled: bool) -> Result<Scene, SourceError> {
+/// name here), or a file. `command` (`run`, `check`) is the subcommand given, which a refusal
+/// repeats in the way out it offers.
+pub fn load(argument: &str, bundled: bool, command: &str) -> Result<Scene, SourceError> {
     let is_bundled = BUNDLED.iter().any(|b| b.name == argument);
     if bundled {
         return if is_bundled {
@@ -37,8 +38,8 @@ pub fn load(argument: &str, bundled: bool) -> Result<Scene, SourceError> {
             let what = if meta.is_dir() { "folder" } else { "file" };
             Err(SourceError::Name(format!(
                 "`{argument}` is both a bundled scene and a {what} here: write \
-                 `contopt run --bundled {argument}` for the bundled scene, or `./{argument}` \
-                 for the {what}"
+                 `contopt {command} --bundled {argument}` for the bundled scene, or \
+                 `./{argument}` for the {what}"
             )))
         }
         (false, Some(meta)) if meta.is_dir() => Err(SourceError::Name(format!(
