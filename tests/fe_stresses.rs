@@ -7,78 +7,90 @@
 
 use std::f64::consts::PI;
 
-use contopt::contact::{ContactSolver, InterfaceProblem, Qp};
-use contopt::core::{StressTensor, SubsurfaceRequest};
-use contopt::fem::{ElementKind, FeBody};
-use contopt::scene::geometry::{PunchMesh, PunchOnBase};
-use contopt::ElasticBody;
+use contopt::core::{Section, SectionAxis, SectionField, StressTensor, SubsurfaceRequest};
+use contopt::prelude::*;
+use contopt::scene::Built;
+use contopt_validation::paper;
 
 /// Pressure on the punch's top \[MPa\].
 const LOAD: f64 = 100.0;
-/// Elements across the contact radius (and through each body's height) of the three meshes.
+/// Elements across the contact radius (and through each body's height) of the meshes.
 const MESHES: [usize; 4] = [6, 12, 24, 48];
 /// Distances from the contact plane \[mm\] at which the axis is sampled, in both bodies.
 const DEPTHS: [f64; 3] = [10.0, 15.0, 25.0];
 
-/// The solved contact: the base's and the punch's nodal stresses, and the contact resultant.
+/// The solved contact of the paper's axisymmetric punch (100 MPa on its top) on its base, the
+/// bundled scene `paper-table1`: its bodies, the contact pressure at each body's interface
+/// points and the contact resultant.
 struct Solved {
-    base: FeBody,
-    punch: FeBody,
-    base_stress: Vec<StressTensor>,
-    punch_stress: Vec<StressTensor>,
-    /// The contact pressure at the base's interface points \[MPa\].
-    pressure: Vec<f64>,
+    built: Built,
+    /// The contact pressure at the base's points and at the punch's \[MPa\].
+    pressure: [Vec<f64>; 2],
     resultant: f64,
 }
 
-/// The paper's axisymmetric punch on its base under [`LOAD`]: the bundled scene
-/// `paper-table1`.
-fn paper() -> PunchOnBase {
-    PunchOnBase::bundled("paper-table1").unwrap()
-}
-
 fn solve(elements: usize) -> Solved {
-    let geometry = PunchOnBase {
-        mesh: PunchMesh::uniform(ElementKind::Q8, elements),
-        ..paper()
-    };
-    let (base, punch) = geometry.bodies().unwrap();
-    let n = base.interface().len();
+    let scene = paper::scene("paper-table1", elements, &[("sweep", None)]).unwrap();
+    let case = &scene.cases()[0];
+    let built = case.build().unwrap();
+    let gap = case.initial_gap(&built).unwrap();
     let state = {
-        let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; n]).unwrap();
-        Qp::default().solve(&problem).unwrap()
+        let problem = InterfaceProblem::new(built.first(), built.second(), &gap).unwrap();
+        Qp::new(QpSettings::default())
+            .unwrap()
+            .solve(&problem)
+            .unwrap()
     };
-    let partners = punch
-        .interface()
-        .partners(base.interface(), "punch", "base")
-        .unwrap();
+    assert!(state.is_converged(), "{}", state.termination);
+    let (base, punch) = (built.first().interface(), built.second().interface());
+    let partners = punch.partners(base, "punch", "base").unwrap();
     let punch_pressure: Vec<f64> = partners.iter().map(|&i| state.pressure[i]).collect();
+    let resultant = base.resultant(&state.pressure);
     Solved {
-        base_stress: base.nodal_stresses(&state.pressure).unwrap(),
-        punch_stress: punch.nodal_stresses(&punch_pressure).unwrap(),
-        resultant: base.interface().resultant(&state.pressure),
-        pressure: state.pressure,
-        base,
-        punch,
+        built,
+        pressure: [state.pressure, punch_pressure],
+        resultant,
     }
 }
 
-/// The stress on the axis (r = 0) at height `y`, by the quadratic through the three axis
-/// nodes nearest to it (the nodes of one element edge, or straddling two).
-fn on_axis(body: &FeBody, stress: &[StressTensor], y: f64) -> StressTensor {
-    let nodes = body.model().mesh().nodes();
-    let mut axis: Vec<usize> = body.model().mesh().nodes_where(|p| p[0] == 0.0);
-    axis.sort_by(|&a, &b| (nodes[a][1] - y).abs().total_cmp(&(nodes[b][1] - y).abs()));
-    let near = &axis[..3];
+/// The nodal stresses of the base (`k` = 0) or the punch (1) as the finite-element body
+/// returns its whole mesh, one section in its own plane: positions r along the contact face
+/// and depths from it, every node (and each Q8 element's centre) on that grid.
+fn field(s: &Solved, k: usize) -> SectionField {
+    let body = [s.built.first(), s.built.second()][k];
+    let request = SubsurfaceRequest {
+        depths: vec![],
+        sections: vec![Section {
+            axis: SectionAxis::X,
+            at: 0.0,
+        }],
+    };
+    let sub = body.subsurface(&s.pressure[k], &request).unwrap().unwrap();
+    let field = sub
+        .sections
+        .into_iter()
+        .next()
+        .expect("the mesh as a section");
+    assert_eq!(field.positions[0], 0.0, "the first column is the axis");
+    field
+}
+
+/// The stress on the axis (r = 0) at `depth` from the contact plane, by the quadratic through
+/// the three axis nodes nearest to it (the nodes of one element edge, or straddling two).
+fn on_axis(field: &SectionField, depth: f64) -> StressTensor {
+    let z = &field.depths;
+    let mut rows: Vec<usize> = (0..z.len()).collect();
+    rows.sort_by(|&a, &b| (z[a] - depth).abs().total_cmp(&(z[b] - depth).abs()));
+    let near = &rows[..3];
     let weight = |k: usize| {
         near.iter()
             .filter(|&&m| m != near[k])
-            .map(|&m| (y - nodes[m][1]) / (nodes[near[k]][1] - nodes[m][1]))
+            .map(|&m| (depth - z[m]) / (z[near[k]] - z[m]))
             .product::<f64>()
     };
     let mut s = StressTensor::default();
-    for (k, &node) in near.iter().enumerate() {
-        let (w, t) = (weight(k), stress[node]);
+    for (k, &row) in near.iter().enumerate() {
+        let (w, t) = (weight(k), field.at(row, 0));
         s.xx += w * t.xx;
         s.yy += w * t.yy;
         s.zz += w * t.zz;
@@ -87,38 +99,35 @@ fn on_axis(body: &FeBody, stress: &[StressTensor], y: f64) -> StressTensor {
     s
 }
 
-/// ∫ σ_z 2πr dr over the horizontal mesh line nearest to height `y` \[N\], by Simpson's rule
-/// on each element edge (corner, mid-side, corner): the axial force the section carries.
-fn section_force(body: &FeBody, stress: &[StressTensor], y: f64) -> f64 {
-    let mesh = body.model().mesh();
-    let nodes = mesh.nodes();
-    // A row of element corners (a Q8 mid-side row has no nodes inside the elements).
-    let line = mesh
-        .elements()
-        .iter()
-        .map(|e| nodes[e[0]][1])
-        .min_by(|a, b| (a - y).abs().total_cmp(&(b - y).abs()))
-        .unwrap();
-    let mut row = mesh.nodes_on_y(line, 0.0, f64::INFINITY);
-    row.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
-    let f = |n: usize| stress[n].zz * 2.0 * PI * nodes[n][0];
-    row.windows(3)
+/// ∫ σ_z 2πr dr over the row of element corners nearest to `depth` \[N\], by Simpson's rule
+/// on each element edge (corner, mid-side, corner): the axial force the section carries. The
+/// rows from the contact face alternate corners and mid-sides (the face is a row of corners).
+fn section_force(field: &SectionField, depth: f64) -> f64 {
+    let row = (0..field.depths.len())
         .step_by(2)
-        .map(|e| (nodes[e[2]][0] - nodes[e[0]][0]) / 6.0 * (f(e[0]) + 4.0 * f(e[1]) + f(e[2])))
+        .min_by(|&a, &b| {
+            let d = |k: usize| (field.depths[k] - depth).abs();
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap();
+    let r = &field.positions;
+    let f = |i: usize| field.at(row, i).zz * 2.0 * PI * r[i];
+    (0..r.len())
+        .collect::<Vec<_>>()
+        .windows(3)
+        .step_by(2)
+        .map(|e| (r[e[2]] - r[e[0]]) / 6.0 * (f(e[0]) + 4.0 * f(e[1]) + f(e[2])))
         .sum()
 }
 
 /// The stresses on the axis of a solved mesh at [`DEPTHS`] below (base) and above (punch) the
-/// contact plane at height `h`.
-fn axis_samples(s: &Solved, h: f64) -> Vec<StressTensor> {
+/// contact plane.
+fn axis_samples(s: &Solved) -> Vec<StressTensor> {
+    let (base, punch) = (field(s, 0), field(s, 1));
     DEPTHS
         .iter()
-        .map(|d| on_axis(&s.base, &s.base_stress, h - d))
-        .chain(
-            DEPTHS
-                .iter()
-                .map(|d| on_axis(&s.punch, &s.punch_stress, h + d)),
-        )
+        .map(|&d| on_axis(&base, d))
+        .chain(DEPTHS.iter().map(|&d| on_axis(&punch, d)))
         .collect()
 }
 
@@ -185,18 +194,16 @@ fn assert_axis_changes_shrink(labels: &[String], changes: &[Vec<f64>]) {
 }
 
 /// Each mesh carries the punch load F = p·πR² through the contact (to 1e-6) and through the
-/// horizontal section of each body 15 mm from the contact plane at height `h`; the section
-/// errors over F (base, punch) fall with every refinement, below 1e-4 on the finest mesh.
-fn assert_sections_carry_the_load(solved: &[Solved], h: f64) {
-    let force = LOAD * PI * paper().punch.radius.powi(2);
+/// horizontal section of each body 15 mm from the contact plane; the section errors over F
+/// (base, punch) fall with every refinement, below 1e-4 on the finest mesh.
+fn assert_sections_carry_the_load(solved: &[Solved]) {
+    let force = LOAD * PI * paper::PUNCH_RADIUS.powi(2);
     let mut errors = vec![];
     for s in solved {
         assert!((s.resultant - force).abs() < 1e-6 * force);
-        let e = [
-            section_force(&s.base, &s.base_stress, h - 15.0),
-            section_force(&s.punch, &s.punch_stress, h + 15.0),
-        ]
-        .map(|f| (f + force).abs() / force);
+        let e = [0, 1]
+            .map(|k| section_force(&field(s, k), 15.0))
+            .map(|f| (f + force).abs() / force);
         errors.push(e);
     }
     for (n, e) in MESHES.iter().zip(&errors) {
@@ -224,8 +231,7 @@ fn assert_sections_carry_the_load(solved: &[Solved], h: f64) {
 #[test]
 fn punch_on_base_stresses_converge_away_from_the_edge() {
     let solved: Vec<Solved> = MESHES.iter().map(|&n| solve(n)).collect();
-    let h = paper().base.height;
-    let samples: Vec<Vec<StressTensor>> = solved.iter().map(|s| axis_samples(s, h)).collect();
+    let samples: Vec<Vec<StressTensor>> = solved.iter().map(axis_samples).collect();
     let labels = axis_labels();
     let changes: Vec<Vec<f64>> = samples
         .windows(2)
@@ -233,7 +239,7 @@ fn punch_on_base_stresses_converge_away_from_the_edge() {
         .collect();
     print_axis_convergence(&labels, &samples, &changes);
     assert_axis_changes_shrink(&labels, &changes);
-    assert_sections_carry_the_load(&solved, h);
+    assert_sections_carry_the_load(&solved);
 }
 
 /// The subsurface peaks of the base over its nodes. The largest von Mises stress lies below
@@ -248,22 +254,25 @@ fn peaks_gather_at_the_punch_edge() {
     for &n in &MESHES {
         let s = solve(n);
         let sub = s
-            .base
-            .subsurface(&s.pressure, &SubsurfaceRequest::default())
+            .built
+            .first()
+            .subsurface(&s.pressure[0], &SubsurfaceRequest::default())
             .unwrap()
             .expect("a finite-element body computes stresses");
         assert!(sub.sections.is_empty());
         let (vm, low) = (sub.peaks.von_mises, sub.peaks.min_principal);
-        let size = paper().punch.radius / n as f64;
+        let radius = paper::PUNCH_RADIUS;
+        let size = radius / n as f64;
         eprintln!(
             "{n:>2} elements: von Mises peak {:.1} MPa at r = {:.3}, z = {:.3} (depth {:.3} mm); \
              sigma_3 {:.1} MPa at r = {:.3}, depth {:.3} mm",
             vm.value, vm.x, vm.y, vm.depth, low.value, low.x, low.depth
         );
-        assert!(low.depth < 1e-9 && low.x > paper().punch.radius - size);
+        assert!(low.depth < 1e-9 && low.x > radius - size);
         if n > MESHES[0] {
-            assert!((vm.x - paper().punch.radius).abs() < 1e-9, "{vm:?}");
-            assert!((paper().base.height - vm.y - size).abs() < 1e-9, "{vm:?}");
+            // The contact plane is y = 0, the base below it.
+            assert!((vm.x - radius).abs() < 1e-9, "{vm:?}");
+            assert!((vm.y + size).abs() < 1e-9, "{vm:?}");
         }
         peaks.push(vm.value);
     }

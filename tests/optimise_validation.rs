@@ -5,78 +5,133 @@
 
 use std::f64::consts::PI;
 
-use contopt::contact::{
-    ActiveSet, AugmentedLagrangian, ContactSolver, InterfaceProblem, PolonskyKeer, Qp,
-};
-use contopt::fem::FeBody;
 use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
-use contopt::optimise::{Constant, Controller, Mode, Optimisation, Optimum, Profile};
-use contopt::scene::geometry::PunchOnBase;
+use contopt::prelude::*;
 use contopt::scene::CaseReport;
-use contopt::{ElasticBody, GapShape, Interface, Material, Region, RigidBody};
 use contopt_validation::closed_form::{contact_modulus, FlamantStrip, HertzLine, UniformCircle};
 use contopt_validation::paper;
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
 
-/// One L1 of a bundled paper scene, run through the scene on 18 elements, with its bodies.
+/// Kalker's active set with exact dense solves, its default settings.
+fn active_set() -> ActiveSet {
+    ActiveSet::new(ActiveSetSettings::default()).unwrap()
+}
+
+/// Polonsky–Keer, its default settings.
+fn polonsky_keer() -> PolonskyKeer {
+    PolonskyKeer::new(PolonskyKeerSettings::default()).unwrap()
+}
+
+/// `solver`'s solution of `problem`, which must have met its tolerance.
+fn solve(solver: &dyn ContactSolver, problem: &InterfaceProblem) -> ContactState {
+    let st = solver.solve(problem).unwrap();
+    assert!(st.is_converged(), "{}: {}", st.method, st.termination);
+    st
+}
+
+/// An optimum whose method met its tolerance.
+fn converged(name: &str, optimum: Optimum) -> Optimum {
+    assert!(
+        optimum.is_converged(),
+        "{name}: {}: {}",
+        optimum.method,
+        optimum.termination
+    );
+    optimum
+}
+
+/// The iteration of §3.2 to TOLH ≤ `tolh_mm2` within `max_iterations` passes.
+fn iteration(tolh_mm2: f64, max_iterations: usize) -> IterationSettings {
+    IterationSettings {
+        tolh_mm2,
+        max_iterations,
+    }
+}
+
+/// The load split to a miss of `tolerance` within `max_iterations` updates.
+fn split_to(tolerance: f64, max_iterations: usize) -> LoadSplitSettings {
+    LoadSplitSettings {
+        tolerance,
+        max_iterations,
+    }
+}
+
+/// One L1 of a bundled paper scene, run through the scene on 18 elements, with its contact
+/// problem (the scene's bodies, the initial gap zero).
 struct PaperCase {
     l1: f64,
     report: CaseReport,
-    base: FeBody,
-    punch: FeBody,
+    problem: InterfaceProblem<'static>,
 }
 
 impl PaperCase {
     /// The scene `name` at `l1`, by its own method or by the linear programme when `lp`.
     fn run(name: &str, l1: f64, lp: bool) -> Self {
         let report = paper::case(name, 18, l1, lp).unwrap();
-        assert!(report.converged, "{name}, L1 = {l1}: {:?}", report.error);
-        let (base, punch) = PunchOnBase::bundled(name).unwrap().bodies().unwrap();
-        assert_eq!(report.interface.len(), base.interface().len());
+        assert!(
+            report.is_solved(),
+            "{name}, L1 = {l1}: {}",
+            report.termination
+        );
+        let scene = paper::scene(name, 18, &[("sweep", None)]).unwrap();
+        let problem = scene.cases()[0].problem().unwrap();
+        let points = problem.interface().points();
+        assert_eq!(report.interface.len(), points.len());
+        assert!(report
+            .interface
+            .iter()
+            .zip(points)
+            .all(|(q, x)| q.x_mm == *x));
         Self {
             l1,
             report,
-            base,
-            punch,
+            problem,
         }
     }
 
     /// The level p_max of p ≤ v·p_max \[MPa\].
     fn p_max(&self) -> f64 {
-        self.report.bound_p_max.unwrap()
+        self.report.bound_p_max_mpa.unwrap()
     }
 
     /// The optimised pressure at the interface points.
     fn pressure(&self) -> Vec<f64> {
-        self.report.interface.iter().map(|q| q.p).collect()
+        self.report.interface.iter().map(|q| q.p_mpa).collect()
     }
 }
 
-/// Puts the optimised gap change back into the contact problem and solves it from scratch with
-/// every solver: the pressure follows v·p_max within 1 % of p_max and peaks at p_max within
-/// 0.5 %. The pressure is read as a field ([`InterfaceProblem::recovered_pressure`]): three
-/// Gauss points per quadratic face leave a part of the point values that moves nothing, which
-/// the interior-point QP does not set to zero.
-fn close_the_loop(case: &PaperCase) {
+/// Puts the reported gap change back into the contact problem and solves it from scratch with
+/// every solver. The loop closes: each reproduces the reported pressure (the scene solved with
+/// the paper's penalty, c = E·10⁴, whose pressure is off the exact solvers' by O(1/c):
+/// measured up to 7e-5 of p_max; 2e-4 allowed); the pressure follows v·p_max within `within`
+/// of p_max and peaks at p_max within 0.5 %. The pressure is read as a field
+/// ([`InterfaceProblem::recovered_pressure`]): three Gauss points per quadratic face leave a
+/// part of the point values that moves nothing, which the interior-point QP does not set to
+/// zero.
+fn close_the_loop(case: &PaperCase, within: f64) {
     let p_max = case.p_max();
-    let gap: Vec<f64> = case.report.interface.iter().map(|q| q.dh).collect();
-    let problem = InterfaceProblem::new(&case.base, &case.punch, &gap).unwrap();
+    // The report's gap change is in µm.
+    let gap: Vec<f64> = case
+        .report
+        .interface
+        .iter()
+        .map(|q| 1e-3 * q.dh_um)
+        .collect();
+    let problem = case.problem.with_initial_gap(&gap).unwrap();
     let controller = Profile::cubic(case.l1, paper::PUNCH_RADIUS).unwrap();
-    let target: Vec<f64> = case
-        .base
+    let target: Vec<f64> = problem
         .interface()
-        .points
+        .points()
         .iter()
         .map(|&x| controller.value(x) * p_max)
         .collect();
-    for solver in [
-        &Qp::default() as &dyn ContactSolver,
-        &ActiveSet,
-        &AugmentedLagrangian::new(E * 1e4),
-    ] {
-        let st = solver.solve(&problem).unwrap();
+    let qp = Qp::new(QpSettings::default()).unwrap();
+    let augmented = AugmentedLagrangian::new(AugmentedLagrangianSettings::new(E * 1e4)).unwrap();
+    for solver in [&qp as &dyn ContactSolver, &active_set(), &augmented] {
+        let name = solver.method();
+        let st = solve(solver, &problem);
         let field = problem.recovered_pressure(&st.pressure).unwrap();
         let deviation = field
             .iter()
@@ -85,17 +140,26 @@ fn close_the_loop(case: &PaperCase) {
             .fold(0.0, f64::max)
             / p_max;
         eprintln!(
-            "L1 = {}: {}: deviation {:.2e} of p_max, peak {:+.4} %",
+            "L1 = {}: {name}: deviation {:.2e} of p_max, peak {:+.4} %",
             case.l1,
-            solver.name(),
             deviation,
             100.0 * (st.p_max() / p_max - 1.0)
         );
-        assert!(deviation < 0.01, "{}: deviation {deviation}", solver.name());
+        assert!(deviation < within, "{name}: deviation {deviation}");
+        let reported = problem.recovered_pressure(&case.pressure()).unwrap();
+        let off = field
+            .iter()
+            .zip(&reported)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / p_max;
+        assert!(
+            off < 2e-4,
+            "{name}: {off:e} of p_max off the reported pressure"
+        );
         assert!(
             (st.p_max() / p_max - 1.0).abs() < 0.005,
-            "{}: peak {} vs {p_max}",
-            solver.name(),
+            "{name}: peak {} vs {p_max}",
             st.p_max()
         );
     }
@@ -108,7 +172,7 @@ fn close_the_loop(case: &PaperCase) {
 fn given_load_closes_the_loop() {
     for l1 in [0.0, 30.0, 50.0] {
         let case = PaperCase::run("paper-table1", l1, false);
-        let carried = case.base.interface().resultant(&case.pressure());
+        let carried = case.problem.interface().resultant(&case.pressure());
         assert!(
             (carried / (100.0 * PI * 2500.0) - 1.0).abs() < 1e-9,
             "L1 = {l1}: {carried}"
@@ -120,8 +184,8 @@ fn given_load_closes_the_loop() {
             case.p_max()
         );
         // The second pass changes nothing: the loop is closed.
-        assert_eq!(case.report.iterations.len(), 2, "L1 = {l1}");
-        close_the_loop(&case);
+        assert_eq!(case.report.passes.len(), 2, "L1 = {l1}");
+        close_the_loop(&case, 0.01);
     }
 }
 
@@ -131,8 +195,17 @@ fn given_load_closes_the_loop() {
 fn plane_stress_given_load_is_equilibrium() {
     let case = PaperCase::run("paper-table3", 0.0, false);
     assert!((case.p_max() - 200.0).abs() < 1e-4, "{}", case.p_max());
-    close_the_loop(&case);
+    close_the_loop(&case, 0.01);
 }
+
+/// How far the reported pressure of a given displacement may miss v·p_max \[of p_max\]. The
+/// reported gap change is the one the reported pressure was solved with, Δh⁽ᵏ⁻¹⁾ of the last
+/// pass k (the optimiser returns a consistent pair), not the Δh⁽ᵏ⁾ that pass computed:
+/// TOLH ≤ 0.5·10⁻⁶ mm² lets the two differ by up to 0.7 µm, which moves the pressure by about
+/// 1 % of p_max. Measured 1.36 % at L1 = 40 and 1.10 % at L1 = 20 (with Δh⁽ᵏ⁾, which the
+/// reports held before issue 22: 0.58 % and 0.24 %); 1.5 % allowed, the 1 % of a given load
+/// (whose second pass changes nothing) otherwise.
+const GIVEN_DISPLACEMENT_MISS: f64 = 0.015;
 
 /// Table 2 (given displacement, the scene `paper-table2`), every L1: the iteration of §3.2
 /// (penalty contact, as the paper) stops on TOLH within the paper's number of steps and agrees
@@ -149,17 +222,17 @@ fn given_displacement_iteration_matches_the_lp() {
         eprintln!(
             "L1 = {l1}: iteration p_max {:.3} Δh_max {dh_a:.3} µm in {} steps; LP {:.3}, {dh_b:.3} µm",
             iterated.p_max(),
-            a.iterations.len(),
+            a.passes.len(),
             lp.p_max(),
         );
-        assert!(a.iterations.last().unwrap().tolh <= paper::TOLH);
-        assert!(a.iterations.len() <= paper_steps, "L1 = {l1}");
+        assert!(a.passes.last().unwrap().tolh_mm2 <= paper::TOLH);
+        assert!(a.passes.len() <= paper_steps, "L1 = {l1}");
         assert!(
             (iterated.p_max() / lp.p_max() - 1.0).abs() < 0.005,
             "L1 = {l1}"
         );
         assert!((dh_a / dh_b - 1.0).abs() < 0.005, "L1 = {l1}");
-        close_the_loop(&iterated);
+        close_the_loop(&iterated, GIVEN_DISPLACEMENT_MISS);
     }
 }
 
@@ -189,10 +262,15 @@ fn constant_pressure_on_a_half_space() {
         modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
     }
     .centre_minus_edge();
+    let solver = active_set();
     let iterated = optimisation
-        .iterate(Mode::GivenLoad, &ActiveSet, 1e-20, 10)
+        .iterate(Mode::GivenLoad, &solver, &iteration(1e-20, 10))
         .unwrap();
-    let lp = optimisation.linear_programme(&ActiveSet).unwrap();
+    let iterated = converged("iteration", iterated);
+    let lp = optimisation
+        .linear_programme(&solver, &LinearProgrammeSettings::default())
+        .unwrap();
+    let lp = converged("LP", lp);
     for (name, opt) in [("iteration", &iterated), ("LP", &lp)] {
         eprintln!(
             "half-space, {name}: p_max {:.6}, Δh_max {:+.3} % from the closed form",
@@ -238,15 +316,18 @@ fn constant_pressure_on_a_half_plane() {
         modulus: E,
     }
     .centre_minus_edge();
+    let solver = active_set();
     for (name, opt) in [
         (
             "iteration",
-            optimisation
-                .iterate(Mode::GivenLoad, &ActiveSet, 1e-20, 10)
-                .unwrap(),
+            optimisation.iterate(Mode::GivenLoad, &solver, &iteration(1e-20, 10)),
         ),
-        ("LP", optimisation.linear_programme(&ActiveSet).unwrap()),
+        (
+            "LP",
+            optimisation.linear_programme(&solver, &LinearProgrammeSettings::default()),
+        ),
     ] {
+        let opt = converged(name, opt.unwrap());
         eprintln!(
             "half-plane, {name}: Δh_max {:+.3} % from the closed form",
             100.0 * (opt.dh_max() / exact - 1.0)
@@ -262,20 +343,19 @@ fn constant_pressure_on_a_half_plane() {
 /// Bad input is named: a controller above 1, a given load without a floating body.
 #[test]
 fn optimisation_errors_are_named() {
-    let (base, punch) = PunchOnBase::bundled("paper-table2")
-        .unwrap()
-        .bodies()
-        .unwrap();
-    let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()]).unwrap();
+    let scene = paper::scene("paper-table2", 18, &[("sweep", None)]).unwrap();
+    let problem = scene.cases()[0].problem().unwrap();
+    // The base's face nodes and shape functions, the map Q of the paper's gap change.
+    let shape = problem.pressure_basis().unwrap();
     let too_high = |_: [f64; 3]| 1.5;
-    let e = Optimisation::new(&problem, base.gap_shape(), &too_high)
+    let e = Optimisation::new(&problem, shape, &too_high)
         .err()
         .unwrap()
         .to_string();
     assert!(e.contains("controller") && e.contains("1.5"), "{e}");
-    let opt = Optimisation::new(&problem, base.gap_shape(), &Constant::new(1.0).unwrap()).unwrap();
+    let opt = Optimisation::new(&problem, shape, &Constant::new(1.0).unwrap()).unwrap();
     let e = opt
-        .iterate(Mode::GivenLoad, &ActiveSet, 1e-6, 10)
+        .iterate(Mode::GivenLoad, &active_set(), &iteration(1e-6, 10))
         .unwrap_err()
         .to_string();
     assert!(e.contains("no body floats"), "{e}");
@@ -325,7 +405,7 @@ fn assert_hertzian_crown(
         opt.p_max,
         100.0 * (opt.p_max / hertz - 1.0),
         1e3 * opt.dh_max(),
-        opt.iterations.last().map_or(0, |r| r.k),
+        opt.passes.last().map_or(0, |r| r.k),
     );
     assert!((opt.p_max / hertz - 1.0).abs() < 0.02, "{name}");
     assert!(over < 1e-6, "{name}: {over}");
@@ -334,8 +414,12 @@ fn assert_hertzian_crown(
 /// The load split reaches the LP's optimum `lp` itself, with the dense active set and with the
 /// matrix-free solver: p_max and every Δh within 1e-6.
 fn assert_load_split_reaches(optimisation: &Optimisation, lp: &Optimum) {
-    for solver in [&ActiveSet as &dyn ContactSolver, &PolonskyKeer::default()] {
-        let split = optimisation.load_split(solver, 1e-10, 50).unwrap();
+    for solver in [&active_set() as &dyn ContactSolver, &polonsky_keer()] {
+        let name = solver.method();
+        let split = optimisation
+            .load_split(solver, &split_to(1e-10, 50))
+            .unwrap();
+        let split = converged(&format!("load split with {name}"), split);
         let dh_error = split
             .dh
             .iter()
@@ -344,18 +428,13 @@ fn assert_load_split_reaches(optimisation: &Optimisation, lp: &Optimum) {
             .fold(0.0, f64::max)
             / lp.dh_max();
         eprintln!(
-            "roller, load split with {}: p_max {:.6} MPa (LP {:.6}), Δh off by {dh_error:.2e} of Δh_max, {} solves",
-            solver.name(),
+            "roller, load split with {name}: p_max {:.6} MPa (LP {:.6}), Δh off by {dh_error:.2e} of Δh_max, {} solves",
             split.p_max,
             lp.p_max,
-            split.iterations.len()
+            split.passes.len()
         );
-        assert!(
-            (split.p_max / lp.p_max - 1.0).abs() < 1e-6,
-            "{}",
-            solver.name()
-        );
-        assert!(dh_error < 1e-6, "{}: {dh_error:e}", solver.name());
+        assert!((split.p_max / lp.p_max - 1.0).abs() < 1e-6, "{name}");
+        assert!(dh_error < 1e-6, "{name}: {dh_error:e}");
     }
 }
 
@@ -377,7 +456,7 @@ fn crowned_roller_on_a_half_space() {
         radius,
         modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
     };
-    let h: Vec<f64> = iface.points.iter().map(|x| line.gap(x[1])).collect();
+    let h: Vec<f64> = iface.points().iter().map(|x| line.gap(x[1])).collect();
     let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
     let regions = centre_row(iface);
     let shape = GapShape::extruded(iface, 0).unwrap();
@@ -386,11 +465,16 @@ fn crowned_roller_on_a_half_space() {
         .with_regions(regions.clone())
         .unwrap();
     let hertz = line.peak_pressure(load / CROWNED_LENGTH);
-    let uncrowned = ActiveSet.solve(&problem).unwrap().p_max();
+    let solver = active_set();
+    let uncrowned = solve(&solver, &problem).p_max();
     let iterated = optimisation
-        .iterate(Mode::GivenLoad, &ActiveSet, 1e-12, 100)
+        .iterate(Mode::GivenLoad, &solver, &iteration(1e-12, 100))
         .unwrap();
-    let lp = optimisation.linear_programme(&ActiveSet).unwrap();
+    let iterated = converged("iteration", iterated);
+    let lp = optimisation
+        .linear_programme(&solver, &LinearProgrammeSettings::default())
+        .unwrap();
+    let lp = converged("LP", lp);
     for (name, opt) in [("iteration", &iterated), ("LP", &lp)] {
         assert_hertzian_crown(name, opt, &regions, hertz, uncrowned);
     }
@@ -424,7 +508,7 @@ fn bearing_roller(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>, f64) {
     .unwrap();
     let h = body
         .interface()
-        .points
+        .points()
         .iter()
         .map(|x| line.gap(x[1]))
         .collect();
@@ -440,7 +524,7 @@ fn centre_row(iface: &Interface) -> Vec<Region> {
             Region::OmegaNv
         }
     };
-    iface.points.iter().map(tag).collect()
+    iface.points().iter().map(tag).collect()
 }
 
 /// The straight roller on 100 × 53 cells (10 across Hertz's half-width), matrix-free: the
@@ -452,19 +536,15 @@ fn straight_roller_against_local_line_contact() {
     let (body, h, estar) = bearing_roller(100, 53);
     let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], 5446.0).unwrap();
     let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let st = PolonskyKeer::default()
-        .solve(&problem)
-        .unwrap()
-        .solved("Polonsky-Keer")
-        .unwrap();
+    let st = solve(&polonsky_keer(), &problem);
     let iface = body.interface();
     let dx = 0.1;
     let centre: Vec<usize> = (0..iface.len())
-        .filter(|&i| iface.points[i][0].abs() < dx)
+        .filter(|&i| iface.points()[i][0].abs() < dx)
         .collect();
     let q = centre
         .iter()
-        .map(|&i| iface.weights[i] * st.pressure[i])
+        .map(|&i| iface.weights()[i] * st.pressure[i])
         .sum::<f64>()
         / (2.0 * dx);
     let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);
@@ -497,17 +577,19 @@ fn optimised_roller_crown_by_the_load_split() {
         .unwrap()
         .with_regions(regions.clone())
         .unwrap()
-        .load_split(&PolonskyKeer::default(), 1e-8, 50)
+        .load_split(&polonsky_keer(), &split_to(1e-8, 50))
         .unwrap();
+    let opt = converged("load split", opt);
+    let points = iface.points();
     let miss = (0..iface.len())
-        .filter(|&i| regions[i] == Region::OmegaV && v.value(iface.points[i]) > 0.01)
-        .map(|i| (opt.pressure[i] / (v.value(iface.points[i]) * opt.p_max) - 1.0).abs())
+        .filter(|&i| regions[i] == Region::OmegaV && v.value(points[i]) > 0.01)
+        .map(|i| (opt.pressure[i] / (v.value(points[i]) * opt.p_max) - 1.0).abs())
         .fold(0.0, f64::max);
     eprintln!(
         "roller crown 100 × 53: p_max {:.2} MPa, Δh_max {:.3} µm, {} solves, miss {miss:.1e}",
         opt.p_max,
         1e3 * opt.dh_max(),
-        opt.iterations.len()
+        opt.passes.len()
     );
     assert!(miss < 1e-6, "{miss}");
     assert!(opt.dh.iter().all(|&d| d >= -1e-12), "Δh < 0");
@@ -532,7 +614,7 @@ fn roller_case<'a>(
     modes[0].load *= factor;
     let gap: Vec<f64> = h
         .iter()
-        .zip(&nominal.interface().points)
+        .zip(nominal.interface().points())
         .map(|(h, x)| h + tilt * x[0])
         .collect();
     nominal
@@ -554,10 +636,7 @@ fn worst_case(cases: &[&InterfaceProblem], gap_change: &[f64]) -> f64 {
                 .zip(gap_change)
                 .map(|(a, b)| a + b)
                 .collect();
-            PolonskyKeer::default()
-                .solve(&c.with_initial_gap(&gap).unwrap())
-                .unwrap()
-                .p_max()
+            solve(&polonsky_keer(), &c.with_initial_gap(&gap).unwrap()).p_max()
         })
         .fold(0.0, f64::max)
 }
@@ -574,14 +653,14 @@ fn assert_envelope_closes(
     let mut envelope = vec![0.0f64; iface.len()];
     for p in states {
         for i in 0..iface.len() {
-            let allowed = v.value(iface.points[i]) * p_max;
+            let allowed = v.value(iface.points()[i]) * p_max;
             assert!(p[i] <= allowed + 1e-6 * p_max, "{} > {allowed}", p[i]);
             envelope[i] = envelope[i].max(p[i]);
         }
     }
     let miss = (0..iface.len())
         .filter(|&i| regions[i] == Region::OmegaV)
-        .map(|i| (envelope[i] - v.value(iface.points[i]) * p_max).abs() / p_max)
+        .map(|i| (envelope[i] - v.value(iface.points()[i]) * p_max).abs() / p_max)
         .fold(0.0, f64::max);
     assert!(miss < 1e-6, "{miss}");
 }
@@ -597,7 +676,7 @@ fn assert_bumps_raise_the_worst_case(
     for centre in [0.5, 2.0, 3.5, 4.5] {
         for amplitude in [-3e-4, 3e-4] {
             let bumped: Vec<f64> = iface
-                .points
+                .points()
                 .iter()
                 .zip(gap_change)
                 .map(|(x, d)| d + amplitude * (-((x[0].abs() - centre) / 0.5).powi(2)).exp())
@@ -634,13 +713,18 @@ fn robust_roller_crown_over_an_envelope() {
     let regions = centre_row(iface);
     let v = Profile::cubic(4.5, 5.0).unwrap();
     let shape = GapShape::symmetric(iface, 0).unwrap();
-    let pk = PolonskyKeer::default();
+    let pk = polonsky_keer();
     let robust = Optimisation::new(&design, &shape, &v)
         .unwrap()
         .with_regions(regions.clone())
         .unwrap()
-        .envelope_split(&others, &pk, 1e-7, 60)
+        .envelope_split(&others, &pk, &split_to(1e-7, 60))
         .unwrap();
+    assert!(
+        robust.optimum.is_converged(),
+        "envelope split: {}",
+        robust.optimum.termination
+    );
     let p_max = robust.optimum.p_max;
     let states: Vec<&[f64]> = std::iter::once(robust.optimum.pressure.as_slice())
         .chain(robust.cases.iter().map(|s| s.pressure.as_slice()))
@@ -657,13 +741,14 @@ fn robust_roller_crown_over_an_envelope() {
         .unwrap()
         .with_regions(regions)
         .unwrap()
-        .load_split(&pk, 1e-8, 50)
+        .load_split(&pk, &split_to(1e-8, 50))
         .unwrap();
+    let single = converged("single-load split", single);
     let single_worst = worst_case(&all, &single.gap_change);
     eprintln!(
         "robust crown 80 × 41: worst {p_max:.2} MPa in {} updates; single-load crown {:.2} at Q, \
          worst {single_worst:.2}",
-        robust.optimum.iterations.len(),
+        robust.optimum.passes.len(),
         single.p_max
     );
     assert!(single_worst > 1.03 * p_max, "{single_worst} vs {p_max}");

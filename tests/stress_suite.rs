@@ -30,13 +30,12 @@
 use std::f64::consts::PI;
 use std::fmt::Write;
 
-use contopt::contact::{ActiveSet, ContactSolver, InterfaceProblem, Penalty, Qp};
 use contopt::fem::{
     Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Solution, Spacing,
 };
 use contopt::greens::HalfSpace;
-use contopt::scene::geometry::{PunchMesh, PunchOnBase};
-use contopt::{ContactState, ElasticBody, RigidBody};
+use contopt::prelude::*;
+use contopt::scene::{BodySpec, FacesZone, ZoneSpec};
 use contopt_validation::closed_form::{contact_modulus, HertzSphere, ThickCylinder};
 
 /// Young's modulus of every case \[MPa\] (steel, as in the paper).
@@ -50,9 +49,39 @@ fn long() -> bool {
 }
 
 /// The paper's axisymmetric punch on its base under 100 MPa (18 uniform Q8 elements across the
-/// contact radius and through each body): the bundled scene `paper-table1`.
-fn paper() -> PunchOnBase {
-    PunchOnBase::bundled("paper-table1").unwrap()
+/// contact radius and through each body): the bundled scene `paper-table1`, with `edits` of
+/// its keys (dotted paths and TOML values).
+fn paper(edits: &[(&str, Option<&str>)]) -> Scene {
+    let mut all = vec![("sweep", None)];
+    all.extend_from_slice(edits);
+    Scene::bundled_with("paper-table1", &all).unwrap()
+}
+
+/// The contact zone of a punch-on-base scene: the punch's face.
+fn faces(scene: &Scene) -> FacesZone {
+    match &scene.cases()[0].spec.contact.zone {
+        ZoneSpec::Faces(zone) => zone.clone(),
+        other => panic!(
+            "{}: a zone of {} is not a punch's face",
+            scene.name,
+            other.kind()
+        ),
+    }
+}
+
+/// The punch's load on the paper's scene: 100 MPa on its face, p·πR² \[N\].
+fn paper_load() -> f64 {
+    100.0 * PI * faces(&paper(&[])).radius_mm.powi(2)
+}
+
+/// Kalker's active set with exact dense solves: the exact QP solution.
+fn active_set() -> ActiveSet {
+    ActiveSet::new(ActiveSetSettings::default()).unwrap()
+}
+
+/// The penalty method with parameter `c` \[MPa/mm\].
+fn penalty(c: f64) -> Penalty {
+    Penalty::new(PenaltySettings { c_mpa_per_mm: c }).unwrap()
 }
 
 fn steel() -> Material {
@@ -84,11 +113,7 @@ fn assert_sound(what: &str, st: &ContactState) {
         &format!("{what}: residuals"),
         &[r.equilibrium, r.penetration, r.complementarity],
     );
-    assert_eq!(
-        st.status,
-        contopt::core::Status::Solved,
-        "{what}: not solved"
-    );
+    assert!(st.is_converged(), "{what}: {}", st.termination);
     assert!(
         st.pressure.iter().all(|&p| p >= 0.0),
         "{what}: negative pressure"
@@ -117,11 +142,19 @@ struct PenaltyRow {
 /// interior-point QP (an independent method) agreeing to its own 1e-9. Returns it and that
 /// agreement over p_max.
 fn exact_qp(name: &str, problem: &InterfaceProblem, load: f64) -> (ContactState, f64) {
-    let reference = ActiveSet.solve(problem).unwrap();
+    let reference = active_set().solve(problem).unwrap();
     assert_sound(&format!("{name}: active set"), &reference);
     assert!(reference.residuals.penetration <= 1e-12 * reference.rigid[0].abs());
     assert!(reference.residuals.equilibrium <= 1e-10 * load);
-    let qp = Qp::default().solve(problem).unwrap();
+    let qp = Qp::new(QpSettings::default())
+        .unwrap()
+        .solve(problem)
+        .unwrap();
+    assert!(
+        qp.is_converged(),
+        "{name}: interior point: {}",
+        qp.termination
+    );
     let qp_error = max_diff(&qp.pressure, &reference.pressure) / reference.p_max();
     assert!(
         qp_error < 1e-7,
@@ -144,7 +177,7 @@ fn penalty_rows(
     let mut rows = vec![];
     for &k in decades {
         let c = e * 10f64.powi(k);
-        let st = Penalty { c }.solve(problem).unwrap();
+        let st = penalty(c).solve(problem).unwrap();
         let what = format!("{name}, c = E·10^{k}");
         assert_sound(&what, &st);
         assert!(
@@ -178,7 +211,7 @@ fn print_penalty_table(
         table,
         "\n{name}: {points} points, exact QP p_max {:.4} MPa, approach {:.6e} mm (interior point within {qp_error:.1e})",
         reference.p_max(),
-        -reference.rigid[0]
+        reference.approach().unwrap()
     )
     .unwrap();
     writeln!(
@@ -318,24 +351,30 @@ fn decades() -> Vec<i32> {
 /// and corrects it in residual form with the pseudo-inverse (crates/contact/src/kalker.rs).
 #[test]
 fn penalty_sweep_on_the_paper_punch() {
-    let mut meshes = vec![paper().mesh];
+    let mut scenes = vec![paper(&[])];
     if long() {
-        meshes.push(PunchMesh::uniform(ElementKind::Q9, 36));
+        scenes.push(paper(&[
+            ("contact.zone.element", Some("\"q9\"")),
+            ("contact.zone.elements", Some("36")),
+        ]));
     }
-    let load = 100.0 * PI * paper().punch.radius.powi(2);
-    for mesh in meshes {
-        let (base, punch) = PunchOnBase { mesh, ..paper() }.bodies().unwrap();
-        let n = base.interface().len();
-        let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; n]).unwrap();
+    let load = paper_load();
+    for scene in scenes {
+        let zone = faces(&scene);
+        let BodySpec::FeBase(base) = &scene.cases()[0].spec.body[0] else {
+            panic!("the paper's first body is its base");
+        };
         let name = format!(
             "punch on base, {:?} {} × {}",
-            mesh.element,
-            mesh.elements,
-            mesh.layers()
+            zone.element,
+            zone.elements,
+            base.layers.unwrap_or(zone.elements)
         );
+        let problem = scene.cases()[0].problem().unwrap();
         // Flat punch on a base: every point is in contact at every c (the QP's set from k = 0).
         let (reference, _) = penalty_sweep(&name, &problem, load, E, &decades(), 0);
-        assert!((base.interface().resultant(&reference.pressure) - load).abs() < 1e-10 * load);
+        let carried = problem.interface().resultant(&reference.pressure);
+        assert!((carried - load).abs() < 1e-10 * load);
     }
 }
 
@@ -372,7 +411,7 @@ fn penalty_sweep_on_a_hertz_grid() {
         // The grid's discretisation: p_max −0.4 % (24²) and −0.1 % (40²) off p₀, the approach
         // −0.1 % and −0.01 % (measured); 1 % allowed. A wrong kernel or a lost factor fails.
         assert!((reference.p_max() / hertz.peak_pressure(1.0) - 1.0).abs() < 0.01);
-        assert!((-reference.rigid[0] / hertz.approach(1.0) - 1.0).abs() < 0.01);
+        assert!((reference.approach().unwrap() / hertz.approach(1.0) - 1.0).abs() < 0.01);
         assert!((body.interface().resultant(&reference.pressure) - force).abs() < 1e-10 * force);
         // The penalty at E·10¹² is Hertz's too (it is the QP's to 1e-11).
         assert!(rows.last().unwrap().error < 1e-11);
@@ -1096,12 +1135,22 @@ fn stretched_elements_in_a_slender_strip() {
 }
 
 /// The paper's axisymmetric punch on its base (18 uniform contact elements, 18 layers of
-/// 2.78 mm per body, as the scene `paper-table1`), with the contact layer of each body split
-/// into one of thickness t·2.78 mm at the face (elements 1:1/t) and the rest; `t` = 0 keeps
-/// the paper's mesh.
+/// 2.78 mm per body, as the scene `paper-table1`, whose dimensions it takes: the contact plane
+/// y = 0, the base below, the punch above, the base's 5 elements outside the zone growing from
+/// the edge size), with the contact layer of each body split into one of thickness t·2.78 mm
+/// at the face (elements 1:1/t) and the rest; `t` = 0 keeps the paper's mesh. Built here as
+/// `FeBody`s, the scene's bodies being fixed by its keys.
 fn punch_with_thin_layer(kind: ElementKind, t: f64) -> (FeBody, FeBody) {
-    let paper = paper();
-    let (radius, height, base_radius) = (paper.punch.radius, paper.base.height, paper.base.radius);
+    let scene = paper(&[]);
+    let radius = faces(&scene).radius_mm;
+    let (BodySpec::FeBase(base), BodySpec::FePunch(punch)) = (
+        &scene.cases()[0].spec.body[0],
+        &scene.cases()[0].spec.body[1],
+    ) else {
+        panic!("the paper's scene is a punch on a base");
+    };
+    let (height, base_radius) = (base.height_mm, base.radius_mm);
+    assert_eq!(punch.height_mm, height, "both bodies take the same layers");
     let n = 18;
     let edge = radius / n as f64;
     let x = Spacing::uniform(0.0, radius, n)
@@ -1115,20 +1164,20 @@ fn punch_with_thin_layer(kind: ElementKind, t: f64) -> (FeBody, FeBody) {
     }
     depths.extend((1..=n).map(|i| i as f64 * edge));
     *depths.last_mut().unwrap() = height;
-    let base_y = Spacing::from_coords(depths.iter().rev().map(|d| height - d).collect()).unwrap();
-    let punch_y = Spacing::from_coords(depths.iter().map(|d| height + d).collect()).unwrap();
+    let base_y = Spacing::from_coords(depths.iter().rev().map(|d| -d).collect()).unwrap();
+    let punch_y = Spacing::from_coords(depths.clone()).unwrap();
     let (lower, upper) = Mesh::stacked(kind, &x, &base_y, (0.0, radius), &punch_y).unwrap();
     let mut base = FeModel::new(lower, steel(), Analysis::Axisymmetric).unwrap();
-    let bottom = base.mesh().nodes_on_y(0.0, 0.0, base_radius);
+    let bottom = base.mesh().nodes_on_y(-height, 0.0, base_radius);
     base.fix(&bottom, Component::X)
         .unwrap()
         .fix(&bottom, Component::Y)
         .unwrap();
     let mut punch = FeModel::new(upper, steel(), Analysis::Axisymmetric).unwrap();
-    let top = punch.mesh().faces_on_y(2.0 * height, 0.0, radius);
+    let top = punch.mesh().faces_on_y(height, 0.0, radius);
     punch.pressure(&top, 100.0).unwrap();
-    let base_contact = base.mesh().faces_on_y(height, 0.0, radius);
-    let punch_contact = punch.mesh().faces_on_y(height, 0.0, radius);
+    let base_contact = base.mesh().faces_on_y(0.0, 0.0, radius);
+    let punch_contact = punch.mesh().faces_on_y(0.0, 0.0, radius);
     (
         FeBody::new("base", base, &base_contact).unwrap(),
         FeBody::new("punch", punch, &punch_contact).unwrap(),
@@ -1146,10 +1195,10 @@ fn solve_layered(kind: ElementKind, t: f64, load: f64) -> Layered {
     let (base, punch) = punch_with_thin_layer(kind, t);
     let n = base.interface().len();
     let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; n]).unwrap();
-    let exact = ActiveSet.solve(&problem).unwrap();
+    let exact = active_set().solve(&problem).unwrap();
     assert_sound(&format!("{kind:?} t = {t}: active set"), &exact);
     assert!(exact.residuals.equilibrium < 1e-10 * load);
-    let pen = Penalty { c: E * 1e12 }.solve(&problem).unwrap();
+    let pen = penalty(E * 1e12).solve(&problem).unwrap();
     assert_sound(&format!("{kind:?} t = {t}: penalty"), &pen);
     let pen_error = max_diff(&pen.pressure, &exact.pressure) / exact.p_max();
     (t, exact, pen_error)
@@ -1250,7 +1299,7 @@ fn thin_contact_layer_converges_to_the_well_shaped_punch() {
     } else {
         vec![1e-1, 1e-2]
     };
-    let load = 100.0 * PI * paper().punch.radius.powi(2);
+    let load = paper_load();
     let solved: Vec<(ElementKind, Vec<Layered>)> = [ElementKind::Q8, ElementKind::Q9]
         .into_iter()
         .map(|kind| {
@@ -1265,9 +1314,9 @@ fn thin_contact_layer_converges_to_the_well_shaped_punch() {
 
     // The builder reproduces the paper's mesh when t = 0: the same pressure to the exact QP's
     // reproducibility (1.4e-9 of p_max, measured, from node coordinates 1e-14 apart).
-    let (base, punch) = paper().bodies().unwrap();
-    let problem = InterfaceProblem::new(&base, &punch, &vec![0.0; base.interface().len()]).unwrap();
-    let paper_state = ActiveSet.solve(&problem).unwrap();
+    let problem = paper(&[]).cases()[0].problem().unwrap();
+    let paper_state = active_set().solve(&problem).unwrap();
+    assert_sound("the paper's scene: active set", &paper_state);
     let well_q8 = &solved[0].1[0].1;
     assert!(max_diff(&paper_state.pressure, &well_q8.pressure) < 1e-8 * well_q8.p_max());
 
