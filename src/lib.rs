@@ -73,13 +73,17 @@ pub mod prelude {
     pub use contopt_core::observe::{Event, Flow, Method, Nested, Observer, Silent};
     pub use contopt_core::{
         ContactState, ElasticBody, Error, GapShape, Geometry, Interface, Material, Result,
-        RigidBody, RigidMode, Termination,
+        RigidBody, RigidMode, Section, SectionAxis, StressTensor, Subsurface, SubsurfaceRequest,
+        Termination,
     };
+    pub use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, Winkler};
     pub use contopt_optimise::{
         Constant, Controller, ControllerSettings, IterationSettings, LinearProgrammeSettings,
         LoadSplitSettings, Mode, Optimisation, OptimisationMethod, Optimum, Profile, Reference,
         Region, SearchSettings,
     };
+    #[cfg(any(feature = "scene", feature = "plot"))]
+    pub use contopt_results::CaseReport;
     #[cfg(feature = "scene")]
     pub use contopt_scene::{Case, Scene, SceneError};
 }

@@ -211,11 +211,9 @@ fn show_prints_a_template_that_check_accepts() {
     }
 }
 
-/// Known defects outside the command (the scene crate), each a test that fails until it is
-/// fixed: `check` accepts an `[envelope]` that `run` refuses (its load factors are checked only
-/// when the case runs), so `check` does not refuse all that `run` refuses.
+/// `check` refuses a bad `[envelope]` as `run` does, in the same words (its load factors were
+/// once checked only when the case ran).
 #[test]
-#[ignore = "scene: prepare does not check [envelope]; check accepts what run refuses"]
 fn check_refuses_a_bad_envelope_as_run_does() {
     let here = scratch(BIN, "envelope-parity");
     let text = bundled(
@@ -235,11 +233,9 @@ fn check_refuses_a_bad_envelope_as_run_does() {
     assert_eq!(checked, ran);
 }
 
-/// A known defect of the scene crate: a given load where nothing floats is refused naming the
-/// library's method id (`invalid value gap_iteration`), not the value the scene wrote
-/// (`given_load`); `given_displacement`, `load_split` and the roller methods name their own.
+/// A given load where nothing floats is refused naming the value the scene wrote
+/// (`given_load`), not the library's method id (`gap_iteration`).
 #[test]
-#[ignore = "scene: methods/gap.rs names Method::id() (gap_iteration), not the scene's word"]
 fn a_refused_method_is_named_as_written() {
     let here = scratch(BIN, "method-words");
     let text = bundled(

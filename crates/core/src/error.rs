@@ -1,7 +1,8 @@
 use thiserror::Error;
 
-/// Result with the workspace's [`Error`](enum@Error).
-pub type Result<T> = std::result::Result<T, Error>;
+/// Result with the workspace's [`Error`](enum@Error) unless another is named, so that
+/// `Result<T, Box<dyn std::error::Error>>` still reads as std's under `use contopt::prelude::*`.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// Everything that can go wrong in contopt.
 ///

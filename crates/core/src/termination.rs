@@ -131,7 +131,7 @@ impl std::fmt::Display for Termination {
             Termination::Inner {
                 method,
                 termination,
-            } => write!(f, "its {method} {termination}"),
+            } => write!(f, "in its {method}: {termination}"),
         }
     }
 }
@@ -146,12 +146,11 @@ mod tests {
         assert!(t.is_stopped() && !t.is_converged());
         assert_eq!(
             t.to_string(),
-            "its Polonsky–Keer solve stopped by an observer after 3 iterations"
+            "in its Polonsky–Keer solve: stopped by an observer after 3 iterations"
         );
         assert_eq!(
             Termination::Converged.inside(Method::Qp),
             Termination::Converged
         );
     }
-
 }

@@ -141,12 +141,32 @@ fn type_of(schema: &Value, found: &mut Vec<String>) -> String {
 
 /// A schema's description, its rustdoc escapes undone.
 fn description(schema: &Value) -> String {
-    schema
+    let text = schema
         .get("description")
         .and_then(Value::as_str)
-        .unwrap_or_default()
-        .replace("\\[", "[")
-        .replace("\\]", "]")
+        .unwrap_or_default();
+    unlink(text).replace("\\[", "[").replace("\\]", "]")
+}
+
+/// Rustdoc's links as plain code: ``[`X`]`` and ``[`X`](path)`` become `` `X` ``.
+fn unlink(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find("[`") {
+        let Some(end) = rest[start + 2..].find("`]").map(|e| start + 2 + e) else {
+            break;
+        };
+        out.push_str(&rest[..start]);
+        out.push_str(&rest[start + 1..end + 1]);
+        rest = &rest[end + 2..];
+        if rest.starts_with('(') {
+            if let Some(close) = rest.find(')') {
+                rest = &rest[close + 1..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Text on one line, for a table cell.
@@ -183,5 +203,15 @@ mod tests {
         }
         assert!(text.contains("### `CaseReport`") && text.contains("[MPa]"));
         assert!(!text.contains("\\["));
+        assert!(!text.contains("[`"), "a rustdoc link left as written");
+    }
+
+    #[test]
+    fn rustdoc_links_read_as_code() {
+        assert_eq!(
+            super::unlink("see [`SCHEMA_VERSION`] and [`Termination`](contopt_core::Termination)."),
+            "see `SCHEMA_VERSION` and `Termination`."
+        );
+        assert_eq!(super::unlink("a [`b"), "a [`b");
     }
 }

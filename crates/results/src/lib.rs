@@ -108,7 +108,10 @@ pub struct CaseReport {
     /// only, so `p_max_mpa` may be lower, or higher by the discretisation's error between the
     /// design nodes.
     pub bound_p_max_mpa: Option<f64>,
-    /// The largest gap change Δh_max \[µm\]; null without optimisation.
+    /// The largest gap change Δh_max \[µm\]; null without optimisation. Under the iteration
+    /// of §3.2 it is the last pass's (the paper's Table 2), within TOLH of the gap change at
+    /// the points (`interface[].dh_um`), which is the one the reported pressure was solved
+    /// with.
     pub dh_max_um: Option<f64>,
     /// The floating body's approach δ, positive when the bodies are pressed together \[µm\];
     /// null when nothing floats.
@@ -208,7 +211,8 @@ pub struct Point {
     pub p_mpa: f64,
     /// Gap after deformation \[µm\].
     pub d_um: f64,
-    /// Gap change Δh, or a roller's crown drop \[µm\].
+    /// Gap change Δh, or a roller's crown drop \[µm\]: the one the pressure `p_mpa` was
+    /// solved with.
     pub dh_um: f64,
 }
 
@@ -228,7 +232,7 @@ pub struct CurvePoint {
 #[serde(deny_unknown_fields)]
 #[schemars(transform = every_field_required)]
 pub struct ReferenceCurve {
-    /// The closed form and its figures (`Hertz: p₀ = 4539 MPa, a = 0.3244 mm`).
+    /// The closed form and its figures (`Hertz: p₀ = 4538 MPa, a = 0.3244 mm`).
     pub label: String,
     /// The curve along the row of interface points nearest the x axis (on an axisymmetric or
     /// plane body: along r or x), within the computed points' range; a flat punch's stops at

@@ -41,13 +41,18 @@ pub(crate) fn expand(mut tree: Node, at: &Locator) -> Result<Vec<CaseInput>, Sce
             tree,
         }],
     };
-    if cases.len() > MAX_CASES {
+    Ok(cases)
+}
+
+/// Refuses more than [`MAX_CASES`] cases before any is made, at the key that lists them.
+fn at_most(count: usize, path: &str, at: &Locator) -> Result<(), SceneError> {
+    if count > MAX_CASES {
         return Err(at.at(
-            "case",
-            format!("{} cases, at most {MAX_CASES} in one scene", cases.len()),
+            path,
+            format!("{count} cases, at most {MAX_CASES} in one scene"),
         ));
     }
-    Ok(cases)
+    Ok(())
 }
 
 /// The entries of a table, refusing any key outside `allowed`.
@@ -84,6 +89,7 @@ fn swept(tree: &Node, sweep: &Node, at: &Locator) -> Result<Vec<CaseInput>, Scen
         Some(Value::Array(values)) if !values.is_empty() => values,
         _ => return Err(at.at("sweep.values", "give at least one value")),
     };
+    at_most(values.len(), "sweep.values", at)?;
     let current = tree
         .get(&key)
         .ok_or_else(|| at.at("sweep.key", format!("the scene has no `{key}`")))?;
@@ -134,6 +140,7 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
     let Value::Array(items) = list.value() else {
         return Err(at.at("case", "write the cases as [[case]] tables"));
     };
+    at_most(items.len(), "case", at)?;
     let mut seen = std::collections::HashSet::new();
     items
         .iter()

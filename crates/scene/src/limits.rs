@@ -46,6 +46,7 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
     let pressure: Vec<f64> = report.interface.iter().map(|q| q.p_mpa).collect();
     let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
     if !(p_max > 0.0) {
+        report.warnings.push(untouched(case));
         return;
     }
     let carrying: Vec<bool> = pressure.iter().map(|&p| p > CARRIES * p_max).collect();
@@ -66,6 +67,25 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
                 r.half_width_mm / MIN_CELLS_ACROSS
             ));
         }
+    }
+}
+
+/// The warning of a case whose zone carries no pressure: the bodies do not touch, or touch
+/// on less than a cell (Hertz's nominal contact says which, where it applies).
+fn untouched(case: &Case) -> String {
+    let said = "no point of the zone carries pressure: the bodies do not touch under this load";
+    let cell = case.plan.layout.edge_cell();
+    let cell = cell[0].max(cell[1]);
+    match case.plan.hertz {
+        Some(h) if h.half_width > 0.0 => format!(
+            "{said}, or touch on less than a cell: Hertz's {} = {:.4e} mm spans {:.2} cells of \
+             {cell:.4} mm; refine the zone (cells of at most {:.4e} mm)",
+            if h.line { "b" } else { "a" },
+            h.half_width,
+            h.half_width / cell,
+            h.half_width / MIN_CELLS_ACROSS
+        ),
+        _ => format!("{said}, or touch on less than a cell"),
     }
 }
 

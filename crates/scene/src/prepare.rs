@@ -66,11 +66,14 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
     crate::methods::design(spec)
         .check(&check)
         .map_err(|e| at.library("optimisation", e))?;
-    if spec.envelope.is_some() && roller.is_none() {
-        return Err(at.at(
-            "envelope",
-            "only a roller gap has an envelope of load cases",
-        ));
+    if let Some(envelope) = &spec.envelope {
+        if roller.is_none() {
+            return Err(at.at(
+                "envelope",
+                "only a roller gap has an envelope of load cases",
+            ));
+        }
+        envelope.check().map_err(|e| at.library("envelope", e))?;
     }
     if let Some(sub) = &spec.output.subsurface {
         sub.check()

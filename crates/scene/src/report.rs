@@ -2,6 +2,7 @@
 //! penetration and its warning, a roller's figures, and the stresses below the surface.
 
 use contopt_contact::InterfaceProblem;
+use contopt_core::observe::Method;
 use contopt_results::{CaseReport, CaseStatus, Pass, Point};
 
 use crate::methods::{Context, Designed};
@@ -79,10 +80,20 @@ fn penetration(report: &mut CaseReport, problem: &InterfaceProblem, gap: &[f64],
         } else {
             "more than".to_string()
         };
+        let remedy = match report.solver {
+            Some(Method::Penalty | Method::FullPenalty) => {
+                "raise the penalty parameter c_mpa_per_mm (the paper takes E·10⁴) or use an \
+                 exact solver"
+            }
+            _ if !report.is_solved() => {
+                "the solve stopped before its tolerance (see its \
+                 termination)"
+            }
+            _ => "tighten the solver's tolerance",
+        };
         report.warnings.push(format!(
             "the solution penetrates by {largest:.3e} mm, {share} its largest elastic \
-             displacement ({elastic:.3e} mm): raise the penalty parameter c_mpa_per_mm (the \
-             paper takes E·10⁴) or use an exact solver"
+             displacement ({elastic:.3e} mm): {remedy}"
         ));
     }
 }
