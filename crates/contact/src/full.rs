@@ -7,7 +7,7 @@
 use contopt_core::observe::{Method, Observer, Silent};
 use contopt_core::{ContactState, Error, FullSystem, Residuals, Result};
 
-use crate::kalker::{self, ContactSet, Sweep};
+use crate::kalker::{self, ContactSet, Infeasible, Sweep};
 use crate::watch::{self, Watch};
 use crate::PenaltySettings;
 
@@ -84,7 +84,8 @@ impl FullPenalty {
         let mut springs = Springs::new(system, self.c);
         let mut active = vec![true; springs.points()];
         let watch = Watch::new(observer, self.method());
-        let sweep = kalker::iterate(&mut springs, &mut active, watch)?;
+        let mut lists = Infeasible::new(springs.points());
+        let sweep = kalker::iterate(&mut springs, &mut active, watch, &mut lists)?;
         let state = springs.state(active, sweep);
         watch::announce(observer, &state);
         Ok(state)

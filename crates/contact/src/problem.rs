@@ -478,22 +478,35 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Gap after deformation d = g + A W p + R λ, eq. (2.7).
     pub fn gap(&self, pressure: &[f64], rigid: &[f64]) -> Vec<f64> {
-        let force: Vec<f64> = pressure
-            .iter()
-            .zip(self.weights())
-            .map(|(p, w)| p * w)
-            .collect();
-        let mut d = vec![0.0; self.len()];
-        self.apply_influence(&force, &mut d);
-        for ((d, h), f) in d
+        let n = self.len();
+        let (mut d, mut force, mut spare) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        self.gap_with(pressure, rigid, &mut d, &mut force, &mut spare);
+        d
+    }
+
+    /// [`InterfaceProblem::gap`] written to `gap`, with the caller's buffers `force` and
+    /// `spare` (of n values each), for loops that must not allocate.
+    pub(crate) fn gap_with(
+        &self,
+        pressure: &[f64],
+        rigid: &[f64],
+        gap: &mut [f64],
+        force: &mut [f64],
+        spare: &mut [f64],
+    ) {
+        for ((f, p), w) in force.iter_mut().zip(pressure).zip(self.weights()) {
+            *f = p * w;
+        }
+        gap.fill(0.0);
+        self.apply_influence_with(force, gap, spare);
+        for ((d, h), f) in gap
             .iter_mut()
             .zip(&self.initial_gap)
             .zip(self.load_gap.iter())
         {
             *d += h + f;
         }
-        self.add_rigid_motion(rigid, &mut d);
-        d
+        self.add_rigid_motion(rigid, gap);
     }
 
     /// The field the point pressures sample (see [`ElasticBody::pressure_basis`]), from the
