@@ -176,7 +176,7 @@ pub(crate) fn point_b(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> R
     let mesh = &model.mesh;
     let (j, det) = mesh.jacobian(e, xi, eta);
     let s = mesh.kind().shape(xi, eta);
-    if !(det > 0.0) {
+    if det.is_nan() || det <= 0.0 {
         return Err(Error::Mesh(format!("element {e} has a singular Jacobian")));
     }
     let jinv = [
