@@ -5,7 +5,7 @@
 //! the condensation: both must agree to round-off.
 
 use contopt_core::observe::{Method, Observer, Silent};
-use contopt_core::{ContactState, Error, FullSystem, Residuals, Result};
+use contopt_core::{check, ContactState, Error, FullSystem, Residuals, Result};
 
 use crate::kalker::{self, ContactSet, Infeasible, Sweep};
 use crate::watch::{self, Watch};
@@ -57,7 +57,7 @@ impl FullPenalty {
     /// The method with `settings`, checked: c positive and finite.
     pub fn new(settings: PenaltySettings) -> Result<Self> {
         Ok(Self {
-            c: contopt_core::check::positive("c_mpa_per_mm", settings.c_mpa_per_mm)?,
+            c: check::positive("c_mpa_per_mm", settings.c_mpa_per_mm)?,
         })
     }
 
@@ -113,13 +113,7 @@ fn check(system: &dyn FullSystem) -> Result<()> {
                 format!("one value per contact point ({n})"),
             ));
         }
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::invalid(
-                format!("full system {what}[{i}]"),
-                values[i],
-                "must be finite",
-            ));
-        }
+        check::all_finite(&format!("full system {what}"), values)?;
     }
     Ok(())
 }

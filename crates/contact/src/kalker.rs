@@ -4,7 +4,7 @@
 //! system (2.22, [`FullPenalty`](crate::FullPenalty)).
 
 use contopt_core::observe::Method;
-use contopt_core::{ContactState, Error, Result, Termination};
+use contopt_core::{ContactState, Result, Termination};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt;
 use faer::linalg::evd::{self, ComputeEigenvectors as Eigenvectors};
@@ -13,7 +13,7 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Conj, Mat, MatMut, Par};
 
 use crate::watch::{self, Watch};
-use crate::InterfaceProblem;
+use crate::{problem, InterfaceProblem};
 
 /// The n × n matrices a Kalker solve holds at once: A, and in its workspace the contact-set
 /// matrix, its eigenvectors and the eigen-decomposition's copy of the matrix (faer's
@@ -847,14 +847,7 @@ pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
     let scale = (0..problem.len())
         .map(|i| a[(i, i)] * problem.weights()[i])
         .fold(0.0, f64::max);
-    if !(scale > 0.0) {
-        return Err(Error::invalid(
-            "influence",
-            scale,
-            "the bodies have no compliance at the interface (two rigid bodies?)",
-        ));
-    }
-    Ok(STIFF_RATIO / scale)
+    Ok(STIFF_RATIO / problem::compliance(scale)?)
 }
 
 /// Makes `reference` (zero) a starting iterate for a subproblem with penalty `c`: zero, or for

@@ -5,7 +5,7 @@ use std::sync::{Mutex, OnceLock};
 
 use contopt_core::observe::Method;
 use contopt_core::{
-    ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
+    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -241,7 +241,7 @@ impl<'a> InterfaceProblem<'a> {
         let pair = s1.partners(s2, b1.name(), b2.name())?;
         check_partners(b1, b2, &pair)?;
         let n = s1.len();
-        contopt_core::check::gap(initial_gap, n)?;
+        check::gap(initial_gap, n)?;
         let f1 = b1.load_displacement()?;
         let f2 = b2.load_displacement()?;
         let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
@@ -286,7 +286,7 @@ impl<'a> InterfaceProblem<'a> {
     /// The same problem with another initial gap h (the optimisation changes it): the
     /// operators, the interface and the dense matrix, once built, are shared, not copied.
     pub fn with_initial_gap(&self, initial_gap: &[f64]) -> Result<Self> {
-        contopt_core::check::gap(initial_gap, self.len())?;
+        check::gap(initial_gap, self.len())?;
         Ok(Self {
             initial_gap: initial_gap.to_vec(),
             ..self.clone()
@@ -328,13 +328,11 @@ impl<'a> InterfaceProblem<'a> {
                     format!("an interface point below {n}"),
                 ));
             }
-            if !mode.load.is_finite() || mode.displacement.iter().any(|r| !r.is_finite()) {
-                return Err(Error::invalid(
-                    format!("mode `{}`", mode.name),
-                    mode.load,
-                    "load and displacements must be finite",
-                ));
-            }
+            check::finite(&format!("mode `{}`.load", mode.name), mode.load)?;
+            check::all_finite(
+                &format!("mode `{}`.displacement", mode.name),
+                &mode.displacement,
+            )?;
         }
         Ok(Self {
             modes: Rc::new(modes),
@@ -359,7 +357,7 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Point weights wᵢ \[mm²\].
     pub fn weights(&self) -> &[f64] {
-        &self.interface.weights()
+        self.interface.weights()
     }
 
     /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the
@@ -666,6 +664,18 @@ impl<'a> InterfaceProblem<'a> {
         part.dense_limit = self.dense_limit;
         Some((part, index))
     }
+}
+
+/// `scale`, a diagonal term of the influence matrix (a point's compliance), when it is
+/// positive and finite; else the bodies have no compliance at the interface (or it overflowed).
+pub(crate) fn compliance(scale: f64) -> Result<f64> {
+    check::positive("influence", scale).map_err(|_| {
+        Error::invalid(
+            "influence",
+            scale,
+            "the bodies have no compliance at the interface (two rigid bodies?)",
+        )
+    })
 }
 
 /// The paired points have equal weights and opposite normals.
