@@ -153,5 +153,4 @@ mod tests {
             Termination::Converged
         );
     }
-
 }
