@@ -5,7 +5,7 @@ use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Result, Termination};
 use serde::{Deserialize, Serialize};
 
-use crate::kalker::{self, Subproblem};
+use crate::kalker::{self, Iterate, Subproblem, Workspace};
 use crate::watch::{self, Watch};
 use crate::{ContactSolver, InterfaceProblem};
 
@@ -124,34 +124,51 @@ fn uzawa(
     let steps = Watch::new(observer, method);
     let nested = Nested(observer);
     let inner_watch = Watch::new(&nested, Method::Kalker);
-    let mut active = vec![true; problem.len()];
+    let (n, m) = (problem.len(), problem.load().len());
+    // One workspace for every step: the steps allocate nothing of their own.
+    let mut ws = Workspace::new(problem);
+    let mut active = vec![true; n];
     let mut counts = [0, 0];
-    let mut current = match kalker::start(problem, c, &mut active, &mut counts, inner_watch)? {
-        Ok(reference) => reference,
-        Err(stopped) => return Ok(kalker::finish(problem, method, stopped, active, 0, counts)),
-    };
+    let mut current = Iterate::zero(n, m);
+    let started = kalker::start(
+        problem,
+        c,
+        &mut active,
+        &mut counts,
+        inner_watch,
+        &mut current,
+        &mut ws,
+    )?;
+    if let Some(stopped) = started {
+        return Ok(kalker::finish(
+            problem, method, stopped, ws, active, 0, counts,
+        ));
+    }
     let spectral = c > kalker::stiff_penalty(problem)?;
     let mut relative = f64::INFINITY;
+    let mut shift = vec![0.0; n];
     for step in 1..=al.max_steps {
-        let shift = current.pressure.clone();
-        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current)?
+        shift.copy_from_slice(&current.pressure);
+        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current, &mut ws)?
             .solve(&mut active, inner_watch.after(counts[0]))?;
         if inner.stopped.is_some() {
-            return Ok(kalker::finish(problem, method, inner, active, step, counts));
+            return Ok(kalker::finish(
+                problem, method, inner, ws, active, step, counts,
+            ));
         }
         counts[0] += inner.iterp;
         counts[1] += inner.iterd;
-        let p_max = inner.solution.pressure.iter().fold(0.0f64, |s, v| s.max(*v));
-        let change = largest_difference(&inner.solution.pressure, &shift);
+        let pressure = &ws.solution().pressure;
+        let p_max = pressure.iter().fold(0.0f64, |s, v| s.max(*v));
+        let change = largest_difference(pressure, &shift);
         relative = change / p_max.max(f64::MIN_POSITIVE);
         // Converged when the pressure settles, or when the gap on the contact set is at
         // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
         // directions that do not move the interface.
-        let converged = relative <= al.tolerance
-            || kalker::open_on_contact(&inner, &active) <= inner.gap_floor;
+        let converged = relative <= al.tolerance || ws.open_on_contact(&active) <= inner.gap_floor;
         let halt = steps.report(step, relative, al.tolerance);
         let unchanged = inner.unchanged();
-        current = inner.solution;
+        ws.swap_solution(&mut current);
         if al.accelerate && unchanged && halt.is_none() {
             // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
             // and its fixed point is the exact solve on this set from the current iterate
@@ -162,8 +179,11 @@ fn uzawa(
                 &current,
                 &mut active,
                 inner_watch.after(counts[0]),
+                &mut ws,
             )?;
-            return Ok(kalker::finish(problem, method, jump, active, step, counts));
+            return Ok(kalker::finish(
+                problem, method, jump, ws, active, step, counts,
+            ));
         }
         if converged || halt.is_some() {
             let counted = [step, counts[0], counts[1]];

@@ -5,9 +5,9 @@
 //! the condensation: both must agree to round-off.
 
 use contopt_core::observe::{Method, Observer, Silent};
-use contopt_core::{ContactState, Error, FullSystem, Residuals, Result};
+use contopt_core::{check, ContactState, Error, FullSystem, Residuals, Result};
 
-use crate::kalker::{self, ContactSet, Sweep};
+use crate::kalker::{self, ContactSet, Infeasible, Sweep};
 use crate::watch::{self, Watch};
 use crate::PenaltySettings;
 
@@ -57,7 +57,7 @@ impl FullPenalty {
     /// The method with `settings`, checked: c positive and finite.
     pub fn new(settings: PenaltySettings) -> Result<Self> {
         Ok(Self {
-            c: contopt_core::check::positive("c_mpa_per_mm", settings.c_mpa_per_mm)?,
+            c: check::positive("c_mpa_per_mm", settings.c_mpa_per_mm)?,
         })
     }
 
@@ -84,7 +84,8 @@ impl FullPenalty {
         let mut springs = Springs::new(system, self.c);
         let mut active = vec![true; springs.points()];
         let watch = Watch::new(observer, self.method());
-        let sweep = kalker::iterate(&mut springs, &mut active, watch)?;
+        let mut lists = Infeasible::new(springs.points());
+        let sweep = kalker::iterate(&mut springs, &mut active, watch, &mut lists)?;
         let state = springs.state(active, sweep);
         watch::announce(observer, &state);
         Ok(state)
@@ -112,13 +113,7 @@ fn check(system: &dyn FullSystem) -> Result<()> {
                 format!("one value per contact point ({n})"),
             ));
         }
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::invalid(
-                format!("full system {what}[{i}]"),
-                values[i],
-                "must be finite",
-            ));
-        }
+        check::all_finite(&format!("full system {what}"), values)?;
     }
     Ok(())
 }

@@ -4,15 +4,22 @@
 //! system (2.22, [`FullPenalty`](crate::FullPenalty)).
 
 use contopt_core::observe::Method;
-use contopt_core::{ContactState, Error, Result, Termination};
-use faer::linalg::solvers::{Llt, Solve};
-use faer::{Mat, Side};
+use contopt_core::{ContactState, Result, Termination};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt;
+use faer::linalg::evd::{self, ComputeEigenvectors as Eigenvectors};
+use faer::linalg::matmul::matmul;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, Conj, Mat, MatMut, Par};
 
 use crate::watch::{self, Watch};
-use crate::InterfaceProblem;
+use crate::{problem, InterfaceProblem};
 
-/// The n × n matrices a Kalker solve holds at once: A, the contact-set matrix, its
-/// eigenvectors and a product.
+/// The n × n matrices a Kalker solve holds at once: A, and in its workspace the contact-set
+/// matrix, its eigenvectors and the eigen-decomposition's copy of the matrix (faer's
+/// tridiagonal reduction). Not counted: faer's divide and conquer for a contact set of 128
+/// points or more takes two more k × k while it runs (six copies when every point is in
+/// contact, as before the workspace).
 pub(crate) const DENSE_COPIES: u64 = 4;
 
 /// An eigenvalue of the contact-set matrix below this fraction of its eigenvector's own
@@ -69,15 +76,20 @@ pub(crate) struct Sweep {
 /// points whose pressure came out negative, else check the gap (one `iterd`) and add the
 /// points that penetrate; repeat until neither occurs. Changes follow [`PivotRule`], so the
 /// iteration cannot cycle. Each solve is reported to `watch` with the number of points that
-/// break a sign condition as the measure (tolerance 0).
+/// break a sign condition as the measure (tolerance 0). The lists of such points are kept in
+/// `lists` (of capacity n: the loop allocates nothing of its own).
 pub(crate) fn iterate(
     system: &mut impl ContactSet,
     active: &mut [bool],
     watch: Watch,
+    lists: &mut Infeasible,
 ) -> Result<Sweep> {
     let max_solves = SOLVES_PER_POINT * system.points() + SOLVES_EXTRA;
     let mut pivot = PivotRule::new();
-    let (mut negative, mut penetrating) = (Vec::new(), Vec::new());
+    let Infeasible {
+        negative,
+        penetrating,
+    } = lists;
     let mut sweep = Sweep {
         iterp: 0,
         iterd: 0,
@@ -94,7 +106,7 @@ pub(crate) fn iterate(
             return Ok(sweep);
         }
         sweep.iterp += 1;
-        infeasible(system, active, &mut negative, &mut penetrating);
+        infeasible(system, active, negative, penetrating);
         if negative.is_empty() {
             sweep.iterd += 1;
         }
@@ -117,9 +129,9 @@ pub(crate) fn iterate(
             });
             return Ok(sweep);
         }
-        match pivot.next(&negative, &penetrating) {
-            Pivot::Drop(points) => points.into_iter().for_each(|i| active[i] = false),
-            Pivot::Add(points) => points.into_iter().for_each(|i| active[i] = true),
+        match pivot.next(negative, penetrating) {
+            Pivot::Drop(points) => points.iter().for_each(|&i| active[i] = false),
+            Pivot::Add(points) => points.iter().for_each(|&i| active[i] = true),
         }
     }
 }
@@ -148,7 +160,7 @@ pub(crate) struct Iterate {
 }
 
 impl Iterate {
-    fn zero(n: usize, m: usize) -> Self {
+    pub(crate) fn zero(n: usize, m: usize) -> Self {
         Self {
             pressure: vec![0.0; n],
             rigid: vec![0.0; m],
@@ -156,78 +168,314 @@ impl Iterate {
     }
 }
 
-/// The contact-set matrix M = W_C A_CC W_C + ρ W_C, factorised.
-enum ContactMatrix {
-    Cholesky(Llt<f64>),
-    /// With T = W^½ A W^½ = U Λ Uᵀ on the contact set, M⁺ = W^-½ U (Λ + ρ)⁺ Uᵀ W^-½, where an
-    /// eigenvector u counts as null when its eigenvalue is below [`NULL_EIGENVALUE`] of its own
-    /// diagonal scale Σᵢ uᵢ² Tᵢᵢ (scale-invariant: points of small weight near an axis are not null):
-    /// no correction is made along the directions that do not move the interface, so
+/// The points that break a sign condition after a solve, the lists Kalker's iteration pivots
+/// on (capacity n: filling them never allocates).
+#[derive(Default)]
+pub(crate) struct Infeasible {
+    /// Points of C in tension.
+    negative: Vec<usize>,
+    /// Points outside C that penetrate.
+    penetrating: Vec<usize>,
+}
+
+impl Infeasible {
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            negative: Vec::with_capacity(n),
+            penetrating: Vec::with_capacity(n),
+        }
+    }
+}
+
+/// The parallelism of faer's dense kernels: the global one, as faer's own `Llt::new` and
+/// `self_adjoint_eigen` use.
+fn par() -> Par {
+    faer::get_global_parallelism()
+}
+
+/// Makes `mat` at least `rows` × `cols`; its leading block is then used as that size. It is
+/// reallocated (zeroed) only when it is too small: once per solve for each contact set larger
+/// than any before.
+fn reserve(mat: &mut Mat<f64>, rows: usize, cols: usize) {
+    if mat.nrows() < rows || mat.ncols() < cols {
+        *mat = Mat::zeros(rows.max(mat.nrows()), cols.max(mat.ncols()));
+    }
+}
+
+/// The contact-set matrix M = W_C A_CC W_C + ρ W_C on the k points of C, factorised in place
+/// by faer on the leading k × k block of buffers that every solve reuses. They grow with the
+/// largest contact set solved on (not to n: a spectral solve's set is often half the points),
+/// so a solve on a set no larger than an earlier one allocates nothing.
+struct ContactMatrix {
+    /// The leading k × k block holds L of M = L Lᵀ (lower triangle), or T = W^½ A W^½ on C.
+    storage: Mat<f64>,
+    /// The eigenvectors U of T (a spectral solve's).
+    eigenvectors: Mat<f64>,
+    /// The eigenvalues Λ of T (k × 1).
+    eigenvalues: Mat<f64>,
+    /// (Λ + ρ)⁺: with T = U Λ Uᵀ, M⁺ = W^-½ U (Λ + ρ)⁺ Uᵀ W^-½, where an eigenvector u counts
+    /// as null when its eigenvalue is below [`NULL_EIGENVALUE`] of its own diagonal scale
+    /// Σᵢ uᵢ² Tᵢᵢ (scale-invariant: points of small weight near an axis are not null): no
+    /// correction is made along the directions that do not move the interface, so
     /// c·(round-off) never enters.
-    Spectral {
-        u: Mat<f64>,
-        inverse: Vec<f64>,
-        root_w: Vec<f64>,
-    },
+    inverse: Vec<f64>,
+    /// √wᵢ on C.
+    root_w: Vec<f64>,
+    /// Uᵀ b of a spectral solve (k × 1 or k × m).
+    product: Mat<f64>,
+    /// faer's scratch space (the Cholesky factorisations', the eigen-decomposition's).
+    scratch: MemBuffer,
+    /// What `scratch` was sized for.
+    scratch_size: StackReq,
+    /// Size of C, and whether M was factorised spectrally.
+    k: usize,
+    spectral: bool,
 }
 
 impl ContactMatrix {
-    fn new(a: &Mat<f64>, w: &[f64], idx: &[usize], rho: f64, spectral: bool) -> Option<Self> {
-        let k = idx.len();
-        if !spectral {
-            let m = Mat::from_fn(k, k, |x, y| {
-                let (i, j) = (idx[x], idx[y]);
-                w[i] * a[(i, j)] * w[j] + if x == y { rho * w[i] } else { 0.0 }
-            });
-            return Llt::new(m.as_ref(), Side::Lower)
-                .ok()
-                .map(ContactMatrix::Cholesky);
+    /// Empty buffers for n points and m rigid modes.
+    fn new(n: usize, m: usize) -> Self {
+        // The Cholesky factorisations' scratch (of M and of the modes' Gram matrix) is n values.
+        let scratch_size = StackReq::any_of(&[
+            llt::factor::cholesky_in_place_scratch::<f64>(n, par(), Default::default()),
+            llt::factor::cholesky_in_place_scratch::<f64>(m, par(), Default::default()),
+        ]);
+        Self {
+            storage: Mat::new(),
+            eigenvectors: Mat::new(),
+            eigenvalues: Mat::new(),
+            inverse: Vec::with_capacity(n),
+            root_w: Vec::with_capacity(n),
+            product: Mat::new(),
+            scratch: MemBuffer::new(scratch_size),
+            scratch_size,
+            k: 0,
+            spectral: false,
         }
-        let root_w: Vec<f64> = idx.iter().map(|&i| w[i].sqrt()).collect();
-        let t = Mat::from_fn(k, k, |x, y| root_w[x] * a[(idx[x], idx[y])] * root_w[y]);
-        let eig = t.self_adjoint_eigen(Side::Lower).ok()?;
-        let u = eig.U();
-        let inverse = (0..k)
-            .map(|x| {
-                let l = eig.S()[x];
-                let scale: f64 = (0..k).map(|i| u[(i, x)] * u[(i, x)] * t[(i, i)]).sum();
-                if l > NULL_EIGENVALUE * scale {
-                    1.0 / (l + rho)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        Some(ContactMatrix::Spectral {
-            u: eig.U().to_owned(),
-            inverse,
-            root_w,
-        })
     }
 
-    fn solve(&self, b: &Mat<f64>) -> Mat<f64> {
-        match self {
-            ContactMatrix::Cholesky(llt) => llt.solve(b),
-            ContactMatrix::Spectral { u, inverse, root_w } => {
-                let scaled = Mat::from_fn(b.nrows(), b.ncols(), |i, j| b[(i, j)] / root_w[i]);
-                let mut coef = u.transpose() * &scaled;
-                for (i, inv) in inverse.iter().enumerate() {
-                    for j in 0..coef.ncols() {
-                        coef[(i, j)] *= inv;
-                    }
+    /// Makes the scratch space hold `req`.
+    fn reserve_scratch(&mut self, req: StackReq) {
+        if !MemStack::new(&mut self.scratch).can_hold(req) {
+            self.scratch_size = StackReq::any_of(&[self.scratch_size, req]);
+            self.scratch = MemBuffer::new(self.scratch_size);
+        }
+    }
+
+    /// Factorises M on the points `idx`; `false` when it is singular there.
+    fn factor(&mut self, a: &Mat<f64>, w: &[f64], idx: &[usize], rho: f64, spectral: bool) -> bool {
+        let k = idx.len();
+        (self.k, self.spectral) = (k, spectral);
+        if spectral && self.eigenvectors.nrows() == 0 {
+            // The first spectral solve: the storage of the Cholesky solves before it (all n
+            // points at their start) makes way for one of this set's size.
+            self.storage = Mat::new();
+        }
+        reserve(&mut self.storage, k, k);
+        if !spectral {
+            let mut m = self.storage.as_mut().submatrix_mut(0, 0, k, k);
+            for y in 0..k {
+                for x in 0..k {
+                    let (i, j) = (idx[x], idx[y]);
+                    // Lower triangle only, as faer's `Llt::new` copies it.
+                    m[(x, y)] = if x >= y {
+                        w[i] * a[(i, j)] * w[j] + if x == y { rho * w[i] } else { 0.0 }
+                    } else {
+                        0.0
+                    };
                 }
-                let x = u * &coef;
-                Mat::from_fn(x.nrows(), x.ncols(), |i, j| x[(i, j)] / root_w[i])
+            }
+            let factored = llt::factor::cholesky_in_place(
+                m.rb_mut(),
+                Default::default(),
+                par(),
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            )
+            .is_ok();
+            for y in 1..k {
+                for x in 0..y {
+                    m[(x, y)] = 0.0;
+                }
+            }
+            return factored;
+        }
+        reserve(&mut self.eigenvectors, k, k);
+        reserve(&mut self.eigenvalues, k, 1);
+        self.reserve_scratch(evd::self_adjoint_evd_scratch::<f64>(
+            k,
+            Eigenvectors::Yes,
+            par(),
+            Default::default(),
+        ));
+        self.root_w.clear();
+        self.root_w.extend(idx.iter().map(|&i| w[i].sqrt()));
+        let root_w = &self.root_w;
+        let mut t = self.storage.as_mut().submatrix_mut(0, 0, k, k);
+        for y in 0..k {
+            for x in 0..k {
+                t[(x, y)] = root_w[x] * a[(idx[x], idx[y])] * root_w[y];
+            }
+        }
+        let mut u = self.eigenvectors.as_mut().submatrix_mut(0, 0, k, k);
+        u.fill(0.0);
+        let mut s = self.eigenvalues.as_mut().col_mut(0).subrows_mut(0, k);
+        s.fill(0.0);
+        let solved = evd::self_adjoint_evd(
+            t.rb(),
+            s.rb_mut().as_diagonal_mut(),
+            Some(u.rb_mut()),
+            par(),
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        );
+        if solved.is_err() {
+            return false;
+        }
+        self.inverse.clear();
+        self.inverse.extend((0..k).map(|x| {
+            let l = s[x];
+            let scale: f64 = (0..k).map(|i| u[(i, x)] * u[(i, x)] * t[(i, i)]).sum();
+            if l > NULL_EIGENVALUE * scale {
+                1.0 / (l + rho)
+            } else {
+                0.0
+            }
+        }));
+        true
+    }
+
+    /// Overwrites the k rows of `b` with M⁻¹ b (M⁺ b when spectral).
+    fn solve_in_place(&mut self, mut b: MatMut<'_, f64>) {
+        let k = self.k;
+        if !self.spectral {
+            llt::solve::solve_in_place_with_conj(
+                self.storage.as_ref().submatrix(0, 0, k, k),
+                Conj::No,
+                b,
+                par(),
+                MemStack::new(&mut self.scratch),
+            );
+            return;
+        }
+        let (root_w, inverse) = (&self.root_w, &self.inverse);
+        let u = self.eigenvectors.as_ref().submatrix(0, 0, k, k);
+        let cols = b.ncols();
+        reserve(&mut self.product, k, cols);
+        for j in 0..cols {
+            for i in 0..k {
+                b[(i, j)] /= root_w[i];
+            }
+        }
+        let mut coef = self.product.as_mut().submatrix_mut(0, 0, k, cols);
+        matmul(
+            coef.rb_mut(),
+            Accum::Replace,
+            u.transpose(),
+            b.rb(),
+            1.0,
+            par(),
+        );
+        for (i, inv) in inverse.iter().enumerate() {
+            for j in 0..cols {
+                coef[(i, j)] *= inv;
+            }
+        }
+        matmul(b.rb_mut(), Accum::Replace, u, coef.rb(), 1.0, par());
+        for j in 0..cols {
+            for i in 0..k {
+                b[(i, j)] /= root_w[i];
             }
         }
     }
 }
 
-/// Solution of one subproblem on its final active set.
+/// What a contact solve holds for Kalker's iteration, reused by every solve on a contact set and
+/// every subproblem of the solve (the Uzawa steps): the problem's free gap, R and q, the index
+/// lists, the iterate and its gap, the products' buffers, sized once from the number of points
+/// n and of rigid modes m; and the contact-set matrix's, sized to the largest contact set solved
+/// on ([`ContactMatrix`]). A solve on C then allocates nothing of its own, unless its set is
+/// the largest yet or it is the first spectral one; faer's kernels, which factorise and multiply
+/// in these buffers, allocate nothing either at the sizes tested (see the crate's
+/// `tests/allocations.rs`).
+pub(crate) struct Workspace {
+    /// The free gap g and its largest |gᵢ|.
+    free_gap: Vec<f64>,
+    free_scale: f64,
+    /// The rigid modes R (n × m) and their loads q.
+    r: Mat<f64>,
+    q: Vec<f64>,
+    /// The points of C, in order.
+    idx: Vec<usize>,
+    infeasible: Infeasible,
+    /// The last solve's iterate and its gap d.
+    current: Iterate,
+    gap: Vec<f64>,
+    /// The gap of the reference restricted to C, and the buffers of the product A W p.
+    reference_gap: Vec<f64>,
+    force: Vec<f64>,
+    spare: Vec<f64>,
+    matrix: ContactMatrix,
+    /// The right-hand side of a solve on C and its solution y (n × 1).
+    rhs: Mat<f64>,
+    /// W_C R_C and M⁻¹ W_C R_C (n × m each; their leading k rows are used).
+    modes: Mat<f64>,
+    solved_modes: Mat<f64>,
+    /// The rigid modes' Gram matrix (W R)ᵀ M⁻¹ (W R) (m × m), its right-hand side and solution
+    /// Δλ (m × 1), and M⁻¹ W R Δλ (n × 1).
+    gram: Mat<f64>,
+    lambda: Mat<f64>,
+    mode_correction: Mat<f64>,
+}
+
+impl Workspace {
+    pub(crate) fn new(problem: &InterfaceProblem) -> Self {
+        let free_gap = problem.free_gap();
+        let (n, q) = (problem.len(), problem.load());
+        let m = q.len();
+        Self {
+            free_scale: free_gap.iter().fold(0.0f64, |s, v| s.max(v.abs())),
+            free_gap,
+            r: problem.rigid(),
+            q,
+            idx: Vec::with_capacity(n),
+            infeasible: Infeasible::new(n),
+            current: Iterate::zero(n, m),
+            gap: vec![0.0; n],
+            reference_gap: vec![0.0; n],
+            force: vec![0.0; n],
+            spare: vec![0.0; n],
+            matrix: ContactMatrix::new(n, m),
+            rhs: Mat::zeros(n, 1),
+            modes: Mat::zeros(n, m),
+            solved_modes: Mat::zeros(n, m),
+            gram: Mat::zeros(m, m),
+            lambda: Mat::zeros(m, 1),
+            mode_correction: Mat::zeros(n, 1),
+        }
+    }
+
+    /// The last subproblem's solution (its last iterate when it stopped short).
+    pub(crate) fn solution(&self) -> &Iterate {
+        &self.current
+    }
+
+    /// Exchanges the last subproblem's solution with `other`, whose buffers the next
+    /// subproblem overwrites.
+    pub(crate) fn swap_solution(&mut self, other: &mut Iterate) {
+        std::mem::swap(&mut self.current, other);
+    }
+
+    /// The largest |dᵢ| over the contact set `active` of the last subproblem's solution.
+    pub(crate) fn open_on_contact(&self, active: &[bool]) -> f64 {
+        (0..active.len())
+            .filter(|&i| active[i])
+            .fold(0.0f64, |s, i| s.max(self.gap[i].abs()))
+    }
+}
+
+/// How one subproblem ended; its solution is the workspace's ([`Workspace::solution`]).
 pub(crate) struct Inner {
-    pub(crate) solution: Iterate,
-    /// Gap d of the solution.
-    pub(crate) gap: Vec<f64>,
     /// Round-off level of the gap ([`GAP_ROUND_OFF`] of its largest terms); 0 when stopped.
     pub(crate) gap_floor: f64,
     /// Solves, each followed by the sign check of p (the paper's `iterp`).
@@ -235,7 +483,8 @@ pub(crate) struct Inner {
     /// Penetration checks: the solves whose pressure had no negative value (the paper's
     /// `iterd`).
     pub(crate) iterd: usize,
-    /// Why the iteration stopped short, with `solution` its last iterate; `None` when solved.
+    /// Why the iteration stopped short, with the workspace's solution its last iterate; `None`
+    /// when solved.
     pub(crate) stopped: Option<Termination>,
 }
 
@@ -259,6 +508,8 @@ impl Inner {
 /// directions that do not move the interface (a semi-definite H) is amplified by c; in this
 /// form it multiplies the reference's residual instead of the whole gap, so a reference close
 /// to the answer keeps large c accurate.
+///
+/// It works in the solve's [`Workspace`], where it leaves its solution.
 pub(crate) struct Subproblem<'a> {
     problem: &'a InterfaceProblem<'a>,
     rho: f64,
@@ -266,16 +517,9 @@ pub(crate) struct Subproblem<'a> {
     /// Solve spectrally (for ρ below the stiff level; see [`ContactMatrix`]).
     spectral: bool,
     reference: &'a Iterate,
-    /// The dense influence matrix A, the rigid modes R and their loads q.
+    /// The dense influence matrix A.
     a: &'a Mat<f64>,
-    r: Mat<f64>,
-    q: Vec<f64>,
-    /// The free gap g and its largest |gᵢ|.
-    free_gap: Vec<f64>,
-    free_scale: f64,
-    /// The last solve's iterate and its gap d.
-    current: Iterate,
-    gap: Vec<f64>,
+    ws: &'a mut Workspace,
 }
 
 impl<'a> Subproblem<'a> {
@@ -285,39 +529,35 @@ impl<'a> Subproblem<'a> {
         shift: &'a [f64],
         spectral: bool,
         reference: &'a Iterate,
+        ws: &'a mut Workspace,
     ) -> Result<Self> {
-        let free_gap = problem.free_gap();
         Ok(Self {
             a: problem.dense_influence(DENSE_COPIES)?,
-            r: problem.rigid(),
-            q: problem.load(),
-            free_scale: free_gap.iter().fold(0.0f64, |s, v| s.max(v.abs())),
-            free_gap,
-            current: reference.clone(),
-            gap: vec![0.0; problem.len()],
             problem,
             rho,
             shift,
             spectral,
             reference,
+            ws,
         })
     }
 
     /// Kalker's iteration ([`iterate`]) from the contact set `active`, which it updates.
     pub(crate) fn solve(mut self, active: &mut [bool], watch: Watch) -> Result<Inner> {
-        let sweep = iterate(&mut self, active, watch)?;
+        let mut infeasible = std::mem::take(&mut self.ws.infeasible);
+        let sweep = iterate(&mut self, active, watch, &mut infeasible);
+        self.ws.infeasible = infeasible;
+        let sweep = sweep?;
         let gap_floor = if sweep.halt.is_none() {
-            for v in self.current.pressure.iter_mut() {
+            for v in self.ws.current.pressure.iter_mut() {
                 *v = v.max(0.0);
             }
             // d = g + A W p + R λ, with the elastic term balancing the others on C.
-            GAP_ROUND_OFF * (self.free_scale + self.rigid_motion())
+            GAP_ROUND_OFF * (self.ws.free_scale + self.rigid_motion())
         } else {
             0.0
         };
         Ok(Inner {
-            solution: self.current,
-            gap: self.gap,
             gap_floor,
             iterp: sweep.iterp,
             iterd: sweep.iterd,
@@ -327,76 +567,120 @@ impl<'a> Subproblem<'a> {
 
     /// The largest rigid motion |(R λ)ᵢ| of the current iterate.
     fn rigid_motion(&self) -> f64 {
-        let lambda = &self.current.rigid;
+        let (r, lambda) = (&self.ws.r, &self.ws.current.rigid);
         (0..self.problem.len())
             .map(|i| {
                 (0..lambda.len())
-                    .map(|c| self.r[(i, c)] * lambda[c])
+                    .map(|c| r[(i, c)] * lambda[c])
                     .sum::<f64>()
                     .abs()
             })
             .fold(0.0f64, f64::max)
     }
 
-    /// Corrects the current iterate (the reference restricted to C, whose points are `idx`)
-    /// by the solve on C.
-    fn correct(&mut self, idx: &[usize]) -> std::result::Result<(), String> {
+    /// Corrects the current iterate (the reference restricted to C, whose points are the
+    /// workspace's `idx`) by the solve on C.
+    fn correct(&mut self) -> std::result::Result<(), String> {
         let (problem, rho, shift) = (self.problem, self.rho, self.shift);
         let w = problem.weights();
-        let k = idx.len();
-        let Some(llt) = ContactMatrix::new(self.a, w, idx, rho, self.spectral) else {
+        let ws = &mut *self.ws;
+        let (idx, k) = (&ws.idx, ws.idx.len());
+        if !ws.matrix.factor(self.a, w, idx, rho, self.spectral) {
             return Err(format!(
                 "the influence matrix is singular on the {k} contact points (penalty term rho = \
                  {rho:e}); use a finite penalty parameter or the augmented Lagrangian"
             ));
-        };
-        let p = &self.current.pressure;
-        let d_ref = problem.gap(p, &self.current.rigid);
-        let b = Mat::from_fn(k, 1, |a, _| {
-            let i = idx[a];
-            -w[i] * (d_ref[i] + rho * (p[i] - shift[i]))
-        });
-        let y = llt.solve(&b);
-        let delta = if self.q.is_empty() {
-            y
-        } else {
-            self.balance(&llt, idx, y)?
-        };
+        }
+        let p = &ws.current.pressure;
+        let d_ref = &mut ws.reference_gap;
+        problem.gap_with(p, &ws.current.rigid, d_ref, &mut ws.force, &mut ws.spare);
+        let mut y = ws.rhs.as_mut().submatrix_mut(0, 0, k, 1);
         for (a, &i) in idx.iter().enumerate() {
-            self.current.pressure[i] += delta[(a, 0)];
+            y[(a, 0)] = -w[i] * (d_ref[i] + rho * (p[i] - shift[i]));
+        }
+        ws.matrix.solve_in_place(y.rb_mut());
+        if !ws.q.is_empty() {
+            self.balance()?;
+        }
+        let ws = &mut *self.ws;
+        for (a, &i) in ws.idx.iter().enumerate() {
+            ws.current.pressure[i] += ws.rhs[(a, 0)];
         }
         Ok(())
     }
 
-    /// The correction `y` on C made to balance the rigid modes, Rᵀ W δ = −q − Rᵀ W p_ref
-    /// (eq. 2.10), with their amplitudes updated.
-    fn balance(
-        &mut self,
-        llt: &ContactMatrix,
-        idx: &[usize],
-        y: Mat<f64>,
-    ) -> std::result::Result<Mat<f64>, String> {
-        let (k, m) = (idx.len(), self.q.len());
+    /// Makes the correction y on C (the workspace's `rhs`) balance the rigid modes,
+    /// Rᵀ W δ = −q − Rᵀ W p_ref (eq. 2.10), and updates their amplitudes.
+    fn balance(&mut self) -> std::result::Result<(), String> {
         let w = self.problem.weights();
-        let bm = Mat::from_fn(k, m, |a, c| w[idx[a]] * self.r[(idx[a], c)]);
-        let z = llt.solve(&bm);
-        let s = bm.transpose() * &z;
-        let p = &self.current.pressure;
-        let rhs = Mat::from_fn(m, 1, |c, _| {
+        let ws = &mut *self.ws;
+        let (idx, q) = (&ws.idx, &ws.q);
+        let (k, m) = (idx.len(), q.len());
+        let mut bm = ws.modes.as_mut().submatrix_mut(0, 0, k, m);
+        for c in 0..m {
+            for (a, &i) in idx.iter().enumerate() {
+                bm[(a, c)] = w[i] * ws.r[(i, c)];
+            }
+        }
+        let bm = bm.rb();
+        let mut z = ws.solved_modes.as_mut().submatrix_mut(0, 0, k, m);
+        z.copy_from(bm);
+        ws.matrix.solve_in_place(z.rb_mut());
+        let mut s = ws.gram.as_mut();
+        matmul(
+            s.rb_mut(),
+            Accum::Replace,
+            bm.transpose(),
+            z.rb(),
+            1.0,
+            par(),
+        );
+        let p = &ws.current.pressure;
+        let y = ws.rhs.as_ref().submatrix(0, 0, k, 1);
+        let mut lambda = ws.lambda.as_mut();
+        for c in 0..m {
             let held: f64 = (0..k).map(|a| bm[(a, c)] * p[idx[a]]).sum();
-            (0..k).map(|a| bm[(a, c)] * y[(a, 0)]).sum::<f64>() + self.q[c] + held
-        });
-        let Ok(gram) = Llt::new(s.as_ref(), Side::Lower) else {
+            lambda[(c, 0)] = (0..k).map(|a| bm[(a, c)] * y[(a, 0)]).sum::<f64>() + q[c] + held;
+        }
+        // The lower triangle, as faer's `Llt::new` copies it.
+        for c in 1..m {
+            for r in 0..c {
+                s[(r, c)] = 0.0;
+            }
+        }
+        let scratch = MemStack::new(&mut ws.matrix.scratch);
+        if llt::factor::cholesky_in_place(
+            s.rb_mut(),
+            Default::default(),
+            par(),
+            scratch,
+            Default::default(),
+        )
+        .is_err()
+        {
             return Err(format!(
                 "the {k} contact points do not hold the rigid modes {:?}",
                 self.problem.mode_names()
             ));
-        };
-        let lambda = gram.solve(&rhs);
-        for (c, l) in self.current.rigid.iter_mut().enumerate() {
+        }
+        llt::solve::solve_in_place_with_conj(s.rb(), Conj::No, lambda.rb_mut(), par(), scratch);
+        for (c, l) in ws.current.rigid.iter_mut().enumerate() {
             *l += lambda[(c, 0)];
         }
-        Ok(&y - &z * &lambda)
+        let mut correction = ws.mode_correction.as_mut().submatrix_mut(0, 0, k, 1);
+        matmul(
+            correction.rb_mut(),
+            Accum::Replace,
+            z.rb(),
+            lambda.rb(),
+            1.0,
+            par(),
+        );
+        let mut y = ws.rhs.as_mut().submatrix_mut(0, 0, k, 1);
+        for a in 0..k {
+            y[(a, 0)] -= correction[(a, 0)];
+        }
+        Ok(())
     }
 }
 
@@ -406,48 +690,59 @@ impl ContactSet for Subproblem<'_> {
     }
 
     fn anchor(&self) -> Option<usize> {
-        let g = &self.free_gap;
-        (!self.q.is_empty()).then(|| (0..g.len()).min_by(|&i, &j| g[i].total_cmp(&g[j])))?
+        let g = &self.ws.free_gap;
+        (!self.ws.q.is_empty()).then(|| (0..g.len()).min_by(|&i, &j| g[i].total_cmp(&g[j])))?
     }
 
     fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), String>> {
-        let idx: Vec<usize> = (0..active.len()).filter(|&i| active[i]).collect();
-        self.current.pressure.fill(0.0);
-        for &i in &idx {
-            self.current.pressure[i] = self.reference.pressure[i];
+        let ws = &mut *self.ws;
+        ws.idx.clear();
+        ws.idx.extend((0..active.len()).filter(|&i| active[i]));
+        ws.current.pressure.fill(0.0);
+        for &i in &ws.idx {
+            ws.current.pressure[i] = self.reference.pressure[i];
         }
-        self.current.rigid.clone_from(&self.reference.rigid);
-        let outcome = if idx.is_empty() {
+        ws.current.rigid.copy_from_slice(&self.reference.rigid);
+        let outcome = if ws.idx.is_empty() {
             Ok(())
         } else {
-            self.correct(&idx)
+            self.correct()
         };
-        self.gap = self
-            .problem
-            .gap(&self.current.pressure, &self.current.rigid);
+        let ws = &mut *self.ws;
+        let current = &ws.current;
+        self.problem.gap_with(
+            &current.pressure,
+            &current.rigid,
+            &mut ws.gap,
+            &mut ws.force,
+            &mut ws.spare,
+        );
         Ok(outcome)
     }
 
     fn pressure(&self) -> &[f64] {
-        &self.current.pressure
+        &self.ws.current.pressure
     }
 
     fn clearance(&self, i: usize) -> f64 {
-        self.gap[i] - self.rho * self.shift[i]
+        self.ws.gap[i] - self.rho * self.shift[i]
     }
 
     fn gap_scale(&self) -> f64 {
-        self.gap.iter().fold(self.free_scale, |s, v| s.max(v.abs()))
+        self.ws
+            .gap
+            .iter()
+            .fold(self.ws.free_scale, |s, v| s.max(v.abs()))
     }
 }
 
-/// A change of the contact set.
+/// A change of the contact set: points of the infeasible lists.
 #[derive(Debug, PartialEq)]
-enum Pivot {
+enum Pivot<'a> {
     /// Points that leave the set (their pressure came out negative).
-    Drop(Vec<usize>),
+    Drop(&'a [usize]),
     /// Points that join it (they penetrate).
-    Add(Vec<usize>),
+    Add(&'a [usize]),
 }
 
 /// The choice of the next contact set, after Júdice and Pires' safeguard for block principal
@@ -477,7 +772,7 @@ impl PivotRule {
 
     /// The change for `negative` points in the set and `penetrating` points outside it (not
     /// both empty).
-    fn next(&mut self, negative: &[usize], penetrating: &[usize]) -> Pivot {
+    fn next<'a>(&mut self, negative: &'a [usize], penetrating: &'a [usize]) -> Pivot<'a> {
         let infeasible = negative.len() + penetrating.len();
         let block = if infeasible < self.best {
             self.best = infeasible;
@@ -491,33 +786,32 @@ impl PivotRule {
         };
         if block {
             if negative.is_empty() {
-                Pivot::Add(penetrating.to_vec())
+                Pivot::Add(penetrating)
             } else {
-                Pivot::Drop(negative.to_vec())
+                Pivot::Drop(negative)
             }
         } else {
-            let first = |s: &[usize]| s.iter().copied().min().unwrap_or(usize::MAX);
-            let (drop, add) = (first(negative), first(penetrating));
-            if drop < add {
-                Pivot::Drop(vec![drop])
-            } else {
-                Pivot::Add(vec![add])
+            let (drop, add) = (negative.iter().min(), penetrating.iter().min());
+            match drop.filter(|&d| add.is_none_or(|a| d < a)) {
+                Some(d) => Pivot::Drop(std::slice::from_ref(d)),
+                None => Pivot::Add(add.map_or(&[], std::slice::from_ref)),
             }
         }
     }
 }
 
-/// The contact state of a subproblem's solution, after `steps` outer steps, with the set
-/// changes counted before it.
+/// The contact state of a subproblem's solution (the workspace's, which it ends), after
+/// `steps` outer steps, with the set changes counted before it.
 pub(crate) fn finish(
     problem: &InterfaceProblem,
     method: Method,
     inner: Inner,
+    ws: Workspace,
     active: Vec<bool>,
     steps: usize,
     counts: [usize; 2],
 ) -> ContactState {
-    let s = inner.solution;
+    let s = ws.current;
     let mut state = problem.state(
         method,
         s.pressure,
@@ -539,9 +833,10 @@ pub(crate) fn solve_exact(
     reference: &Iterate,
     active: &mut [bool],
     watch: Watch,
+    ws: &mut Workspace,
 ) -> Result<Inner> {
     let zeros = vec![0.0; problem.len()];
-    Subproblem::new(problem, 0.0, &zeros, true, reference)?.solve(active, watch)
+    Subproblem::new(problem, 0.0, &zeros, true, reference, ws)?.solve(active, watch)
 }
 
 /// The largest penalty parameter at which a subproblem is solved from scratch:
@@ -552,66 +847,63 @@ pub(crate) fn stiff_penalty(problem: &InterfaceProblem) -> Result<f64> {
     let scale = (0..problem.len())
         .map(|i| a[(i, i)] * problem.weights()[i])
         .fold(0.0, f64::max);
-    if !(scale > 0.0) {
-        return Err(Error::invalid(
-            "influence",
-            scale,
-            "the bodies have no compliance at the interface (two rigid bodies?)",
-        ));
-    }
-    Ok(STIFF_RATIO / scale)
+    Ok(STIFF_RATIO / problem::compliance(scale)?)
 }
 
-/// A starting iterate for a subproblem with penalty `c`: zero, or for c above c_stiff the
-/// penalty solution at c_stiff (whose small gap keeps the large-c solve accurate), its solves
-/// added to `counts`; the stopped solve when it stopped short.
+/// Makes `reference` (zero) a starting iterate for a subproblem with penalty `c`: zero, or for
+/// c above c_stiff the penalty solution at c_stiff (whose small gap keeps the large-c solve
+/// accurate), its solves added to `counts`; the stopped solve when it stopped short (its last
+/// iterate the workspace's solution).
 pub(crate) fn start(
     problem: &InterfaceProblem,
     c: f64,
     active: &mut [bool],
     counts: &mut [usize; 2],
     watch: Watch,
-) -> Result<std::result::Result<Iterate, Inner>> {
-    let (n, m) = (problem.len(), problem.load().len());
+    reference: &mut Iterate,
+    ws: &mut Workspace,
+) -> Result<Option<Inner>> {
     let c_stiff = stiff_penalty(problem)?;
-    let zero = Iterate::zero(n, m);
     if c <= c_stiff {
-        return Ok(Ok(zero));
+        return Ok(None);
     }
-    let zeros = vec![0.0; n];
-    let pre = Subproblem::new(problem, 1.0 / c_stiff, &zeros, false, &zero)?
+    let zeros = vec![0.0; problem.len()];
+    let pre = Subproblem::new(problem, 1.0 / c_stiff, &zeros, false, reference, ws)?
         .solve(active, watch.after(counts[0]))?;
     if pre.stopped.is_some() {
-        return Ok(Err(pre));
+        return Ok(Some(pre));
     }
     counts[0] += pre.iterp;
     counts[1] += pre.iterd;
-    Ok(Ok(pre.solution))
+    ws.swap_solution(reference);
+    Ok(None)
 }
 
 /// The penalty method: one subproblem with ρ = 1/c and p̂ = 0, so p = c⟨−d⟩.
 pub(crate) fn penalty(problem: &InterfaceProblem, c: f64, watch: Watch) -> Result<ContactState> {
-    let n = problem.len();
+    let (n, m) = (problem.len(), problem.load().len());
+    let mut ws = Workspace::new(problem);
     let mut active = vec![true; n];
     let mut counts = [0, 0];
-    let reference = match start(problem, c, &mut active, &mut counts, watch)? {
-        Ok(reference) => reference,
-        Err(stopped) => {
-            return Ok(finish(problem, Method::Penalty, stopped, active, 1, counts));
-        }
-    };
+    let mut reference = Iterate::zero(n, m);
+    let method = Method::Penalty;
+    let started = start(
+        problem,
+        c,
+        &mut active,
+        &mut counts,
+        watch,
+        &mut reference,
+        &mut ws,
+    )?;
+    if let Some(stopped) = started {
+        return Ok(finish(problem, method, stopped, ws, active, 1, counts));
+    }
     let zeros = vec![0.0; n];
     let spectral = c > stiff_penalty(problem)?;
-    let inner = Subproblem::new(problem, 1.0 / c, &zeros, spectral, &reference)?
+    let inner = Subproblem::new(problem, 1.0 / c, &zeros, spectral, &reference, &mut ws)?
         .solve(&mut active, watch.after(counts[0]))?;
-    Ok(finish(problem, Method::Penalty, inner, active, 1, counts))
-}
-
-/// The largest |dᵢ| over the contact set of a subproblem's solution.
-pub(crate) fn open_on_contact(inner: &Inner, active: &[bool]) -> f64 {
-    (0..active.len())
-        .filter(|&i| active[i])
-        .fold(0.0f64, |s, i| s.max(inner.gap[i].abs()))
+    Ok(finish(problem, method, inner, ws, active, 1, counts))
 }
 
 /// The QP (2.14) itself: Kalker's iteration with ρ = 0, solving on each contact set with the
@@ -634,27 +926,34 @@ pub(crate) fn exact_observed(
     watch: Watch,
 ) -> Result<ContactState> {
     let (n, m) = (problem.len(), problem.load().len());
-    let zero = Iterate::zero(n, m);
+    let mut ws = Workspace::new(problem);
+    let mut reference = Iterate::zero(n, m);
     let mut counts = [0, 0];
     let method = Method::ActiveSet;
-    let (mut active, pre) = match start_set {
-        Some(set) => (set.to_vec(), None),
+    let mut active = match start_set {
+        Some(set) => set.to_vec(),
         None => {
             let mut active = vec![true; n];
             let zeros = vec![0.0; n];
             let rho = 1.0 / stiff_penalty(problem)?;
-            let pre =
-                Subproblem::new(problem, rho, &zeros, false, &zero)?.solve(&mut active, watch)?;
+            let pre = Subproblem::new(problem, rho, &zeros, false, &reference, &mut ws)?
+                .solve(&mut active, watch)?;
             if pre.stopped.is_some() {
-                return Ok(finish(problem, method, pre, active, 1, counts));
+                return Ok(finish(problem, method, pre, ws, active, 1, counts));
             }
             counts = [pre.iterp, pre.iterd];
-            (active, Some(pre.solution))
+            ws.swap_solution(&mut reference);
+            active
         }
     };
-    let reference = pre.as_ref().unwrap_or(&zero);
-    let inner = solve_exact(problem, reference, &mut active, watch.after(counts[0]))?;
-    Ok(finish(problem, method, inner, active, 1, counts))
+    let inner = solve_exact(
+        problem,
+        &reference,
+        &mut active,
+        watch.after(counts[0]),
+        &mut ws,
+    )?;
+    Ok(finish(problem, method, inner, ws, active, 1, counts))
 }
 
 #[cfg(test)]
@@ -666,13 +965,13 @@ mod pivot_tests {
     #[test]
     fn block_changes_fall_back_to_single_points() {
         let mut rule = PivotRule::new();
-        assert_eq!(rule.next(&[4, 7], &[1]), Pivot::Drop(vec![4, 7]));
-        assert_eq!(rule.next(&[], &[5, 2]), Pivot::Add(vec![5, 2]));
+        assert_eq!(rule.next(&[4, 7], &[1]), Pivot::Drop(&[4, 7]));
+        assert_eq!(rule.next(&[], &[5, 2]), Pivot::Add(&[5, 2]));
         for _ in 0..PivotRule::GRACE {
-            assert_eq!(rule.next(&[9], &[3, 8]), Pivot::Drop(vec![9]));
+            assert_eq!(rule.next(&[9], &[3, 8]), Pivot::Drop(&[9]));
         }
-        assert_eq!(rule.next(&[9], &[3, 8]), Pivot::Add(vec![3]));
-        assert_eq!(rule.next(&[6, 9], &[8]), Pivot::Drop(vec![6]));
-        assert_eq!(rule.next(&[], &[8]), Pivot::Add(vec![8]));
+        assert_eq!(rule.next(&[9], &[3, 8]), Pivot::Add(&[3]));
+        assert_eq!(rule.next(&[6, 9], &[8]), Pivot::Drop(&[6]));
+        assert_eq!(rule.next(&[], &[8]), Pivot::Add(&[8]));
     }
 }

@@ -10,7 +10,7 @@ use contopt_core::{check, ContactState, Error, Result, Termination};
 use serde::{Deserialize, Serialize};
 
 use crate::watch::{self, Watch};
-use crate::{ContactSolver, InterfaceProblem};
+use crate::{problem, ContactSolver, InterfaceProblem};
 
 /// Relative size of a penetration outside the solved part that makes the part grow
 /// (round-off).
@@ -103,16 +103,14 @@ impl ContactSolver for PolonskyKeer {
         observer: &dyn Observer,
     ) -> Result<ContactState> {
         if let Some(start) = start {
-            if start.len() != problem.len() || start.iter().any(|p| !p.is_finite()) {
+            if start.len() != problem.len() {
                 return Err(Error::invalid(
                     "start",
                     format!("{} values", start.len()),
-                    format!(
-                        "one finite pressure per interface point ({})",
-                        problem.len()
-                    ),
+                    format!("one pressure per interface point ({})", problem.len()),
                 ));
             }
+            check::all_finite("start", start)?;
         }
         let state = self.solve_cropped(problem, start, Watch::new(observer, self.method()))?;
         watch::announce(observer, &state);
@@ -217,7 +215,8 @@ impl PolonskyKeer {
             }
             halt = halt.or(stop);
         }
-        if halt.is_none() && !(change < tolerance) {
+        // A NaN change is not converged either.
+        if halt.is_none() && (change.is_nan() || change >= tolerance) {
             halt = Some(Termination::StepLimit {
                 steps,
                 measure: change,
@@ -376,15 +375,7 @@ impl Buffers {
         self.forces.fill(0.0);
         self.forces[0] = w[0];
         problem.apply_influence_with(&self.forces, &mut self.u, &mut self.spare);
-        let kappa = self.u[0];
-        if !(kappa > 0.0 && kappa.is_finite()) {
-            return Err(Error::invalid(
-                "influence",
-                kappa,
-                "the bodies have no compliance at the interface (two rigid bodies?)",
-            ));
-        }
-        Ok(kappa)
+        problem::compliance(self.u[0])
     }
 
     /// Moves `p` along the direction t by the residual's component over the curvature, clipped

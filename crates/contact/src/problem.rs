@@ -5,7 +5,7 @@ use std::sync::{Mutex, OnceLock};
 
 use contopt_core::observe::Method;
 use contopt_core::{
-    ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
+    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -241,7 +241,7 @@ impl<'a> InterfaceProblem<'a> {
         let pair = s1.partners(s2, b1.name(), b2.name())?;
         check_partners(b1, b2, &pair)?;
         let n = s1.len();
-        contopt_core::check::gap(initial_gap, n)?;
+        check::gap(initial_gap, n)?;
         let f1 = b1.load_displacement()?;
         let f2 = b2.load_displacement()?;
         let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
@@ -286,7 +286,7 @@ impl<'a> InterfaceProblem<'a> {
     /// The same problem with another initial gap h (the optimisation changes it): the
     /// operators, the interface and the dense matrix, once built, are shared, not copied.
     pub fn with_initial_gap(&self, initial_gap: &[f64]) -> Result<Self> {
-        contopt_core::check::gap(initial_gap, self.len())?;
+        check::gap(initial_gap, self.len())?;
         Ok(Self {
             initial_gap: initial_gap.to_vec(),
             ..self.clone()
@@ -328,13 +328,11 @@ impl<'a> InterfaceProblem<'a> {
                     format!("an interface point below {n}"),
                 ));
             }
-            if !mode.load.is_finite() || mode.displacement.iter().any(|r| !r.is_finite()) {
-                return Err(Error::invalid(
-                    format!("mode `{}`", mode.name),
-                    mode.load,
-                    "load and displacements must be finite",
-                ));
-            }
+            check::finite(&format!("mode `{}`.load", mode.name), mode.load)?;
+            check::all_finite(
+                &format!("mode `{}`.displacement", mode.name),
+                &mode.displacement,
+            )?;
         }
         Ok(Self {
             modes: Rc::new(modes),
@@ -359,7 +357,7 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Point weights wᵢ \[mm²\].
     pub fn weights(&self) -> &[f64] {
-        &self.interface.weights()
+        self.interface.weights()
     }
 
     /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the
@@ -478,22 +476,35 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Gap after deformation d = g + A W p + R λ, eq. (2.7).
     pub fn gap(&self, pressure: &[f64], rigid: &[f64]) -> Vec<f64> {
-        let force: Vec<f64> = pressure
-            .iter()
-            .zip(self.weights())
-            .map(|(p, w)| p * w)
-            .collect();
-        let mut d = vec![0.0; self.len()];
-        self.apply_influence(&force, &mut d);
-        for ((d, h), f) in d
+        let n = self.len();
+        let (mut d, mut force, mut spare) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        self.gap_with(pressure, rigid, &mut d, &mut force, &mut spare);
+        d
+    }
+
+    /// [`InterfaceProblem::gap`] written to `gap`, with the caller's buffers `force` and
+    /// `spare` (of n values each), for loops that must not allocate.
+    pub(crate) fn gap_with(
+        &self,
+        pressure: &[f64],
+        rigid: &[f64],
+        gap: &mut [f64],
+        force: &mut [f64],
+        spare: &mut [f64],
+    ) {
+        for ((f, p), w) in force.iter_mut().zip(pressure).zip(self.weights()) {
+            *f = p * w;
+        }
+        gap.fill(0.0);
+        self.apply_influence_with(force, gap, spare);
+        for ((d, h), f) in gap
             .iter_mut()
             .zip(&self.initial_gap)
             .zip(self.load_gap.iter())
         {
             *d += h + f;
         }
-        self.add_rigid_motion(rigid, &mut d);
-        d
+        self.add_rigid_motion(rigid, gap);
     }
 
     /// The field the point pressures sample (see [`ElasticBody::pressure_basis`]), from the
@@ -653,6 +664,18 @@ impl<'a> InterfaceProblem<'a> {
         part.dense_limit = self.dense_limit;
         Some((part, index))
     }
+}
+
+/// `scale`, a diagonal term of the influence matrix (a point's compliance), when it is
+/// positive and finite; else the bodies have no compliance at the interface (or it overflowed).
+pub(crate) fn compliance(scale: f64) -> Result<f64> {
+    check::positive("influence", scale).map_err(|_| {
+        Error::invalid(
+            "influence",
+            scale,
+            "the bodies have no compliance at the interface (two rigid bodies?)",
+        )
+    })
 }
 
 /// The paired points have equal weights and opposite normals.

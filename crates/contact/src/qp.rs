@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::conic::{self, CscMatrix, Outcome, Solution};
 use crate::watch;
-use crate::{kalker, ContactSolver, InterfaceProblem};
+use crate::{kalker, problem, ContactSolver, InterfaceProblem};
 
 /// The n × n arrays of a solve held at once: the upper triangle as triplets and CSC (three
 /// n²/2 arrays) and the factor's fill.
@@ -146,13 +146,7 @@ impl ScaledQp {
             .map(|i| w[i] * a[(i, i)] * w[i])
             .fold(0.0, f64::max)
             .sqrt();
-        if !(s > 0.0) {
-            return Err(Error::invalid(
-                "influence",
-                s,
-                "the bodies have no compliance at the interface",
-            ));
-        }
+        problem::compliance(s)?;
         let (mut colptr, mut rowval, mut nzval) = (vec![0], vec![], vec![]);
         for j in 0..n {
             for i in 0..=j {

@@ -6,9 +6,8 @@ use contopt_core::{ContactState, Result};
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings,
-    ContactSolver, InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer, PolonskyKeerSettings,
-    Qp, QpSettings,
+    ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
+    InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer, PolonskyKeerSettings, Qp, QpSettings,
 };
 
 /// A contact solver and its settings, as a scene names it (`{ kind = "polonsky_keer",

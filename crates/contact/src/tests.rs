@@ -4,7 +4,9 @@ use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use contopt_core::observe::{Event, Flow, Method, Observer};
-use contopt_core::{ContactState, ElasticBody, Geometry, Interface, RigidBody, RigidMode, Termination};
+use contopt_core::{
+    ContactState, ElasticBody, Geometry, Interface, RigidBody, RigidMode, Termination,
+};
 use faer::Mat;
 
 use crate::{
@@ -238,7 +240,10 @@ fn mismatched_interfaces_and_impossible_loads_are_named() {
     let err = Penalty::new(PenaltySettings { c_mpa_per_mm: -1.0 })
         .unwrap_err()
         .to_string();
-    assert_eq!(err, "invalid c_mpa_per_mm = -1: must be positive and finite");
+    assert_eq!(
+        err,
+        "invalid c_mpa_per_mm = -1: must be positive and finite"
+    );
 }
 
 /// The dense matrix is refused before allocation past the memory limit, with its size, the
@@ -279,9 +284,7 @@ fn polonsky_keer_warm_start() {
         .solve_from(&problem, &[3.0, 0.0, 1.0])
         .unwrap();
     assert_close(&warm.pressure, &cold.pressure, 1e-10, "warm");
-    assert!(polonsky_keer()
-        .solve_from(&problem, &[1.0])
-        .is_err());
+    assert!(polonsky_keer().solve_from(&problem, &[1.0]).is_err());
 }
 
 /// Free modes replaced by two column translations, each with its own load (the optimiser's
@@ -314,11 +317,41 @@ fn column_modes_carry_their_own_loads() {
     );
     for s in solvers() {
         let st = s.solve(&columns).unwrap();
-        assert!(st.is_converged(), "{}: {}", name(s.as_ref()), st.termination);
+        assert!(
+            st.is_converged(),
+            "{}: {}",
+            name(s.as_ref()),
+            st.termination
+        );
         assert_close(&st.pressure, &reference.pressure, 1e-9, &name(s.as_ref()));
         assert_close(&st.rigid, &reference.rigid, 1e-12, &name(s.as_ref()));
         assert!(st.residuals.equilibrium < 1e-9, "{}", &name(s.as_ref()));
     }
+}
+
+/// A free mode's load and displacements are checked finite, each named.
+#[test]
+fn modes_with_infinite_values_are_named() {
+    let problem = floating_three_points(0.0);
+    let mode = |load: f64, r: f64| crate::FreeMode {
+        name: "column".into(),
+        points: vec![0, 1],
+        displacement: vec![1.0, r],
+        load,
+    };
+    let err = problem
+        .with_modes(vec![mode(f64::INFINITY, 1.0)])
+        .unwrap_err()
+        .to_string();
+    assert_eq!(err, "invalid mode `column`.load = inf: must be finite");
+    let err = problem
+        .with_modes(vec![mode(-1.0, f64::NAN)])
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        err,
+        "invalid mode `column`.displacement[1] = NaN: must be finite"
+    );
 }
 
 /// A second body that lists its points in another order is paired by position: its influence
@@ -480,7 +513,10 @@ fn observed(
     let end = RefCell::new(None);
     let observer = |e: &Event| {
         if let Some(termination) = e.end {
-            assert_eq!(e.level, 0, "only the outermost method announces its end here");
+            assert_eq!(
+                e.level, 0,
+                "only the outermost method announces its end here"
+            );
             *end.borrow_mut() = Some(termination.clone());
             return Flow::Continue;
         }
@@ -530,7 +566,11 @@ fn observers_see_every_iteration() {
             Method::PolonskyKeer => assert_eq!(own, st.iterations),
             _ => assert_eq!(own, st.iterp, "{}: Kalker's solves", name(s)),
         }
-        assert!(own >= 3, "{}: {own} iterations are too few for the test", name(s));
+        assert!(
+            own >= 3,
+            "{}: {own} iterations are too few for the test",
+            name(s)
+        );
     }
 }
 
@@ -594,9 +634,6 @@ fn full_penalty_matches_the_condensed_one() {
     assert_eq!(st.non_finite(), None);
     // A system whose weights do not match its points is refused.
     system.w.pop();
-    let err = full_penalty(c)
-        .solve(&mut system)
-        .unwrap_err()
-        .to_string();
+    let err = full_penalty(c).solve(&mut system).unwrap_err().to_string();
     assert!(err.contains("full system weights"), "{err}");
 }

@@ -4,9 +4,14 @@
 
 use crate::{Error, Result};
 
+/// Positive and finite (false for NaN).
+fn is_positive(value: f64) -> bool {
+    value > 0.0 && value.is_finite()
+}
+
 /// `value` when it is positive and finite.
 pub fn positive(field: &str, value: f64) -> Result<f64> {
-    if value > 0.0 && value.is_finite() {
+    if is_positive(value) {
         Ok(value)
     } else {
         Err(Error::invalid(field, value, "must be positive and finite"))
@@ -18,7 +23,11 @@ pub fn non_negative(field: &str, value: f64) -> Result<f64> {
     if value >= 0.0 && value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::invalid(field, value, "must be zero or positive, and finite"))
+        Err(Error::invalid(
+            field,
+            value,
+            "must be zero or positive, and finite",
+        ))
     }
 }
 
@@ -69,6 +78,14 @@ pub fn all_finite(field: &str, values: &[f64]) -> Result<()> {
     }
 }
 
+/// Every value of `values` positive and finite, each reported by its index when it is not.
+pub fn all_positive(field: &str, values: &[f64]) -> Result<()> {
+    match values.iter().position(|&v| !is_positive(v)) {
+        Some(k) => positive(&format!("{field}[{k}]"), values[k]).map(|_| ()),
+        None => Ok(()),
+    }
+}
+
 /// An initial gap: one finite value per interface point (`n` of them) \[mm\].
 pub fn gap(initial_gap: &[f64], n: usize) -> Result<()> {
     if initial_gap.len() != n {
@@ -101,5 +118,9 @@ mod tests {
         assert_eq!(e, "invalid mesh.elements = 0: must lie in 1 ..= 10");
         let e = all_finite("v", &[1.0, f64::NAN]).unwrap_err().to_string();
         assert!(e.starts_with("invalid v[1] = NaN"), "{e}");
+        let e = all_positive("w", &[1.0, 0.5, 0.0]).unwrap_err().to_string();
+        assert_eq!(e, "invalid w[2] = 0: must be positive and finite");
+        assert!(all_positive("w", &[1.0, f64::INFINITY]).is_err());
+        assert!(all_positive("w", &[1.0, 2.0]).is_ok());
     }
 }

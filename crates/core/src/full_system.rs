@@ -37,4 +37,3 @@ pub trait FullSystem {
     /// |Σᵢ wᵢ pᵢ rᵢ + q| \[N\] (eq. 2.10).
     fn equilibrium(&self, pressure: &[f64]) -> f64;
 }
-

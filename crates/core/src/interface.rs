@@ -1,6 +1,6 @@
 use serde::{Deserialize, Serialize};
 
-use crate::{Error, Result};
+use crate::{check, Error, Result};
 
 /// How the surface measure of an interface point was formed.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -59,19 +59,9 @@ impl Interface {
             ));
         }
         if let Some(i) = points.iter().position(|x| x.iter().any(|c| !c.is_finite())) {
-            return Err(Error::invalid(
-                format!("interface.points[{i}]"),
-                format!("{:?}", points[i]),
-                "finite coordinates",
-            ));
+            check::all_finite(&format!("interface.points[{i}]"), &points[i])?;
         }
-        if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
-            return Err(Error::invalid(
-                format!("interface.weights[{i}]"),
-                weights[i],
-                "positive and finite",
-            ));
-        }
+        check::all_positive("interface.weights", &weights)?;
         for (i, nrm) in normals.iter().enumerate() {
             let len = nrm.iter().map(|c| c * c).sum::<f64>().sqrt();
             if (len - 1.0).abs() > GEOMETRY_TOLERANCE {
@@ -123,7 +113,9 @@ impl Interface {
     /// The points kept by `keep`, in order (one flag per point), with their weights and
     /// normals; `None` when none is kept.
     pub fn subset(&self, keep: &[bool]) -> Option<Interface> {
-        let index: Vec<usize> = (0..self.len()).filter(|&i| keep.get(i) == Some(&true)).collect();
+        let index: Vec<usize> = (0..self.len())
+            .filter(|&i| keep.get(i) == Some(&true))
+            .collect();
         if index.is_empty() {
             return None;
         }

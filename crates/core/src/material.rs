@@ -45,13 +45,7 @@ impl Material {
     /// plane-strain and axisymmetric elasticity matrices are singular.
     pub fn new(e: f64, nu: f64) -> Result<Self> {
         check::positive("e_mpa", e)?;
-        if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-            return Err(Error::invalid(
-                "nu",
-                nu,
-                "Poisson's ratio must satisfy -1 < nu < 0.5",
-            ));
-        }
+        check::between("nu", nu, -1.0, 0.5)?;
         Ok(Self { e, nu })
     }
 
@@ -74,5 +68,22 @@ impl Material {
     /// pair's modulus is 1/E* = Σ (1 − νₖ²)/Eₖ \[1/MPa\].
     pub fn contact_compliance(&self) -> f64 {
         1.0 / self.plane_strain_modulus()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// E positive and finite, ν strictly between −1 and 0.5, each by the shared checks.
+    #[test]
+    fn rejects_moduli_and_ratios_out_of_range() {
+        assert!(Material::new(2.1e5, 0.3).is_ok());
+        let e = Material::new(2.1e5, 0.5).unwrap_err().to_string();
+        assert_eq!(e, "invalid nu = 0.5: must lie strictly between -1 and 0.5");
+        let e = Material::new(f64::INFINITY, 0.3).unwrap_err().to_string();
+        assert_eq!(e, "invalid e_mpa = inf: must be positive and finite");
+        assert!(Material::new(2.1e5, f64::NAN).is_err());
+        assert!(Material::new(2.1e5, -1.0).is_err());
     }
 }

@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{Error, Result};
+use crate::{check, Error, Result};
 
 /// A symmetric stress tensor \[MPa\], tension positive. For a body with a contact surface, x
 /// and y run along the surface and z into the body; a plane or axisymmetric body puts its
@@ -280,29 +280,10 @@ impl SubsurfaceRequest {
                 "give at least one depth",
             ));
         }
-        if let Some((i, d)) = self
-            .depths
-            .iter()
-            .enumerate()
-            .find(|(_, d)| !(d.is_finite() && **d > 0.0))
-        {
-            return Err(Error::invalid(
-                format!("subsurface.depths[{i}]"),
-                d,
-                "must be positive and finite (the surface itself is the contact pressure)",
-            ));
-        }
-        if let Some((i, s)) = self
-            .sections
-            .iter()
-            .enumerate()
-            .find(|(_, s)| !s.at.is_finite())
-        {
-            return Err(Error::invalid(
-                format!("subsurface.sections[{i}].at"),
-                s.at,
-                "must be finite",
-            ));
+        // Positive: the surface itself (depth 0) is the contact pressure.
+        check::all_positive("subsurface.depths", &self.depths)?;
+        for (i, s) in self.sections.iter().enumerate() {
+            check::finite(&format!("subsurface.sections[{i}].at"), s.at)?;
         }
         Ok(())
     }

@@ -1,4 +1,4 @@
-use contopt_core::{Error, Geometry, Result};
+use contopt_core::{check, Geometry, Result};
 use serde::{Deserialize, Serialize};
 
 use crate::Material;
@@ -29,15 +29,7 @@ impl Analysis {
         match *self {
             Analysis::Axisymmetric => Ok(()),
             Analysis::PlaneStress { thickness } | Analysis::PlaneStrain { thickness } => {
-                if thickness.is_finite() && thickness > 0.0 {
-                    Ok(())
-                } else {
-                    Err(Error::invalid(
-                        "analysis.thickness",
-                        thickness,
-                        "must be positive and finite",
-                    ))
-                }
+                check::positive("analysis.thickness", thickness).map(|_| ())
             }
         }
     }

@@ -6,9 +6,6 @@
 //! [`FeModel::solve`] solves a supported model, and [`FeBody`] condenses a model to its contact
 //! face as a [`contopt_core::ElasticBody`].
 
-// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
-
 mod analysis;
 mod body;
 pub mod coupled;

@@ -1,6 +1,6 @@
 //! Meshes of quadratic quadrilaterals and a structured generator with grading.
 
-use contopt_core::{memory, Error, Result, GEOMETRY_TOLERANCE};
+use contopt_core::{check, memory, Error, Result, GEOMETRY_TOLERANCE};
 use nalgebra::Matrix2;
 
 use crate::element::{ElementKind, FACE_NODES};
@@ -44,16 +44,12 @@ impl Spacing {
                 "at least two boundaries",
             ));
         }
-        if let Some(i) =
-            (1..coords.len()).find(|&i| !(coords[i] > coords[i - 1]) || !coords[i].is_finite())
-        {
+        check::all_finite("spacing.coords", &coords)?;
+        if let Some(i) = (1..coords.len()).find(|&i| coords[i] <= coords[i - 1]) {
             return Err(Error::invalid(
                 format!("spacing.coords[{i}]"),
                 coords[i],
-                format!(
-                    "must be finite and exceed the previous boundary {}",
-                    coords[i - 1]
-                ),
+                format!("must exceed the previous boundary {}", coords[i - 1]),
             ));
         }
         Ok(Self { coords })
@@ -69,6 +65,13 @@ impl Spacing {
                 format!("at most {MAX_AXIS_ELEMENTS} along one axis"),
             ));
         }
+        Ok(())
+    }
+
+    /// The ends a and b of a spacing, finite.
+    fn check_ends(a: f64, b: f64) -> Result<()> {
+        check::finite("spacing.start", a)?;
+        check::finite("spacing.end", b)?;
         Ok(())
     }
 
@@ -88,14 +91,9 @@ impl Spacing {
                 "at least one element",
             ));
         }
-        if !(ratio.is_finite() && ratio > 0.0) {
-            return Err(Error::invalid(
-                "spacing.ratio",
-                ratio,
-                "must be positive and finite",
-            ));
-        }
-        if !(b > a) {
+        check::positive("spacing.ratio", ratio)?;
+        Self::check_ends(a, b)?;
+        if b <= a {
             return Err(Error::invalid(
                 "spacing.end",
                 b,
@@ -131,8 +129,10 @@ impl Spacing {
                 "at least one element",
             ));
         }
+        Self::check_ends(a, b)?;
+        check::positive("spacing.first", first)?;
         let len = b - a;
-        if !(first > 0.0 && first * n as f64 <= len * (1.0 + SPACING_ROUND_OFF)) {
+        if first * n as f64 > len * (1.0 + SPACING_ROUND_OFF) {
             return Err(Error::invalid(
                 "spacing.first",
                 first,
@@ -167,14 +167,15 @@ impl Spacing {
     /// elements far from them are `ratio` times larger than those next to them. The points are
     /// element boundaries: the punch edge gets nodes on both of its sides.
     pub fn graded(a: f64, b: f64, n: usize, points: &[f64], ratio: f64) -> Result<Self> {
-        if let Some(p) = points.iter().find(|p| !(**p >= a && **p <= b)) {
+        if let Some(p) = points.iter().find(|p| !(a..=b).contains(*p)) {
             return Err(Error::invalid(
                 "spacing.points",
                 p,
                 format!("must lie in [{a}, {b}]"),
             ));
         }
-        if !(ratio >= 1.0) {
+        check::finite("spacing.ratio", ratio)?;
+        if ratio < 1.0 {
             return Err(Error::invalid(
                 "spacing.ratio",
                 ratio,
@@ -324,7 +325,7 @@ impl Mesh {
             for &(xi, _) in &crate::element::GAUSS3 {
                 for &(eta, _) in &crate::element::GAUSS3 {
                     let det = self.jacobian(e, xi, eta).1;
-                    if !(det > 0.0) {
+                    if det.is_nan() || det <= 0.0 {
                         return Err(Error::Mesh(format!(
                             "element {e} has Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): \
                              inverted or degenerate (nodes must run counter-clockwise)"
@@ -597,10 +598,27 @@ mod tests {
         .map(|p| [-p[0], p[1]])
         .unwrap_err();
         assert!(err.to_string().contains("Jacobian"), "{err}");
-        assert!(Spacing::from_coords(vec![0.0, 1.0, 1.0])
+        let e = Spacing::from_coords(vec![0.0, 1.0, 1.0])
             .unwrap_err()
-            .to_string()
-            .contains("coords[2]"));
+            .to_string();
+        assert_eq!(
+            e,
+            "invalid spacing.coords[2] = 1: must exceed the previous boundary 1"
+        );
+        let e = Spacing::from_coords(vec![f64::NAN, 1.0])
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "invalid spacing.coords[0] = NaN: must be finite");
+        let e = Spacing::uniform(0.0, f64::INFINITY, 2)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "invalid spacing.end = inf: must be finite");
+        let e = Spacing::geometric(0.0, 1.0, 2, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "invalid spacing.ratio = 0: must be positive and finite");
+        assert!(Spacing::graded(0.0, 1.0, 4, &[0.5], f64::INFINITY).is_err());
+        assert!(Spacing::geometric_first(0.0, 1.0, 4, f64::NAN).is_err());
         assert!(Spacing::uniform(0.0, 1.0, 4)
             .unwrap()
             .restrict(0.0, 0.3)

@@ -2,7 +2,7 @@
 
 use std::collections::BTreeMap;
 
-use contopt_core::{Error, Result, GEOMETRY_TOLERANCE};
+use contopt_core::{check, Error, Result, GEOMETRY_TOLERANCE};
 
 use crate::element::{lagrange2, GAUSS3};
 use crate::{Analysis, Face, Material, Mesh};
@@ -130,9 +130,7 @@ impl FeModel {
         value: f64,
     ) -> Result<&mut Self> {
         self.check_nodes(nodes, "support.nodes")?;
-        if !value.is_finite() {
-            return Err(Error::invalid("support.value", value, "must be finite"));
-        }
+        check::finite("support.value", value)?;
         for &n in nodes {
             self.prescribed.insert((n, component), value);
         }
@@ -142,9 +140,7 @@ impl FeModel {
     /// A uniform pressure `p` \[MPa\] on `faces`, positive when it pushes into the body.
     pub fn pressure(&mut self, faces: &[Face], p: f64) -> Result<&mut Self> {
         self.check_faces(faces, "pressure.faces")?;
-        if !p.is_finite() {
-            return Err(Error::invalid("pressure.value", p, "must be finite"));
-        }
+        check::finite("pressure.value", p)?;
         self.face_load(faces, |fp| [-p * fp.normal[0], -p * fp.normal[1]]);
         Ok(self)
     }
@@ -161,17 +157,12 @@ impl FeModel {
         t: impl Fn([f64; 2]) -> [f64; 2],
     ) -> Result<&mut Self> {
         self.check_faces(faces, "traction.faces")?;
-        if let Some(bad) = faces
+        for v in faces
             .iter()
             .flat_map(|&f| GAUSS3.map(|(s, _)| self.face_point(f, s).x))
             .map(&t)
-            .find(|v| !(v[0].is_finite() && v[1].is_finite()))
         {
-            return Err(Error::invalid(
-                "traction.value",
-                format!("{bad:?}"),
-                "must be finite",
-            ));
+            check::all_finite("traction.value", &v)?;
         }
         self.face_load(faces, |fp| t(fp.x));
         Ok(self)
@@ -180,13 +171,7 @@ impl FeModel {
     /// A force `f` = (f_x, f_y) \[N\] at `node` (in axisymmetry: the force of the whole ring).
     pub fn nodal_force(&mut self, node: usize, f: [f64; 2]) -> Result<&mut Self> {
         self.check_nodes(&[node], "force.node")?;
-        if !(f[0].is_finite() && f[1].is_finite()) {
-            return Err(Error::invalid(
-                "force.value",
-                format!("{f:?}"),
-                "must be finite",
-            ));
-        }
+        check::all_finite("force.value", &f)?;
         self.forces[2 * node] += f[0];
         self.forces[2 * node + 1] += f[1];
         Ok(self)

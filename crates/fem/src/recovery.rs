@@ -13,8 +13,8 @@
 //! parallelogram element) is recovered exactly.
 
 use contopt_core::{
-    ElasticBody, Error, Result, Section, SectionAxis, SectionField, StressPeaks, StressTensor,
-    Subsurface, SubsurfaceRequest,
+    check, ElasticBody, Error, Result, Section, SectionAxis, SectionField, StressPeaks,
+    StressTensor, Subsurface, SubsurfaceRequest,
 };
 
 use crate::element::{lagrange2, GAUSS3};
@@ -197,13 +197,7 @@ impl FeBody {
                 format!("one pressure per interface point ({})", weights.len()),
             ));
         }
-        if let Some((i, p)) = pressure.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-            return Err(Error::invalid(
-                format!("{}.pressure[{i}]", self.name()),
-                p,
-                "must be finite",
-            ));
-        }
+        check::all_finite(&format!("{}.pressure", self.name()), pressure)?;
         Ok(pressure.iter().zip(weights).map(|(p, w)| p * w).collect())
     }
 

@@ -1,7 +1,7 @@
 use std::f64::consts::PI;
 
 use contopt_core::{
-    Error, Geometry, Interface, Material, Result, StressTensor, Subsurface, SubsurfaceRequest,
+    check, Geometry, Interface, Material, Result, StressTensor, Subsurface, SubsurfaceRequest,
 };
 use faer::Mat;
 
@@ -81,13 +81,7 @@ impl AxisymmetricHalfSpace {
     /// (increasing, from 0 or more). The surface is at z = 0 with outward normal +z.
     pub fn new(name: impl Into<String>, material: Material, edges: &[f64]) -> Result<Self> {
         check_edges(edges, "half_space.edges")?;
-        if edges[0] < 0.0 {
-            return Err(Error::invalid(
-                "half_space.edges[0]",
-                edges[0],
-                "radii must be >= 0",
-            ));
-        }
+        check::non_negative("half_space.edges[0]", edges[0])?;
         let n = edges.len() - 1;
         let interface = Self::rings_interface(edges)?;
         let scale = 4.0 / (PI * material.plane_strain_modulus());

@@ -1,7 +1,7 @@
 use std::f64::consts::PI;
 
 use contopt_core::{
-    Error, Geometry, Interface, Material, Result, StressTensor, Subsurface, SubsurfaceRequest,
+    check, Geometry, Interface, Material, Result, StressTensor, Subsurface, SubsurfaceRequest,
 };
 use faer::Mat;
 
@@ -47,7 +47,7 @@ impl HalfPlane {
     /// (mirrored).
     pub fn strips_interface(edges: &[f64], thickness: f64) -> Result<Interface> {
         check_edges(edges, "half_plane.edges")?;
-        contopt_core::check::positive("thickness_mm", thickness)?;
+        check::positive("thickness_mm", thickness)?;
         let n = edges.len() - 1;
         let points: Vec<[f64; 3]> = (0..n)
             .map(|j| [0.5 * (edges[j] + edges[j + 1]), 0.0, 0.0])
@@ -74,20 +74,8 @@ impl HalfPlane {
         datum: f64,
     ) -> Result<Self> {
         check_edges(edges, "half_plane.edges")?;
-        if !(thickness > 0.0 && thickness.is_finite()) {
-            return Err(Error::invalid(
-                "half_plane.thickness",
-                thickness,
-                "must be positive and finite",
-            ));
-        }
-        if !(datum > 0.0 && datum.is_finite()) {
-            return Err(Error::invalid(
-                "half_plane.datum",
-                datum,
-                "must be positive and finite",
-            ));
-        }
+        check::positive("half_plane.thickness", thickness)?;
+        check::positive("half_plane.datum", datum)?;
         let modulus = match state {
             PlaneState::Strain => material.plane_strain_modulus(),
             PlaneState::Stress => material.e(),
@@ -138,7 +126,13 @@ impl HalfPlane {
         request: &SubsurfaceRequest,
     ) -> Result<Subsurface> {
         let name = &self.surface.name;
-        let centres: Vec<f64> = self.surface.interface.points().iter().map(|p| p[0]).collect();
+        let centres: Vec<f64> = self
+            .surface
+            .interface
+            .points()
+            .iter()
+            .map(|p| p[0])
+            .collect();
         let (first, last) = (self.edges[0], self.edges[self.edges.len() - 1]);
         let axis_extra = first <= 0.0 && 0.0 <= last && !centres.contains(&0.0);
         let extra: &[f64] = if axis_extra { &[0.0] } else { &[] };

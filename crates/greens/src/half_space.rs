@@ -2,8 +2,8 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use contopt_core::{
-    memory, ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode, Subsurface,
-    SubsurfaceRequest,
+    check, memory, ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode,
+    Subsurface, SubsurfaceRequest,
 };
 use faer::Mat;
 
@@ -189,11 +189,8 @@ impl HalfSpace {
                 "at least one cell each way",
             ));
         }
-        for (field, v) in [("half_space.dx", dx), ("half_space.dy", dy)] {
-            if !(v > 0.0 && v.is_finite()) {
-                return Err(Error::invalid(field, v, "must be positive and finite"));
-            }
-        }
+        check::positive("half_space.dx", dx)?;
+        check::positive("half_space.dy", dy)?;
         memory::require(
             format!("a half-space grid of {nx} × {ny} cells"),
             Self::grid_bytes(nx, ny),
@@ -283,13 +280,7 @@ impl HalfSpace {
     /// 0 (a roller under its load, both as half-spaces): one rigid mode that moves every point by
     /// one unit into the body, loaded by −force.
     pub fn pressed(mut self, force: f64) -> Result<Self> {
-        if !(force > 0.0 && force.is_finite()) {
-            return Err(Error::invalid(
-                "half_space.force",
-                force,
-                "must be positive: the body is pressed into contact",
-            ));
-        }
+        check::positive("half_space.force", force)?;
         self.modes = vec![RigidMode {
             name: "translation".into(),
             interface_displacement: vec![1.0; self.interface.len()],

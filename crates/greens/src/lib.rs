@@ -13,9 +13,6 @@
 //! ([`contopt_core::ElasticBody::subsurface`]): FFT products of Love's rectangle kernels on a
 //! grid, closed forms for strips and on the axis of rings, a rim quadrature off it.
 
-// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
-
 mod axisymmetric;
 pub mod elliptic;
 mod fft;
@@ -30,7 +27,7 @@ pub use half_plane::{HalfPlane, PlaneState};
 pub use half_space::HalfSpace;
 pub use winkler::Winkler;
 
-use contopt_core::{Error, Result};
+use contopt_core::{check, Error, Result};
 
 /// Checks that region edges are finite and strictly increasing, at least two.
 fn check_edges(edges: &[f64], field: &str) -> Result<()> {
@@ -48,13 +45,12 @@ fn check_edges(edges: &[f64], field: &str) -> Result<()> {
         contopt_core::memory::BODY_LIMIT_BYTES,
         "use fewer rings or strips",
     )?;
-    if let Some(i) = (1..edges.len())
-        .find(|&i| !(edges[i] > edges[i - 1]) || !edges[i].is_finite() || !edges[0].is_finite())
-    {
+    check::all_finite(field, edges)?;
+    if let Some(i) = (1..edges.len()).find(|&i| edges[i] <= edges[i - 1]) {
         return Err(Error::invalid(
             format!("{field}[{i}]"),
             edges[i],
-            format!("must be finite and exceed {}", edges[i - 1]),
+            format!("must exceed {}", edges[i - 1]),
         ));
     }
     Ok(())

@@ -440,14 +440,20 @@ impl HalfSpace {
             SectionAxis::X => {
                 let j = nearest(section.at, origin[1], self.dy, ny);
                 let cells: Vec<usize> = (0..nx).map(|i| j * nx + i).collect();
-                let positions = cells.iter().map(|&k| self.interface.points()[k][0]).collect();
+                let positions = cells
+                    .iter()
+                    .map(|&k| self.interface.points()[k][0])
+                    .collect();
                 let at = origin[1] + j as f64 * self.dy;
                 (Section { at, ..section }, cells, positions)
             }
             SectionAxis::Y => {
                 let i = nearest(section.at, origin[0], self.dx, nx);
                 let cells: Vec<usize> = (0..ny).map(|j| j * nx + i).collect();
-                let positions = cells.iter().map(|&k| self.interface.points()[k][1]).collect();
+                let positions = cells
+                    .iter()
+                    .map(|&k| self.interface.points()[k][1])
+                    .collect();
                 let at = origin[0] + i as f64 * self.dx;
                 (Section { at, ..section }, cells, positions)
             }

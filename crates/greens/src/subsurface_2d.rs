@@ -4,8 +4,8 @@
 //! gathers the peaks and the section, so that the two bodies share one sweep.
 
 use contopt_core::{
-    Error, Result, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,
-    SubsurfaceRequest,
+    check, Error, Result, Section, SectionAxis, SectionField, StressPeaks, StressTensor,
+    Subsurface, SubsurfaceRequest,
 };
 
 /// Checks that `pressure` has one finite value per contact point (`points` of them).
@@ -17,36 +17,18 @@ pub(crate) fn check_pressure(body: &str, pressure: &[f64], points: usize) -> Res
             format!("give one pressure per contact point ({points})"),
         ));
     }
-    if let Some((i, p)) = pressure.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-        return Err(Error::invalid(
-            format!("{body}.subsurface.pressure[{i}]"),
-            p,
-            "must be finite",
-        ));
-    }
-    Ok(())
+    check::all_finite(&format!("{body}.subsurface.pressure"), pressure)
 }
 
 /// Checks one evaluation point: `x` finite (and ≥ 0 when `radial`), `depth` finite and > 0.
 pub(crate) fn check_point(body: &str, x: f64, depth: f64, radial: bool) -> Result<()> {
-    if !x.is_finite() || (radial && x < 0.0) {
-        return Err(Error::invalid(
-            format!("{body}.stress_at.x"),
-            x,
-            if radial {
-                "a radius must be finite and >= 0"
-            } else {
-                "must be finite"
-            },
-        ));
+    if radial {
+        check::non_negative(&format!("{body}.stress_at.x"), x)?;
+    } else {
+        check::finite(&format!("{body}.stress_at.x"), x)?;
     }
-    if !(depth > 0.0 && depth.is_finite()) {
-        return Err(Error::invalid(
-            format!("{body}.stress_at.depth"),
-            depth,
-            "must be positive and finite (the surface itself is the contact pressure)",
-        ));
-    }
+    // Positive: the surface itself (depth 0) is the contact pressure.
+    check::positive(&format!("{body}.stress_at.depth"), depth)?;
     Ok(())
 }
 

@@ -37,7 +37,8 @@ pub struct Constant {
 impl Constant {
     /// The constant controller; 0 < `level` ≤ 1.
     pub fn new(level: f64) -> Result<Self> {
-        if !(level > 0.0 && level <= 1.0) {
+        // Open at 0, closed at 1: not `check::between`'s open interval.
+        if !(0.0..=1.0).contains(&level) || level == 0.0 {
             return Err(Error::invalid("level", level, "must lie in (0, 1]"));
         }
         Ok(Self { level })
@@ -71,12 +72,9 @@ pub struct Profile {
 impl Profile {
     fn new(l1: f64, l2: f64, fall: Fall) -> Result<Self> {
         check::non_negative("l1_mm", l1)?;
-        if !(l2 >= l1 && l2.is_finite()) {
-            return Err(Error::invalid(
-                "l2_mm",
-                l2,
-                format!("must be finite and ≥ L1 = {l1}"),
-            ));
+        check::finite("l2_mm", l2)?;
+        if l2 < l1 {
+            return Err(Error::invalid("l2_mm", l2, format!("must be ≥ L1 = {l1}")));
         }
         Ok(Self {
             l1,

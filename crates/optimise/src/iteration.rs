@@ -4,7 +4,7 @@ use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
 use contopt_core::observe::{Flow, Method};
-use contopt_core::{ContactState, Error, Result, Termination};
+use contopt_core::{check, ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{ColPivQr, SolveLstsq};
 use faer::Mat;
 
@@ -247,14 +247,8 @@ impl Optimisation<'_> {
                 ));
             }
         }
-        if !(p_max > 0.0) {
-            return Err(Error::invalid(
-                "p_max",
-                p_max,
-                "the given load needs a positive pressure",
-            ));
-        }
-        Ok(p_max)
+        check::positive("p_max", p_max)
+            .map_err(|_| Error::invalid("p_max", p_max, "the given load needs a positive pressure"))
     }
 }
 

@@ -28,9 +28,6 @@
 //! [`LoadSplitSettings`], [`LinearProgrammeSettings`], [`OptimisationMethod`]); controllers
 //! are built from [`ControllerSettings`] too.
 
-// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
-
 mod controller;
 mod iteration;
 mod load_split;

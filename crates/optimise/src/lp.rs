@@ -5,7 +5,7 @@ use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
 use contopt_core::observe::{Flow, Method};
-use contopt_core::{Error, Result, Termination};
+use contopt_core::{check, Error, Result, Termination};
 use faer::Mat;
 
 use crate::passes::Passes;
@@ -225,13 +225,13 @@ impl<'o, 'a> Programme<'o, 'a> {
         } else {
             q.iter().map(|x| x.abs()).fold(0.0, f64::max) / area
         };
-        if !(unit_p > 0.0 && unit_p.is_finite()) {
-            return Err(Error::invalid(
+        check::positive("loads", unit_p).map_err(|_| {
+            Error::invalid(
                 "loads",
                 unit_p,
                 "neither a load nor an overlap presses the bodies together",
-            ));
-        }
+            )
+        })?;
         let rigid_scale = (0..q.len())
             .map(|m| (0..n).map(|i| rigid[(i, m)].abs()).fold(0.0, f64::max))
             .collect();

@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use contopt_core::{Error, Result};
+use contopt_core::{check, Error, Result};
 
 /// The largest crown table \[bytes\]: a page of numbers.
 const MAX_TABLE_BYTES: u64 = 1_000_000;
@@ -91,7 +91,8 @@ impl Crown {
     /// a header.
     pub fn read_table(path: &std::path::Path) -> Result<Self> {
         let unreadable = |why: String| Error::invalid("profile.file", path.display(), why);
-        let file = std::fs::File::open(path).map_err(|e| unreadable(format!("cannot be read: {e}")))?;
+        let file =
+            std::fs::File::open(path).map_err(|e| unreadable(format!("cannot be read: {e}")))?;
         if !file.metadata().is_ok_and(|m| m.is_file()) {
             return Err(unreadable("is not a regular file".into()));
         }
@@ -129,7 +130,7 @@ impl Crown {
 
     /// ISO/TS 16281's profile for a roller of diameter `diameter` \[mm\].
     pub fn iso(diameter: f64) -> Result<Self> {
-        positive("profile.diameter_mm", diameter)?;
+        check::positive("profile.diameter_mm", diameter)?;
         Ok(Crown::Iso { diameter })
     }
 
@@ -142,9 +143,9 @@ impl Crown {
 
     /// Johns and Gohar's profile; `half_width` is Hertz's b for the line load Q/l \[mm\].
     pub fn johns_gohar(load: f64, length: f64, e_star: f64, half_width: f64) -> Result<Self> {
-        positive("half_width", half_width)?;
+        check::positive("half_width", half_width)?;
         let end = (2.0 * half_width / length).powi(2);
-        if !(end < 1.0) {
+        if end.is_nan() || end >= 1.0 {
             return Err(Error::invalid(
                 "half_width",
                 half_width,
@@ -167,9 +168,10 @@ impl Crown {
         length: f64,
         e_star: f64,
     ) -> Result<Self> {
-        positive("profile.k1", k1)?;
-        positive("profile.z_m_mm", z_m)?;
-        if !(k2 > 0.0 && k2 <= 1.0) {
+        check::positive("profile.k1", k1)?;
+        check::positive("profile.z_m_mm", z_m)?;
+        // Open at 0, closed at 1: not `check::between`'s open interval.
+        if !(0.0..=1.0).contains(&k2) || k2 == 0.0 {
             return Err(Error::invalid("profile.k2", k2, "must lie in (0, 1]"));
         }
         Ok(Crown::FujiwaraKawase {
@@ -188,9 +190,10 @@ impl Crown {
                 "one drop per position, at least one row",
             ));
         }
+        // One message per row, both values, as a table file lists them (a finite x[k] ≥ 0
+        // first, so that the comparison with the row before is between numbers).
         if let Some(k) = (0..x.len()).find(|&k| {
-            !(x[k].is_finite() && x[k] >= 0.0 && drop[k].is_finite())
-                || (k > 0 && !(x[k] > x[k - 1]))
+            !(x[k].is_finite() && x[k] >= 0.0 && drop[k].is_finite()) || (k > 0 && x[k] <= x[k - 1])
         }) {
             return Err(Error::invalid(
                 format!("profile.table row {}", k + 1),
@@ -205,7 +208,7 @@ impl Crown {
     /// an error at or past the ends, where the logarithmic profiles are infinite.
     pub fn drop(&self, x: f64, length: f64) -> Result<f64> {
         let u = 2.0 * x.abs() / length;
-        if !(u < 1.0) {
+        if u.is_nan() || u >= 1.0 {
             return Err(Error::invalid(
                 "x",
                 x,
@@ -238,18 +241,10 @@ impl Crown {
     }
 }
 
-fn positive(field: &str, v: f64) -> Result<()> {
-    if v > 0.0 && v.is_finite() {
-        Ok(())
-    } else {
-        Err(Error::invalid(field, v, "must be positive and finite"))
-    }
-}
-
 fn checked_scale(load: f64, length: f64, e_star: f64) -> Result<f64> {
-    positive("load", load)?;
-    positive("length", length)?;
-    positive("e_star", e_star)?;
+    check::positive("load", load)?;
+    check::positive("length", length)?;
+    check::positive("e_star", e_star)?;
     Ok(log_scale(load, length, e_star))
 }
 
@@ -393,18 +388,20 @@ mod settings_tests {
             serde_json::from_str(r#"{"fujiwara_kawase": {"k1": 1.2, "k2": 0.4, "z_m_mm": 0.01}}"#)
                 .unwrap();
         let (q, l, e) = (roller.load, roller.length, roller.e_star());
+        // No table here: the folder a table would be read from is not used.
+        let dir = std::path::Path::new(".");
         assert_eq!(
-            read.build(&roller).unwrap(),
+            read.build(&roller, dir).unwrap(),
             Crown::fujiwara_kawase(1.2, 0.4, 0.01, q, l, e).unwrap()
         );
         let jg: CrownSettings = serde_json::from_str(r#""johns_gohar""#).unwrap();
         let b = roller.hertz().unwrap().0;
         assert_eq!(
-            jg.build(&roller).unwrap(),
+            jg.build(&roller, dir).unwrap(),
             Crown::johns_gohar(q, l, e, b).unwrap()
         );
         assert_eq!(
-            CrownSettings::Iso.build(&roller).unwrap(),
+            CrownSettings::Iso.build(&roller, dir).unwrap(),
             Crown::iso(10.0).unwrap()
         );
         let e = serde_json::from_str::<CrownSettings>(r#"{"fujiwara_kawase": {"k1": 1, "zm": 1}}"#)

@@ -45,9 +45,7 @@ impl Envelope {
             )?;
             check::all_finite(field, values)?;
         }
-        for (k, &f) in self.load_factors.iter().enumerate() {
-            check::positive(&format!("load_factors[{k}]"), f)?;
-        }
+        check::all_positive("load_factors", &self.load_factors)?;
         Ok(())
     }
 }

@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use contopt_core::{ElasticBody, Error, Material, Result};
+use contopt_core::{check, ElasticBody, Error, Material, Result};
 use contopt_greens::HalfSpace;
 
 use crate::Crown;
@@ -41,32 +41,23 @@ impl Roller {
 
     /// The effective radius across the contact, 1/R = 2/D + 2/D_r \[mm\].
     pub fn radius(&self) -> Result<f64> {
-        for (field, v) in [("diameter_mm", self.diameter), ("length_mm", self.length)] {
-            if !(v > 0.0 && v.is_finite()) {
-                return Err(Error::invalid(field, v, "must be positive and finite"));
-            }
-        }
+        check::positive("diameter_mm", self.diameter)?;
+        check::positive("length_mm", self.length)?;
         let curvature = 2.0 / self.diameter + self.raceway_diameter.map_or(0.0, |d| 2.0 / d);
-        if !(curvature > 0.0 && curvature.is_finite()) {
-            return Err(Error::invalid(
+        let curvature = check::positive("curvature", curvature).map_err(|_| {
+            Error::invalid(
                 "raceway_diameter_mm",
                 format!("{:?}", self.raceway_diameter),
                 "an outer ring must be larger than the roller (the pair must be convex)",
-            ));
-        }
+            )
+        })?;
         Ok(1.0 / curvature)
     }
 
     /// Hertz's line contact for the nominal line load Q/l: the half-width b \[mm\] and the peak
     /// p₀ \[MPa\].
     pub fn hertz(&self) -> Result<(f64, f64)> {
-        if !(self.load > 0.0 && self.load.is_finite()) {
-            return Err(Error::invalid(
-                "load_n",
-                self.load,
-                "must be positive and finite",
-            ));
-        }
+        check::positive("load_n", self.load)?;
         let q = self.load / self.length;
         let b = (4.0 * q * self.radius()? / (PI * self.e_star())).sqrt();
         Ok((b, 2.0 * q / (PI * b)))
@@ -102,16 +93,8 @@ impl Roller {
         ny: usize,
         reach: f64,
     ) -> Result<(HalfSpace, HalfSpace, Vec<f64>)> {
-        if !(reach > 0.0 && reach.is_finite()) {
-            return Err(Error::invalid(
-                "reach_b",
-                reach,
-                "must be positive and finite",
-            ));
-        }
-        if !self.tilt.is_finite() {
-            return Err(Error::invalid("tilt", self.tilt, "must be finite"));
-        }
+        check::positive("reach_b", reach)?;
+        check::finite("tilt", self.tilt)?;
         let radius = self.radius()?;
         let half = (ny - 1) / 2;
         let [dx, dy] = self.cell(nx, ny, reach)?;

@@ -8,9 +8,6 @@
 //! Coordinates: x along the roller axis (|x| ≤ l/2), y across the contact, z into the raceway.
 //! Units: N, mm, MPa.
 
-// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
-
 mod crown;
 mod design;
 mod figures;

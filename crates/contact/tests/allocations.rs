@@ -1,0 +1,279 @@
+//! Kalker's iteration allocates a fixed number of times per solve on a contact set, whatever
+//! the number of points: its buffers live in a workspace sized once per contact solve.
+//!
+//! A counting global allocator (one per test binary, hence this file) counts the allocations of
+//! the current thread; an observer reads the count at each of Kalker's solves (`iterp`), so the
+//! allocations of one step of the loop are the difference between two consecutive events.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::time::Instant;
+
+use contopt_contact::{
+    ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
+    InterfaceProblem, Penalty, PenaltySettings,
+};
+use contopt_core::observe::{Event, Flow, Method};
+use contopt_core::{ElasticBody, Geometry, Interface, RigidBody, RigidMode};
+use faer::Mat;
+
+/// The system allocator, counting the allocations (and reallocations) of each thread.
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
+}
+
+fn count() {
+    // `try_with`: the counter may already be gone while a thread ends.
+    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+}
+
+/// The allocations of this thread so far.
+fn allocations() -> u64 {
+    ALLOCATIONS.with(Cell::get)
+}
+
+// SAFETY: every call is forwarded to `System` unchanged; the counter is a thread-local `Cell`
+// with a const initialiser, whose access does not allocate.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        count();
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// A body given by its influence matrix; its product allocates nothing.
+struct MatrixBody {
+    interface: Interface,
+    a: Mat<f64>,
+    modes: Vec<RigidMode>,
+}
+
+impl ElasticBody for MatrixBody {
+    fn name(&self) -> &str {
+        "matrix body"
+    }
+    fn interface(&self) -> &Interface {
+        &self.interface
+    }
+    fn apply_influence(&self, force: &[f64], out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = (0..force.len()).map(|j| self.a[(i, j)] * force[j]).sum();
+        }
+    }
+    fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
+        Ok(vec![0.0; self.a.nrows()])
+    }
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &self.modes
+    }
+}
+
+/// n points on a line of a body with the compliance Aᵢⱼ = 10⁻³ e^(−|i−j|/3), floating (one
+/// translation loaded by n/20 N) over a wavy parabolic gap: about 70 % of the points close, after
+/// several changes of the contact set.
+fn wavy_floating(n: usize) -> InterfaceProblem<'static> {
+    let points = (0..n).map(|i| [i as f64, 0.0, 0.0]).collect();
+    let interface = Interface::new(
+        Geometry::Plane { thickness: 1.0 },
+        points,
+        vec![1.0; n],
+        vec![[0.0, 1.0, 0.0]; n],
+    )
+    .unwrap();
+    let a = Mat::from_fn(n, n, |i, j| 1e-3 * (-(i.abs_diff(j) as f64) / 3.0).exp());
+    let mode = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; n],
+        load: -(n as f64) / 20.0,
+    };
+    let body = MatrixBody {
+        interface,
+        a,
+        modes: vec![mode],
+    };
+    let rigid = RigidBody::fixed("rigid", body.interface());
+    let gap: Vec<f64> = (0..n)
+        .map(|i| {
+            let x = (i as f64 - n as f64 / 2.0) / (n as f64 / 2.0);
+            1e-3 * (x * x + 0.3 * (3.0 * i as f64).sin().abs())
+        })
+        .collect();
+    InterfaceProblem::owned(Box::new(body), Box::new(rigid), &gap).unwrap()
+}
+
+/// What one solve allocated: in all, and between consecutive reports of `method`.
+struct Counted {
+    total: u64,
+    steps: Vec<u64>,
+    iterp: usize,
+}
+
+/// Solves `problem` by `solver`, counting this thread's allocations, and at each event of
+/// `method` (Kalker's solves).
+fn counted(solver: &dyn ContactSolver, problem: &InterfaceProblem, method: Method) -> Counted {
+    // Build the dense matrix first: it is shared by every solve of the problem.
+    problem.dense_influence(1).unwrap();
+    let marks = std::cell::RefCell::new(Vec::with_capacity(10_000));
+    let observer = |e: &Event| {
+        if e.method == method && e.end.is_none() {
+            marks.borrow_mut().push(allocations());
+        }
+        Flow::Continue
+    };
+    let start = allocations();
+    let state = solver.solve_observed(problem, None, &observer).unwrap();
+    let total = allocations() - start;
+
+    assert!(state.is_converged(), "{}", state.termination);
+    let marks = marks.into_inner();
+    Counted {
+        total,
+        steps: marks.windows(2).map(|w| w[1] - w[0]).collect(),
+        iterp: state.iterp,
+    }
+}
+
+/// Allocations of a step of Kalker's loop in steady state (the difference between two
+/// consecutive solves on a contact set). Measured: 0, for n = 50 and 200 and every solver here,
+/// Cholesky and spectral solves alike (faer factorises and multiplies in the workspace's
+/// buffers and scratch). The margin is for faer's matrix products, which may allocate packing
+/// buffers on other processors; before the workspace, each step allocated 26 to 44 times (the
+/// index lists, the contact-set matrix, its factor, the right-hand sides, the gaps).
+const STEP: u64 = 2;
+
+/// Allocations of the one step that switches from the Cholesky solves at c_stiff to the
+/// spectral ones (the active set's exact solves, a penalty or a Uzawa step with c above
+/// c_stiff): the eigenvectors, the eigenvalues, the eigen-decomposition's scratch, the
+/// contact-set matrix resized to the set, a product and the subproblem's zero shift. Measured:
+/// 6 or 7.
+const SWITCH: u64 = 10;
+
+/// Allocations of a whole contact solve less its steps: the workspace (the free gap, R and q,
+/// the iterate, the gaps, the index lists and the right-hand sides, each once), the contact
+/// set, the zero reference and shift, and the contact state with its gap. Measured: 30 to 37
+/// whatever n and the number of solves (for the augmented Lagrangian, 125 to 128 of them).
+const SOLVE: u64 = 45;
+
+/// Kalker's loop reuses one workspace for every solve on a contact set: its steps allocate
+/// nothing (beyond a small margin for faer's kernels), whatever the number of points, so that a
+/// contact solve allocates a fixed number of times however many steps it takes.
+#[test]
+fn kalker_steps_allocate_a_fixed_number_of_times() {
+    let active_set = ActiveSet::new(ActiveSetSettings::default()).unwrap();
+    let stiff_penalty = Penalty::new(PenaltySettings { c_mpa_per_mm: 1e12 }).unwrap();
+    // Plain Uzawa steps (not accelerated) at c below c_stiff = 10⁶ / maxᵢ(Aᵢᵢ wᵢ) = 10⁹ (Cholesky
+    // solves, over a hundred of them) and above it (spectral solves).
+    let uzawa = |c| {
+        AugmentedLagrangian::new(AugmentedLagrangianSettings {
+            accelerate: false,
+            ..AugmentedLagrangianSettings::new(c)
+        })
+        .unwrap()
+    };
+    let (soft, stiff) = (uzawa(1e3), uzawa(1.5e9));
+    let solvers: [(&dyn ContactSolver, Method); 4] = [
+        (&active_set, Method::ActiveSet),
+        (&stiff_penalty, Method::Penalty),
+        (&soft, Method::Kalker),
+        (&stiff, Method::Kalker),
+    ];
+    let mut totals = vec![];
+    for n in [50, 200] {
+        let problem = wavy_floating(n);
+        for (solver, method) in solvers {
+            let c = counted(solver, &problem, method);
+            let what = format!("{} on {n} points ({} solves)", solver.method(), c.iterp);
+            println!(
+                "{what}: {} allocations, between solves {:?}",
+                c.total, c.steps
+            );
+            assert!(c.iterp >= 5, "{what}: too few solves for the test");
+            let mut steps = c.steps.clone();
+            steps.sort_unstable();
+            if let Some(switch) = steps.pop() {
+                assert!(switch <= SWITCH, "{what}: {switch} allocations in one step");
+            }
+            assert!(
+                steps.iter().all(|&s| s <= STEP),
+                "{what}: steps allocate {:?}",
+                c.steps
+            );
+            let bound = SOLVE + STEP * c.iterp as u64;
+            assert!(
+                c.total <= bound,
+                "{what}: {} allocations > {bound}",
+                c.total
+            );
+            totals.push(c.total);
+        }
+    }
+    // Independent of n: four times the points, the same count to a few.
+    let (small, large) = totals.split_at(solvers.len());
+    for (s, l) in small.iter().zip(large) {
+        assert!(
+            l.abs_diff(*s) <= 2,
+            "{small:?} for 50 points, {large:?} for 200"
+        );
+    }
+}
+
+/// The time of the Kalker-based solvers on 1000 points (release build:
+/// `cargo test --release -p contopt-contact --test allocations -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn time_on_a_thousand_points() {
+    let problem = wavy_floating(1000);
+    problem.dense_influence(1).unwrap();
+    let solvers: [(&str, Box<dyn ContactSolver>); 4] = [
+        (
+            "active set",
+            Box::new(ActiveSet::new(ActiveSetSettings::default()).unwrap()),
+        ),
+        (
+            "penalty c = 1e12",
+            Box::new(Penalty::new(PenaltySettings { c_mpa_per_mm: 1e12 }).unwrap()),
+        ),
+        (
+            "augmented Lagrangian c = 1e3",
+            Box::new(AugmentedLagrangian::new(AugmentedLagrangianSettings::new(1e3)).unwrap()),
+        ),
+        (
+            "augmented Lagrangian c = 1e3, not accelerated",
+            Box::new(
+                AugmentedLagrangian::new(AugmentedLagrangianSettings {
+                    accelerate: false,
+                    ..AugmentedLagrangianSettings::new(1e3)
+                })
+                .unwrap(),
+            ),
+        ),
+    ];
+    for (name, solver) in solvers {
+        let mut best = f64::INFINITY;
+        let (mut iterp, mut closed) = (0, 0);
+        for _ in 0..3 {
+            let start = Instant::now();
+            let state = solver.solve(&problem).unwrap();
+            best = best.min(start.elapsed().as_secs_f64());
+            iterp = state.iterp;
+            closed = state.active.iter().filter(|&&a| a).count();
+        }
+        println!("{name}: {best:.3} s ({iterp} solves, {closed} points in contact)");
+    }
+}
