@@ -29,7 +29,8 @@ fn paper_punch() -> std::result::Result<(), Box<dyn std::error::Error>> {
 /// The Green's-function chapter's snippet: a rigid sphere pressed by a force into a half-space
 /// grid, solved matrix-free.
 fn sphere_on_grid() -> Result<()> {
-    let (material, cells, h, force, radius) = (Material::new(2.0e5, 0.3)?, 64, 0.0125, 1000.0, 10.0);
+    let (material, cells, h, force, radius) =
+        (Material::new(2.0e5, 0.3)?, 64, 0.0125, 1000.0, 10.0);
     let corner = -0.5 * (cells as f64 - 1.0) * h;
     // ANCHOR: greens_grid
     let body = HalfSpace::grid("half-space", material, cells, cells, h, h, [corner, corner])?;
@@ -83,10 +84,20 @@ fn table_one() -> std::result::Result<(), Box<dyn std::error::Error>> {
         .pressure_basis()
         .cloned() // a finite-element face: Δh at the face nodes
         .unwrap_or_else(|| GapShape::pointwise(problem.interface()));
-    let controller = ControllerSettings::Cubic { l1_mm: 20.0, l2_mm: 50.0, axis: 0 }.build()?;
-    let penalty = Penalty::new(PenaltySettings { c_mpa_per_mm: 2.0e9 })?;
-    let optimum = Optimisation::new(&problem, &shape, controller.as_ref())?
-        .iterate(Mode::GivenLoad, &penalty, &IterationSettings::default())?;
+    let controller = ControllerSettings::Cubic {
+        l1_mm: 20.0,
+        l2_mm: 50.0,
+        axis: 0,
+    }
+    .build()?;
+    let penalty = Penalty::new(PenaltySettings {
+        c_mpa_per_mm: 2.0e9,
+    })?;
+    let optimum = Optimisation::new(&problem, &shape, controller.as_ref())?.iterate(
+        Mode::GivenLoad,
+        &penalty,
+        &IterationSettings::default(),
+    )?;
     println!(
         "L1 = 20 mm: p_max = {:.1} MPa, Δh_max = {:.2} µm ({}, {} passes)",
         optimum.p_max,

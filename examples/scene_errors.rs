@@ -64,7 +64,11 @@ fn mistakes() -> Vec<(&'static str, String)> {
         ),
         (
             "the dense linear programme on a roller of 21 000 points",
-            changed("roller", "method = \"load_split\"", "method = \"linear_programme\""),
+            changed(
+                "roller",
+                "method = \"load_split\"",
+                "method = \"linear_programme\"",
+            ),
         ),
         (
             "a fraction in a sweep over an integer",

@@ -218,7 +218,11 @@ impl Node {
             other => {
                 push_key(&mut rendered, key);
                 let kind = other.kind();
-                Err(InputError::new(rendered, span, format!("a {kind} has no keys")))
+                Err(InputError::new(
+                    rendered,
+                    span,
+                    format!("a {kind} has no keys"),
+                ))
             }
         }
     }
