@@ -307,8 +307,9 @@ fn hostile_values_give_answers_or_clear_errors() {
 }
 
 /// Sizes that would abort or overflow are refused before anything is allocated, with the
-/// memory they would take. (The active set holds 4 dense n × n matrices by the scene's
-/// estimate now, each part counting its own; the old runner counted 5.) A nesting past the
+/// memory they would take. (The active set holds up to 6 dense n × n matrices by the scene's
+/// estimate now, each part counting its own: A, the contact set's matrix, its eigenvectors,
+/// the eigensolver's copy and faer's two divide-and-conquer blocks.) A nesting past the
 /// reader's limit of 32 is refused at that limit.
 #[test]
 fn sizes_are_refused_with_their_memory() {
@@ -329,7 +330,7 @@ fn sizes_are_refused_with_their_memory() {
                 ("cells = [16, 16]", "cells = [128, 128]"),
                 ("kind = \"polonsky_keer\"", "kind = \"active_set\""),
             ],
-            "4 dense 16384 × 16384 matrices",
+            "6 dense 16384 × 16384 matrices",
         ),
     ] {
         let mut text = small_hertz(&[]);

@@ -15,12 +15,12 @@ use faer::{Accum, Conj, Mat, MatMut, Par};
 use crate::watch::{self, Watch};
 use crate::{problem, InterfaceProblem};
 
-/// The n × n matrices a Kalker solve holds at once: A, and in its workspace the contact-set
-/// matrix, its eigenvectors and the eigen-decomposition's copy of the matrix (faer's
-/// tridiagonal reduction). Not counted: faer's divide and conquer for a contact set of 128
-/// points or more takes two more k × k while it runs (six copies when every point is in
-/// contact, as before the workspace).
-pub(crate) const DENSE_COPIES: u64 = 4;
+/// The n × n matrices a Kalker solve may hold at once, counted at its worst (every point in
+/// contact, a spectral step): A, and in its workspace the contact-set matrix, its eigenvectors
+/// and the eigen-decomposition's copy of the matrix (faer's tridiagonal reduction), and the
+/// two k × k blocks faer's divide and conquer takes while it runs (a contact set of 128 points
+/// or more). A solve by Cholesky steps alone peaks near two.
+pub(crate) const DENSE_COPIES: u64 = 6;
 
 /// An eigenvalue of the contact-set matrix below this fraction of its eigenvector's own
 /// diagonal scale counts as null: the direction does not move the interface (round-off).

@@ -7,7 +7,6 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
-use std::time::Instant;
 
 use contopt_contact::{
     ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
@@ -230,50 +229,5 @@ fn kalker_steps_allocate_a_fixed_number_of_times() {
             l.abs_diff(*s) <= 2,
             "{small:?} for 50 points, {large:?} for 200"
         );
-    }
-}
-
-/// The time of the Kalker-based solvers on 1000 points (release build:
-/// `cargo test --release -p contopt-contact --test allocations -- --ignored --nocapture`).
-#[test]
-#[ignore]
-fn time_on_a_thousand_points() {
-    let problem = wavy_floating(1000);
-    problem.dense_influence(1).unwrap();
-    let solvers: [(&str, Box<dyn ContactSolver>); 4] = [
-        (
-            "active set",
-            Box::new(ActiveSet::new(ActiveSetSettings::default()).unwrap()),
-        ),
-        (
-            "penalty c = 1e12",
-            Box::new(Penalty::new(PenaltySettings { c_mpa_per_mm: 1e12 }).unwrap()),
-        ),
-        (
-            "augmented Lagrangian c = 1e3",
-            Box::new(AugmentedLagrangian::new(AugmentedLagrangianSettings::new(1e3)).unwrap()),
-        ),
-        (
-            "augmented Lagrangian c = 1e3, not accelerated",
-            Box::new(
-                AugmentedLagrangian::new(AugmentedLagrangianSettings {
-                    accelerate: false,
-                    ..AugmentedLagrangianSettings::new(1e3)
-                })
-                .unwrap(),
-            ),
-        ),
-    ];
-    for (name, solver) in solvers {
-        let mut best = f64::INFINITY;
-        let (mut iterp, mut closed) = (0, 0);
-        for _ in 0..3 {
-            let start = Instant::now();
-            let state = solver.solve(&problem).unwrap();
-            best = best.min(start.elapsed().as_secs_f64());
-            iterp = state.iterp;
-            closed = state.active.iter().filter(|&&a| a).count();
-        }
-        println!("{name}: {best:.3} s ({iterp} solves, {closed} points in contact)");
     }
 }

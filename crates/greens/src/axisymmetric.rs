@@ -486,35 +486,6 @@ mod tests {
         }
     }
 
-    /// Run time of a section of 101 radii × 40 depths under 100 rings (run with
-    /// `cargo test -p contopt-greens --release section_timing -- --ignored --nocapture`).
-    #[test]
-    #[ignore = "timing, not a check"]
-    fn section_timing() {
-        let body = rings(1.0, 100);
-        let pressure: Vec<f64> = body
-            .interface()
-            .points()
-            .iter()
-            .map(|q| 1.0 - q[0] * q[0])
-            .collect();
-        let request = SubsurfaceRequest {
-            depths: (1..=40).map(|k| 0.025 * k as f64).collect(),
-            sections: vec![contopt_core::Section {
-                axis: contopt_core::SectionAxis::X,
-                at: 0.0,
-            }],
-        };
-        let start = std::time::Instant::now();
-        let out = body.stresses_below(&pressure, &request).unwrap();
-        eprintln!(
-            "section {} × {} under 100 rings: {:?}",
-            out.sections[0].positions.len(),
-            out.sections[0].depths.len(),
-            start.elapsed()
-        );
-    }
-
     /// Uniform pressure on a disc: the centre and edge deflections of the closed form.
     #[test]
     fn uniform_disc_load() {
