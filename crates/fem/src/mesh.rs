@@ -364,7 +364,7 @@ impl Mesh {
         let (gx, gy) = (2 * nx + 1, 2 * ny + 1);
         let coord = |s: &Spacing, i: usize| {
             let c = s.coords();
-            if i % 2 == 0 {
+            if i.is_multiple_of(2) {
                 c[i / 2]
             } else {
                 0.5 * (c[i / 2] + c[i / 2 + 1])

@@ -51,7 +51,7 @@ pub struct HalfSpace {
 fn smooth_at_least(n: usize, max: usize) -> usize {
     let smooth = |mut m: usize| {
         for f in [2, 3, 5, 7] {
-            while m % f == 0 {
+            while m.is_multiple_of(f) {
                 m /= f;
             }
         }

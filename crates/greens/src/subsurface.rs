@@ -202,7 +202,7 @@ impl Transform {
             let spectrum = &mut self.rows[j * cx..(j + 1) * cx];
             // A real inverse transform needs real end points (the last one at even length).
             spectrum[0].im = 0.0;
-            if self.px % 2 == 0 {
+            if self.px.is_multiple_of(2) {
                 spectrum[cx - 1].im = 0.0;
             }
             self.c2r

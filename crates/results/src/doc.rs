@@ -133,9 +133,7 @@ fn type_of(schema: &Value, found: &mut Vec<String>) -> String {
         ("object", _, Some(values)) if values.is_object() => {
             format!("map to {}", type_of(values, found))
         }
-        _ => base
-            .replace("number", "number")
-            .replace("integer", "integer"),
+        _ => base,
     }
 }
 

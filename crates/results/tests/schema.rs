@@ -51,12 +51,15 @@ fn sample() -> serde_json::Value {
     serde_json::to_value(report).unwrap()
 }
 
+/// A way to break a report: what the validator must say, and the change.
+type Breakage = (&'static str, fn(&mut serde_json::Value));
+
 #[test]
 fn a_report_conforms_and_broken_ones_do_not() {
     let schema = schema();
     let good = sample();
     assert_eq!(violations(&schema, &good), Vec::<String>::new());
-    let broken: [(&str, fn(&mut serde_json::Value)); 6] = [
+    let broken: [Breakage; 6] = [
         ("breaks minimum", |v| v["schema_version"] = (-1).into()),
         ("`p_max_mpa` is missing", |v| {
             v["cases"][0].as_object_mut().unwrap().remove("p_max_mpa");

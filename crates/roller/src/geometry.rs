@@ -66,7 +66,7 @@ impl Roller {
     /// The cell size \[mm\] along the axis and across of a grid of `nx` × `ny` cells over the
     /// length and ±`reach`·b (the grid of [`Roller::bodies`]).
     pub fn cell(&self, nx: usize, ny: usize, reach: f64) -> Result<[f64; 2]> {
-        if ny % 2 == 0 || ny < 3 {
+        if ny.is_multiple_of(2) || ny < 3 {
             return Err(Error::invalid(
                 "cells[1]",
                 ny,

@@ -45,7 +45,7 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
     let points = problem.interface().points();
     let pressure: Vec<f64> = report.interface.iter().map(|q| q.p_mpa).collect();
     let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
-    if !(p_max > 0.0) {
+    if p_max <= 0.0 {
         report.warnings.push(untouched(case));
         return;
     }

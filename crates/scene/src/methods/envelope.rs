@@ -8,8 +8,8 @@ use contopt_results::CaseReport;
 use contopt_roller::CaseContact;
 
 use super::{
-    cell_across, check_controller, roller_figures, setup, straight_roller, Check, Context, Design,
-    Designed,
+    cell_across, check_controller, controller, roller_figures, straight_roller, Check, Context,
+    Design, Designed,
 };
 
 /// The envelope load split.
@@ -38,7 +38,7 @@ impl Design for EnvelopeSplit {
 
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
         let started = std::time::Instant::now();
-        let (_, controller, _) = setup(c, true)?;
+        let controller = controller(c)?;
         let dy = cell_across(c.plan);
         let crown = contopt_roller::robust_crown(
             c.cases,

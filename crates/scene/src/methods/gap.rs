@@ -64,8 +64,8 @@ impl Design for Gap {
 
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
         let started = std::time::Instant::now();
-        let (shape, controller, mask) = setup(c, false)?;
-        let optimisation = optimisation_of(c, &shape, controller.as_ref(), mask.as_deref())?;
+        let setup = setup(c)?;
+        let optimisation = optimisation_of(c, &setup)?;
         let optimum = self.0.run(&optimisation, c.solver)?;
         report.time("optimise", started);
         let solver: Option<Method> = Some(c.solver.method());

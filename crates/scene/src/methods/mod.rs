@@ -235,31 +235,41 @@ fn cell_across(plan: &Plan) -> f64 {
     plan.layout.edge_cell()[1]
 }
 
+/// What an optimisation of a case is set up from.
+struct Setup {
+    /// The design profile: Δh = shape · design values.
+    shape: GapShape,
+    /// The pressure control v(x).
+    controller: Box<dyn Controller>,
+    /// Ω_v as a mask of the points (`None`: everywhere).
+    omega_v: Option<Vec<bool>>,
+}
+
+/// The case's controller, built from its settings.
+fn controller(c: &Context) -> Result<Box<dyn Controller>> {
+    optimisation(c.spec)?
+        .controller
+        .as_ref()
+        .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?
+        .build()
+}
+
 /// The gap shape, the controller and Ω_v of an optimisation of `c`: the profile along
-/// `profile_axis` (a roller's axis by default; `symmetric` about its middle for an envelope),
-/// else at the finite-element face nodes, else at every point; Ω_v from `omega_v`, a roller's
+/// `profile_axis` (a roller's axis by default), else at the finite-element face nodes, else at every point; Ω_v from `omega_v`, a roller's
 /// centre row by default, else everywhere.
-fn setup(
-    c: &Context,
-    symmetric: bool,
-) -> Result<(GapShape, Box<dyn Controller>, Option<Vec<bool>>)> {
+fn setup(c: &Context) -> Result<Setup> {
     let opt = optimisation(c.spec)?;
     let roller = c.plan.roller.is_some();
     let iface = c.problem.interface();
     let axis = opt.profile_axis.or(roller.then_some(0));
     let shape = match (axis, c.problem.pressure_basis()) {
-        (Some(axis), _) if symmetric => GapShape::symmetric(iface, axis)?,
         (Some(axis), _) => GapShape::extruded(iface, axis)?,
         (None, Some(basis)) => basis.clone(),
         (None, None) => GapShape::pointwise(iface),
     };
-    let controller = opt
-        .controller
-        .as_ref()
-        .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?
-        .build()?;
+    let controller = controller(c)?;
     let dy = cell_across(c.plan);
-    let mask = match (&opt.omega_v, roller) {
+    let omega_v = match (&opt.omega_v, roller) {
         (Some(region), _) => Some(region.mask(iface)),
         (None, true) => Some(
             iface
@@ -270,7 +280,11 @@ fn setup(
         ),
         (None, false) => None,
     };
-    Ok((shape, controller, mask))
+    Ok(Setup {
+        shape,
+        controller,
+        omega_v,
+    })
 }
 
 /// The regions of a mask: Ω_v inside, Ω_nv outside.
@@ -288,14 +302,10 @@ fn regions(mask: &[bool]) -> Vec<Region> {
 
 /// An optimisation of `c` on `shape` with `controller` and Ω_v from `mask`, reporting to the
 /// case's observer.
-fn optimisation_of<'a>(
-    c: &'a Context,
-    shape: &'a GapShape,
-    controller: &dyn Controller,
-    mask: Option<&[bool]>,
-) -> Result<Optimisation<'a>> {
-    let optimisation = Optimisation::new(c.problem, shape, controller)?.with_observer(c.observer);
-    match mask {
+fn optimisation_of<'a>(c: &'a Context, setup: &'a Setup) -> Result<Optimisation<'a>> {
+    let optimisation = Optimisation::new(c.problem, &setup.shape, setup.controller.as_ref())?
+        .with_observer(c.observer);
+    match setup.omega_v.as_deref() {
         Some(mask) => optimisation.with_regions(regions(mask)),
         None => Ok(optimisation),
     }
