@@ -222,7 +222,7 @@ impl GapSpec {
 
     /// The gap's own half-extent along x and y \[mm\], which a grid without a cell size
     /// spans: a roller's half-length and `reach_b`·b across; a sphere's Hertz radius times
-    /// [`SPHERE_REACH`] both ways (given `hertz`).
+    /// 1.5 both ways (given `hertz`).
     pub fn natural_extent(&self, hertz: Option<Hertz>) -> [Option<f64>; 2] {
         match (self, hertz) {
             (GapSpec::Roller(g), Some(h)) => {
