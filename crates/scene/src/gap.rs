@@ -61,7 +61,8 @@ pub struct RollerGap {
     /// Misalignment γ \[arc-minutes\]: an extra gap γ·x along the axis (default 0).
     #[serde(default)]
     pub tilt_arcmin: f64,
-    /// How far a grid without a cell size reaches across, in Hertz half-widths b (default 2.6).
+    /// How far the outer cell centres of a grid without a cell size reach across, in Hertz
+    /// half-widths b (default 2.6).
     #[serde(default = "RollerGap::default_reach")]
     pub reach_b: f64,
     /// The crown (default straight).
@@ -204,6 +205,16 @@ impl GapSpec {
                 "an axisymmetric zone meets a sphere or a flat punch",
             )),
             (GapSpec::Roller(g), Surface::Grid) => {
+                if let ZoneSpec::Grid(grid) = zone {
+                    if grid.cells[1] < 3 || grid.cells[1].is_multiple_of(2) {
+                        return Err(Error::invalid(
+                            "cells[1]",
+                            grid.cells[1],
+                            "a roller's grid has an odd number of cells across, at least 3: \
+                             its centre row (Ω_v) lies on y = 0",
+                        ));
+                    }
+                }
                 check::positive("diameter_mm", g.diameter_mm)?;
                 check::positive("length_mm", g.length_mm)?;
                 check::positive("reach_b", g.reach_b)?;
@@ -220,17 +231,24 @@ impl GapSpec {
         }
     }
 
-    /// The gap's own half-extent along x and y \[mm\], which a grid without a cell size
-    /// spans: a roller's half-length and `reach_b`·b across; a sphere's Hertz radius times
-    /// 1.5 both ways (given `hertz`).
-    pub fn natural_extent(&self, hertz: Option<Hertz>) -> [Option<f64>; 2] {
-        match (self, hertz) {
-            (GapSpec::Roller(g), Some(h)) => {
-                [Some(0.5 * g.length_mm), Some(g.reach_b * h.half_width)]
+    /// The cell size of a grid of `cells` that the gap spans by itself, for a zone without
+    /// `cell_mm`: a roller's, [`Roller::cell`] (its length along x, ±`reach_b`·b to the outer
+    /// cell centres across, as `Roller::bodies` lays its grid); a sphere's, its Hertz radius
+    /// times 1.5 to the grid's edges both ways (given `hertz`). `None` for other gaps.
+    pub fn natural_cell(
+        &self,
+        cells: [usize; 2],
+        hertz: Option<Hertz>,
+        roller: Option<&Roller>,
+    ) -> Result<Option<[f64; 2]>> {
+        Ok(match (self, hertz, roller) {
+            (GapSpec::Roller(g), _, Some(r)) => Some(r.cell(cells[0], cells[1], g.reach_b)?),
+            (GapSpec::Sphere(_), Some(h), _) => {
+                let across = |n: usize| 2.0 * SPHERE_REACH * h.half_width / n as f64;
+                Some([across(cells[0]), across(cells[1])])
             }
-            (GapSpec::Sphere(_), Some(h)) => [Some(SPHERE_REACH * h.half_width); 2],
-            _ => [None, None],
-        }
+            _ => None,
+        })
     }
 
     /// Hertz's nominal contact under `force` \[N\] (or the approach `approach` \[mm\]) with the

@@ -42,9 +42,10 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
     let e_star = pair_modulus(&spec.body, &contact.zone);
     let (force, approach) = load_figures(contact.load);
     let rough = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, None));
+    let roller = roller(spec, force, at)?;
     let layout = contact
         .zone
-        .layout(contact.gap.natural_extent(rough))
+        .layout(|cells| contact.gap.natural_cell(cells, rough, roller.as_ref()))
         .map_err(|e| at.library("contact.zone", e))?;
     let length = line_length(&layout);
     let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
@@ -55,7 +56,6 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
             .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
     check_load(spec.body[1].kind(), &contact.zone, contact.load).map_err(|e| at.library("", e))?;
-    let roller = roller(spec, force, at)?;
     let floating = floats(spec);
     let check = Check {
         spec,

@@ -35,8 +35,9 @@ pub enum ZoneSpec {
 pub struct GridZone {
     /// Cells along x and y.
     pub cells: [usize; 2],
-    /// Cell size along x and y \[mm\]; default: the gap's own extent (a roller's length and
-    /// ±`reach_b`·b across; a sphere's Hertz radius with a margin) over the cells.
+    /// Cell size along x and y \[mm\]; default: the gap's own extent over the cells (a
+    /// roller's length, and ±`reach_b`·b to the outer cell centres across; 1.5 Hertz radii of
+    /// a sphere both ways).
     #[serde(default)]
     pub cell_mm: Option<[f64; 2]>,
 }
@@ -128,9 +129,12 @@ pub enum Layout {
 }
 
 impl ZoneSpec {
-    /// The zone with its sizes resolved; `natural` is the gap's own half-extent along x and y
-    /// \[mm\], which a grid without `cell_mm` spans.
-    pub fn layout(&self, natural: [Option<f64>; 2]) -> Result<Layout> {
+    /// The zone with its sizes resolved; `natural` gives the cell size of a grid of so many
+    /// cells that the gap spans by itself (for a grid without `cell_mm`).
+    pub fn layout(
+        &self,
+        natural: impl FnOnce([usize; 2]) -> Result<Option<[f64; 2]>>,
+    ) -> Result<Layout> {
         Ok(match self {
             ZoneSpec::Grid(g) => grid_layout(g, natural)?,
             ZoneSpec::Rings(r) => {
@@ -242,7 +246,10 @@ impl Layout {
 }
 
 /// A grid's layout: the cell size given, or the gap's own extent over the cells.
-fn grid_layout(g: &GridZone, natural: [Option<f64>; 2]) -> Result<Layout> {
+fn grid_layout(
+    g: &GridZone,
+    natural: impl FnOnce([usize; 2]) -> Result<Option<[f64; 2]>>,
+) -> Result<Layout> {
     let [nx, ny] = g.cells;
     check::count("cells[0]", nx, 1, usize::MAX)?;
     check::count("cells[1]", ny, 1, usize::MAX)?;
@@ -251,22 +258,13 @@ fn grid_layout(g: &GridZone, natural: [Option<f64>; 2]) -> Result<Layout> {
             check::positive("cell_mm[0]", dx)?,
             check::positive("cell_mm[1]", dy)?,
         ],
-        None => {
-            let spans = [
-                natural[0].map(|h| 2.0 * h / nx as f64),
-                natural[1].map(|h| 2.0 * h / ny as f64),
-            ];
-            match spans {
-                [Some(dx), Some(dy)] => [dx, dy],
-                _ => {
-                    return Err(Error::invalid(
-                        "cell_mm",
-                        "missing",
-                        "give the cell size: this gap has no extent of its own to span",
-                    ))
-                }
-            }
-        }
+        None => natural([nx, ny])?.ok_or_else(|| {
+            Error::invalid(
+                "cell_mm",
+                "missing",
+                "give the cell size: this gap has no extent of its own to span",
+            )
+        })?,
     };
     Ok(Layout::Grid {
         nx,
