@@ -174,8 +174,11 @@ pub struct Hertz {
 #[serde(deny_unknown_fields)]
 #[schemars(transform = every_field_required)]
 pub struct Resolution {
-    /// The contact's half-width along its narrowest direction (its radius on an axisymmetric
-    /// body) \[mm\].
+    /// The surface direction in which the contact is resolved by the fewest cells (`x` or
+    /// `y` on a grid, `r` on rings and axisymmetric faces, `x` on strips and plane faces).
+    pub along: String,
+    /// The contact's half-width in that direction, through the largest pressure (its radius
+    /// on an axisymmetric body) \[mm\].
     pub half_width_mm: f64,
     /// The cells (rings, strips, faces) across that half-width.
     pub cells: f64,

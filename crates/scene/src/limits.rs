@@ -59,9 +59,10 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
     if let Some(r) = &report.resolution {
         if r.cells < MIN_CELLS_ACROSS {
             report.warnings.push(format!(
-                "the contact's half-width ({:.4} mm) spans {:.1} cells, fewer than \
+                "the contact's half-width along {} ({:.4} mm) spans {:.1} cells, fewer than \
                  {MIN_CELLS_ACROSS}: its peak is not resolved; refine the zone (cells of at \
                  most {:.4} mm)",
+                r.along,
                 r.half_width_mm,
                 r.cells,
                 r.half_width_mm / MIN_CELLS_ACROSS
@@ -198,8 +199,9 @@ fn edges(layout: &Layout, points: &[[f64; 3]]) -> Vec<Edge> {
     }
 }
 
-/// How many cells span the contact's half-width, along its narrowest direction through the
-/// largest pressure.
+/// How many cells span the contact's half-width through the largest pressure, in the
+/// direction where they are fewest (on a grid, the smaller of the two counts: a roller's
+/// contact may be long across and short along its axis).
 fn resolution(
     layout: &Layout,
     points: &[[f64; 3]],
@@ -215,20 +217,16 @@ fn resolution(
                 **c && (x[other] - points[peak][other]).abs() < 1e-9 * (1.0 + x[other].abs())
             })
             .map(|(_, x)| x[axis])
-            .collect::<Vec<f64>>()
+            .count() as f64
     };
     match layout {
         Layout::Grid { dx, dy, .. } => {
-            let across = [count(0, 1).len() as f64 * dx, count(1, 0).len() as f64 * dy];
-            let (axis, width) = if across[0] <= across[1] {
-                (0, across[0])
-            } else {
-                (1, across[1])
-            };
-            let cell = [*dx, *dy][axis];
+            let cells = [0.5 * count(0, 1), 0.5 * count(1, 0)];
+            let axis = if cells[0] <= cells[1] { 0 } else { 1 };
             Some(Resolution {
-                half_width_mm: 0.5 * width,
-                cells: 0.5 * width / cell,
+                along: ["x", "y"][axis].into(),
+                half_width_mm: cells[axis] * [*dx, *dy][axis],
+                cells: cells[axis],
             })
         }
         _ => {
@@ -247,7 +245,13 @@ fn resolution(
                 _ => 1.0,
             };
             let cells = inside.len() as f64 / per_cell / if symmetric { 2.0 } else { 1.0 };
+            let radial = match layout {
+                Layout::Rings(_) => true,
+                Layout::Faces(f) => f.analysis == contopt_fem::Analysis::Axisymmetric,
+                _ => false,
+            };
             Some(Resolution {
+                along: if radial { "r" } else { "x" }.into(),
                 half_width_mm: half,
                 cells,
             })
