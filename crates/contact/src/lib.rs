@@ -12,6 +12,9 @@
 //! [`Observer`](contopt_core::observe::Observer) ([`ContactSolver::solve_observed`]) and ends
 //! with a [`Termination`](contopt_core::Termination).
 
+// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 mod active_set;
 mod augmented;
 pub mod conic;

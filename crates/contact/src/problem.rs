@@ -359,7 +359,7 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Point weights wᵢ \[mm²\].
     pub fn weights(&self) -> &[f64] {
-        &self.interface.weights()
+        self.interface.weights()
     }
 
     /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the

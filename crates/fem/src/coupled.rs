@@ -144,7 +144,7 @@ impl FullSystem for JointSystem<'_> {
     }
 
     fn weights(&self) -> &[f64] {
-        &self.bodies[0].interface().weights()
+        self.bodies[0].interface().weights()
     }
 
     fn rest_gap(&self) -> &[f64] {

@@ -13,6 +13,9 @@
 //! one file in `methods/` and one line of [`MethodSpec`]; the solvers and their settings are the
 //! contact crate's ([`contopt_contact::SolverSettings`]).
 
+// Input checks are written `!(x > 0.0)` on purpose: the negation also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 mod bodies;
 mod budget;
 mod build;

@@ -235,14 +235,15 @@ fn cell_across(plan: &Plan) -> f64 {
     plan.layout.edge_cell()[1]
 }
 
+/// What an optimisation is set up with: the gap shape, the controller and Ω_v as a mask
+/// (`None`: everywhere).
+type Setup = (GapShape, Box<dyn Controller>, Option<Vec<bool>>);
+
 /// The gap shape, the controller and Ω_v of an optimisation of `c`: the profile along
 /// `profile_axis` (a roller's axis by default; `symmetric` about its middle for an envelope),
 /// else at the finite-element face nodes, else at every point; Ω_v from `omega_v`, a roller's
 /// centre row by default, else everywhere.
-fn setup(
-    c: &Context,
-    symmetric: bool,
-) -> Result<(GapShape, Box<dyn Controller>, Option<Vec<bool>>)> {
+fn setup(c: &Context, symmetric: bool) -> Result<Setup> {
     let opt = optimisation(c.spec)?;
     let roller = c.plan.roller.is_some();
     let iface = c.problem.interface();
