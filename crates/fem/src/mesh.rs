@@ -258,6 +258,13 @@ impl Spacing {
             find(a, "spacing.restrict.start")?,
             find(b, "spacing.restrict.end")?,
         );
+        if j <= i {
+            return Err(Error::invalid(
+                "spacing.restrict.end",
+                b,
+                format!("must be a boundary after the start {a}"),
+            ));
+        }
         Self::from_coords(self.coords[i..=j].to_vec())
     }
 }

@@ -114,7 +114,9 @@ impl Controller for Profile {
         let s = (x - self.l1) / (self.l2 - self.l1);
         match self.fall {
             Fall::Linear => 1.0 - s,
-            Fall::Cubic => 1.0 - 3.0 * s * s + 2.0 * s * s * s,
+            // Within [0, 1] in exact arithmetic; round-off near s = 1 gives −2.2e-16, which
+            // `Optimisation::new` would refuse.
+            Fall::Cubic => (1.0 - 3.0 * s * s + 2.0 * s * s * s).clamp(0.0, 1.0),
         }
     }
 }

@@ -292,6 +292,18 @@ impl StepSix {
             .iter()
             .enumerate()
             .for_each(|(c, &k)| column_of[k] = c);
+        if omega_v.len() < columns.len() {
+            // The least-squares fit needs at least as many rows as columns (faer asserts it).
+            return Err(Error::invalid(
+                "omega_v",
+                format!("{} points", omega_v.len()),
+                format!(
+                    "step 6 fits the gap change at {} design nodes to the Ω_v points, too few \
+                     to determine it: enlarge Ω_v or refine the faces",
+                    columns.len()
+                ),
+            ));
+        }
         let bytes = (omega_v.len() as u64)
             .saturating_mul(columns.len() as u64)
             .saturating_mul(16);

@@ -96,8 +96,9 @@ impl Roller {
         check::positive("reach_b", reach)?;
         check::finite("tilt", self.tilt)?;
         let radius = self.radius()?;
-        let half = (ny - 1) / 2;
+        // After `cell`, which refuses an even `ny` or one below 3 (`ny - 1` would underflow).
         let [dx, dy] = self.cell(nx, ny, reach)?;
+        let half = (ny - 1) / 2;
         let origin = [-0.5 * self.length + 0.5 * dx, -(half as f64) * dy];
         let raceway = HalfSpace::grid("raceway", self.raceway, nx, ny, dx, dy, origin)?;
         let roller = HalfSpace::grid("roller", self.roller, nx, ny, dx, dy, origin)?

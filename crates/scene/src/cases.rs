@@ -140,6 +140,9 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
     let Value::Array(items) = list.value() else {
         return Err(at.at("case", "write the cases as [[case]] tables"));
     };
+    if items.is_empty() {
+        return Err(at.at("case", "give at least one [[case]] (or leave the key out)"));
+    }
     at_most(items.len(), "case", at)?;
     let mut seen = std::collections::HashSet::new();
     items

@@ -209,19 +209,19 @@ fn resolution(
     pressure: &[f64],
 ) -> Option<Resolution> {
     let peak = (0..pressure.len()).max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))?;
-    let count = |axis: usize, other: usize| {
+    // The carrying points on the line through the peak along the other axis.
+    let count = |other: usize| {
         carrying
             .iter()
             .zip(points)
             .filter(|(c, x)| {
                 **c && (x[other] - points[peak][other]).abs() < 1e-9 * (1.0 + x[other].abs())
             })
-            .map(|(_, x)| x[axis])
             .count() as f64
     };
     match layout {
         Layout::Grid { dx, dy, .. } => {
-            let cells = [0.5 * count(0, 1), 0.5 * count(1, 0)];
+            let cells = [0.5 * count(1), 0.5 * count(0)];
             let axis = if cells[0] <= cells[1] { 0 } else { 1 };
             Some(Resolution {
                 along: ["x", "y"][axis].into(),

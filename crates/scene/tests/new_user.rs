@@ -127,7 +127,11 @@ material = { e_mpa = 2.1e5, nu = 0.3 }
     let hertz = report.hertz.as_ref().unwrap();
     assert_eq!(hertz.contact, "line");
     let p_max = report.p_max_mpa.unwrap();
-    assert!(p_max > 2.0 * hertz.p0_mpa, "{p_max} against {}", hertz.p0_mpa);
+    assert!(
+        p_max > 2.0 * hertz.p0_mpa,
+        "{p_max} against {}",
+        hertz.p0_mpa
+    );
 }
 
 /// A Hertz contact three cells wide: solved, with a warning that gives the number of cells
