@@ -168,6 +168,27 @@ fn a_contact_of_a_few_cells_warns_with_the_number() {
     );
 }
 
+/// A sphere pressed 10⁻⁹ mm into a grid whose cell centres miss its apex: no point carries
+/// pressure. It used to report p_max 0 and nothing else; now the case warns, with Hertz's
+/// contact in cells (a = 7·10⁻⁵ mm against cells of 0.02 mm).
+#[test]
+fn a_contact_smaller_than_a_cell_is_warned() {
+    let text = sphere(1000.0, 64, 0.02).replace("force_n = 1000.0", "approach_mm = 1e-9");
+    let report = parse(&text).unwrap().cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    assert_eq!(report.p_max_mpa, Some(0.0));
+    let a = (50.0f64 * 1e-9).sqrt();
+    let warning = report
+        .warnings
+        .iter()
+        .find(|w| w.contains("no point of the zone carries pressure"))
+        .unwrap_or_else(|| panic!("{:?}", report.warnings));
+    assert!(
+        warning.contains(&format!("{a:.4e} mm")) && warning.contains("0.0200 mm"),
+        "{warning}"
+    );
+}
+
 /// Stresses below the surface of the paper's punch on its base: the run used to refuse them
 /// ("a resultant off by 6.42e2 N … (solve the contact first)") after `check` passed.
 #[test]
