@@ -105,6 +105,15 @@ pub fn derived(field: &str, input: impl Display, what: &str, value: f64) -> Resu
     }
 }
 
+/// [`derived`], `value` positive too: a size or a stiffness that must not underflow to 0.
+pub fn derived_positive(field: &str, input: impl Display, what: &str, value: f64) -> Result<f64> {
+    if is_positive(value) {
+        Ok(value)
+    } else {
+        Err(overflow(field, input, what, value))
+    }
+}
+
 /// [`derived`] for every value of `values`, all derived from the input `field` = `input`.
 pub fn all_derived(field: &str, input: impl Display, what: &str, values: &[f64]) -> Result<()> {
     match values.iter().find(|v| !v.is_finite()) {
@@ -187,6 +196,9 @@ mod tests {
         );
         assert!(all_derived("dx", 1e-300, "the kernel", &[1.0, f64::NAN]).is_err());
         assert!(all_derived("dx", 1.0, "the kernel", &[1.0, 2.0]).is_ok());
+        let e = derived_positive("dx", 1e-300, "the area", 0.0).unwrap_err();
+        assert!(e.to_string().contains("the area 0, beyond f64"), "{e}");
+        assert!(derived_positive("dx", 1.0, "the area", 1.0).is_ok());
     }
 
     #[test]
