@@ -39,7 +39,9 @@ impl Roller {
         1.0 / (c(&self.roller) + c(&self.raceway))
     }
 
-    /// The effective radius across the contact, 1/R = 2/D + 2/D_r \[mm\].
+    /// The effective radius across the contact, 1/R = 2/D + 2/D_r \[mm\]; an error when it
+    /// overflows f64 (diameters beyond 10³⁰⁸ mm, or an outer ring within round-off of the
+    /// roller).
     pub fn radius(&self) -> Result<f64> {
         check::positive("diameter_mm", self.diameter)?;
         check::positive("length_mm", self.length)?;
@@ -51,7 +53,11 @@ impl Roller {
                 "an outer ring must be larger than the roller (the pair must be convex)",
             )
         })?;
-        Ok(1.0 / curvature)
+        let what = format!(
+            "the effective radius 1/(2/D + 2/D_r) (D_r {:?})",
+            self.raceway_diameter
+        );
+        check::derived("diameter_mm", self.diameter, &what, 1.0 / curvature)
     }
 
     /// Hertz's line contact for the nominal line load Q/l: the half-width b \[mm\] and the peak
@@ -175,5 +181,12 @@ mod tests {
         }
         let (b, p0) = roller(1000.0, 10.0).hertz().unwrap();
         assert!(b > 0.0 && p0 > 0.0);
+        let mut ring = roller(1000.0, 1.7e308);
+        ring.raceway_diameter = Some(-f64::MAX);
+        let e = ring.radius().unwrap_err().to_string();
+        assert!(
+            e.contains("diameter_mm") && e.contains("effective radius"),
+            "{e}"
+        );
     }
 }
