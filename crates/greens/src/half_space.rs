@@ -110,6 +110,24 @@ fn love_kernel(material: Material, nx: usize, ny: usize, dx: f64, dy: f64) -> Ma
     })
 }
 
+/// The FFT product's bound for forces of at most 1 N: its transforms scale last, so their
+/// intermediates stay below the `padded` cells times Σ|K| over the (up to four times
+/// mirrored) kernel. Finite, else a kernel whose entries are finite is still too large for
+/// f64 to convolve (E near 10⁻³⁰⁸ MPa): an error naming the cells, as [`check::derived`].
+fn check_fft_bound(kernel: &Mat<f64>, padded: usize, dx: f64, what: &str) -> Result<()> {
+    let total: f64 = (0..kernel.ncols())
+        .flat_map(|j| kernel.col(j).iter().map(|v| v.abs()))
+        .sum();
+    let bound = 4.0 * padded as f64 * total;
+    check::derived(
+        "half_space.dx",
+        dx,
+        &format!("{what}: its FFT product"),
+        bound,
+    )
+    .map(|_| ())
+}
+
 impl HalfSpace {
     /// A half-space of `material` under an `nx` × `ny` grid of `dx` × `dy` \[mm\] cells whose
     /// first centre is at `origin` (x, y) \[mm\]; points are listed x fastest.
@@ -129,6 +147,7 @@ impl HalfSpace {
             material.e()
         );
         crate::check_matrix("half_space.dx", dx, &what, &kernel)?;
+        check_fft_bound(&kernel, 4 * nx * ny, dx, &what)?;
         let convolution = Arc::new(Convolution::free(nx, ny, |i, j| kernel[(i, j)]));
         Ok(Self {
             name: name.into(),
@@ -180,6 +199,7 @@ impl HalfSpace {
         let what = format!("the spectral kernel 2/(E*·|q|·dx·dy) with dy = {dy} mm, E* = {estar}");
         check::all_derived("half_space.dx", dx, &what, &response)?;
         let kernel = Mat::from_fn(nx, ny, |i, j| response[j * nx + i]);
+        check_fft_bound(&kernel, nx * ny, dx, &what)?;
         Ok(Self {
             name: name.into(),
             interface,
@@ -576,6 +596,10 @@ mod tests {
         );
         let e = HalfSpace::grid("hs", steel, 2, 1, 1e-300, 1e-300, [0.0, 0.0]).unwrap_err();
         assert!(e.to_string().contains("cell area"), "{e}");
+        // Entries finite, but too large for the FFT to sum (the fuzz test's case).
+        let soft = Material::new(2.2250738585072014e-308, -4.1e-15).unwrap();
+        let e = HalfSpace::grid("hs", soft, 18, 16, 281.39, 1e-6, [0.0, 0.0]).unwrap_err();
+        assert!(e.to_string().contains("FFT product"), "{e}");
     }
 
     /// Love's formula at the centre of a square 2a × 2a: (1 − ν²)pa/(πE) · 4 ln(1 + √2)·2
