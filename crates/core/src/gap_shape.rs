@@ -1,7 +1,7 @@
 //! The map Q of eq. (3.5): how a change of initial gap given at design nodes reaches the
 //! interface points.
 
-use crate::{Error, Interface, Result, GEOMETRY_TOLERANCE};
+use crate::{check, Error, Interface, Result, GEOMETRY_TOLERANCE};
 
 /// The gap change Δh(x) = L(x)·Δh (§4): Δh is given by its values at design `nodes`, and row i
 /// of Q lists the nodes that point i of the interface depends on, with their weights.
@@ -18,10 +18,14 @@ pub struct GapShape {
 }
 
 impl GapShape {
-    /// The map with design `nodes` and one row (node index, weight) per interface point.
+    /// The map with design `nodes` (finite coordinates) and one row (node index, finite
+    /// weight) per interface point.
     pub fn new(nodes: Vec<[f64; 3]>, rows: Vec<Vec<(usize, f64)>>) -> Result<Self> {
         if nodes.is_empty() {
             return Err(Error::invalid("gap_shape.nodes", 0, "at least one node"));
+        }
+        for (k, node) in nodes.iter().enumerate() {
+            check::all_finite(&format!("gap_shape.nodes[{k}]"), node)?;
         }
         for (i, row) in rows.iter().enumerate() {
             if let Some(&(k, w)) = row
@@ -128,6 +132,17 @@ impl GapShape {
 mod tests {
     use super::*;
     use crate::Geometry;
+
+    /// Nodes with NaN or infinite coordinates are refused, each by its index.
+    #[test]
+    fn refuses_non_finite_nodes() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let nodes = vec![[0.0; 3], [1.0, bad, 0.0]];
+            let e = GapShape::new(nodes, vec![vec![(0, 1.0)]]).unwrap_err();
+            assert!(e.to_string().contains("gap_shape.nodes[1][1]"), "{e}");
+        }
+        assert!(GapShape::new(vec![[0.0; 3]], vec![vec![(0, 1.0)]]).is_ok());
+    }
 
     #[test]
     fn extruded_shares_a_value_along_lines() {

@@ -62,22 +62,28 @@ impl Interface {
             check::all_finite(&format!("interface.points[{i}]"), &points[i])?;
         }
         check::all_positive("interface.weights", &weights)?;
-        for (i, nrm) in normals.iter().enumerate() {
-            let len = nrm.iter().map(|c| c * c).sum::<f64>().sqrt();
-            if (len - 1.0).abs() > GEOMETRY_TOLERANCE {
-                return Err(Error::invalid(
-                    format!("interface.normals[{i}]"),
-                    format!("{nrm:?}"),
-                    "unit length",
-                ));
-            }
+        for (i, &nrm) in normals.iter().enumerate() {
+            check::unit_vector(&format!("interface.normals[{i}]"), nrm)?;
         }
-        Ok(Self {
+        let interface = Self {
             geometry,
             points,
             weights,
             normals,
-        })
+        };
+        interface.check_sums()?;
+        Ok(interface)
+    }
+
+    /// The extent and the area are finite: points spread, or weights summed, beyond f64 are
+    /// refused (no non-finite size reaches a solver's tolerances).
+    fn check_sums(&self) -> Result<()> {
+        let (lo, hi) = self.bounds();
+        let spread = format!("a box from {lo:?} to {hi:?}");
+        check::derived("interface.points", spread, "the extent", self.extent())?;
+        let weights = format!("{} weights", self.len());
+        check::derived("interface.weights", weights, "their sum", self.area())?;
+        Ok(())
     }
 
     /// How the weights were formed.
@@ -194,8 +200,15 @@ impl Interface {
     }
 
     /// The size of the interface: the diagonal of its points' bounding box \[mm\] (zero for
-    /// one point).
+    /// one point), by `hypot`, which does not overflow for spans up to f64's largest.
     pub fn extent(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        let span = |c: usize| hi[c] - lo[c];
+        span(0).hypot(span(1)).hypot(span(2))
+    }
+
+    /// The corners of the points' bounding box, lowest and highest coordinates \[mm\].
+    fn bounds(&self) -> ([f64; 3], [f64; 3]) {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for x in &self.points {
@@ -204,7 +217,7 @@ impl Interface {
                 hi[c] = hi[c].max(x[c]);
             }
         }
-        (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
+        (lo, hi)
     }
 
     /// Number of points.
@@ -243,6 +256,37 @@ mod tests {
         let err = Interface::new(Geometry::Surface, p, vec![1.0; 2], vec![[0.0, 2.0, 0.0]; 2])
             .unwrap_err();
         assert!(err.to_string().contains("normals[0]"), "{err}");
+    }
+
+    /// A NaN normal is refused (its length passes no comparison); points 2·10²⁰⁰ mm apart
+    /// have a finite extent (by `hypot`), points 2·f64::MAX apart are refused.
+    #[test]
+    fn refuses_nan_normals_and_spans_beyond_f64() {
+        let one = |normal: [f64; 3]| {
+            Interface::new(Geometry::Surface, vec![[0.0; 3]], vec![1.0], vec![normal])
+        };
+        let err = one([f64::NAN, 0.0, 0.0]).unwrap_err().to_string();
+        assert!(err.contains("normals[0]"), "{err}");
+        let two = |x: f64, w: f64| {
+            let points = vec![[-x, 0.0, 0.0], [x, 0.0, 0.0]];
+            Interface::new(
+                Geometry::Surface,
+                points,
+                vec![w; 2],
+                vec![[0.0, 0.0, 1.0]; 2],
+            )
+        };
+        assert_eq!(two(1e200, 1.0).unwrap().extent(), 2e200);
+        let err = two(f64::MAX, 1.0).unwrap_err().to_string();
+        assert!(
+            err.contains("interface.points") && err.contains("extent inf"),
+            "{err}"
+        );
+        let err = two(1.0, f64::MAX).unwrap_err().to_string();
+        assert!(
+            err.contains("interface.weights") && err.contains("sum inf"),
+            "{err}"
+        );
     }
 
     #[test]

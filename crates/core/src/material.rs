@@ -42,11 +42,22 @@ impl Material {
     /// Young's modulus `e` \[MPa\] > 0 and Poisson's ratio −1 < `nu` < 0.5.
     ///
     /// ν = 0.5 (incompressible) is rejected: the displacement formulation locks there and
-    /// plane-strain and axisymmetric elasticity matrices are singular.
+    /// plane-strain and axisymmetric elasticity matrices are singular. An E whose moduli
+    /// E/(1 − ν²) or compliance (1 − ν²)/E overflow f64 (E near 10³⁰⁸ or 10⁻³⁰⁸ MPa) is
+    /// refused: no infinite modulus reaches a body.
     pub fn new(e: f64, nu: f64) -> Result<Self> {
         check::positive("e_mpa", e)?;
         check::between("nu", nu, -1.0, 0.5)?;
-        Ok(Self { e, nu })
+        let m = Self { e, nu };
+        let modulus = m.plane_strain_modulus();
+        check::derived("e_mpa", e, "the plane-strain modulus E/(1 − ν²)", modulus)?;
+        check::derived(
+            "e_mpa",
+            e,
+            "the compliance (1 − ν²)/E",
+            m.contact_compliance(),
+        )?;
+        Ok(m)
     }
 
     /// Young's modulus E \[MPa\].
@@ -85,5 +96,17 @@ mod tests {
         assert_eq!(e, "invalid e_mpa = inf: must be positive and finite");
         assert!(Material::new(2.1e5, f64::NAN).is_err());
         assert!(Material::new(2.1e5, -1.0).is_err());
+    }
+
+    /// Moduli that overflow f64 are refused, naming E.
+    #[test]
+    fn rejects_moduli_beyond_f64() {
+        let e = Material::new(f64::MAX, 0.3).unwrap_err().to_string();
+        assert!(
+            e.starts_with("invalid e_mpa = 1797") && e.contains("beyond f64"),
+            "{e}"
+        );
+        assert!(Material::new(5e-324, 0.3).is_err());
+        assert!(Material::new(1e300, 0.3).is_ok());
     }
 }

@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{check, ElasticBody, Error, Interface, Result, RigidMode, GEOMETRY_TOLERANCE};
+use crate::{check, ElasticBody, Interface, Result, RigidMode};
 
 /// A rigid body facing another body's contact surface: no compliance, and either held in
 /// place or free to translate along one axis under a given force (a punch, an indenter).
@@ -33,14 +33,7 @@ impl RigidBody {
         axis: [f64; 3],
         force: f64,
     ) -> Result<Self> {
-        let len = axis.iter().map(|c| c * c).sum::<f64>().sqrt();
-        if (len - 1.0).abs() > GEOMETRY_TOLERANCE {
-            return Err(Error::invalid(
-                "rigid.axis",
-                format!("{axis:?}"),
-                "must be a unit vector",
-            ));
-        }
+        check::unit_vector("rigid.axis", axis)?;
         check::positive("force_n", force)?;
         // Moving away from the partner along `axis` moves each point into this body by
         // axis · n_partner.

@@ -3,7 +3,8 @@
 use std::time::{Duration, Instant};
 
 use contopt_core::{
-    ElasticBody, Error, GapShape, Interface, Result, RigidMode, Subsurface, SubsurfaceRequest,
+    check, ElasticBody, Error, GapShape, Interface, Result, RigidMode, Subsurface,
+    SubsurfaceRequest,
 };
 use faer::Mat;
 
@@ -120,7 +121,7 @@ impl FeBody {
         let u = system.solve(&model, None);
         let load_solve = solve_start.elapsed();
         let load_displacement = rows.iter().map(|r| r.normal_into(&u)).collect();
-        let rigid_modes = system
+        let rigid_modes: Vec<RigidMode> = system
             .modes
             .iter()
             .map(|m| RigidMode {
@@ -129,6 +130,7 @@ impl FeBody {
                 load: m.values.iter().zip(&model.forces).map(|(a, b)| a * b).sum(),
             })
             .collect();
+        check_outputs(&model, &influence, &u, &rigid_modes)?;
         let stats = BuildStats {
             unknowns: system.n_free,
             face_unknowns: system.n_tail,
@@ -195,6 +197,8 @@ impl FeBody {
                 *ui += a * v;
             }
         }
+        let field = format!("{}.force", self.name);
+        check::all_derived(&field, "the interface forces", "the displacements", &u)?;
         Ok(u)
     }
 
@@ -208,6 +212,28 @@ impl FeBody {
     pub fn stats(&self) -> &BuildStats {
         &self.stats
     }
+}
+
+/// What a body is built from is finite: the influence matrix (else the material and the
+/// mesh are beyond f64: E·size far from physical), the nodal displacement `u` under the given
+/// loads and the loads on the rigid modes (else the loads are).
+fn check_outputs(
+    model: &FeModel,
+    influence: &Mat<f64>,
+    u: &[f64],
+    modes: &[RigidMode],
+) -> Result<()> {
+    let n = influence.nrows();
+    if let Some(v) = (0..influence.ncols())
+        .flat_map(|j| (0..n).map(move |i| influence[(i, j)]))
+        .find(|v| !v.is_finite())
+    {
+        let what = "the influence matrix L K⁻¹ Lᵀ on this mesh";
+        check::derived("material.e_mpa", model.material.e(), what, v)?;
+    }
+    model.check_displacement(u)?;
+    let loads: Vec<f64> = modes.iter().map(|m| m.load).collect();
+    check::all_derived("loads", "the given loads", "a rigid mode's load", &loads)
 }
 
 /// The contact zone is a non-empty set of boundary faces of the mesh.

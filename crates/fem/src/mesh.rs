@@ -546,6 +546,18 @@ impl Mesh {
 mod tests {
     use super::*;
 
+    /// Every coordinate is checked finite, the first too.
+    #[test]
+    fn from_coords_refuses_non_finite_coordinates() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let e = Spacing::from_coords(vec![bad, 0.0])
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("spacing.coords[0]"), "{e}");
+            assert!(Spacing::from_coords(vec![0.0, bad]).is_err());
+        }
+    }
+
     #[test]
     fn graded_spacing_refines_towards_the_point() {
         let s = Spacing::graded(0.0, 100.0, 40, &[50.0], 10.0).unwrap();

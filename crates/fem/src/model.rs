@@ -141,7 +141,8 @@ impl FeModel {
     pub fn pressure(&mut self, faces: &[Face], p: f64) -> Result<&mut Self> {
         self.check_faces(faces, "pressure.faces")?;
         check::finite("pressure.value", p)?;
-        self.face_load(faces, |fp| [-p * fp.normal[0], -p * fp.normal[1]]);
+        let load = |fp: &FacePoint| [-p * fp.normal[0], -p * fp.normal[1]];
+        self.face_load(faces, ("pressure.value", p.to_string()), load)?;
         Ok(self)
     }
 
@@ -164,7 +165,8 @@ impl FeModel {
         {
             check::all_finite("traction.value", &v)?;
         }
-        self.face_load(faces, |fp| t(fp.x));
+        let value = ("traction.value", "t(x) on the faces".to_string());
+        self.face_load(faces, value, |fp| t(fp.x))?;
         Ok(self)
     }
 
@@ -172,13 +174,31 @@ impl FeModel {
     pub fn nodal_force(&mut self, node: usize, f: [f64; 2]) -> Result<&mut Self> {
         self.check_nodes(&[node], "force.node")?;
         check::all_finite("force.value", &f)?;
-        self.forces[2 * node] += f[0];
-        self.forces[2 * node + 1] += f[1];
+        let sum = [
+            self.forces[2 * node] + f[0],
+            self.forces[2 * node + 1] + f[1],
+        ];
+        check::all_derived(
+            "force.value",
+            format!("{f:?}"),
+            "the node's total force",
+            &sum,
+        )?;
+        self.forces[2 * node] = sum[0];
+        self.forces[2 * node + 1] = sum[1];
         Ok(self)
     }
 
-    /// Adds the consistent nodal forces ∫ N t dS of a traction field to the load vector.
-    fn face_load(&mut self, faces: &[Face], traction: impl Fn(&FacePoint) -> [f64; 2]) {
+    /// Adds the consistent nodal forces ∫ N t dS of a traction field to the load vector; an
+    /// error naming the load's `field` and `value` (and the model left as it was) when they
+    /// overflow f64.
+    fn face_load(
+        &mut self,
+        faces: &[Face],
+        (field, value): (&str, String),
+        traction: impl Fn(&FacePoint) -> [f64; 2],
+    ) -> Result<()> {
+        let mut forces = self.forces.clone();
         for &f in faces {
             let nodes = self.mesh.face_nodes(f);
             for &(s, w) in &GAUSS3 {
@@ -186,11 +206,14 @@ impl FeModel {
                 let t = traction(&fp);
                 let ds = w * fp.jacobian * self.analysis.measure(fp.x[0]);
                 for (k, &n) in nodes.iter().enumerate() {
-                    self.forces[2 * n] += fp.shape[k] * t[0] * ds;
-                    self.forces[2 * n + 1] += fp.shape[k] * t[1] * ds;
+                    forces[2 * n] += fp.shape[k] * t[0] * ds;
+                    forces[2 * n + 1] += fp.shape[k] * t[1] * ds;
                 }
             }
         }
+        check::all_derived(field, value, "the nodal forces ∫ N t dS", &forces)?;
+        self.forces = forces;
+        Ok(())
     }
 
     /// Position, normal and shape functions at parameter `s` ∈ [−1, 1] along a face.
@@ -220,5 +243,60 @@ impl FeModel {
     /// Total given load vector (length 2·nodes), for resultants and rigid-mode loads.
     pub fn forces(&self) -> &[f64] {
         &self.forces
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{ElementKind, Spacing};
+
+    /// One axisymmetric Q8 element 10 mm square of modulus `e`, held at its bottom.
+    fn held(e: f64) -> FeModel {
+        let x = Spacing::uniform(0.0, 10.0, 1).unwrap();
+        let y = Spacing::uniform(-10.0, 0.0, 1).unwrap();
+        let mesh = Mesh::rectangle(ElementKind::Q8, &x, &y).unwrap();
+        let material = Material::new(e, 0.3).unwrap();
+        let mut model = FeModel::new(mesh, material, Analysis::Axisymmetric).unwrap();
+        let bottom = model.mesh().nodes_on_y(-10.0, 0.0, 10.0);
+        model.fix(&bottom, Component::X).unwrap();
+        model.fix(&bottom, Component::Y).unwrap();
+        model
+    }
+
+    /// A finite pressure whose nodal forces overflow f64 is refused, naming it, and leaves
+    /// the loads as they were; so is a force that overflows the node's total.
+    #[test]
+    fn loads_beyond_f64_are_refused() {
+        let mut model = held(2e5);
+        let top = model.mesh().faces_on_y(0.0, 0.0, 10.0);
+        let e = model.pressure(&top, 1.7e308).unwrap_err().to_string();
+        assert!(
+            e.contains("pressure.value") && e.contains("beyond f64"),
+            "{e}"
+        );
+        assert!(model.forces().iter().all(|f| *f == 0.0));
+        let e = model
+            .traction(&top, [0.0, f64::MAX])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("traction.value"), "{e}");
+        model.nodal_force(2, [0.0, f64::MAX]).unwrap();
+        let e = model.nodal_force(2, [0.0, f64::MAX]).unwrap_err();
+        assert!(e.to_string().contains("force.value"), "{e}");
+        assert_eq!(model.forces()[5], f64::MAX);
+    }
+
+    /// Finite loads whose displacements overflow f64 (E = 10⁻³⁰⁰ MPa): an error, not NaN.
+    #[test]
+    fn a_solve_beyond_f64_is_an_error() {
+        let mut model = held(1e-300);
+        let top = model.mesh().nodes_on_y(0.0, 0.0, 10.0);
+        model.nodal_force(top[0], [0.0, -1e10]).unwrap();
+        let e = model.solve().unwrap_err().to_string();
+        assert!(e.contains("loads") && e.contains("displacements"), "{e}");
+        let mut model = held(2e5);
+        model.nodal_force(top[0], [0.0, -1e10]).unwrap();
+        assert!(model.solve().is_ok());
     }
 }

@@ -1,6 +1,6 @@
 //! Solving a supported model, stresses at Gauss points, and error norms.
 
-use contopt_core::{Error, Result};
+use contopt_core::{check, Error, Result};
 
 use crate::element::GAUSS3;
 use crate::system::{point_b, strain_rows, System};
@@ -49,9 +49,19 @@ impl FeModel {
                 "rigid-body modes are left free; add supports",
             ));
         }
-        Ok(Solution {
-            displacement: system.solve(self, None),
-        })
+        let displacement = system.solve(self, None);
+        self.check_displacement(&displacement)?;
+        Ok(Solution { displacement })
+    }
+
+    /// Displacements `u` of a solve are finite: else the loads (or prescribed values)
+    /// overflow f64 against the stiffness, an error that says so.
+    pub(crate) fn check_displacement(&self, u: &[f64]) -> Result<()> {
+        let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, |m, f| m.max(f.abs()));
+        let force = largest(&mut self.forces.iter().copied());
+        let prescribed = largest(&mut self.prescribed.values().copied());
+        let loads = format!("forces up to {force:e} N, displacements up to {prescribed:e} mm");
+        check::all_derived("loads", loads, "the displacements K⁻¹f", u)
     }
 
     /// Stresses at the 3 × 3 Gauss points of every element, element by element.

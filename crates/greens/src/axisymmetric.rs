@@ -69,6 +69,11 @@ impl AxisymmetricHalfSpace {
         let weights: Vec<f64> = (0..n)
             .map(|j| PI * (edges[j + 1].powi(2) - edges[j].powi(2)))
             .collect();
+        let largest = edges.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+        let what = "a ring's area π(ρⱼ₊₁² − ρⱼ²)";
+        for &w in &weights {
+            check::derived_positive("half_space.edges", largest, what, w)?;
+        }
         Interface::new(
             Geometry::Axisymmetric,
             points,
@@ -104,7 +109,12 @@ impl AxisymmetricHalfSpace {
             scale * mean / w[j]
         });
         Ok(Self {
-            surface: crate::DenseSurface::symmetric(name.into(), interface, &averaged),
+            surface: crate::DenseSurface::symmetric(
+                name.into(),
+                interface,
+                &averaged,
+                ("half_space.edges", edges),
+            )?,
             edges: edges.to_vec(),
             nu: material.nu(),
         })
@@ -276,6 +286,18 @@ crate::surface_body!(AxisymmetricHalfSpace);
 mod tests {
     use super::*;
     use contopt_core::ElasticBody;
+
+    /// Rings whose areas or influence overflow f64 (or underflow to 0) are refused, naming
+    /// the edges.
+    #[test]
+    fn rings_beyond_f64_are_refused() {
+        let steel = Material::new(2.1e5, 0.3).unwrap();
+        for edges in [[0.0, 1e200], [1e-200, 2e-200]] {
+            let e = AxisymmetricHalfSpace::new("r", steel, &edges).unwrap_err();
+            assert!(e.to_string().contains("half_space.edges"), "{e}");
+        }
+        assert!(AxisymmetricHalfSpace::new("r", steel, &[0.0, 1.0]).is_ok());
+    }
 
     /// Boussinesq's point load P = 1 at horizontal offset (dx, dy) from the point, depth z:
     /// Cartesian [σ_xx, σ_yy, σ_zz, σ_xz] from Johnson eq. 3.22 (e = horizontal unit vector

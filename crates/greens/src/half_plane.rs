@@ -55,6 +55,10 @@ impl HalfPlane {
         let weights: Vec<f64> = (0..n)
             .map(|j| (edges[j + 1] - edges[j]) * thickness)
             .collect();
+        let what = "a strip's area (edge step × thickness)";
+        for &w in &weights {
+            check::derived_positive("thickness_mm", thickness, what, w)?;
+        }
         Interface::new(
             Geometry::Plane { thickness },
             points,
@@ -103,7 +107,12 @@ impl HalfPlane {
             PlaneState::Stress => 0.0,
         };
         Ok(Self {
-            surface: crate::DenseSurface::symmetric(name.into(), interface, &averaged),
+            surface: crate::DenseSurface::symmetric(
+                name.into(),
+                interface,
+                &averaged,
+                ("half_plane.edges", edges),
+            )?,
             edges: edges.to_vec(),
             out_of_plane,
         })
@@ -207,6 +216,30 @@ mod tests {
     fn body(state: PlaneState, edges: &[f64]) -> HalfPlane {
         let steel = Material::new(2.1e5, 0.3).unwrap();
         HalfPlane::new("hp", steel, state, 1.0, edges, 100.0).unwrap()
+    }
+
+    /// Strips whose influence or areas overflow f64 are refused, naming the edges or the
+    /// thickness; so is a bed whose springs or compliances do.
+    #[test]
+    fn magnitudes_beyond_f64_are_refused() {
+        let steel = Material::new(2.1e5, 0.3).unwrap();
+        let strain = PlaneState::Strain;
+        let e = HalfPlane::new("hp", steel, strain, 1.0, &[-1e200, 1e200], 1.0).unwrap_err();
+        assert!(e.to_string().contains("half_plane.edges"), "{e}");
+        let e = HalfPlane::new("hp", steel, strain, 1e300, &[0.0, 1e10], 1.0).unwrap_err();
+        assert!(e.to_string().contains("thickness_mm"), "{e}");
+        assert!(HalfPlane::new("hp", steel, strain, 1.0, &[-1.0, 0.0, 1.0], 1.0).is_ok());
+        let strips = || HalfPlane::strips_interface(&[0.0, 2.0, 4.0], 1.0).unwrap();
+        for k in [f64::MAX, 1e-320] {
+            let e = crate::Winkler::on("bed", strips(), k)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("modulus_mpa_per_mm") && e.contains("beyond f64"),
+                "{e}"
+            );
+        }
+        assert!(crate::Winkler::on("bed", strips(), 1.0).is_ok());
     }
 
     /// Far from a strip of width w, its stresses approach Flamant's point load P = p w

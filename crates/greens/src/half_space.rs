@@ -61,14 +61,14 @@ fn smooth_at_least(n: usize, max: usize) -> usize {
 }
 
 /// Deflection at (x, y) under unit pressure on the rectangle |x| < a, |y| < b, divided by
-/// (1 − ν²)/(πE) (Love 1929).
+/// (1 − ν²)/(πE) (Love 1929; Johnson, *Contact Mechanics*, eq. 3.25): the sum over the four
+/// corners of t·ln[(s₁ + √(s₁² + t²))/(s₂ + √(s₂² + t²))] ([`love_log`]).
 fn love(x: f64, y: f64, a: f64, b: f64) -> f64 {
-    // t ln((s + √(s² + t²)) / (s' + √(s'² + t²))) for the four corners.
     let term = |t: f64, s1: f64, s2: f64| {
         if t == 0.0 {
             0.0
         } else {
-            t * ((s1 + s1.hypot(t)) / (s2 + s2.hypot(t))).ln()
+            t * love_log(t, s1, s2)
         }
     };
     term(x + a, y + b, y - b)
@@ -77,10 +77,56 @@ fn love(x: f64, y: f64, a: f64, b: f64) -> f64 {
         + term(y - b, x - a, x + a)
 }
 
+/// ln[(s₁ + √(s₁² + t²))/(s₂ + √(s₂² + t²))] for t ≠ 0, without cancellation: for s < 0,
+/// s + √(s² + t²) cancels (to 0 when |s| ≫ |t|, a cell 10⁸ times longer than wide), and equals
+/// t²/(√(s² + t²) − s). Both s of one sign: the ratio, the negative ones in that form (t²
+/// cancels). Signs differ: ln[(s + √(s² + t²))/|t|] = asinh(s/|t|) for either sign, so the
+/// log is asinh(s₁/|t|) − asinh(s₂/|t|), two terms of one sign (no t², which may underflow).
+fn love_log(t: f64, s1: f64, s2: f64) -> f64 {
+    let (r1, r2) = (s1.hypot(t), s2.hypot(t));
+    match (s1 >= 0.0, s2 >= 0.0) {
+        (true, true) => ((s1 + r1) / (s2 + r2)).ln(),
+        (false, false) => ((r2 - s2) / (r1 - s1)).ln(),
+        _ => (s1 / t.abs()).asinh() - (s2 / t.abs()).asinh(),
+    }
+}
+
 /// The memory of a grid per cell \[bytes\]: 57 for the interface (point, weight, normal,
 /// region), 8 for the kernel, 64 for the padded spectrum and 64 for the FFT's work rows, with
 /// a margin.
 const GRID_BYTES_PER_CELL: u64 = 200;
+
+/// The free grid's kernel: the deflection (1 − ν²)/(πE)·love(i·dx, j·dy, dx/2, dy/2)/(dx·dy)
+/// at cell (i, j) per unit force on cell 0. Love's deflection is of degree 1 in its lengths,
+/// so it is taken in units of the larger cell side h and divided by the smaller one alone:
+/// dx·dy is never formed (it underflows for cells of 10⁻¹⁶⁰ mm), and the lengths stay near 1.
+fn love_kernel(material: Material, nx: usize, ny: usize, dx: f64, dy: f64) -> Mat<f64> {
+    let scale = (1.0 - material.nu().powi(2)) / (PI * material.e());
+    let h = dx.max(dy);
+    let (rx, ry, small) = (dx / h, dy / h, dx.min(dy));
+    Mat::from_fn(nx, ny, |i, j| {
+        let (x, y) = (i as f64 * rx, j as f64 * ry);
+        scale * (love(x, y, 0.5 * rx, 0.5 * ry) / small)
+    })
+}
+
+/// The FFT product's bound for forces of at most 1 N: its transforms scale last, so their
+/// intermediates stay below the `padded` cells times Σ|K| over the (up to four times
+/// mirrored) kernel. Finite, else a kernel whose entries are finite is still too large for
+/// f64 to convolve (E near 10⁻³⁰⁸ MPa): an error naming the cells, as [`check::derived`].
+fn check_fft_bound(kernel: &Mat<f64>, padded: usize, dx: f64, what: &str) -> Result<()> {
+    let total: f64 = (0..kernel.ncols())
+        .flat_map(|j| kernel.col(j).iter().map(|v| v.abs()))
+        .sum();
+    let bound = 4.0 * padded as f64 * total;
+    check::derived(
+        "half_space.dx",
+        dx,
+        &format!("{what}: its FFT product"),
+        bound,
+    )
+    .map(|_| ())
+}
 
 impl HalfSpace {
     /// A half-space of `material` under an `nx` × `ny` grid of `dx` × `dy` \[mm\] cells whose
@@ -95,10 +141,13 @@ impl HalfSpace {
         origin: [f64; 2],
     ) -> Result<Self> {
         let interface = Self::cells_interface(nx, ny, dx, dy, origin)?;
-        let scale = (1.0 - material.nu().powi(2)) / (PI * material.e()) / (dx * dy);
-        let kernel = Mat::from_fn(nx, ny, |i, j| {
-            scale * love(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy)
-        });
+        let kernel = love_kernel(material, nx, ny, dx, dy);
+        let what = format!(
+            "the kernel (1 − ν²)/(πE)·Love/(dx·dy) with dy = {dy} mm, E = {}",
+            material.e()
+        );
+        crate::check_matrix("half_space.dx", dx, &what, &kernel)?;
+        check_fft_bound(&kernel, 4 * nx * ny, dx, &what)?;
         let convolution = Arc::new(Convolution::free(nx, ny, |i, j| kernel[(i, j)]));
         Ok(Self {
             name: name.into(),
@@ -135,7 +184,7 @@ impl HalfSpace {
         let estar = material.e() / (1.0 - material.nu().powi(2));
         let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
         let convolution = Arc::new(Convolution::periodic(nx, ny, |i, j| {
-            let q = 2.0 * PI * ((i as f64 / lx).powi(2) + (j as f64 / ly).powi(2)).sqrt();
+            let q = 2.0 * PI * (i as f64 / lx).hypot(j as f64 / ly);
             if q > 0.0 {
                 2.0 / (estar * q * dx * dy)
             } else {
@@ -147,7 +196,10 @@ impl HalfSpace {
         impulse[0] = 1.0;
         let mut response = vec![0.0; nx * ny];
         convolution.apply(&impulse, &mut response);
+        let what = format!("the spectral kernel 2/(E*·|q|·dx·dy) with dy = {dy} mm, E* = {estar}");
+        check::all_derived("half_space.dx", dx, &what, &response)?;
         let kernel = Mat::from_fn(nx, ny, |i, j| response[j * nx + i]);
+        check_fft_bound(&kernel, nx * ny, dx, &what)?;
         Ok(Self {
             name: name.into(),
             interface,
@@ -197,6 +249,8 @@ impl HalfSpace {
             memory::BODY_LIMIT_BYTES,
             "use fewer cells",
         )?;
+        let area = format!("the cell area dx·dy with dy = {dy} mm");
+        check::derived_positive("half_space.dx", dx, &area, dx * dy)?;
         let n = nx * ny;
         let points = (0..n)
             .map(|k| {
@@ -448,6 +502,104 @@ mod tests {
                 "{u} vs {exact}"
             );
         }
+    }
+
+    /// Love's sum as it was written, s + √(s² + t²) for every s: it cancels for s < 0,
+    /// |s| ≫ t.
+    fn love_as_written(x: f64, y: f64, a: f64, b: f64) -> f64 {
+        let term = |t: f64, s1: f64, s2: f64| {
+            if t == 0.0 {
+                0.0
+            } else {
+                t * ((s1 + s1.hypot(t)) / (s2 + s2.hypot(t))).ln()
+            }
+        };
+        term(x + a, y + b, y - b)
+            + term(y + b, x + a, x - a)
+            + term(x - a, y - b, y + b)
+            + term(y - b, x - a, x + a)
+    }
+
+    /// Round-off of Love's sum where the form as written is accurate (aspect ratios up to
+    /// 10, points near and far): a few ε of the deflection under the cell. (At 167 the form as
+    /// written is already 3·10⁻¹³ off the centre's closed form; this one is within ε.)
+    const LOVE_ROUND_OFF: f64 = 1e-14;
+
+    /// The cancellation-free sum agrees with the sum as written where that one is accurate,
+    /// with the closed form at the centre of a 2a × 2b cell, 4a·asinh(b/a) + 4b·asinh(a/b),
+    /// at any aspect, and stays finite and right for a cell 10¹⁰ times longer than wide,
+    /// where the other is infinite: 4b(1 + ln(2a/b)) + O(b³/a²) there.
+    #[test]
+    fn love_without_cancellation() {
+        for (a, b) in [
+            (1.0, 1.0),
+            (1.0, 0.1),
+            (0.5, 3e-3),
+            (2e-3, 1.0),
+            (1.0, 1e-6),
+        ] {
+            let centre = love(0.0, 0.0, a, b);
+            let closed = 4.0 * a * (b / a).asinh() + 4.0 * b * (a / b).asinh();
+            assert!(
+                (centre - closed).abs() <= 4.0 * f64::EPSILON * closed,
+                "{a} {b}"
+            );
+        }
+        for (a, b) in [(1.0, 1.0), (1.0, 0.1), (0.3, 1.0), (1.0, 0.5)] {
+            let centre = love_as_written(0.0, 0.0, a, b);
+            for (x, y) in [
+                (0.0, 0.0),
+                (2.0 * a, 0.0),
+                (0.0, 2.0 * b),
+                (7.0 * a, 3.0 * b),
+            ]
+            .into_iter()
+            .chain([(100.0, 0.0), (3.0 * a, 50.0 * b), (-a, 0.5 * b)])
+            {
+                let (new, old) = (love(x, y, a, b), love_as_written(x, y, a, b));
+                assert!(
+                    (new - old).abs() <= LOVE_ROUND_OFF * centre,
+                    "a {a}, b {b} at ({x}, {y}): {new} vs {old}"
+                );
+            }
+        }
+        let (a, b) = (1.0, 1e-10);
+        assert!(!love_as_written(0.0, 0.0, a, b).is_finite());
+        let centre = love(0.0, 0.0, a, b);
+        let want = 4.0 * b * (1.0 + (2.0 * a / b).ln());
+        assert!((centre - want).abs() <= 1e-14 * want, "{centre} vs {want}");
+        // Across and along the strip, at its neighbours' centres: finite and below the centre.
+        for (x, y) in [(2.0 * a, 0.0), (0.0, 2.0 * b), (2.0 * a, 2.0 * b)] {
+            let w = love(x, y, a, b);
+            assert!(w.is_finite() && w > 0.0 && w < centre, "({x}, {y}): {w}");
+        }
+    }
+
+    /// A grid's kernel is the same whichever way its cells are long (to round-off), finite
+    /// for cells of 1 × 10⁻³⁰⁰ mm, and an error naming the cells where it overflows f64.
+    #[test]
+    fn kernels_of_extreme_cells() {
+        let steel = Material::new(2e5, 0.3).unwrap();
+        let kernel = |dx: f64, dy: f64| love_kernel(steel, 3, 3, dx, dy);
+        let (wide, long) = (kernel(0.2, 0.05), kernel(0.05, 0.2));
+        for (i, j) in [(0, 0), (1, 0), (2, 1), (0, 2)] {
+            let (u, v) = (wide[(i, j)], long[(j, i)]);
+            assert!((u - v).abs() <= 1e-15 * wide[(0, 0)], "{u} vs {v}");
+        }
+        let thin = HalfSpace::grid("hs", steel, 2, 1, 1.0, 1e-300, [0.0, 0.0]).unwrap();
+        assert!(thin.kernel.col(0).iter().all(|v| v.is_finite() && *v > 0.0));
+        let soft = Material::new(1e-300, 0.3).unwrap();
+        let e = HalfSpace::grid("hs", soft, 2, 1, 1e-10, 1e-10, [0.0, 0.0]).unwrap_err();
+        assert!(
+            e.to_string().contains("half_space.dx") && e.to_string().contains("kernel"),
+            "{e}"
+        );
+        let e = HalfSpace::grid("hs", steel, 2, 1, 1e-300, 1e-300, [0.0, 0.0]).unwrap_err();
+        assert!(e.to_string().contains("cell area"), "{e}");
+        // Entries finite, but too large for the FFT to sum (the fuzz test's case).
+        let soft = Material::new(2.2250738585072014e-308, -4.1e-15).unwrap();
+        let e = HalfSpace::grid("hs", soft, 18, 16, 281.39, 1e-6, [0.0, 0.0]).unwrap_err();
+        assert!(e.to_string().contains("FFT product"), "{e}");
     }
 
     /// Love's formula at the centre of a square 2a × 2a: (1 − ν²)pa/(πE) · 4 ln(1 + √2)·2

@@ -56,6 +56,16 @@ fn check_edges(edges: &[f64], field: &str) -> Result<()> {
     Ok(())
 }
 
+/// Every entry of `matrix` (a kernel, an influence matrix) finite: else the error of
+/// [`check::derived`] naming the input `field` = `input` whose magnitude overflowed it.
+fn check_matrix(field: &str, input: f64, what: &str, matrix: &faer::Mat<f64>) -> Result<()> {
+    let mut entries = (0..matrix.ncols()).flat_map(|j| matrix.col(j).iter().copied());
+    match entries.find(|v| !v.is_finite()) {
+        Some(v) => check::derived(field, input, what, v).map(|_| ()),
+        None => Ok(()),
+    }
+}
+
 /// The memory a ring or strip body of `n` regions takes to build \[bytes\]: its averaged
 /// matrix and the symmetric one it keeps; `None` when the count overflows.
 pub fn dense_surface_bytes(n: usize) -> Option<u64> {
@@ -73,20 +83,28 @@ struct DenseSurface {
 
 impl DenseSurface {
     /// The body with the symmetric part of `influence`, which the Galerkin forms produce up
-    /// to quadrature or round-off error (the solvers need it exactly symmetric).
+    /// to quadrature or round-off error (the solvers need it exactly symmetric); an error
+    /// naming the `edges` when an entry is not finite (edges or a modulus whose magnitudes
+    /// overflow f64).
     fn symmetric(
         name: String,
         interface: contopt_core::Interface,
         influence: &faer::Mat<f64>,
-    ) -> Self {
+        (field, edges): (&str, &[f64]),
+    ) -> Result<Self> {
         let n = influence.nrows();
-        let influence =
-            faer::Mat::from_fn(n, n, |i, j| 0.5 * (influence[(i, j)] + influence[(j, i)]));
-        Self {
+        // Halves first: the sum of two entries near f64::MAX does not overflow.
+        let influence = faer::Mat::from_fn(n, n, |i, j| {
+            0.5 * influence[(i, j)] + 0.5 * influence[(j, i)]
+        });
+        let spread = edges.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+        let what = "the influence matrix of these regions and modulus";
+        check_matrix(field, spread, what, &influence)?;
+        Ok(Self {
             name,
             interface,
             influence,
-        }
+        })
     }
 }
 

@@ -21,10 +21,22 @@ impl Winkler {
     /// A bed of modulus `k` \[MPa/mm\] whose surface is `interface`: its points, weights and
     /// outward normals (a grid's cells, rings, strips, or a partner's surface mirrored).
     pub fn on(name: impl Into<String>, interface: Interface, k: f64) -> Result<Self> {
+        check::positive("modulus_mpa_per_mm", k)?;
+        // Each point's spring k·wᵢ and its compliance 1/(k·wᵢ), which the solvers use, are
+        // finite: else k is beyond f64 for these weights (other units than MPa/mm).
+        for w in interface.weights() {
+            check::derived("modulus_mpa_per_mm", k, "a spring k·wᵢ", k * w)?;
+            check::derived(
+                "modulus_mpa_per_mm",
+                k,
+                "a compliance 1/(k·wᵢ)",
+                1.0 / (k * w),
+            )?;
+        }
         Ok(Self {
             name: name.into(),
             interface,
-            k: check::positive("modulus_mpa_per_mm", k)?,
+            k,
         })
     }
 

@@ -367,10 +367,7 @@ impl Split<'_, '_, '_> {
             cases.push(solved);
         }
         let p_max = columns.fitted_p_max(&envelope);
-        let miss = (0..envelope.len())
-            .map(|j| (envelope[j] - columns.v[j] * p_max).abs())
-            .fold(0.0, f64::max)
-            / p_max;
+        let miss = columns.miss(&envelope, p_max);
         Ok(Ok(SplitIterate {
             state,
             cases,
@@ -488,6 +485,22 @@ impl Columns {
                     .fold(0.0, f64::max)
             })
             .collect()
+    }
+
+    /// How far the Ω_v pressures `mean` miss v̄·`p_max`: the largest |p̄_k − v̄_k p_max|
+    /// relative to p_max. When p_max is 0 (no column's Ω_v carries pressure: the load is
+    /// carried off Ω_v) the largest miss is 0 too, and so is the measure, not 0/0: a split
+    /// there has met its target v̄·0, and its check of Ω_nv against v·p_max
+    /// (`check_envelope`) says that Ω_v holds no column's peak.
+    fn miss(&self, mean: &[f64], p_max: f64) -> f64 {
+        let worst = (0..mean.len())
+            .map(|j| (mean[j] - self.v[j] * p_max).abs())
+            .fold(0.0, f64::max);
+        if p_max > 0.0 {
+            worst / p_max
+        } else {
+            worst
+        }
     }
 
     /// The p_max that fits p̄ = v̄ p_max best in the L-weighted least-squares sense.
@@ -658,5 +671,26 @@ impl Anderson {
             .collect();
         normalise(&mut next);
         next
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The miss is relative to p_max, and 0 (not 0/0) when no column's Ω_v carries pressure.
+    #[test]
+    fn the_miss_is_finite_when_p_max_is_zero() {
+        let columns = Columns {
+            points: vec![vec![0], vec![1]],
+            r: vec![1.0; 2],
+            measure: vec![1.0; 2],
+            v: vec![1.0, 0.5],
+        };
+        let p_max = columns.fitted_p_max(&[0.0, 0.0]);
+        assert_eq!((p_max, columns.miss(&[0.0, 0.0], p_max)), (0.0, 0.0));
+        let p_max = columns.fitted_p_max(&[2.0, 0.5]);
+        let want = (2.0 - p_max).abs().max((0.5 - 0.5 * p_max).abs()) / p_max;
+        assert_eq!(columns.miss(&[2.0, 0.5], p_max), want);
     }
 }

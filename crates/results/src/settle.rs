@@ -7,8 +7,9 @@ use crate::{CaseReport, CaseStatus};
 
 impl CaseReport {
     /// Sets `p_max_mpa` to the largest pressure of the interface points when the case has
-    /// points, then turns a report that holds a NaN or an infinity into one that did not
-    /// converge, [`Termination::NonFinite`] naming the field, its numbers dropped: no
+    /// points, then turns a report that holds a NaN or an infinity (in its figures, its
+    /// points, its passes, its roller figures or its termination's numbers) into one that did
+    /// not converge, [`Termination::NonFinite`] naming the field, its numbers dropped: no
     /// non-finite value reaches `result.json`, the CSV or the charts.
     pub fn settle(&mut self) {
         if self.status != CaseStatus::NotConverged && !self.interface.is_empty() {
@@ -60,6 +61,7 @@ impl CaseReport {
             ]
         });
         scalars
+            .chain(termination_values(&self.termination))
             .chain(points)
             .chain(passes)
             .chain(self.roller_values())
@@ -87,6 +89,28 @@ impl CaseReport {
             .into_iter()
             .chain(envelope)
         })
+    }
+}
+
+/// The numbers a termination holds (a step limit's measure and tolerance, a large
+/// displacement's figures), inside an inner method's too.
+fn termination_values(t: &Termination) -> Vec<(&'static str, f64)> {
+    match t {
+        Termination::StepLimit {
+            measure, tolerance, ..
+        } => vec![
+            ("termination measure", *measure),
+            ("termination tolerance", *tolerance),
+        ],
+        Termination::LargeDisplacement {
+            displacement_mm,
+            size_mm,
+        } => vec![
+            ("termination displacement", *displacement_mm),
+            ("termination size", *size_mm),
+        ],
+        Termination::Inner { termination, .. } => termination_values(termination),
+        _ => vec![],
     }
 }
 
@@ -122,5 +146,26 @@ mod tests {
             }
         );
         assert!(case.interface.is_empty() && case.p_max_mpa.is_none());
+    }
+
+    /// A termination's measure that is not finite (a step limit's NaN, inside an inner
+    /// method's) ends the case as not finite too.
+    #[test]
+    fn a_non_finite_termination_measure_ends_the_case() {
+        let mut case = CaseReport::new("c", &Default::default(), serde_json::Value::Null);
+        case.status = CaseStatus::NotConverged;
+        let limit = |measure| Termination::StepLimit {
+            steps: 3,
+            measure,
+            tolerance: 1e-3,
+        };
+        case.termination = limit(0.5).inside(contopt_core::observe::Method::LoadSplit);
+        let mut good = case.clone();
+        good.settle();
+        assert_eq!(good.termination, case.termination);
+        case.termination = limit(f64::NAN).inside(contopt_core::observe::Method::LoadSplit);
+        case.settle();
+        let field = "termination measure".to_string();
+        assert_eq!(case.termination, Termination::NonFinite { field });
     }
 }

@@ -174,11 +174,9 @@ impl Crown {
         if !(0.0..=1.0).contains(&k2) || k2 == 0.0 {
             return Err(Error::invalid("profile.k2", k2, "must lie in (0, 1]"));
         }
-        Ok(Crown::FujiwaraKawase {
-            a: k1 * checked_scale(load, length, e_star)?,
-            k2,
-            z_m,
-        })
+        let a = k1 * checked_scale(load, length, e_star)?;
+        check::derived("profile.k1", k1, "A = K1·Q/(π l E*)", a)?;
+        Ok(Crown::FujiwaraKawase { a, k2, z_m })
     }
 
     /// A table of (|x|, drop) rows \[mm\].
@@ -201,12 +199,39 @@ impl Crown {
                 "positions |x| ≥ 0 increasing, drops finite",
             ));
         }
+        // The interpolation takes the difference of neighbouring drops: finite too.
+        if let Some(k) = (1..x.len()).find(|&k| !(drop[k] - drop[k - 1]).is_finite()) {
+            let row = format!("profile.table row {}", k + 1);
+            let what = "its difference from the row before";
+            check::derived(&row, drop[k], what, drop[k] - drop[k - 1])?;
+        }
         Ok(Crown::Table { x, drop })
     }
 
-    /// The drop z at the axial position `x` of a roller of effective length `length` \[mm\];
-    /// an error at or past the ends, where the logarithmic profiles are infinite.
+    /// The drop z at the axial position `x` of a roller of effective length `length` > 0
+    /// \[mm\]; an error at or past the ends, where the logarithmic profiles are infinite, and
+    /// where the drop overflows f64 (a crown's scale far from physical ones).
     pub fn drop(&self, x: f64, length: f64) -> Result<f64> {
+        check::positive("length", length)?;
+        let z = self.drop_inside(x, length)?;
+        check::derived(
+            "profile",
+            self.summary(),
+            &format!("its drop at x = {x}"),
+            z,
+        )
+    }
+
+    /// The crown, briefly for an error: a table by its number of rows.
+    fn summary(&self) -> String {
+        match self {
+            Crown::Table { x, .. } => format!("a table of {} rows", x.len()),
+            other => format!("{other:?}"),
+        }
+    }
+
+    /// [`Crown::drop`] for a positive `length`, not yet checked finite.
+    fn drop_inside(&self, x: f64, length: f64) -> Result<f64> {
         let u = 2.0 * x.abs() / length;
         if u.is_nan() || u >= 1.0 {
             return Err(Error::invalid(
@@ -245,7 +270,8 @@ fn checked_scale(load: f64, length: f64, e_star: f64) -> Result<f64> {
     check::positive("load", load)?;
     check::positive("length", length)?;
     check::positive("e_star", e_star)?;
-    Ok(log_scale(load, length, e_star))
+    let scale = log_scale(load, length, e_star);
+    check::derived("load", load, "the scale Q/(π l E*)", scale)
 }
 
 /// A crown as a scene names it (`{ kind = "fujiwara_kawase", k1 = 1.2, k2 = 0.4, z_m_mm =
@@ -361,6 +387,35 @@ mod tests {
         assert!(e.contains("row 3"), "{e}");
         let e = Crown::iso(-1.0).unwrap_err().to_string();
         assert!(e.contains("diameter_mm"), "{e}");
+    }
+
+    /// A length that is not positive is refused (2|x|/l < 1 held for any x when l < 0).
+    #[test]
+    fn drop_refuses_a_length_that_is_not_positive() {
+        let iso = Crown::iso(10.0).unwrap();
+        for length in [-1.0, 0.0, -0.0, f64::NAN] {
+            let e = iso.drop(5.0, length).unwrap_err().to_string();
+            assert!(e.contains("length"), "{e}");
+        }
+        assert!(iso.drop(0.0, 1.0).is_ok());
+    }
+
+    /// Magnitudes whose profile overflows f64 are refused: a scale, a table's step, a drop.
+    #[test]
+    fn profiles_beyond_f64_are_refused() {
+        let e = Crown::lundberg(1e300, 1e-300, 2e5).unwrap_err().to_string();
+        assert!(e.contains("load") && e.contains("beyond f64"), "{e}");
+        assert!(Crown::fujiwara_kawase(1e300, 0.5, 0.01, 1e10, 1.0, 1e-3).is_err());
+        let e = Crown::table(vec![0.0, 1.0], vec![-f64::MAX, f64::MAX])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("row 2"), "{e}");
+        let steep = Crown::Lundberg { scale: 1e307 };
+        let e = steep.drop(0.5, 1.0 + 1e-15).unwrap_err().to_string();
+        assert!(
+            e.contains("profile") && e.contains("drop at x = 0.5"),
+            "{e}"
+        );
     }
 }
 

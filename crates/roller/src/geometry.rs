@@ -39,7 +39,9 @@ impl Roller {
         1.0 / (c(&self.roller) + c(&self.raceway))
     }
 
-    /// The effective radius across the contact, 1/R = 2/D + 2/D_r \[mm\].
+    /// The effective radius across the contact, 1/R = 2/D + 2/D_r \[mm\]; an error when it
+    /// overflows f64 (diameters beyond 10³⁰⁸ mm, or an outer ring within round-off of the
+    /// roller).
     pub fn radius(&self) -> Result<f64> {
         check::positive("diameter_mm", self.diameter)?;
         check::positive("length_mm", self.length)?;
@@ -51,21 +53,29 @@ impl Roller {
                 "an outer ring must be larger than the roller (the pair must be convex)",
             )
         })?;
-        Ok(1.0 / curvature)
+        let what = format!(
+            "the effective radius 1/(2/D + 2/D_r) (D_r {:?})",
+            self.raceway_diameter
+        );
+        check::derived("diameter_mm", self.diameter, &what, 1.0 / curvature)
     }
 
     /// Hertz's line contact for the nominal line load Q/l: the half-width b \[mm\] and the peak
-    /// p₀ \[MPa\].
+    /// p₀ \[MPa\]; an error when either overflows f64 (magnitudes far from physical ones).
     pub fn hertz(&self) -> Result<(f64, f64)> {
         check::positive("load_n", self.load)?;
         let q = self.load / self.length;
         let b = (4.0 * q * self.radius()? / (PI * self.e_star())).sqrt();
-        Ok((b, 2.0 * q / (PI * b)))
+        let figures = (b, 2.0 * q / (PI * b));
+        let what = "Hertz's contact (b, p₀) with this diameter, length and E*";
+        check::all_derived("load_n", self.load, what, &[figures.0, figures.1])?;
+        Ok(figures)
     }
 
     /// The cell size \[mm\] along the axis and across of a grid of `nx` × `ny` cells over the
-    /// length and ±`reach`·b (the grid of [`Roller::bodies`]).
+    /// length and ±`reach`·b (the grid of [`Roller::bodies`]); `reach` positive and finite.
     pub fn cell(&self, nx: usize, ny: usize, reach: f64) -> Result<[f64; 2]> {
+        check::positive("reach_b", reach)?;
         if ny.is_multiple_of(2) || ny < 3 {
             return Err(Error::invalid(
                 "cells[1]",
@@ -74,10 +84,17 @@ impl Roller {
             ));
         }
         let (b, _) = self.hertz()?;
-        Ok([
+        let cell = [
             self.length / nx.max(1) as f64,
             reach * b / ((ny - 1) / 2) as f64,
-        ])
+        ];
+        check::all_derived(
+            "reach_b",
+            reach,
+            "the cell size reach·b/((ny − 1)/2)",
+            &cell,
+        )?;
+        Ok(cell)
     }
 
     /// The tilt γ in arc-minutes.
@@ -114,6 +131,62 @@ impl Roller {
                     + self.tilt * x[0])
             })
             .collect::<Result<Vec<f64>>>()?;
+        let what = "the initial gap y²/(2R) + z(x) + γ·x";
+        check::all_derived("tilt", self.tilt, what, &gap)?;
         Ok((raceway, roller, gap))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn roller(load: f64, diameter: f64) -> Roller {
+        let steel = Material::new(2e5, 0.3).unwrap();
+        Roller {
+            diameter,
+            length: 10.0,
+            raceway_diameter: None,
+            roller: steel,
+            raceway: steel,
+            load,
+            tilt: 0.0,
+            crown: Crown::Straight,
+        }
+    }
+
+    /// `cell` checks its reach as `bodies` does: a NaN, infinite or negative reach is refused,
+    /// and so is one that makes the cell size overflow.
+    #[test]
+    fn cell_refuses_a_reach_that_is_not_positive() {
+        let r = roller(1000.0, 10.0);
+        for reach in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
+            let e = r.cell(10, 5, reach).unwrap_err().to_string();
+            assert!(e.contains("reach_b"), "{e}");
+        }
+        let e = roller(1e300, 10.0)
+            .cell(10, 3, 1e300)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("reach_b") && e.contains("beyond f64"), "{e}");
+        assert!(r.cell(10, 5, 2.6).is_ok());
+    }
+
+    /// Hertz's figures that overflow f64 are an error naming the load, not infinities.
+    #[test]
+    fn hertz_beyond_f64_is_refused() {
+        for (load, diameter) in [(f64::MAX, 10.0), (1e-300, 1e-300), (1000.0, f64::MAX)] {
+            let e = roller(load, diameter).hertz().unwrap_err().to_string();
+            assert!(e.contains("load_n") && e.contains("beyond f64"), "{e}");
+        }
+        let (b, p0) = roller(1000.0, 10.0).hertz().unwrap();
+        assert!(b > 0.0 && p0 > 0.0);
+        let mut ring = roller(1000.0, 1.7e308);
+        ring.raceway_diameter = Some(-f64::MAX);
+        let e = ring.radius().unwrap_err().to_string();
+        assert!(
+            e.contains("diameter_mm") && e.contains("effective radius"),
+            "{e}"
+        );
     }
 }

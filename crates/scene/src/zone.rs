@@ -93,12 +93,24 @@ impl FacesZone {
         ElementKind::Q8
     }
 
-    /// The element boundaries across the zone, after checking the counts and the grading.
+    /// The element boundaries across the zone, after checking the counts and the grading; a
+    /// grading whose element sizes f64 cannot hold across the radius (a ratio of 10³⁰⁰ over
+    /// a few elements) is refused as the zone's `grading`, not as the spacing's coordinates.
     pub fn spacing(&self) -> Result<Spacing> {
         check::count("elements", self.elements, 1, MAX_AXIS_ELEMENTS)?;
         check::positive("grading", self.grading)?;
         check::positive("radius_mm", self.radius_mm)?;
-        Spacing::geometric(0.0, self.radius_mm, self.elements, 1.0 / self.grading)
+        Spacing::geometric(0.0, self.radius_mm, self.elements, 1.0 / self.grading).map_err(|_| {
+            Error::invalid(
+                "grading",
+                self.grading,
+                format!(
+                    "is a size ratio innermost / outermost that f64 cannot lay out over {} \
+                     elements on {} mm (element boundaries coincide): use a milder one",
+                    self.elements, self.radius_mm
+                ),
+            )
+        })
     }
 
     /// The size of the outermost element, at the zone's rim \[mm\].

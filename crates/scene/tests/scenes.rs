@@ -231,6 +231,31 @@ fn keys_and_dimensions_are_checked() {
     );
 }
 
+/// A block little wider than its near-surface layer builds (size 50 mm on a zone of 10 mm in
+/// four elements: more than twice the radius, as documented; its outer elements start below
+/// the zone's edge size), and a grading f64 cannot lay out is refused at the zone's
+/// `grading`, not at a spacing's coordinates.
+#[test]
+fn a_block_and_a_grading_are_checked_in_the_scene_s_words() {
+    let block = text("punch-on-block")
+        .replace("elements = 20", "elements = 4")
+        .replace("size_mm = 200.0", "size_mm = 50.0");
+    let scene = parse(&block).expect("a block of 50 mm on 10 mm reads");
+    let built = scene.cases()[0].build().expect("and builds");
+    assert_eq!(built.first().name(), "block");
+    let narrow = block.replace("size_mm = 50.0", "size_mm = 20.0");
+    let message = refused(&narrow);
+    assert!(message.contains("body[0].size_mm"), "{message}");
+    for grading in ["1e300", "5e-324"] {
+        let zone = format!("elements = 4, grading = {grading}");
+        let message = refused(&block.replace("elements = 4", &zone));
+        assert!(
+            message.contains("contact.zone.grading") && !message.contains("coords"),
+            "{message}"
+        );
+    }
+}
+
 /// The observer of a run sees the optimisation at level 0 and its contact solves at level 1,
 /// each ending with an event that says how it ended; a stop ends the case, not converged,
 /// saying that an observer stopped it.

@@ -386,8 +386,10 @@ impl BodyKind for FePunch {
 
 impl FeBlock {
     /// The element boundaries along r and through the depth: the zone's faces, then 40
-    /// growing out to the size; a near-surface layer of [`BLOCK_NEAR_RADII`] zone radii of
-    /// square-ish elements, then 24 growing down to the clamped bottom.
+    /// growing out to the size from the zone's edge size (or from the 40th of the width
+    /// outside the zone when that is less: a block little wider than its near-surface layer,
+    /// as a base's [`FeBase::across`]); a near-surface layer of [`BLOCK_NEAR_RADII`] zone
+    /// radii of square-ish elements, then 24 growing down to the clamped bottom.
     fn spacings(&self, zone: &FacesZone) -> Result<(Spacing, Spacing)> {
         let a = zone.radius_mm;
         let near_depth = BLOCK_NEAR_RADII * a;
@@ -399,11 +401,12 @@ impl FeBlock {
             ));
         }
         let h = zone.edge_size()?;
+        let first = h.min((self.size_mm - a) / BLOCK_OUTER_ELEMENTS as f64);
         let across = zone.spacing()?.then(&Spacing::geometric_first(
             a,
             self.size_mm,
             BLOCK_OUTER_ELEMENTS,
-            h,
+            first,
         )?)?;
         let near = Spacing::uniform(
             -near_depth,
