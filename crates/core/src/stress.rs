@@ -140,6 +140,41 @@ fn dot(p: [f64; 3], q: [f64; 3]) -> f64 {
     p[0] * q[0] + p[1] * q[1] + p[2] * q[2]
 }
 
+/// Relative difference below which two values of a criterion count as equal when the peak is
+/// placed: a symmetric contact has mirror points whose values differ only by round-off, and
+/// which of them is reported must not depend on the order of floating-point operations (an
+/// optimisation level, a SIMD path). Far below any printed figure.
+pub const PEAK_TIE: f64 = 1e-9;
+
+/// Whether `value` exceeds `held` by more than [`PEAK_TIE`] (relative): a new peak, rather
+/// than a mirror point of the one held.
+fn exceeds(value: f64, held: f64) -> bool {
+    value - held > PEAK_TIE * value.abs().max(held.abs())
+}
+
+/// The index of the largest of `values`; of values equal to [`PEAK_TIE`] the first. `None`
+/// when `values` is empty. A value that is not a number is never the peak.
+pub fn peak_index(values: &[f64]) -> Option<usize> {
+    let max = values
+        .iter()
+        .copied()
+        .filter(|v| !v.is_nan())
+        .max_by(f64::total_cmp)?;
+    values
+        .iter()
+        .position(|&v| v == max || (v.is_finite() && !exceeds(max, v)))
+}
+
+/// Whether `value` replaces the peak `held`: any value above an unset (infinite) peak, else
+/// one that [`exceeds`] it.
+fn raises(value: f64, held: f64) -> bool {
+    if held.is_infinite() {
+        value > held
+    } else {
+        exceeds(value, held)
+    }
+}
+
 /// Where a criterion is largest and its value there.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Peak {
@@ -188,19 +223,22 @@ impl Default for StressPeaks {
 
 impl StressPeaks {
     /// Takes the stress `s` at surface position (`x`, `y`) and `depth` into account. A value
-    /// that is not a number sticks, so that [`StressPeaks::finite`] refuses the peaks.
+    /// that is not a number sticks, so that [`StressPeaks::finite`] refuses the peaks. Of
+    /// values equal to [`PEAK_TIE`] the first recorded stays the peak.
     pub fn record(&mut self, s: &StressTensor, x: f64, y: f64, depth: f64) {
         let at = |value| Peak { value, x, y, depth };
         let [s1, _, s3] = s.principal();
         let raise = |peak: &mut Peak, value: f64| {
-            if !peak.value.is_nan() && (value.is_nan() || value > peak.value) {
+            if !peak.value.is_nan() && (value.is_nan() || raises(value, peak.value)) {
                 *peak = at(value);
             }
         };
         raise(&mut self.von_mises, s.von_mises());
         raise(&mut self.tresca, 0.5 * (s1 - s3));
         raise(&mut self.max_principal, s1);
-        if !self.min_principal.value.is_nan() && (s3.is_nan() || s3 < self.min_principal.value) {
+        if !self.min_principal.value.is_nan()
+            && (s3.is_nan() || raises(-s3, -self.min_principal.value))
+        {
             self.min_principal = at(s3);
         }
     }
@@ -212,11 +250,11 @@ impl StressPeaks {
             (&mut self.tresca, other.tresca),
             (&mut self.max_principal, other.max_principal),
         ] {
-            if theirs.value > mine.value {
+            if raises(theirs.value, mine.value) {
                 *mine = theirs;
             }
         }
-        if other.min_principal.value < self.min_principal.value {
+        if raises(-other.min_principal.value, -self.min_principal.value) {
             self.min_principal = other.min_principal;
         }
     }
@@ -472,5 +510,27 @@ mod tests {
         assert_eq!((peaks.von_mises.value, peaks.von_mises.x), (3.0, 2.0));
         assert_eq!(peaks.min_principal.value, -3.0);
         assert!(peaks.max_principal.value.abs() <= PRINCIPAL_TOLERANCE * 3.0);
+    }
+
+    #[test]
+    fn mirror_points_equal_to_round_off_report_the_first() {
+        let peak = 2812.2;
+        let mirror = peak * (1.0 + 4.0 * f64::EPSILON);
+        assert_eq!(peak_index(&[1.0, peak, 2.0, mirror]), Some(1));
+        assert_eq!(peak_index(&[1.0, mirror, 2.0, peak]), Some(1));
+        assert_eq!(peak_index(&[1.0, peak, peak * (1.0 + 1e-6)]), Some(2));
+        assert_eq!(peak_index(&[f64::NAN, -1.0, -2.0]), Some(1));
+        assert_eq!(peak_index(&[]), None);
+        let tensor = |zz: f64| StressTensor {
+            zz,
+            ..Default::default()
+        };
+        let mut peaks = StressPeaks::default();
+        peaks.record(&tensor(-peak), -0.006, -0.006, 0.16);
+        peaks.record(&tensor(-mirror), 0.006, -0.006, 0.16);
+        assert_eq!(peaks.von_mises.x, -0.006, "a mirror point moved the peak");
+        assert_eq!(peaks.min_principal.x, -0.006);
+        peaks.record(&tensor(-1.001 * peak), 0.5, 0.0, 0.16);
+        assert_eq!((peaks.von_mises.x, peaks.min_principal.x), (0.5, 0.5));
     }
 }

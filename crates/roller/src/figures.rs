@@ -3,6 +3,7 @@
 //! pressure along the centre line. Plain data, computed from the grid's points, the pressure,
 //! the crown's drop per point and the cell size across.
 
+use contopt_core::stress::peak_index;
 use serde::Serialize;
 
 /// Ends that carry more than this over the peak pressure at mid-length are edge loaded.
@@ -119,9 +120,7 @@ impl CaseFigures {
             .chain(columns.column(columns.last))
             .map(|i| drop.get(i).copied().unwrap_or(0.0))
             .fold(0.0, f64::max);
-        let top = (0..points.len())
-            .max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))
-            .unwrap_or(0);
+        let top = peak_index(pressure).unwrap_or(0);
         let end_ratio = columns.end_ratio(pressure);
         Self {
             load_n: contact.load_n,

@@ -5,6 +5,7 @@
 //! Hertz's nominal contact is reported beside the case where it applies.
 
 use contopt_contact::InterfaceProblem;
+use contopt_core::stress::peak_index;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
 use crate::zone::Layout;
@@ -208,7 +209,7 @@ fn resolution(
     carrying: &[bool],
     pressure: &[f64],
 ) -> Option<Resolution> {
-    let peak = (0..pressure.len()).max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))?;
+    let peak = peak_index(pressure)?;
     // The carrying points on the line through the peak along the other axis.
     let count = |other: usize| {
         carrying
