@@ -139,8 +139,8 @@ pub const SOURCES: &[Source] = &[
             ("p_map_10.svg", "roller_study_map_optimised.svg"),
             ("mises_2_1.svg", "roller_mises_iso_centre.svg"),
             ("mises_10_1.svg", "roller_mises_optimised_centre.svg"),
-            ("mises_10_3.svg", "roller_mises_optimised_end.svg"),
-            ("mises_1_3.svg", "roller_mises_straight_end.svg"),
+            ("mises_10_2.svg", "roller_mises_optimised_end.svg"),
+            ("mises_1_2.svg", "roller_mises_straight_end.svg"),
         ],
     ),
     scene(

@@ -1,6 +1,7 @@
 //! Stresses below the surface of a case's bodies (`[output.subsurface]`): the request a case
 //! makes of its bodies, and their answers for the report.
 
+use contopt_core::stress::peak_index;
 use contopt_core::{
     ElasticBody, Geometry, Interface, Result, Section, SectionAxis, SubsurfaceRequest,
 };
@@ -35,8 +36,9 @@ pub struct SubsurfaceSpec {
     #[serde(default = "SubsurfaceSpec::default_depths")]
     pub depths: usize,
     /// Vertical sections of a grid; default: along x and along y through the largest
-    /// pressure (a roller: across the contact at mid-length, at the largest pressure and at
-    /// the end cell). A plane or axisymmetric body has one section, its own plane.
+    /// pressure (a roller: across the contact at mid-length, at the end cell on the side of
+    /// the largest pressure, and at the largest pressure where that is neither). A plane or
+    /// axisymmetric body has one section, its own plane.
     #[serde(default)]
     pub sections: Vec<SectionSpec>,
 }
@@ -199,13 +201,11 @@ fn spacing(interface: &Interface, axis: usize) -> f64 {
 }
 
 /// A grid's default sections: along x and along y through the largest pressure; a roller's
-/// (x along its axis): across the contact at mid-length, at the largest pressure and at the
-/// end cell.
+/// (x along its axis): across the contact at mid-length, at the end cell on the side of the
+/// largest pressure, and at the largest pressure where that is neither. The order is fixed, so
+/// a section's number says which it is.
 fn default_sections(interface: &Interface, pressure: &[f64], roller: bool) -> Vec<Section> {
-    let peak = pressure
-        .iter()
-        .enumerate()
-        .fold(0, |m, (k, p)| if *p > pressure[m] { k } else { m });
+    let peak = peak_index(pressure).unwrap_or(0);
     let at = interface.points().get(peak).copied().unwrap_or_default();
     if !roller {
         return vec![
@@ -219,14 +219,15 @@ fn default_sections(interface: &Interface, pressure: &[f64], roller: bool) -> Ve
             },
         ];
     }
-    let end = interface
-        .points()
-        .iter()
-        .map(|x| x[0])
-        .fold(f64::NEG_INFINITY, f64::max);
+    let along = interface.points().iter().map(|x| x[0]);
+    let end = if at[0] < 0.0 {
+        along.fold(f64::INFINITY, f64::min)
+    } else {
+        along.fold(f64::NEG_INFINITY, f64::max)
+    };
     let cell = spacing(interface, 0);
     let mut positions: Vec<f64> = vec![0.0];
-    for x in [at[0], end] {
+    for x in [end, at[0]] {
         if positions
             .iter()
             .all(|p| (p - x).abs() > SAME_SECTION * cell)
