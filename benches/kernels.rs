@@ -176,7 +176,7 @@ fn old_point(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> OldPoint {
     let mesh = model.mesh();
     let conn = &mesh.elements()[e];
     // Mesh::jacobian evaluates the shape functions, and point_b once more.
-    let s = mesh.kind().shape(xi, eta);
+    let s = mesh.element_kind(e).shape(xi, eta);
     let mut j = [[0.0; 2]; 2];
     for (a, &n) in conn.iter().enumerate() {
         let p = mesh.nodes()[n];
@@ -186,7 +186,7 @@ fn old_point(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> OldPoint {
         }
     }
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-    let s = mesh.kind().shape(xi, eta);
+    let s = mesh.element_kind(e).shape(xi, eta);
     assert!(det > 0.0, "element {e} has a singular Jacobian");
     let jinv = [
         [j[1][1] / det, -j[0][1] / det],
@@ -235,7 +235,7 @@ fn old_element_stiffness(
     d: &[[f64; 4]; 4],
     ke: &mut [[f64; 2 * MAX_NODES]; 2 * MAX_NODES],
 ) {
-    let nn = model.mesh().kind().n_nodes();
+    let nn = model.mesh().element_kind(e).n_nodes();
     let ns = model.analysis().n_strain();
     for row in ke.iter_mut() {
         row.fill(0.0);

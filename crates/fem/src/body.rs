@@ -107,7 +107,8 @@ impl FeBody {
             .collect();
         face_nodes.sort_unstable();
         face_nodes.dedup();
-        let system = System::new(&model, &name, &face_nodes)?;
+        let points = GAUSS3.len() * contact.len();
+        let system = System::new(&model, &name, &face_nodes, points)?;
         let condensation_start = Instant::now();
         let Sampled {
             interface,

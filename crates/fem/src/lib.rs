@@ -1,6 +1,7 @@
-//! Linear-elastic finite-element bodies with quadratic isoparametric quadrilaterals
-//! (8-node serendipity and 9-node Lagrange), for axisymmetric, plane-stress and plane-strain
-//! analysis, as in the paper's examples (§4: "quadratic isoparametric ring element").
+//! Linear-elastic finite-element bodies with quadratic isoparametric elements (8-node
+//! serendipity and 9-node Lagrange quadrilaterals, 6-node triangles, alone or mixed in one
+//! mesh), for axisymmetric, plane-stress and plane-strain analysis, as in the paper's examples
+//! (§4: "quadratic isoparametric ring element").
 //!
 //! A [`FeModel`] holds a [`Mesh`], a [`Material`], an [`Analysis`], supports and loads;
 //! [`FeModel::solve`] solves a supported model, and [`FeBody`] condenses a model to its contact
@@ -22,6 +23,6 @@ pub use body::{BuildStats, FeBody};
 pub use contopt_core::Material;
 pub use element::ElementKind;
 pub use factor::factorisations;
-pub use mesh::{body_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
+pub use mesh::{body_bytes, mesh_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
 pub use model::{Component, FeModel};
 pub use solution::{Solution, Stress};

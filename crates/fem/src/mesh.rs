@@ -3,7 +3,7 @@
 use contopt_core::{check, memory, Error, Result, GEOMETRY_TOLERANCE};
 use nalgebra::Matrix2;
 
-use crate::element::{ElementKind, FACE_NODES};
+use crate::element::ElementKind;
 
 /// The most elements a [`Spacing`] may have along one axis: far more than a two-dimensional
 /// mesh that can be factorised needs, few enough that the coordinates are cheap.
@@ -14,16 +14,24 @@ pub const MAX_AXIS_ELEMENTS: usize = 100_000;
 const SPACING_ROUND_OFF: f64 = 1e-12;
 
 /// A generous estimate of the memory a body of `nx` × `ny` quadratic elements takes to build
-/// \[bytes\], `None` when it overflows: the sparse Cholesky factor of its 2 unknowns per node
-/// (nested dissection on a grid of N nodes fills about 8·N·log₂N blocks of 2 × 2 values, 12
-/// bytes each with its index) and the dense condensation on a contact face of up to 3·nx
-/// points (four n × n matrices).
+/// \[bytes\], `None` when it overflows: [`mesh_bytes`] of the (2·nx + 1)(2·ny + 1) nodes of
+/// its grid with a contact face of up to 3·nx points.
 pub fn body_bytes(nx: usize, ny: usize) -> Option<u64> {
     let side = |n: usize| n.checked_mul(2)?.checked_add(1);
-    let nodes = memory::bytes(&[side(nx)?, side(ny)?], 1)?;
+    mesh_bytes(side(nx)?.checked_mul(side(ny)?)?, nx.checked_mul(3)?)
+}
+
+/// A generous estimate of the memory a body of `nodes` nodes, of any elements (an imported
+/// mesh), takes to build when condensed to `face_points` contact points \[bytes\] (0 for a
+/// solve without condensation), `None` when it overflows: the sparse Cholesky factor of its 2
+/// unknowns per node (nested dissection on a two-dimensional mesh of N nodes fills about
+/// 8·N·log₂N blocks of 2 × 2 values, 12 bytes each with its index) and the dense condensation
+/// on the contact points (four n × n matrices). [`body_bytes`] is this estimate for a
+/// structured rectangle.
+pub fn mesh_bytes(nodes: usize, face_points: usize) -> Option<u64> {
+    let nodes = memory::bytes(&[nodes], 1)?;
     let log = u64::from(64 - nodes.leading_zeros());
     let factor = nodes.checked_mul(8 * 4 * 12)?.checked_mul(log)?;
-    let face_points = nx.checked_mul(3)?;
     let face = memory::bytes(&[face_points, face_points], 4 * 8)?;
     factor.checked_add(face)
 }
@@ -269,30 +277,48 @@ impl Spacing {
     }
 }
 
-/// One face (edge) of an element: `(element, local face 0..4)`.
+/// One face (edge) of an element: `(element, local face)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Face {
     /// Element index.
     pub element: usize,
-    /// Local face number (see [`crate::element::FACE_NODES`]).
+    /// Local face number, below the element's [`ElementKind::n_faces`] (see
+    /// [`ElementKind::face_nodes`]).
     pub local: usize,
 }
 
-/// A mesh of quadratic quadrilaterals in the (x, y) plane (x = r for axisymmetry).
+/// A mesh of quadratic elements in the (x, y) plane (x = r for axisymmetry): quadrilaterals
+/// and triangles, of one kind or mixed.
 #[derive(Clone, Debug)]
 pub struct Mesh {
-    kind: ElementKind,
+    kinds: Vec<ElementKind>,
     nodes: Vec<[f64; 2]>,
     elements: Vec<Vec<usize>>,
 }
 
 impl Mesh {
-    /// A mesh from node coordinates and element connectivity (local order of
-    /// [`crate::element`], counter-clockwise). Every element must have a positive Jacobian at
-    /// its Gauss points.
+    /// A mesh of elements of one kind from node coordinates and element connectivity (local
+    /// order of [`crate::element`], counter-clockwise). Every element must have a positive
+    /// Jacobian at its integration points.
     pub fn new(kind: ElementKind, nodes: Vec<[f64; 2]>, elements: Vec<Vec<usize>>) -> Result<Self> {
+        Self::build(vec![kind; elements.len()], nodes, elements)
+    }
+
+    /// A mesh whose elements may be of different kinds (an imported mesh of quadrilaterals
+    /// and triangles): each element is its kind and its connectivity, checked as
+    /// [`Mesh::new`] checks them. Elements that meet share their face's three nodes.
+    pub fn mixed(nodes: Vec<[f64; 2]>, elements: Vec<(ElementKind, Vec<usize>)>) -> Result<Self> {
+        let (kinds, elements) = elements.into_iter().unzip();
+        Self::build(kinds, nodes, elements)
+    }
+
+    fn build(
+        kinds: Vec<ElementKind>,
+        nodes: Vec<[f64; 2]>,
+        elements: Vec<Vec<usize>>,
+    ) -> Result<Self> {
         let mesh = Self {
-            kind,
+            kinds,
             nodes,
             elements,
         };
@@ -314,31 +340,34 @@ impl Mesh {
                 self.nodes[i]
             )));
         }
-        for (e, conn) in self.elements.iter().enumerate() {
-            if conn.len() != self.kind.n_nodes() {
+        (0..self.elements.len()).try_for_each(|e| self.validate_element(e))
+    }
+
+    /// Element `e` has its kind's number of nodes, nodes of the mesh, and a positive Jacobian
+    /// at its integration points.
+    fn validate_element(&self, e: usize) -> Result<()> {
+        let (kind, conn) = (self.kinds[e], &self.elements[e]);
+        if conn.len() != kind.n_nodes() {
+            return Err(Error::Mesh(format!(
+                "element {e} has {} nodes, a {kind:?} needs {}",
+                conn.len(),
+                kind.n_nodes()
+            )));
+        }
+        if let Some(&n) = conn.iter().find(|&&n| n >= self.nodes.len()) {
+            return Err(Error::Mesh(format!(
+                "element {e} refers to node {n}, mesh has {}",
+                self.nodes.len()
+            )));
+        }
+        for p in kind.integration_points() {
+            let det = self.jacobian(e, p.xi, p.eta).1;
+            if det.is_nan() || det <= 0.0 {
                 return Err(Error::Mesh(format!(
-                    "element {e} has {} nodes, a {:?} needs {}",
-                    conn.len(),
-                    self.kind,
-                    self.kind.n_nodes()
+                    "element {e} ({kind:?}) has Jacobian determinant {det:.3e} at (ξ, η) = \
+                     ({:.3}, {:.3}): inverted or degenerate (nodes must run counter-clockwise)",
+                    p.xi, p.eta
                 )));
-            }
-            if let Some(&n) = conn.iter().find(|&&n| n >= self.nodes.len()) {
-                return Err(Error::Mesh(format!(
-                    "element {e} refers to node {n}, mesh has {}",
-                    self.nodes.len()
-                )));
-            }
-            for &(xi, _) in &crate::element::GAUSS3 {
-                for &(eta, _) in &crate::element::GAUSS3 {
-                    let det = self.jacobian(e, xi, eta).1;
-                    if det.is_nan() || det <= 0.0 {
-                        return Err(Error::Mesh(format!(
-                            "element {e} has Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): \
-                             inverted or degenerate (nodes must run counter-clockwise)"
-                        )));
-                    }
-                }
             }
         }
         Ok(())
@@ -347,7 +376,7 @@ impl Mesh {
     /// Jacobian J = [[∂x/∂ξ, ∂y/∂ξ], [∂x/∂η, ∂y/∂η]] = Σₐ (∂Nₐ/∂ξ, ∂Nₐ/∂η)ᵀ (xₐ, yₐ) of
     /// element `e` at (ξ, η), and its determinant.
     pub(crate) fn jacobian(&self, e: usize, xi: f64, eta: f64) -> (Matrix2<f64>, f64) {
-        let s = self.kind.shape(xi, eta);
+        let s = self.kinds[e].shape(xi, eta);
         let mut j = Matrix2::zeros();
         for (a, &n) in self.elements[e].iter().enumerate() {
             let p = self.nodes[n];
@@ -359,8 +388,23 @@ impl Mesh {
         (j, j.determinant())
     }
 
-    /// A structured mesh of the rectangle `x × y`; mid-side nodes sit at the midpoints.
+    /// A structured mesh of the rectangle `x × y` of elements of one kind; mid-side nodes
+    /// sit at the midpoints (see [`Mesh::rectangle_with`]).
     pub fn rectangle(kind: ElementKind, x: &Spacing, y: &Spacing) -> Result<Self> {
+        Self::rectangle_with(x, y, |_, _| kind)
+    }
+
+    /// A structured mesh of the rectangle `x × y` whose cell (i, j), the i-th along x and the
+    /// j-th along y from 0, is of kind `kind(i, j)`: a Q8 or a Q9 element, or for T6 two
+    /// triangles split along the diagonal from the cell's lower-left to its upper-right corner.
+    /// The nodes are those of the grid of corners and mid-sides, and of the cell centres that
+    /// belong to an element (a Q9's centre, the middle of a T6 cell's diagonal); neighbouring
+    /// cells share their face's three nodes whatever their kinds.
+    pub fn rectangle_with(
+        x: &Spacing,
+        y: &Spacing,
+        kind: impl Fn(usize, usize) -> ElementKind,
+    ) -> Result<Self> {
         let (nx, ny) = (x.len(), y.len());
         memory::require(
             format!("a body of {nx} × {ny} quadratic elements"),
@@ -368,6 +412,10 @@ impl Mesh {
             memory::BODY_LIMIT_BYTES,
             "use fewer elements",
         )?;
+        let cells: Vec<ElementKind> = (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| kind(i, j))
+            .collect();
         let (gx, gy) = (2 * nx + 1, 2 * ny + 1);
         let coord = |s: &Spacing, i: usize| {
             let c = s.coords();
@@ -381,7 +429,7 @@ impl Mesh {
         let mut nodes = Vec::new();
         for j in 0..gy {
             for i in 0..gx {
-                if kind == ElementKind::Q8 && i % 2 == 1 && j % 2 == 1 {
+                if i % 2 == 1 && j % 2 == 1 && cells[(j / 2) * nx + i / 2] == ElementKind::Q8 {
                     continue;
                 }
                 id[j * gx + i] = nodes.len();
@@ -389,27 +437,29 @@ impl Mesh {
             }
         }
         let at = |i: usize, j: usize| id[j * gx + i];
+        let mut kinds = Vec::with_capacity(nx * ny);
         let mut elements = Vec::with_capacity(nx * ny);
-        for ey in 0..ny {
-            for ex in 0..nx {
-                let (i, j) = (2 * ex, 2 * ey);
-                let mut conn = vec![
-                    at(i, j),
-                    at(i + 2, j),
-                    at(i + 2, j + 2),
-                    at(i, j + 2),
-                    at(i + 1, j),
-                    at(i + 2, j + 1),
-                    at(i + 1, j + 2),
-                    at(i, j + 1),
-                ];
-                if kind == ElementKind::Q9 {
-                    conn.push(at(i + 1, j + 1));
-                }
+        for (c, &cell) in cells.iter().enumerate() {
+            let (i, j) = (2 * (c % nx), 2 * (c / nx));
+            let corners = [at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2)];
+            let sides = [at(i + 1, j), at(i + 2, j + 1), at(i + 1, j + 2), at(i, j + 1)];
+            let centre = at(i + 1, j + 1);
+            let [c0, c1, c2, c3] = corners;
+            let [s0, s1, s2, s3] = sides;
+            let cell_elements = match cell {
+                ElementKind::Q8 => vec![[corners, sides].concat()],
+                ElementKind::Q9 => vec![[&corners[..], &sides, &[centre]].concat()],
+                ElementKind::T6 => vec![
+                    vec![c0, c1, c2, s0, s1, centre],
+                    vec![c0, c2, c3, centre, s2, s3],
+                ],
+            };
+            for conn in cell_elements {
+                kinds.push(cell);
                 elements.push(conn);
             }
         }
-        Self::new(kind, nodes, elements)
+        Self::build(kinds, nodes, elements)
     }
 
     /// Two rectangles stacked as in the paper's Fig. 1: a lower body on `lower_x × lower_y`
@@ -446,9 +496,17 @@ impl Mesh {
         Ok(self)
     }
 
-    /// Element type.
-    pub fn kind(&self) -> ElementKind {
-        self.kind
+    /// The element type of a mesh of one kind; `None` when the mesh mixes kinds (see
+    /// [`Mesh::element_kind`]). An `Option` rather than the first element's kind, so that code
+    /// written for one kind cannot silently treat a mixed mesh as that kind.
+    pub fn kind(&self) -> Option<ElementKind> {
+        let first = self.kinds[0];
+        self.kinds.iter().all(|&k| k == first).then_some(first)
+    }
+
+    /// The type of element `e` (< `elements().len()`).
+    pub fn element_kind(&self, e: usize) -> ElementKind {
+        self.kinds[e]
     }
 
     /// Node coordinates.
@@ -456,14 +514,15 @@ impl Mesh {
         &self.nodes
     }
 
-    /// Element connectivity.
+    /// Element connectivity, each element's nodes in the local order of its kind.
     pub fn elements(&self) -> &[Vec<usize>] {
         &self.elements
     }
 
     /// Global nodes (start, middle, end) of a face.
     pub fn face_nodes(&self, f: Face) -> [usize; 3] {
-        FACE_NODES[f.local].map(|a| self.elements[f.element][a])
+        let conn = &self.elements[f.element];
+        self.kinds[f.element].face_nodes(f.local).map(|a| conn[a])
     }
 
     /// Faces that belong to one element only, in element order.
@@ -474,7 +533,10 @@ impl Mesh {
             (a.min(b), a.max(b))
         };
         let all: Vec<Face> = (0..self.elements.len())
-            .flat_map(|element| (0..4).map(move |local| Face { element, local }))
+            .flat_map(|element| {
+                let faces = self.kinds[element].n_faces();
+                (0..faces).map(move |local| Face { element, local })
+            })
             .collect();
         for &f in &all {
             *count.entry(key(f)).or_insert(0usize) += 1;

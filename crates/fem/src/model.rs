@@ -108,10 +108,10 @@ impl FeModel {
         if faces.is_empty() {
             return Err(Error::invalid(what, "[]", "selects no face"));
         }
-        if let Some(f) = faces
-            .iter()
-            .find(|f| f.element >= self.mesh.elements().len() || f.local >= 4)
-        {
+        let mesh = &self.mesh;
+        if let Some(f) = faces.iter().find(|f| {
+            f.element >= mesh.elements().len() || f.local >= mesh.element_kind(f.element).n_faces()
+        }) {
             return Err(Error::invalid(what, format!("{f:?}"), "no such face"));
         }
         Ok(())

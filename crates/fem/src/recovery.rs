@@ -1,27 +1,30 @@
-//! Stresses recovered at the nodes: the 3 × 3 Gauss-point stresses of each element
+//! Stresses recovered at the nodes: the integration-point stresses of each element
 //! extrapolated to its nodes and averaged where elements meet (Hinton & Campbell 1974,
 //! "Local and global smoothing of discontinuous finite element functions using a least squares
 //! method"; Zienkiewicz, Taylor & Zhu, *The Finite Element Method*, 7th ed., §15.2), and the
 //! stresses of a condensed [`FeBody`] under a contact pressure.
 //!
-//! The Gauss points of the 3 × 3 rule are the optimal sampling points of quadratic elements:
-//! the stress there is accurate to one order more than elsewhere (Barlow 1976). Through
-//! them, in each natural direction, passes one quadratic Lagrange polynomial per abscissa
-//! (−√0.6, 0, √0.6); their tensor product is a 9-term field that takes the Gauss-point values,
-//! and evaluated at a node's natural coordinates it gives the element's value there. A field
-//! that is a tensor-product quadratic in (ξ, η) (a uniform or linear stress in a
+//! Quadrilaterals: the Gauss points of the 3 × 3 rule are the optimal sampling points of
+//! quadratic elements: the stress there is accurate to one order more than elsewhere (Barlow
+//! 1976). Through them, in each natural direction, passes one quadratic Lagrange polynomial per
+//! abscissa (−√0.6, 0, √0.6); their tensor product is a 9-term field that takes the Gauss-point
+//! values, and evaluated at a node's natural coordinates it gives the element's value there. A
+//! field that is a tensor-product quadratic in (ξ, η) (a uniform or linear stress in a
 //! parallelogram element) is recovered exactly.
+//!
+//! Triangles: the stress of a straight-sided 6-node triangle is linear (B is), so the stresses
+//! at its 6 integration points are fitted by the linear field c₁L₁ + c₂L₂ + c₃L₃ of least
+//! squares and the fit is evaluated at the corners and mid-sides. A linear stress (uniform
+//! stress, pure bending) is recovered exactly; in a curved triangle, or for the hoop stress
+//! u/r of axisymmetry, the fit is the linear field nearest the six values.
 
 use contopt_core::{
     check, ElasticBody, Error, Result, Section, SectionAxis, SectionField, StressPeaks,
     StressTensor, Subsurface, SubsurfaceRequest,
 };
 
-use crate::element::{lagrange2, GAUSS3};
+use crate::element::{lagrange2, ElementKind, GAUSS3, MAX_POINTS};
 use crate::{FeBody, FeModel, Solution, Stress};
-
-/// Gauss points of an element: the 3 × 3 rule.
-const GAUSS_POINTS: usize = GAUSS3.len() * GAUSS3.len();
 
 /// The outer abscissa √0.6 of the 3-point Gauss rule, which the extrapolation maps to ±1.
 const GAUSS_ABSCISSA: f64 = GAUSS3[2].0;
@@ -51,20 +54,75 @@ impl From<Stress> for StressTensor {
     }
 }
 
-/// Extrapolation weights from the 3 × 3 Gauss points to each local node:
+/// Extrapolation weights from an element's integration points to its nodes, for each kind:
+/// the stress at local node a is Σₖ `weights[a][k]` σₖ over the integration points k, in the
+/// order of [`ElementKind::integration_points`] (and of [`FeModel::stresses`]).
+struct Extrapolation {
+    /// The 9 nodes of a Q9 (a Q8 takes the first 8) from the 3 × 3 Gauss points.
+    quadrilateral: Vec<[f64; MAX_POINTS]>,
+    /// The 6 nodes of a T6 from its 6 integration points.
+    triangle: Vec<[f64; MAX_POINTS]>,
+}
+
+impl Extrapolation {
+    fn new() -> Self {
+        Self {
+            quadrilateral: quadrilateral_extrapolation(),
+            triangle: triangle_extrapolation(),
+        }
+    }
+
+    /// The weights of an element of `kind`, one row per local node.
+    fn of(&self, kind: ElementKind) -> &[[f64; MAX_POINTS]] {
+        match kind {
+            ElementKind::Q8 | ElementKind::Q9 => &self.quadrilateral,
+            ElementKind::T6 => &self.triangle,
+        }
+    }
+}
+
+/// Extrapolation weights from the 3 × 3 Gauss points to each local node of a Q9:
 /// `weights[a][3i + j]` = Lᵢ(ξ_a) Lⱼ(η_a), with Lₖ the quadratic Lagrange polynomial through
-/// the Gauss abscissae that is 1 at abscissa k, and Gauss point 3i + j at (ξ, η) = (gᵢ, gⱼ), the
-/// order of [`FeModel::stresses`].
-fn extrapolation(model: &FeModel) -> Vec<[f64; GAUSS_POINTS]> {
-    let kind = model.mesh.kind();
+/// the Gauss abscissae that is 1 at abscissa k, and Gauss point 3i + j at (ξ, η) = (gᵢ, gⱼ).
+fn quadrilateral_extrapolation() -> Vec<[f64; MAX_POINTS]> {
+    let kind = ElementKind::Q9;
     (0..kind.n_nodes())
         .map(|a| {
             let [xi, eta] = kind.natural(a);
-            let mut w = [0.0; GAUSS_POINTS];
+            let mut w = [0.0; MAX_POINTS];
             for (i, &(gi, _)) in GAUSS3.iter().enumerate() {
                 for (j, &(gj, _)) in GAUSS3.iter().enumerate() {
                     w[GAUSS3.len() * i + j] = gauss_lagrange(gi, xi) * gauss_lagrange(gj, eta);
                 }
+            }
+            w
+        })
+        .collect()
+}
+
+/// Extrapolation weights from the 6 integration points of a T6 to its nodes by the linear
+/// least-squares fit σ ≈ cᵀλ in the area coordinates λ = (L₁, L₂, L₃): with λₖ those of
+/// point k and M = Σₖ λₖλₖᵀ, the fit at node a is λ_aᵀ M⁻¹ Σₖ λₖσₖ. The rule is symmetric
+/// under permutations of (L₁, L₂, L₃), so M = d I + o (J − I) (J all ones) with d = Σₖ L₁ₖ²
+/// and o = Σₖ L₁ₖL₂ₖ, whose inverse is (I − o J/(d + 2o))/(d − o); as Σλ = 1, the weight
+/// λ_aᵀ M⁻¹ λₖ is (λ_a·λₖ − o/(d + 2o))/(d − o).
+fn triangle_extrapolation() -> Vec<[f64; MAX_POINTS]> {
+    let kind = ElementKind::T6;
+    let area = |[xi, eta]: [f64; 2]| [1.0 - xi - eta, xi, eta];
+    let points: Vec<[f64; 3]> = kind
+        .integration_points()
+        .iter()
+        .map(|p| area([p.xi, p.eta]))
+        .collect();
+    let d: f64 = points.iter().map(|l| l[0] * l[0]).sum();
+    let o: f64 = points.iter().map(|l| l[0] * l[1]).sum();
+    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    (0..kind.n_nodes())
+        .map(|a| {
+            let node = area(kind.natural(a));
+            let mut w = [0.0; MAX_POINTS];
+            for (wk, l) in w.iter_mut().zip(&points) {
+                *wk = (dot(&node, l) - o / (d + 2.0 * o)) / (d - o);
             }
             w
         })
@@ -100,11 +158,12 @@ fn accumulate(sum: &mut StressTensor, s: &StressTensor) {
 }
 
 impl FeModel {
-    /// Stresses at every node, recovered from the 3 × 3 Gauss-point stresses
-    /// ([`FeModel::stresses`]): extrapolated to each element's nodes with the quadratic
-    /// Lagrange polynomials through the Gauss abscissae (±√0.6, 0) in ξ and η (corner and
-    /// mid-side nodes; the Q9 centre too), then averaged over the elements that share a node
-    /// (Hinton & Campbell 1974). Components follow [`StressTensor`]'s convention for plane and
+    /// Stresses at every node, recovered from the integration-point stresses
+    /// ([`FeModel::stresses`]): extrapolated to each element's nodes (corner and mid-side
+    /// nodes; the Q9 centre too), on a quadrilateral with the quadratic Lagrange polynomials
+    /// through the Gauss abscissae (±√0.6, 0) in ξ and η, on a triangle by the linear
+    /// least-squares fit of its six values (see the module), then averaged over the elements
+    /// that share a node, whatever their kinds (Hinton & Campbell 1974). Components follow [`StressTensor`]'s convention for plane and
     /// axisymmetric bodies (see `From<Stress> for StressTensor`): x (r) → `xx`, y (z) → `zz`,
     /// τ_xy (τ_rz) → `xz`, out-of-plane or hoop → `yy`.
     ///
@@ -134,13 +193,18 @@ impl FeModel {
     /// Per node, the sum of the element extrapolations that reach it and their number.
     fn extrapolated_sums(&self, solution: &Solution) -> Result<(Vec<StressTensor>, Vec<usize>)> {
         let n_nodes = self.mesh.nodes().len();
-        let weights = extrapolation(self);
+        let extrapolation = Extrapolation::new();
         let gauss = self.stresses(solution)?;
         let mut sum = vec![StressTensor::default(); n_nodes];
         let mut count = vec![0usize; n_nodes];
-        for (conn, points) in self.mesh.elements().iter().zip(gauss.chunks(GAUSS_POINTS)) {
-            let points: Vec<StressTensor> = points.iter().map(|&s| s.into()).collect();
-            for (&node, w) in conn.iter().zip(&weights) {
+        let mut first = 0;
+        for (e, conn) in self.mesh.elements().iter().enumerate() {
+            let kind = self.mesh.element_kind(e);
+            let n = kind.integration_points().len();
+            let points: Vec<StressTensor> =
+                gauss[first..first + n].iter().map(|&s| s.into()).collect();
+            first += n;
+            for (&node, w) in conn.iter().zip(extrapolation.of(kind)) {
                 for (s, &wk) in points.iter().zip(w) {
                     accumulate(&mut sum[node], &scaled(s, wk));
                 }
@@ -252,10 +316,11 @@ impl FeBody {
         })
     }
 
-    /// The whole mesh as one section, when its nodes (with a Q8 element's centre, interpolated)
-    /// fill a grid of distinct x × distinct y and its contact face is a line y = const: the
-    /// model's plane is its vertical section, positions its x (or r) and depths the distance
-    /// from the face. `None` for any other mesh.
+    /// The whole mesh as one section, when its nodes (with each Q8 element's centre,
+    /// interpolated) fill a grid of distinct x × distinct y, each grid point once, and its
+    /// contact face is a line y = const, as a structured rectangle's do (of Q8, Q9 or T6
+    /// elements): the model's plane is its vertical section, positions its x (or r) and depths
+    /// the distance from the face. `None` for any other mesh (a distorted or imported one).
     fn grid_section(&self, stresses: &[StressTensor]) -> Option<SectionField> {
         let face = self.interface().points().first()?[1];
         let points = self.interface().points().iter();
@@ -273,9 +338,7 @@ impl FeBody {
             .copied()
             .zip(stresses.iter().copied())
             .collect();
-        if self.model.mesh.kind().n_nodes() == 8 {
-            samples.extend(self.element_centres(stresses));
-        }
+        samples.extend(self.serendipity_centres(stresses));
         let distinct = |axis: usize| {
             let mut v: Vec<f64> = samples.iter().map(|(x, _)| x[axis]).collect();
             v.sort_by(f64::total_cmp);
@@ -299,8 +362,13 @@ impl FeBody {
             r
         };
         let mut tensors = vec![StressTensor::default(); samples.len()];
+        let mut filled = vec![false; samples.len()];
         for (x, s) in &samples {
-            tensors[row[index(&ys, x[1])] * xs.len() + index(&xs, x[0])] = *s;
+            let k = row[index(&ys, x[1])] * xs.len() + index(&xs, x[0]);
+            if std::mem::replace(&mut filled[k], true) {
+                return None;
+            }
+            tensors[k] = *s;
         }
         Some(SectionField {
             section: Section {
@@ -313,17 +381,17 @@ impl FeBody {
         })
     }
 
-    /// The centre of every element and the nodal stresses interpolated there (a Q8 element
-    /// has no centre node).
-    fn element_centres(&self, stresses: &[StressTensor]) -> Vec<([f64; 2], StressTensor)> {
+    /// The centre of every Q8 element and the nodal stresses interpolated there (a Q8
+    /// element has no centre node).
+    fn serendipity_centres(&self, stresses: &[StressTensor]) -> Vec<([f64; 2], StressTensor)> {
         let mesh = &self.model.mesh;
-        let shape = mesh.kind().shape(0.0, 0.0);
-        mesh.elements()
-            .iter()
-            .map(|conn| {
+        let shape = ElementKind::Q8.shape(0.0, 0.0);
+        (0..mesh.elements().len())
+            .filter(|&e| mesh.element_kind(e) == ElementKind::Q8)
+            .map(|e| {
                 let mut x = [0.0; 2];
                 let mut s = StressTensor::default();
-                for (&node, &n) in conn.iter().zip(&shape.n) {
+                for (&node, &n) in mesh.elements()[e].iter().zip(&shape.n) {
                     x[0] += n * mesh.nodes()[node][0];
                     x[1] += n * mesh.nodes()[node][1];
                     accumulate(&mut s, &scaled(&stresses[node], n));

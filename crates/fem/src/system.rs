@@ -2,13 +2,14 @@
 
 use std::time::{Duration, Instant};
 
-use contopt_core::{Error, Result};
+use contopt_core::{memory, Error, Result};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Side};
 use nalgebra::{Matrix4, SMatrix};
 
-use crate::element::{ElementKind, GAUSS3, MAX_NODES};
+use crate::element::{ElementKind, MAX_NODES};
 use crate::factor::Factor;
+use crate::mesh::mesh_bytes;
 use crate::{Analysis, FeModel};
 
 /// A candidate rigid mode whose Gram eigenvalue on the held DOFs (relative to its norm) is
@@ -125,7 +126,23 @@ impl Numbering {
 }
 
 impl System {
-    pub fn new(model: &FeModel, name: &str, tail_nodes: &[usize]) -> Result<Self> {
+    /// Assembles and factorises `model`'s stiffness, the unknowns of `tail_nodes` last, after
+    /// checking the memory of a body condensed to `face_points` contact points
+    /// ([`mesh_bytes`]) against [`memory::BODY_LIMIT_BYTES`]: an imported mesh is refused with
+    /// its size before its factor is allocated.
+    pub fn new(
+        model: &FeModel,
+        name: &str,
+        tail_nodes: &[usize],
+        face_points: usize,
+    ) -> Result<Self> {
+        let nodes = model.mesh.nodes().len();
+        memory::require(
+            format!("{name}: a body of {nodes} nodes and {face_points} contact points"),
+            mesh_bytes(nodes, face_points),
+            memory::BODY_LIMIT_BYTES,
+            "use fewer elements",
+        )?;
         let Numbering {
             dofs,
             n_free,
@@ -179,7 +196,7 @@ impl System {
 pub(crate) fn point_b(model: &FeModel, e: usize, xi: f64, eta: f64, w: f64) -> Result<PointB> {
     let mesh = &model.mesh;
     let (j, det) = mesh.jacobian(e, xi, eta);
-    let s = mesh.kind().shape(xi, eta);
+    let s = mesh.element_kind(e).shape(xi, eta);
     let jinv = j
         .try_inverse()
         .filter(|_| det > 0.0)
@@ -229,27 +246,27 @@ fn strain_matrix<const M: usize>(analysis: Analysis, b: &PointB) -> SMatrix<f64,
     bm
 }
 
-/// Element stiffness Kₑ = ∫ Bᵀ D B dV by 3 × 3 Gauss quadrature, `M` = 2·nodes.
+/// Element stiffness Kₑ = ∫ Bᵀ D B dV by the element's quadrature
+/// ([`ElementKind::integration_points`]), `M` = 2·nodes.
 fn element_stiffness<const M: usize>(
     model: &FeModel,
     e: usize,
     d: &Matrix4<f64>,
 ) -> Result<SMatrix<f64, M, M>> {
     let mut ke = SMatrix::<f64, M, M>::zeros();
-    for &(xi, wx) in &GAUSS3 {
-        for &(eta, wy) in &GAUSS3 {
-            let b = point_b(model, e, xi, eta, wx * wy)?;
-            let bm = strain_matrix::<M>(model.analysis, &b);
-            ke.gemm_tr(1.0, &bm, &(d * bm * b.dv), 1.0);
-        }
+    for p in model.mesh.element_kind(e).integration_points() {
+        let b = point_b(model, e, p.xi, p.eta, p.weight)?;
+        let bm = strain_matrix::<M>(model.analysis, &b);
+        ke.gemm_tr(1.0, &bm, &(d * bm * b.dv), 1.0);
     }
     Ok(ke)
 }
 
 impl FeModel {
-    /// The stiffness matrix Kₑ = ∫ Bᵀ D B dV of element `e` (3 × 3 Gauss points), of order
-    /// 2·nodes, its unknowns (u_x, u_y) node after node in the element's local order
-    /// ([`crate::element`]). Errors: no such element, or a singular Jacobian.
+    /// The stiffness matrix Kₑ = ∫ Bᵀ D B dV of element `e` (at its integration points:
+    /// 3 × 3 Gauss points on a quadrilateral, 6 on a triangle), of order 2·nodes, its unknowns
+    /// (u_x, u_y) node after node in the element's local order ([`crate::element`]).
+    /// Errors: no such element, or a singular Jacobian.
     pub fn element_stiffness(&self, e: usize) -> Result<Mat<f64>> {
         let n = self.mesh.elements().len();
         if e >= n {
@@ -260,9 +277,10 @@ impl FeModel {
             ));
         }
         let d = elasticity(self);
-        match self.mesh.kind() {
+        match self.mesh.element_kind(e) {
             ElementKind::Q8 => element_stiffness::<16>(self, e, &d).map(to_mat),
             ElementKind::Q9 => element_stiffness::<18>(self, e, &d).map(to_mat),
+            ElementKind::T6 => element_stiffness::<12>(self, e, &d).map(to_mat),
         }
     }
 }
@@ -291,47 +309,59 @@ impl Triplets {
 }
 
 /// Assembles the element stiffnesses over the free unknowns of `dofs`, numbered from
-/// `offset`.
+/// `offset`: each element by the kernel of its kind ([`element_stiffness`], compiled for each
+/// size), in element order.
 pub(crate) fn assemble(model: &FeModel, dofs: &[Dof], offset: usize) -> Result<Triplets> {
-    match model.mesh.kind() {
-        ElementKind::Q8 => assemble_elements::<16>(model, dofs, offset),
-        ElementKind::Q9 => assemble_elements::<18>(model, dofs, offset),
-    }
-}
-
-/// [`assemble`] for elements of `M` = 2·nodes unknowns.
-fn assemble_elements<const M: usize>(
-    model: &FeModel,
-    dofs: &[Dof],
-    offset: usize,
-) -> Result<Triplets> {
     let d = elasticity(model);
-    let n_el = model.mesh.elements().len();
-    let per = M * (M + 1) / 2;
+    let mesh = &model.mesh;
+    let entries: usize = (0..mesh.elements().len())
+        .map(|e| {
+            let m = 2 * mesh.element_kind(e).n_nodes();
+            m * (m + 1) / 2
+        })
+        .sum();
     let n_free = dofs.iter().filter(|d| matches!(d, Dof::Free(_))).count();
     let mut t = Triplets {
-        idx: Vec::with_capacity(n_el * per),
-        val: Vec::with_capacity(n_el * per),
+        idx: Vec::with_capacity(entries),
+        val: Vec::with_capacity(entries),
         prescribed_load: vec![0.0; n_free],
     };
-    for (e, conn) in model.mesh.elements().iter().enumerate() {
-        let ke = element_stiffness::<M>(model, e, &d)?;
+    for e in 0..mesh.elements().len() {
+        let conn = &mesh.elements()[e];
+        match mesh.element_kind(e) {
+            ElementKind::Q8 => t.add(&element_stiffness::<16>(model, e, &d)?, conn, dofs, offset),
+            ElementKind::Q9 => t.add(&element_stiffness::<18>(model, e, &d)?, conn, dofs, offset),
+            ElementKind::T6 => t.add(&element_stiffness::<12>(model, e, &d)?, conn, dofs, offset),
+        }
+    }
+    Ok(t)
+}
+
+impl Triplets {
+    /// Adds the element stiffness `ke` of an element of nodes `conn`: its entries between free
+    /// unknowns (upper triangle, numbered from `offset`) and K_fp u_p of its prescribed ones.
+    fn add<const M: usize>(
+        &mut self,
+        ke: &SMatrix<f64, M, M>,
+        conn: &[usize],
+        dofs: &[Dof],
+        offset: usize,
+    ) {
         let g = |k: usize| 2 * conn[k / 2] + k % 2;
         for kb in 0..M {
             let Dof::Free(j) = dofs[g(kb)] else { continue };
             for ka in 0..M {
                 match dofs[g(ka)] {
                     Dof::Free(i) if i <= j => {
-                        t.idx.push(Pair::new(offset + i, offset + j));
-                        t.val.push(ke[(ka, kb)]);
+                        self.idx.push(Pair::new(offset + i, offset + j));
+                        self.val.push(ke[(ka, kb)]);
                     }
-                    Dof::Prescribed(v) if v != 0.0 => t.prescribed_load[j] += ke[(kb, ka)] * v,
+                    Dof::Prescribed(v) if v != 0.0 => self.prescribed_load[j] += ke[(kb, ka)] * v,
                     _ => {}
                 }
             }
         }
     }
-    Ok(t)
 }
 
 /// Candidate rigid-body modes of the analysis, over all global DOFs: the axial translation
