@@ -331,8 +331,14 @@ mod tests {
             // take a uniform strain).
             let (xi, eta) = (0.3, 0.2);
             let sum = |f: &dyn Fn(usize) -> f64| (0..n).map(|a| s.n[a] * f(a)).sum::<f64>();
-            assert!((sum(&|a| kind.natural(a)[0]) - xi).abs() < 1e-14, "{kind:?}");
-            assert!((sum(&|a| kind.natural(a)[1]) - eta).abs() < 1e-14, "{kind:?}");
+            assert!(
+                (sum(&|a| kind.natural(a)[0]) - xi).abs() < 1e-14,
+                "{kind:?}"
+            );
+            assert!(
+                (sum(&|a| kind.natural(a)[1]) - eta).abs() < 1e-14,
+                "{kind:?}"
+            );
         }
     }
 
@@ -346,7 +352,10 @@ mod tests {
             let (mx, my) = (kind.shape(x - h, y), kind.shape(x, y - h));
             for i in 0..kind.n_nodes() {
                 // Central differences: error O(h²) ≈ 1e-12 for quadratics (round-off 1e-10).
-                let (fx, fy) = ((sx.n[i] - mx.n[i]) / (2.0 * h), (sy.n[i] - my.n[i]) / (2.0 * h));
+                let (fx, fy) = (
+                    (sx.n[i] - mx.n[i]) / (2.0 * h),
+                    (sy.n[i] - my.n[i]) / (2.0 * h),
+                );
                 assert!((s.dxi[i] - fx).abs() < 1e-8, "{kind:?} dN{i}/dxi");
                 assert!((s.deta[i] - fy).abs() < 1e-8, "{kind:?} dN{i}/deta");
             }
@@ -407,11 +416,20 @@ mod tests {
             }
         }
         assert!(worst_fifth > 1e-3, "{worst_fifth:e}");
-        let one_d = |k: i32| if k % 2 == 1 { 0.0 } else { 2.0 / f64::from(k + 1) };
+        let one_d = |k: i32| {
+            if k % 2 == 1 {
+                0.0
+            } else {
+                2.0 / f64::from(k + 1)
+            }
+        };
         for i in 0..=5 {
             for j in 0..=5 {
                 let exact = one_d(i) * one_d(j);
-                assert!((rule(ElementKind::Q8, i, j) - exact).abs() < 1e-14, "{i} {j}");
+                assert!(
+                    (rule(ElementKind::Q8, i, j) - exact).abs() < 1e-14,
+                    "{i} {j}"
+                );
             }
         }
     }

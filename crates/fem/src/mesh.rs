@@ -298,15 +298,19 @@ pub struct Mesh {
 
 impl Mesh {
     /// A mesh of elements of one kind from node coordinates and element connectivity (local
-    /// order of [`crate::element`], counter-clockwise). Every element must have a positive
-    /// Jacobian at its integration points.
+    /// order of [`crate::element`], counter-clockwise). Errors ([`Error::Mesh`], naming the
+    /// element or node): no element, a non-finite coordinate, an element with the wrong
+    /// number of nodes for its kind or a node the mesh does not have, a Jacobian that is not
+    /// positive at one of its integration points (nodes clockwise, or a degenerate element),
+    /// a node that belongs to no element.
     pub fn new(kind: ElementKind, nodes: Vec<[f64; 2]>, elements: Vec<Vec<usize>>) -> Result<Self> {
         Self::build(vec![kind; elements.len()], nodes, elements)
     }
 
     /// A mesh whose elements may be of different kinds (an imported mesh of quadrilaterals
     /// and triangles): each element is its kind and its connectivity, checked as
-    /// [`Mesh::new`] checks them. Elements that meet share their face's three nodes.
+    /// [`Mesh::new`] checks them. Elements that meet must share their face's three nodes (a
+    /// conforming mesh, as Gmsh writes one).
     pub fn mixed(nodes: Vec<[f64; 2]>, elements: Vec<(ElementKind, Vec<usize>)>) -> Result<Self> {
         let (kinds, elements) = elements.into_iter().unzip();
         Self::build(kinds, nodes, elements)
@@ -340,7 +344,19 @@ impl Mesh {
                 self.nodes[i]
             )));
         }
-        (0..self.elements.len()).try_for_each(|e| self.validate_element(e))
+        (0..self.elements.len()).try_for_each(|e| self.validate_element(e))?;
+        let mut used = vec![false; self.nodes.len()];
+        for &n in self.elements.iter().flatten() {
+            used[n] = true;
+        }
+        if let Some(i) = used.iter().position(|u| !u) {
+            return Err(Error::Mesh(format!(
+                "node {i} at {:?} belongs to no element: it would have no stiffness \
+                 (leave unused nodes out of the mesh)",
+                self.nodes[i]
+            )));
+        }
+        Ok(())
     }
 
     /// Element `e` has its kind's number of nodes, nodes of the mesh, and a positive Jacobian
@@ -442,7 +458,12 @@ impl Mesh {
         for (c, &cell) in cells.iter().enumerate() {
             let (i, j) = (2 * (c % nx), 2 * (c / nx));
             let corners = [at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2)];
-            let sides = [at(i + 1, j), at(i + 2, j + 1), at(i + 1, j + 2), at(i, j + 1)];
+            let sides = [
+                at(i + 1, j),
+                at(i + 2, j + 1),
+                at(i + 1, j + 2),
+                at(i, j + 1),
+            ];
             let centre = at(i + 1, j + 1);
             let [c0, c1, c2, c3] = corners;
             let [s0, s1, s2, s3] = sides;
@@ -704,5 +725,111 @@ mod tests {
             .unwrap()
             .restrict(0.0, 0.3)
             .is_err());
+    }
+
+    /// A Q8 cell next to a T6 cell: the two triangles, the quadrilateral and their shared
+    /// face; per-element kinds; boundary faces of both kinds, and the shared faces inside.
+    #[test]
+    fn mixed_rectangles_share_their_faces() {
+        let x = Spacing::from_coords(vec![0.0, 2.0, 5.0]).unwrap();
+        let y = Spacing::from_coords(vec![0.0, 3.0]).unwrap();
+        let mesh =
+            Mesh::rectangle_with(&x, &y, |i, _| [ElementKind::Q8, ElementKind::T6][i]).unwrap();
+        // A 5 × 3 grid of nodes less the Q8's centre.
+        assert_eq!(mesh.nodes().len(), 14);
+        assert_eq!(mesh.elements().len(), 3);
+        let kinds: Vec<ElementKind> = (0..3).map(|e| mesh.element_kind(e)).collect();
+        assert_eq!(kinds, [ElementKind::Q8, ElementKind::T6, ElementKind::T6]);
+        assert_eq!(mesh.kind(), None);
+        assert_eq!(
+            Mesh::rectangle(ElementKind::T6, &x, &y).unwrap().kind(),
+            Some(ElementKind::T6)
+        );
+        // Boundary: Q8 bottom, top, left; T6 0 bottom and right; T6 1 top. The Q8's right
+        // face and the triangles' diagonal are shared.
+        let boundary = mesh.boundary_faces();
+        let face = |element, local| Face { element, local };
+        assert_eq!(
+            boundary,
+            [
+                face(0, 0),
+                face(0, 2),
+                face(0, 3),
+                face(1, 0),
+                face(1, 1),
+                face(2, 1)
+            ]
+        );
+        let top = mesh.faces_on_y(3.0, 0.0, 5.0);
+        assert_eq!(top, [face(0, 2), face(2, 1)]);
+        // A face is (start, middle, end) counter-clockwise: along the top from right to left.
+        let at = |n: usize| mesh.nodes()[n];
+        let [a, m, b] = mesh.face_nodes(face(2, 1));
+        assert_eq!([at(a), at(m), at(b)], [[5.0, 3.0], [3.5, 3.0], [2.0, 3.0]]);
+        assert_eq!(mesh.nodes_on_x(2.0, 0.0, 3.0).len(), 3);
+        assert_eq!(mesh.faces_on_x(5.0, 0.0, 3.0), [face(1, 1)]);
+    }
+
+    /// A clockwise triangle is refused naming the element and its kind; so is an element
+    /// with its kind's wrong node count, and a node no element uses.
+    #[test]
+    fn bad_mixed_meshes_are_named() {
+        let nodes = vec![
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 2.0],
+            [0.0, 2.0],
+            [1.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 1.0],
+            [4.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 1.0],
+        ];
+        let quad = (ElementKind::Q8, (0..8).collect::<Vec<usize>>());
+        let triangle = vec![1, 8, 2, 9, 10, 5];
+        let ok = Mesh::mixed(
+            nodes.clone(),
+            vec![quad.clone(), (ElementKind::T6, triangle.clone())],
+        )
+        .unwrap();
+        assert_eq!(ok.boundary_faces().len(), 5);
+        let clockwise = vec![1, 2, 8, 5, 10, 9];
+        let e = Mesh::mixed(
+            nodes.clone(),
+            vec![quad.clone(), (ElementKind::T6, clockwise)],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("element 1 (T6) has Jacobian determinant -") && e.contains("clockwise"),
+            "{e}"
+        );
+        let e = Mesh::mixed(
+            nodes.clone(),
+            vec![quad.clone(), (ElementKind::T6, vec![1, 8, 2])],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("element 1 has 3 nodes, a T6 needs 6"), "{e}");
+        let e = Mesh::mixed(nodes, vec![quad]).unwrap_err().to_string();
+        assert!(
+            e.contains("node 8 at [4.0, 0.0] belongs to no element"),
+            "{e}"
+        );
+    }
+
+    /// `body_bytes` is `mesh_bytes` of its grid; an imported mesh of 200 000 nodes with a
+    /// contact face of 3000 points is 18 · 384 bytes per node (log₂ rounded up: 18) and four
+    /// 3000² matrices, within the limit; sizes past u64 are `None`.
+    #[test]
+    fn mesh_bytes_is_the_fill_model_of_any_mesh() {
+        assert_eq!(body_bytes(40, 25), mesh_bytes(81 * 51, 120));
+        let bytes = mesh_bytes(200_000, 3000).unwrap();
+        assert_eq!(bytes, 200_000 * 384 * 18 + 4 * 8 * 3000 * 3000);
+        assert!(bytes < memory::BODY_LIMIT_BYTES);
+        assert_eq!(mesh_bytes(usize::MAX, 0), None);
+        assert_eq!(mesh_bytes(1, usize::MAX), None);
     }
 }

@@ -429,6 +429,21 @@ mod tests {
         Material::new(E, NU).unwrap()
     }
 
+    /// The kind of each cell of a structured mesh.
+    type Cells = fn(usize, usize) -> ElementKind;
+
+    /// The meshes the recovery is tested on: one kind each, and a column of Q8 next to T6
+    /// cells (their shared faces carry a quadrilateral's and a triangle's extrapolations).
+    const MESHES: [(&str, Cells); 4] = [
+        ("Q8", |_, _| ElementKind::Q8),
+        ("Q9", |_, _| ElementKind::Q9),
+        ("T6", |_, _| ElementKind::T6),
+        ("Q8+T6", |i, _| match i {
+            0 => ElementKind::Q8,
+            _ => ElementKind::T6,
+        }),
+    ];
+
     const ANALYSES: [Analysis; 3] = [
         Analysis::PlaneStress { thickness: 2.0 },
         Analysis::PlaneStrain { thickness: 1.0 },
@@ -438,17 +453,17 @@ mod tests {
     /// A WIDTH × HEIGHT rectangle of 3 × 2 unequal elements whose interior nodes are moved
     /// (curved inner edges), the boundary kept straight; bottom held in y, left edge in x
     /// (in axisymmetry the left edge is the axis, held by the model).
-    fn distorted_block(kind: ElementKind, analysis: Analysis) -> FeModel {
-        block(kind, analysis, 1.0)
+    fn distorted_block(cells: Cells, analysis: Analysis) -> FeModel {
+        block(cells, analysis, 1.0)
     }
 
     /// The block with its interior nodes moved by `distortion` times the bump.
-    fn block(kind: ElementKind, analysis: Analysis, distortion: f64) -> FeModel {
+    fn block(cells: Cells, analysis: Analysis, distortion: f64) -> FeModel {
         let x = Spacing::from_coords(vec![0.0, 11.0, 27.0, WIDTH]).unwrap();
         let y = Spacing::from_coords(vec![0.0, 8.0, HEIGHT]).unwrap();
         let bump =
             |p: [f64; 2]| distortion * (PI * p[0] / WIDTH).sin() * (PI * p[1] / HEIGHT).sin();
-        let mesh = Mesh::rectangle(kind, &x, &y)
+        let mesh = Mesh::rectangle_with(&x, &y, cells)
             .unwrap()
             .map(|p| [p[0] + 3.0 * bump(p), p[1] + 2.0 * bump(p)])
             .unwrap();
@@ -491,15 +506,17 @@ mod tests {
             .fold(0.0, |m, d| m.max(d.abs()))
     }
 
-    /// Patch test: uniform pressure on the top of a distorted block gives the uniform stress at
-    /// every node, whether applied as a model load or as a contact pressure on an
-    /// [`FeBody`] (which checks the force = pressure × weight and the sign).
+    /// Patch test: uniform pressure on the top of a distorted block (curved interior edges)
+    /// gives the uniform stress at every node, whether applied as a model load or as a contact
+    /// pressure on an [`FeBody`] (which checks the force = pressure × weight and the sign), on
+    /// every mesh of [`MESHES`]: the triangles' least-squares extrapolation and the average
+    /// across kinds keep a uniform stress to 1e-10 of p.
     #[test]
     fn uniform_pressure_gives_uniform_nodal_stress() {
-        for kind in [ElementKind::Q8, ElementKind::Q9] {
+        for (kind, cells) in MESHES {
             for analysis in ANALYSES {
                 let want = uniaxial(analysis);
-                let mut model = distorted_block(kind, analysis);
+                let mut model = distorted_block(cells, analysis);
                 let top = model.mesh().faces_on_y(HEIGHT, 0.0, WIDTH);
                 let body = FeBody::new("block", model.clone(), &top).unwrap();
                 model.pressure(&top, P).unwrap();
@@ -509,22 +526,24 @@ mod tests {
                     .unwrap();
                 for (how, got) in [("load", loaded), ("contact", pressed)] {
                     let err = largest_difference(&got, |_| want) / P;
-                    assert!(err < 1e-10, "{kind:?} {analysis:?} {how}: {err:e} p");
+                    assert!(err < 1e-10, "{kind} {analysis:?} {how}: {err:e} p");
                 }
             }
         }
     }
 
-    /// Pure bending of a plane-stress beam, u = κxy, v = −κ(x² + νy²)/2, lies in the Q8 and
-    /// Q9 spaces: σ_x = Eκy is exact at the Gauss points, and the extrapolation, linear in y,
-    /// must give it at every node. A transposed Gauss-point order would not.
+    /// Pure bending of a plane-stress beam, u = κxy, v = −κ(x² + νy²)/2, lies in the Q8, Q9
+    /// and T6 spaces (it is quadratic): σ_x = Eκy is exact at the integration points, and the
+    /// extrapolation, exact for a linear stress, must give it at every node, on every mesh of
+    /// [`MESHES`]. A transposed Gauss-point order, or a triangle fit that were not exact for a
+    /// linear field, would not.
     #[test]
     fn pure_bending_is_recovered_exactly() {
         let (length, half, kappa) = (60.0, 5.0, 1e-5);
-        for kind in [ElementKind::Q8, ElementKind::Q9] {
+        for (kind, cells) in MESHES {
             let x = Spacing::from_coords(vec![0.0, 10.0, 30.0, length]).unwrap();
             let y = Spacing::from_coords(vec![-half, 0.0, 2.0, half]).unwrap();
-            let mesh = Mesh::rectangle(kind, &x, &y).unwrap();
+            let mesh = Mesh::rectangle_with(&x, &y, cells).unwrap();
             let analysis = Analysis::PlaneStress { thickness: 1.0 };
             let mut model = FeModel::new(mesh, steel(), analysis).unwrap();
             let left = model.mesh().nodes_on_x(0.0, -half, half);
@@ -544,7 +563,7 @@ mod tests {
                 ..StressTensor::default()
             });
             let peak = E * kappa * half;
-            assert!(err < 1e-9 * peak, "{kind:?}: {err:e} MPa of {peak}");
+            assert!(err < 1e-9 * peak, "{kind}: {err:e} MPa of {peak}");
         }
     }
 
@@ -675,8 +694,8 @@ mod tests {
     }
 
     /// A rectangular mesh is its own section: positions its node columns, depths from the
-    /// contact face down, every entry (a Q8 element's centre interpolated) the uniform stress;
-    /// a distorted mesh has none.
+    /// contact face down, every entry (a Q8 element's centre interpolated) the uniform stress,
+    /// whatever its elements; a distorted mesh has none.
     #[test]
     fn a_rectangular_mesh_is_its_section() {
         let request = SubsurfaceRequest {
@@ -686,15 +705,15 @@ mod tests {
                 at: 0.0,
             }],
         };
-        for kind in [ElementKind::Q8, ElementKind::Q9] {
+        for (kind, cells) in MESHES {
             let analysis = ANALYSES[1];
             for (distortion, sections) in [(0.0, 1), (1.0, 0)] {
-                let model = block(kind, analysis, distortion);
+                let model = block(cells, analysis, distortion);
                 let top = model.mesh().faces_on_y(HEIGHT, 0.0, WIDTH);
                 let body = FeBody::new("block", model, &top).unwrap();
                 let n = body.interface().len();
                 let sub = body.nodal_subsurface(&vec![P; n], &request).unwrap();
-                assert_eq!(sub.sections.len(), sections, "{kind:?}, {distortion}");
+                assert_eq!(sub.sections.len(), sections, "{kind}, {distortion}");
                 let Some(field) = sub.sections.first() else {
                     continue;
                 };
@@ -708,7 +727,7 @@ mod tests {
 
     #[test]
     fn bad_pressure_and_solution_are_named() {
-        let model = distorted_block(ElementKind::Q8, ANALYSES[0]);
+        let model = distorted_block(MESHES[0].1, ANALYSES[0]);
         let top = model.mesh().faces_on_y(HEIGHT, 0.0, WIDTH);
         let body = FeBody::new("block", model.clone(), &top).unwrap();
         let n = body.interface().len();

@@ -499,13 +499,12 @@ mod tests {
     #[test]
     fn element_stiffness_is_symmetric_and_integrates_a_uniform_strain() {
         // One plane-stress parallelogram, 2 mm thick: the affine map (det 0.96) of a 3 × 2
-        // rectangle, so det J is constant and the 3 × 3 Gauss points integrate the energy of
-        // a uniform strain exactly.
+        // rectangle (for T6 two triangles), so det J is constant and the quadrature integrates
+        // the energy of a uniform strain exactly.
         let thickness = 2.0;
         let analysis = Analysis::PlaneStress { thickness };
         let material = Material::new(2e5, 0.3).unwrap();
-        let area = 6.0 * 0.96;
-        for kind in [ElementKind::Q8, ElementKind::Q9] {
+        for kind in ElementKind::ALL {
             let rectangle = Mesh::rectangle(
                 kind,
                 &Spacing::uniform(0.0, 3.0, 1).unwrap(),
@@ -515,6 +514,8 @@ mod tests {
             let mesh = rectangle
                 .map(|p| [p[0] + 0.4 * p[1], p[1] + 0.1 * p[0]])
                 .unwrap();
+            // One quadrilateral, or the first of two triangles of half the area.
+            let area = 6.0 * 0.96 / mesh.elements().len() as f64;
             let model = FeModel::new(mesh, material, analysis).unwrap();
             let k = model.element_stiffness(0).unwrap();
             let n = 2 * kind.n_nodes();
@@ -547,7 +548,35 @@ mod tests {
             assert!((energy - want).abs() <= ROUND_OFF * want, "{energy} {want}");
             let scale = largest * r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             assert!((0..n).all(|i| ku(&r, i).abs() <= ROUND_OFF * scale));
-            assert!(model.element_stiffness(1).is_err());
+            assert!(model
+                .element_stiffness(model.mesh.elements().len())
+                .is_err());
         }
+    }
+
+    /// A body whose condensation would not fit is refused with its size before anything is
+    /// assembled: a 1 × 20 000 strip of Q8 is small, but condensed onto its 20 000 side faces
+    /// (60 000 points) its dense matrices would take 115 GB.
+    #[test]
+    fn a_body_too_large_to_condense_is_refused_before_assembly() {
+        let mesh = Mesh::rectangle(
+            ElementKind::Q8,
+            &Spacing::uniform(0.0, 1.0, 1).unwrap(),
+            &Spacing::uniform(0.0, 20_000.0, 20_000).unwrap(),
+        )
+        .unwrap();
+        let material = Material::new(2e5, 0.3).unwrap();
+        let mut model = FeModel::new(mesh, material, Analysis::Axisymmetric).unwrap();
+        let bottom = model.mesh().nodes_on_y(0.0, 0.0, 1.0);
+        model.fix(&bottom, crate::Component::Y).unwrap();
+        let side = model.mesh().faces_on_x(1.0, 0.0, 20_000.0);
+        assert_eq!(side.len(), 20_000);
+        let e = crate::FeBody::new("strip", model, &side).err().unwrap();
+        let message = e.to_string();
+        assert!(
+            matches!(e, Error::TooLarge { .. })
+                && message.contains("strip: a body of 100003 nodes and 60000 contact points"),
+            "{message}"
+        );
     }
 }
