@@ -11,7 +11,10 @@
 //!   and 50k elements: the hand-written arrays the library used before against
 //!   `FeModel::element_stiffness` on nalgebra's fixed-size matrices (which also copies each
 //!   Kₑ into a newly allocated faer matrix, as the old code does not), with their largest
-//!   difference printed.
+//!   difference printed;
+//! - the element stiffness of every element of an axisymmetric T6 mesh against a Q8 mesh of
+//!   about the same number of nodes (30 401 and 30 625): what an imported triangle mesh costs
+//!   to integrate against the structured quadrilaterals.
 //!
 //! `cargo bench --bench kernels`
 
@@ -264,12 +267,12 @@ fn old_element_stiffness(
     }
 }
 
-/// An axisymmetric Q8 model of `nr` × `nz` elements: r from the axis to 100 mm graded 8:1,
-/// z over 50 mm.
-fn axisymmetric(nr: usize, nz: usize) -> FeModel {
+/// An axisymmetric model of `nr` × `nz` cells of `kind` (a T6 cell is two triangles): r from
+/// the axis to 100 mm graded 8:1, z over 50 mm.
+fn axisymmetric(kind: ElementKind, nr: usize, nz: usize) -> FeModel {
     let r = Spacing::geometric(0.0, 100.0, nr, 8.0).unwrap();
     let z = Spacing::uniform(0.0, 50.0, nz).unwrap();
-    let mesh = Mesh::rectangle(ElementKind::Q8, &r, &z).unwrap();
+    let mesh = Mesh::rectangle(kind, &r, &z).unwrap();
     FeModel::new(
         mesh,
         Material::new(2e5, 0.3).unwrap(),
@@ -281,8 +284,8 @@ fn axisymmetric(nr: usize, nz: usize) -> FeModel {
 /// The difference and the timing of the old and the library's element stiffness.
 fn elements(c: &mut Criterion) {
     let models = [
-        ("10k", axisymmetric(100, 100)),
-        ("50k", axisymmetric(250, 200)),
+        ("10k", axisymmetric(ElementKind::Q8, 100, 100)),
+        ("50k", axisymmetric(ElementKind::Q8, 250, 200)),
     ];
     println!("largest difference, new against old / largest entry (bit-identical share)");
     for (label, model) in &models {
@@ -330,5 +333,35 @@ fn elements(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, principal, elements);
+/// The element stiffness of every element of a T6 mesh against a Q8 mesh of about as many
+/// nodes: 100 × 100 Q8 (10 000 elements, 30 401 nodes) and 87 × 87 cells of two T6 (15 138
+/// elements, 30 625 nodes).
+fn triangles(c: &mut Criterion) {
+    let models = [
+        ("Q8", axisymmetric(ElementKind::Q8, 100, 100)),
+        ("T6", axisymmetric(ElementKind::T6, 87, 87)),
+    ];
+    for (label, model) in &models {
+        let mesh = model.mesh();
+        println!(
+            "{label}: {} elements, {} nodes",
+            mesh.elements().len(),
+            mesh.nodes().len()
+        );
+    }
+    let mut group = c.benchmark_group("triangles");
+    group
+        .sample_size(10)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500));
+    for (label, model) in &models {
+        let n = model.mesh().elements().len();
+        group.bench_with_input(BenchmarkId::new("stiffness", label), model, |b, m| {
+            b.iter(|| (0..n).fold(0.0, |t, e| t + m.element_stiffness(e).unwrap()[(0, 0)]))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, principal, elements, triangles);
 criterion_main!(benches);

@@ -101,17 +101,20 @@ const QUAD_POINTS: [IntegrationPoint; 9] = {
 };
 
 /// Area coordinate a of the first orbit (a, a, 1 − 2a) of the triangle rule, and the
-/// weight of each of its points relative to the area (Dunavant 1985, degree 4).
+/// weight of each of its points relative to the area.
 const TRIANGLE_ORBIT_A: (f64, f64) = (0.445_948_490_915_964_9, 0.223_381_589_678_011_47);
 
 /// The second orbit, its points near the corners.
 const TRIANGLE_ORBIT_B: (f64, f64) = (0.091_576_213_509_770_74, 0.109_951_743_655_321_87);
 
-/// The symmetric 6-point rule of degree 4 on the triangle (Dunavant 1985, "High degree
-/// efficient symmetrical Gaussian quadrature rules for the triangle", Int. J. Numer. Meth.
-/// Engng 21, 1129–1148, degree 4; the 6-point rule of Strang & Fix 1973): two orbits of three points (a, a, 1 − 2a) in area coordinates, the
-/// first orbit's points 0-2, the second's 3-5, the point of each orbit with the odd
-/// coordinate 1 − 2a on L₁, L₂, L₃ in turn. Weights are relative to the area, times ½.
+/// The symmetric 6-point rule of degree 4 on the triangle (Cowper 1973, "Gaussian quadrature
+/// formulas for triangles", Int. J. Numer. Meth. Engng 7, 405–408; Dunavant 1985, "High
+/// degree efficient symmetrical Gaussian quadrature rules for the triangle", Int. J. Numer.
+/// Meth. Engng 21, 1129–1148, degree 4): two orbits of three points (a, a, 1 − 2a) in area
+/// coordinates, the first orbit's points 0-2, the second's 3-5, the point of each orbit with
+/// the odd coordinate 1 − 2a on L₁, L₂, L₃ in turn. Weights are relative to the area, times
+/// ½. The constants are the roots of the moment equations to 17 digits (the test
+/// `integration_rules_have_their_degree` checks every monomial of degree ≤ 4).
 const TRIANGLE_POINTS: [IntegrationPoint; 6] = {
     let mut p = [IntegrationPoint {
         xi: 0.0,
@@ -179,7 +182,7 @@ impl ElementKind {
 
     /// The integration rule of the element's stiffness, stresses and error norms: 3 × 3
     /// Gauss points on a quadrilateral (point 3i + j at (gᵢ, gⱼ)); on the triangle the
-    /// symmetric 6-point rule of degree 4 (Dunavant 1985). On a straight-sided
+    /// symmetric 6-point rule of degree 4 (Cowper 1973, Dunavant 1985). On a straight-sided
     /// triangle B is linear, so BᵀDB (degree 2) is integrated exactly in plane analyses with
     /// room to spare; in axisymmetry the terms of BᵀDB·2πr in ∂N ∂N r and ∂N N (degree 3) are
     /// exact and only the hoop term N N/r, not a polynomial, is approximated.

@@ -163,16 +163,17 @@ impl FeModel {
     /// nodes; the Q9 centre too), on a quadrilateral with the quadratic Lagrange polynomials
     /// through the Gauss abscissae (±√0.6, 0) in ξ and η, on a triangle by the linear
     /// least-squares fit of its six values (see the module), then averaged over the elements
-    /// that share a node, whatever their kinds (Hinton & Campbell 1974). Components follow [`StressTensor`]'s convention for plane and
-    /// axisymmetric bodies (see `From<Stress> for StressTensor`): x (r) → `xx`, y (z) → `zz`,
-    /// τ_xy (τ_rz) → `xz`, out-of-plane or hoop → `yy`.
+    /// that share a node, whatever their kinds (Hinton & Campbell 1974). Components follow
+    /// [`StressTensor`]'s convention for plane and axisymmetric bodies (see
+    /// `From<Stress> for StressTensor`): x (r) → `xx`, y (z) → `zz`, τ_xy (τ_rz) → `xz`,
+    /// out-of-plane or hoop → `yy`.
     ///
     /// Where the stress jumps between elements (a material interface, which a model of one
     /// material does not have) or is singular (a punch edge), the average smooths the jump;
     /// elsewhere the nodal values converge with the Gauss-point ones.
     ///
-    /// Errors: a solution of the wrong length, a node that belongs to no element, a singular
-    /// Jacobian, or a stress that is not finite (a non-finite displacement).
+    /// Errors: a solution of the wrong length, a singular Jacobian, or a stress that is not
+    /// finite (a non-finite displacement).
     pub fn nodal_stresses(&self, solution: &Solution) -> Result<Vec<StressTensor>> {
         let n_nodes = self.mesh.nodes().len();
         if solution.displacement.len() != 2 * n_nodes {
@@ -215,13 +216,9 @@ impl FeModel {
     }
 }
 
-/// The mean of `count` extrapolations summed in `sum` at `node`, checked finite.
+/// The mean of `count` extrapolations summed in `sum` at `node`, checked finite (every node
+/// of a [`crate::Mesh`] belongs to an element, so `count` ≥ 1).
 fn average(node: usize, sum: &StressTensor, count: usize) -> Result<StressTensor> {
-    if count == 0 {
-        return Err(Error::Mesh(format!(
-            "node {node} belongs to no element: it has no stress"
-        )));
-    }
     let mean = scaled(sum, 1.0 / count as f64);
     if !mean.is_finite() {
         return Err(Error::invalid(
