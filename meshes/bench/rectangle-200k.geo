@@ -1,7 +1,7 @@
 // The reader's measurement (book: design notes, "Gmsh reader"): a 400 × 200 mm rectangle in
 // about 67 000 unstructured 8-node quadrilaterals, about 200 000 nodes. Not committed as a
 // mesh: `python3 meshes/generate.py --bench target/gmsh-bench` writes it.
-h = 1.1;
+h = 1.18;
 Point(1) = {0, 0, 0, h};
 Point(2) = {400, 0, 0, h};
 Point(3) = {400, 200, 0, h};

@@ -1,7 +1,9 @@
 //! An element's Jacobian determinant: its sign over the element (the orientation), its
 //! integral (the area), and the local order that reverses an element.
 
-use contopt_fem::element::GAUSS3;
+use std::sync::OnceLock;
+
+use contopt_fem::element::{Shape, GAUSS3, MAX_NODES};
 
 use crate::shim::Kind;
 
@@ -87,9 +89,32 @@ fn samples(kind: Kind) -> impl Iterator<Item = [f64; 2]> {
         .chain(rule(kind).iter().map(|(p, _)| *p))
 }
 
-/// det J = ∂x/∂ξ ∂y/∂η − ∂y/∂ξ ∂x/∂η of an element with node coordinates `x` at `p`.
-fn det_j(kind: Kind, x: &[[f64; 2]], p: [f64; 2]) -> f64 {
-    let s = kind.shape(p[0], p[1]);
+/// An element kind's shape functions at its samples and at its rule's points (with the
+/// weights), computed once.
+struct Tables {
+    samples: Vec<Shape>,
+    rule: Vec<(Shape, f64)>,
+}
+
+/// The [`Tables`] of `kind`.
+fn tables(kind: Kind) -> &'static Tables {
+    static TABLES: [OnceLock<Tables>; 3] = [const { OnceLock::new() }; 3];
+    let k = match kind {
+        Kind::Q8 => 0,
+        Kind::Q9 => 1,
+        Kind::T6 => 2,
+    };
+    TABLES[k].get_or_init(|| Tables {
+        samples: samples(kind).map(|p| kind.shape(p[0], p[1])).collect(),
+        rule: (rule(kind).iter())
+            .map(|&(p, w)| (kind.shape(p[0], p[1]), w))
+            .collect(),
+    })
+}
+
+/// det J = ∂x/∂ξ ∂y/∂η − ∂y/∂ξ ∂x/∂η of an element with node coordinates `x`, at a point
+/// whose shape functions are `s`.
+fn det_j(s: &Shape, x: &[[f64; 2]]) -> f64 {
     let mut j = [[0.0; 2]; 2];
     for (a, xa) in x.iter().enumerate() {
         for c in 0..2 {
@@ -98,6 +123,15 @@ fn det_j(kind: Kind, x: &[[f64; 2]], p: [f64; 2]) -> f64 {
         }
     }
     j[0][0] * j[1][1] - j[0][1] * j[1][0]
+}
+
+/// The coordinates of the nodes `element` of `nodes`, on the stack.
+pub(crate) fn coords(nodes: &[[f64; 2]], element: &[usize]) -> ([[f64; 2]; MAX_NODES], usize) {
+    let mut x = [[0.0; 2]; MAX_NODES];
+    for (xa, &n) in x.iter_mut().zip(element) {
+        *xa = nodes[n];
+    }
+    (x, element.len().min(MAX_NODES))
 }
 
 /// How an element's nodes run, from the sign of its Jacobian determinant.
@@ -119,8 +153,8 @@ pub(crate) enum Orientation {
 /// The orientation of an element with node coordinates `x`: the sign of det J at its nodes
 /// and integration points.
 pub(crate) fn orientation(kind: Kind, x: &[[f64; 2]]) -> Orientation {
-    let (min, max) = samples(kind)
-        .map(|p| det_j(kind, x, p))
+    let (min, max) = (tables(kind).samples.iter())
+        .map(|s| det_j(s, x))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
             (lo.min(d), hi.max(d))
         });
@@ -136,7 +170,7 @@ pub(crate) fn orientation(kind: Kind, x: &[[f64; 2]]) -> Orientation {
 
 /// The area of an element with node coordinates `x`, ∫ det J dξ dη.
 pub(crate) fn area(kind: Kind, x: &[[f64; 2]]) -> f64 {
-    rule(kind).iter().map(|&(p, w)| w * det_j(kind, x, p)).sum()
+    tables(kind).rule.iter().map(|(s, w)| w * det_j(s, x)).sum()
 }
 
 #[cfg(test)]

@@ -42,7 +42,7 @@ struct Edge {
 
 /// The named 0-D and 1-D groups of `gmsh`, on `body`.
 pub(crate) fn collect(gmsh: &GmshMesh, body: &Body) -> Result<Vec<Group>> {
-    let edges = edges(body);
+    let edges = edges(body, &line_ends(gmsh, body));
     let mut groups = Vec::new();
     for name in gmsh.physical_names().iter().filter(|p| p.dim <= 1) {
         if let Some(other) = groups.iter().find(|g: &&Group| g.name == name.name) {
@@ -72,13 +72,34 @@ fn what(dim: usize) -> &'static str {
     }
 }
 
-/// Every face of the body's elements, by its sorted corner nodes.
-fn edges(body: &Body) -> HashMap<(usize, usize), Edge> {
-    let mut edges: HashMap<(usize, usize), Edge> = HashMap::with_capacity(4 * body.elements.len());
+/// The body's nodes at an end of a line of a curve group.
+fn line_ends(gmsh: &GmshMesh, body: &Body) -> Vec<bool> {
+    let mut ends = vec![false; body.nodes.len()];
+    for name in gmsh.physical_names().iter().filter(|p| p.dim == 1) {
+        for block in gmsh.group_blocks(1, name.tag) {
+            for (_, nodes) in block.elements() {
+                for &n in nodes.iter().take(2) {
+                    if let Some(end) = ends.get_mut(body.of_file_node[n]) {
+                        *end = true;
+                    }
+                }
+            }
+        }
+    }
+    ends
+}
+
+/// The faces of the body's elements whose corners are both `ends`, by their sorted corner
+/// nodes.
+fn edges(body: &Body, ends: &[bool]) -> HashMap<(usize, usize), Edge> {
+    let mut edges: HashMap<(usize, usize), Edge> = HashMap::new();
     for (element, (kind, _)) in body.elements.iter().enumerate() {
         for local in 0..kind.n_faces() {
             let face = Face { element, local };
             let [a, _, b] = body.face_nodes(face);
+            if !(ends[a] && ends[b]) {
+                continue;
+            }
             edges
                 .entry((a.min(b), a.max(b)))
                 .and_modify(|e| {

@@ -1,7 +1,7 @@
 //! From a Gmsh file to a body's mesh: the chosen surfaces' elements, their nodes renumbered,
 //! every element counter-clockwise, and the checks that refuse what contopt cannot use.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 use contopt_core::{Error, Result, GEOMETRY_TOLERANCE};
 use contopt_fem::{Face, Mesh};
@@ -66,16 +66,14 @@ impl Body {
         kind.face_nodes(f.local).map(|a| nodes[a])
     }
 
-    /// The element's node coordinates.
-    fn coords(&self, e: usize) -> Vec<[f64; 2]> {
-        self.elements[e].1.iter().map(|&n| self.nodes[n]).collect()
-    }
-
     /// The area Σ ∫ det J.
     #[cfg(test)]
     pub fn area(&self) -> f64 {
-        (0..self.elements.len())
-            .map(|e| geometry::area(self.elements[e].0, &self.coords(e)))
+        (self.elements.iter())
+            .map(|(kind, element)| {
+                let (x, n) = geometry::coords(&self.nodes, element);
+                geometry::area(*kind, &x[..n])
+            })
             .sum()
     }
 }
@@ -315,8 +313,11 @@ impl Body {
     /// clockwise) has each element's local order mirrored; an element that folds, or runs
     /// against the rest of its surface, is refused.
     fn orient(&mut self, source: &str) -> Result<()> {
-        let orientations: Vec<Orientation> = (0..self.elements.len())
-            .map(|e| geometry::orientation(self.elements[e].0, &self.coords(e)))
+        let orientations: Vec<Orientation> = (self.elements.iter())
+            .map(|(kind, element)| {
+                let (x, n) = geometry::coords(&self.nodes, element);
+                geometry::orientation(*kind, &x[..n])
+            })
             .collect();
         if let Some((e, Orientation::Folded { min, max })) = orientations
             .iter()
@@ -395,8 +396,48 @@ impl Body {
 
     /// Two nodes at one point (closer than [`DUPLICATE_NODE_FRACTION`] of the shortest element
     /// edge in x and in y) are refused: surfaces meshed separately along a shared curve.
+    /// The nodes are sorted by the cell of that size they fall in: a pair lies in one cell or
+    /// in neighbouring ones, found by searching the sorted cells.
     fn refuse_duplicate_nodes(&self, source: &str) -> Result<()> {
-        let shortest = (0..self.elements.len())
+        let tol = DUPLICATE_NODE_FRACTION * self.shortest_edge();
+        let mut cells: Vec<(i64, i64, usize)> = (self.nodes.iter().enumerate())
+            .map(|(n, p)| ((p[0] / tol).floor() as i64, (p[1] / tol).floor() as i64, n))
+            .collect();
+        cells.sort_unstable();
+        let near = |n: usize, m: usize| {
+            let (p, q) = (self.nodes[n], self.nodes[m]);
+            (p[0] - q[0]).abs() <= tol && (p[1] - q[1]).abs() <= tol
+        };
+        for (k, &(i, j, n)) in cells.iter().enumerate() {
+            // Cells (i, j) and (i, j + 1) follow in order; (i + 1, j − 1 ..= j + 1) are found.
+            let column = cells[k + 1..]
+                .iter()
+                .take_while(|c| c.0 == i && c.1 <= j.saturating_add(1));
+            let next = (i.saturating_add(1), j.saturating_sub(1));
+            let from = cells.partition_point(|c| (c.0, c.1) < next);
+            let beside = cells[from..]
+                .iter()
+                .take_while(|c| c.0 == next.0 && c.1 <= j.saturating_add(1));
+            if let Some(&(_, _, m)) = column.chain(beside).find(|c| near(n, c.2)) {
+                let p = self.nodes[n];
+                return Err(Error::Mesh(format!(
+                    "{source}: nodes {} and {} lie at one point ({}, {}): two surfaces are meshed \
+                     separately along a curve they share; join them with `Coherence Mesh;` after \
+                     meshing (`gmsh.model.mesh.removeDuplicateNodes()`), or fragment the \
+                     geometry before (`BooleanFragments`)",
+                    self.node_tags[n.min(m)],
+                    self.node_tags[n.max(m)],
+                    p[0],
+                    p[1]
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The shortest distance between the corners of an element face.
+    fn shortest_edge(&self) -> f64 {
+        (0..self.elements.len())
             .flat_map(|element| {
                 (0..self.elements[element].0.n_faces()).map(move |local| Face { element, local })
             })
@@ -405,31 +446,7 @@ impl Body {
                 let (p, q) = (self.nodes[a], self.nodes[b]);
                 (p[0] - q[0]).hypot(p[1] - q[1])
             })
-            .fold(f64::INFINITY, f64::min);
-        let tol = DUPLICATE_NODE_FRACTION * shortest;
-        let cell = |p: [f64; 2]| ((p[0] / tol).floor() as i64, (p[1] / tol).floor() as i64);
-        let mut cells: HashMap<(i64, i64), usize> = HashMap::with_capacity(self.nodes.len());
-        for (n, &p) in self.nodes.iter().enumerate() {
-            let (i, j) = cell(p);
-            let twin = (-1..=1)
-                .flat_map(|di| (-1..=1).map(move |dj| (i + di, j + dj)))
-                .filter_map(|c| cells.get(&c).copied())
-                .find(|&m| {
-                    let q = self.nodes[m];
-                    (p[0] - q[0]).abs() <= tol && (p[1] - q[1]).abs() <= tol
-                });
-            if let Some(m) = twin {
-                return Err(Error::Mesh(format!(
-                    "{source}: nodes {} and {} lie at one point ({}, {}): two surfaces are meshed \
-                     separately along a curve they share; join them with `Coherence Mesh;` after \
-                     meshing (`gmsh.model.mesh.removeDuplicateNodes()`), or fragment the \
-                     geometry before (`BooleanFragments`)",
-                    self.node_tags[m], self.node_tags[n], p[0], p[1]
-                )));
-            }
-            cells.insert((i, j), n);
-        }
-        Ok(())
+            .fold(f64::INFINITY, f64::min)
     }
 }
 
@@ -498,9 +515,9 @@ impl ImportedMesh {
             .elements()
             .iter()
             .enumerate()
-            .map(|(e, conn)| {
-                let x: Vec<[f64; 2]> = conn.iter().map(|&n| nodes[n]).collect();
-                geometry::area(shim::element_kind(&self.mesh, e), &x)
+            .map(|(e, element)| {
+                let (x, n) = geometry::coords(nodes, element);
+                geometry::area(shim::element_kind(&self.mesh, e), &x[..n])
             })
             .sum()
     }
