@@ -424,7 +424,8 @@ impl Body {
                     "{source}: nodes {} and {} lie at one point ({}, {}): two surfaces are meshed \
                      separately along a curve they share; join them with `Coherence Mesh;` after \
                      meshing (`gmsh.model.mesh.removeDuplicateNodes()`), or fragment the \
-                     geometry before (`BooleanFragments`)",
+                     geometry before (`BooleanFragments`); if they are two bodies in contact, \
+                     import each by its physical group",
                     self.node_tags[n.min(m)],
                     self.node_tags[n.max(m)],
                     p[0],

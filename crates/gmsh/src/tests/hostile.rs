@@ -277,3 +277,13 @@ fn truncated_and_corrupted_binary() {
     );
     assert!(committed("rectangle-q8-binary.msh").is_binary());
 }
+
+/// A file that cannot be read is named with the system's reason.
+#[test]
+fn unreadable_file() {
+    let e = crate::read("no/such/mesh.msh").unwrap_err().to_string();
+    assert!(
+        e.starts_with("invalid mesh file = no/such/mesh.msh: "),
+        "{e}"
+    );
+}
