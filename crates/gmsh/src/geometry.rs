@@ -3,112 +3,54 @@
 
 use std::sync::OnceLock;
 
-use contopt_fem::element::{Shape, GAUSS3, MAX_NODES};
-
-use crate::shim::Kind;
+use contopt_fem::element::{Shape, MAX_NODES};
+use contopt_fem::ElementKind;
 
 /// A Jacobian determinant within this fraction of the element's largest one counts as zero:
 /// the element is degenerate there.
 const JACOBIAN_ROUND_OFF: f64 = 1e-12;
 
-/// Natural coordinates of a quadrilateral's nodes (Gmsh's and contopt's local order).
-const QUAD_NODES: [[f64; 2]; 9] = [
-    [-1.0, -1.0],
-    [1.0, -1.0],
-    [1.0, 1.0],
-    [-1.0, 1.0],
-    [0.0, -1.0],
-    [1.0, 0.0],
-    [0.0, 1.0],
-    [-1.0, 0.0],
-    [0.0, 0.0],
-];
-
-/// Area coordinates (ξ, η) of a 6-node triangle's nodes and of its centroid.
-const TRIANGLE_POINTS: [[f64; 2]; 7] = [
-    [0.0, 0.0],
-    [1.0, 0.0],
-    [0.0, 1.0],
-    [0.5, 0.0],
-    [0.5, 0.5],
-    [0.0, 0.5],
-    [1.0 / 3.0, 1.0 / 3.0],
-];
-
-/// The 3-point rule on the triangle (degree 2, exact for the 6-node triangle's det J):
-/// points (ξ, η) and weights.
-const TRIANGLE_RULE: [([f64; 2], f64); 3] = [
-    ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
-    ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
-    ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
-];
-
 /// The local order of an element's nodes mirrored: the same element, run the other way round
 /// (first corner kept, corners reversed, each mid-side node on its reversed side).
-pub(crate) fn reversed(kind: Kind) -> &'static [usize] {
+pub(crate) fn reversed(kind: ElementKind) -> &'static [usize] {
     match kind {
-        Kind::Q8 => &[0, 3, 2, 1, 7, 6, 5, 4],
-        Kind::Q9 => &[0, 3, 2, 1, 7, 6, 5, 4, 8],
-        Kind::T6 => &[0, 2, 1, 5, 4, 3],
+        ElementKind::Q8 => &[0, 3, 2, 1, 7, 6, 5, 4],
+        ElementKind::Q9 => &[0, 3, 2, 1, 7, 6, 5, 4, 8],
+        ElementKind::T6 => &[0, 2, 1, 5, 4, 3],
     }
 }
 
-/// The 3 × 3 Gauss rule on the square: points (ξ, η) and weights.
-const QUAD_RULE: [([f64; 2], f64); 9] = {
-    let mut rule = [([0.0; 2], 0.0); 9];
-    let mut k = 0;
-    while k < 9 {
-        let ((x, wx), (y, wy)) = (GAUSS3[k / 3], GAUSS3[k % 3]);
-        rule[k] = ([x, y], wx * wy);
-        k += 1;
-    }
-    rule
-};
-
-/// Integration points and weights of an element's area: 3 × 3 Gauss points on a
-/// quadrilateral (exact for the det J of straight- and curved-sided Q8 and Q9), the 3-point
-/// rule on a triangle.
-fn rule(kind: Kind) -> &'static [([f64; 2], f64)] {
-    match kind {
-        Kind::Q8 | Kind::Q9 => &QUAD_RULE,
-        Kind::T6 => &TRIANGLE_RULE,
-    }
-}
-
-/// Where an element's orientation is checked: its nodes (and a triangle's centroid) and its
-/// integration points.
-fn samples(kind: Kind) -> impl Iterator<Item = [f64; 2]> {
-    let nodes: &[[f64; 2]] = match kind {
-        Kind::Q8 => &QUAD_NODES[..8],
-        Kind::Q9 => &QUAD_NODES,
-        Kind::T6 => &TRIANGLE_POINTS,
-    };
-    nodes
-        .iter()
-        .copied()
-        .chain(rule(kind).iter().map(|(p, _)| *p))
-}
-
-/// An element kind's shape functions at its samples and at its rule's points (with the
-/// weights), computed once.
+/// An element kind's shape functions at its nodes and integration points (where its
+/// orientation is checked), and at its integration points with their weights (its area),
+/// computed once.
 struct Tables {
     samples: Vec<Shape>,
     rule: Vec<(Shape, f64)>,
 }
 
-/// The [`Tables`] of `kind`.
-fn tables(kind: Kind) -> &'static Tables {
-    static TABLES: [OnceLock<Tables>; 3] = [const { OnceLock::new() }; 3];
-    let k = match kind {
-        Kind::Q8 => 0,
-        Kind::Q9 => 1,
-        Kind::T6 => 2,
-    };
-    TABLES[k].get_or_init(|| Tables {
-        samples: samples(kind).map(|p| kind.shape(p[0], p[1])).collect(),
-        rule: (rule(kind).iter())
-            .map(|&(p, w)| (kind.shape(p[0], p[1]), w))
-            .collect(),
+/// The [`Tables`] of `kind`: contopt-fem's own nodes and integration rule (3 × 3 Gauss points
+/// on a quadrilateral, exact for the det J of straight- and curved-sided Q8 and Q9; the
+/// degree-4 rule on a triangle, exact for a T6's det J, of degree 2).
+fn tables(kind: ElementKind) -> &'static Tables {
+    static TABLES: [OnceLock<Tables>; ElementKind::ALL.len()] =
+        [const { OnceLock::new() }; ElementKind::ALL.len()];
+    let k = ElementKind::ALL
+        .iter()
+        .position(|&a| a == kind)
+        .unwrap_or_default();
+    TABLES[k].get_or_init(|| {
+        let rule = kind.integration_points();
+        let nodes = (0..kind.n_nodes()).map(|i| kind.natural(i));
+        Tables {
+            samples: nodes
+                .chain(rule.iter().map(|p| [p.xi, p.eta]))
+                .map(|[xi, eta]| kind.shape(xi, eta))
+                .collect(),
+            rule: rule
+                .iter()
+                .map(|p| (kind.shape(p.xi, p.eta), p.weight))
+                .collect(),
+        }
     })
 }
 
@@ -152,7 +94,7 @@ pub(crate) enum Orientation {
 
 /// The orientation of an element with node coordinates `x`: the sign of det J at its nodes
 /// and integration points.
-pub(crate) fn orientation(kind: Kind, x: &[[f64; 2]]) -> Orientation {
+pub(crate) fn orientation(kind: ElementKind, x: &[[f64; 2]]) -> Orientation {
     let (min, max) = (tables(kind).samples.iter())
         .map(|s| det_j(s, x))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
@@ -169,7 +111,7 @@ pub(crate) fn orientation(kind: Kind, x: &[[f64; 2]]) -> Orientation {
 }
 
 /// The area of an element with node coordinates `x`, ∫ det J dξ dη.
-pub(crate) fn area(kind: Kind, x: &[[f64; 2]]) -> f64 {
+pub(crate) fn area(kind: ElementKind, x: &[[f64; 2]]) -> f64 {
     tables(kind).rule.iter().map(|(s, w)| w * det_j(s, x)).sum()
 }
 
@@ -201,9 +143,9 @@ mod tests {
             [0.0, 1.0],
         ];
         for (kind, x, expect) in [
-            (Kind::Q8, &square[..8], 1.0),
-            (Kind::Q9, &square[..], 1.0),
-            (Kind::T6, &triangle[..], 2.0),
+            (ElementKind::Q8, &square[..8], 1.0),
+            (ElementKind::Q9, &square[..], 1.0),
+            (ElementKind::T6, &triangle[..], 2.0),
         ] {
             assert!((area(kind, x) - expect).abs() < 1e-14, "{kind:?}");
             assert_eq!(orientation(kind, x), Orientation::CounterClockwise);
@@ -230,7 +172,7 @@ mod tests {
         ];
         x[3] = [1.0, 1.9];
         assert!(matches!(
-            orientation(Kind::T6, &x),
+            orientation(ElementKind::T6, &x),
             Orientation::Folded { min, max } if min < 0.0 && max > 0.0
         ));
     }

@@ -4,12 +4,11 @@
 use std::collections::BTreeMap;
 
 use contopt_core::{Error, Result, GEOMETRY_TOLERANCE};
-use contopt_fem::{Face, Mesh};
+use contopt_fem::{ElementKind, Face, Mesh};
 
 use crate::geometry::{self, Orientation};
 use crate::groups::{self, Group};
 use crate::msh::{ElementBlock, GmshMesh};
-use crate::shim::{self, Kind};
 use crate::types::{self, ElementType};
 
 /// Two nodes closer than this fraction of the shortest element edge (in x and in y) are one
@@ -50,7 +49,7 @@ pub(crate) struct Body {
     /// Gmsh's node tags.
     pub node_tags: Vec<u64>,
     /// Kind and nodes (counter-clockwise once oriented) of each element.
-    pub elements: Vec<(Kind, Vec<usize>)>,
+    pub elements: Vec<(ElementKind, Vec<usize>)>,
     /// Gmsh's element tags.
     pub element_tags: Vec<u64>,
     /// The surface entity of each element.
@@ -96,7 +95,7 @@ impl GmshMesh {
             element_tags,
             ..
         } = body;
-        let mesh = shim::build_mesh(nodes, elements)?;
+        let mesh = Mesh::mixed(nodes, elements)?;
         Ok(ImportedMesh {
             mesh,
             groups,
@@ -216,13 +215,13 @@ impl GmshMesh {
     }
 
     /// The kind of a 2-D block's elements; linear and other types refused.
-    fn kind(&self, block: &ElementBlock) -> Result<Kind> {
+    fn kind(&self, block: &ElementBlock) -> Result<ElementKind> {
         let t = block.element_type();
         let first = block.tags().first().copied().unwrap_or_default();
         match t.number {
-            types::QUADRANGLE8 => Ok(Kind::Q8),
-            types::QUADRANGLE9 => Ok(Kind::Q9),
-            types::TRIANGLE6 => Ok(Kind::T6),
+            types::QUADRANGLE8 => Ok(ElementKind::Q8),
+            types::QUADRANGLE9 => Ok(ElementKind::Q9),
+            types::TRIANGLE6 => Ok(ElementKind::T6),
             types::TRIANGLE3 | types::QUADRANGLE4 => Err(linear(self.source(), first, t)),
             _ => Err(Error::Mesh(format!(
                 "{}: Gmsh element {first} is of {t}, which contopt does not have: it reads \
@@ -518,7 +517,7 @@ impl ImportedMesh {
             .enumerate()
             .map(|(e, element)| {
                 let (x, n) = geometry::coords(nodes, element);
-                geometry::area(shim::element_kind(&self.mesh, e), &x[..n])
+                geometry::area(self.mesh.element_kind(e), &x[..n])
             })
             .sum()
     }

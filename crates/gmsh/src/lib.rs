@@ -80,7 +80,6 @@ mod geometry;
 mod groups;
 mod import;
 mod msh;
-mod shim;
 mod types;
 
 use std::path::Path;

@@ -6,8 +6,8 @@ use std::f64::consts::PI;
 use super::{check_chain, committed, group};
 use crate::geometry::{self, Orientation};
 use crate::import::Body;
-use crate::shim::Kind;
 use crate::{Group, Surfaces};
+use contopt_fem::ElementKind as Kind;
 
 /// Relative round-off of an area summed over a few hundred elements.
 const AREA_ROUND_OFF: f64 = 1e-12;
@@ -166,7 +166,13 @@ fn rectangle_of_9_node_quadrilaterals() {
 /// and area as the body's.
 #[test]
 fn import_gives_the_prepared_body() {
-    for name in ["rectangle-q8.msh", "rectangle-q9.msh", "two-bodies.msh"] {
+    for name in [
+        "rectangle-q8.msh",
+        "rectangle-q9.msh",
+        "two-bodies.msh",
+        "plate-hole-t6.msh",
+        "mixed.msh",
+    ] {
         let gmsh = committed(name);
         let surfaces = if name == "two-bodies.msh" {
             Surfaces::Group("punch")
@@ -337,19 +343,6 @@ fn ascii_and_binary_alike() {
             close(a.0.nodes.as_flattened(), b.0.nodes.as_flattened()),
             "{name}"
         );
-    }
-}
-
-/// Until contopt-fem's `Mesh::mixed` is merged, a mesh with triangles stops at the `Mesh`,
-/// after every check of the import: this test turns into the public import's at merge.
-#[test]
-fn triangles_wait_for_mixed_meshes() {
-    for name in ["plate-hole-t6.msh", "mixed.msh"] {
-        let e = committed(name)
-            .import(Surfaces::All)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("`Mesh::mixed`, not merged yet"), "{e}");
     }
 }
 

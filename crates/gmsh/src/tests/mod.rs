@@ -48,7 +48,11 @@ fn check_chain(body: &Body, g: &Group) -> usize {
             g.name
         );
         let (kind, nodes) = &body.elements[f.element];
-        let corners = if *kind == crate::shim::Kind::T6 { 3 } else { 4 };
+        let corners = if *kind == contopt_fem::ElementKind::T6 {
+            3
+        } else {
+            4
+        };
         let c = nodes[..corners].iter().fold([0.0, 0.0], |s, &n| {
             [
                 s[0] + body.nodes[n][0] / corners as f64,
