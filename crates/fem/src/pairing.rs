@@ -270,6 +270,12 @@ impl Paired {
                 self.left_out += 1;
                 continue;
             };
+            check::derived(
+                "pairing.second.faces",
+                format!("{:?}", hit.face),
+                "the distance between the meshes",
+                hit.t,
+            )?;
             let sample = FaceSample {
                 face: curve.face,
                 s,
@@ -890,7 +896,8 @@ mod tests {
 
     /// Each error names what is wrong: a gap in a chain (the face cut off and where the chain
     /// before it ends), a face inside the mesh, an empty chain, chains that do not overlap or
-    /// face away from each other, a search distance that is not positive and finite.
+    /// face away from each other, bodies built from other models than the paired ones, a
+    /// search distance that is not positive and finite.
     #[test]
     fn errors_name_what_is_wrong() {
         let analysis = ANALYSES[0];
@@ -926,6 +933,18 @@ mod tests {
         let top = m2.mesh().faces_on_y(5.0, 0.0, 10.0);
         let e = pair((&m1, &f1), (&m2, &top), None);
         assert!(e.contains("face away"), "{e}");
+        // Bodies built from other models than the paired ones.
+        let pairing =
+            ContactPairing::new((&m1, &f1), (&m2, &f2), &PairingSettings::default()).unwrap();
+        let e = pairing
+            .bodies(("a", m2.clone()), ("b", m1.clone()))
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("pairing.bodies.first") && e.contains("paired with"),
+            "{e}"
+        );
         for d in [0.0, -1.0, f64::NAN, f64::INFINITY] {
             let e = pair((&m1, &f1), (&m2, &f2), Some(d));
             assert!(e.contains("pairing.search_distance"), "{e}");
