@@ -14,7 +14,7 @@ pub mod element;
 mod factor;
 mod mesh;
 mod model;
-mod pairing;
+pub mod pairing;
 mod recovery;
 mod solution;
 mod system;
