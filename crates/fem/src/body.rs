@@ -118,7 +118,9 @@ impl FeBody {
     /// a boundary face and a parameter on it, where the body's displacement is interpolated,
     /// and the point, weight and normal the interface reports. [`FeBody::new`] samples each
     /// face at its Gauss points; a [`crate::ContactPairing`] samples the second body where
-    /// the first body's normals meet it (eq. 2.1: displacements along n¹).
+    /// the first body's normals meet it (eq. 2.1: displacements along n¹), and its
+    /// [`bodies`](crate::ContactPairing::bodies) also read the point values through the first
+    /// body's field, which bodies built here from its samples do not.
     pub fn sampled(
         name: impl Into<String>,
         model: FeModel,
@@ -215,7 +217,8 @@ impl FeBody {
     /// The change of initial gap described by its values at the contact face's nodes and the
     /// faces' quadratic shape functions (Δh = L(x)Δh, §4): the map Q from the nodes to the
     /// Gauss points. Displacements are interpolated the same way, so a gap change that closes
-    /// a displacement field exactly at the points exists.
+    /// a displacement field exactly at the points exists. Both bodies of a
+    /// [`crate::ContactPairing`] have the first body's: their point values are read through it.
     pub fn gap_shape(&self) -> &GapShape {
         &self.gap_shape
     }

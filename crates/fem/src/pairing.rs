@@ -122,7 +122,9 @@ pub struct PairingSettings {
 /// pressures that jump from point to point).
 ///
 /// A point of the first body whose normal line meets none of the second body's faces within
-/// the search distance cannot touch it: it is left out ([`ContactPairing::left_out`]).
+/// the search distance cannot touch it: it is left out ([`ContactPairing::left_out`]). Only
+/// faces that face the point count (their outward normal against n¹): a line that leaves
+/// through the second body's far side is no contact.
 ///
 /// ```
 /// use contopt_fem::{
