@@ -1,7 +1,7 @@
 //! The closed forms of linear elasticity that the tests compare contopt with, each written once:
 //! Hertz's sphere and line contact, the rigid flat punch (Boussinesq, Sneddon), uniform pressure
 //! on a circle of a half-space and on a strip of a half-plane (Flamant), Westergaard's wavy
-//! surface, Lamé's thick cylinder and Timoshenko's cantilever.
+//! surface, Lamé's thick cylinder and its shrink fit, and Timoshenko's cantilever.
 //!
 //! Units: lengths in mm, forces in N, moduli, stresses and pressures in MPa (N/mm²); any
 //! consistent set works, for nothing here holds a dimensional constant. Approaches and
@@ -9,7 +9,8 @@
 //!
 //! Sources, cited by chapter: K. L. Johnson, *Contact Mechanics*, Cambridge University Press
 //! (1985); S. P. Timoshenko and J. N. Goodier, *Theory of Elasticity*, 3rd ed., McGraw-Hill
-//! (1970).
+//! (1970); R. G. Budynas and J. K. Nisbett, *Shigley's Mechanical Engineering Design*, 10th
+//! ed., McGraw-Hill (2015).
 
 use std::f64::consts::PI;
 
@@ -284,6 +285,75 @@ impl ThickCylinder {
     }
 }
 
+/// Lamé's shrink fit (Timoshenko & Goodier ch. 4, thick-walled cylinder; Shigley §3-16, press
+/// and shrink fits): a shaft of outer radius b_s (hollow with bore a, or solid with a = 0) in
+/// a hub of bore b_h < b_s and outer radius c \[mm\], the radial interference δ = b_s − b_h
+/// closed by the contact pressure p alone, in plane stress (thin disks, σ_z = 0) or plane strain
+/// (long parts, ε_z = 0: E and ν replaced by E/(1 − ν²) and ν/(1 − ν)).
+///
+/// Lamé's tube (σ_r = k − c/r², σ_θ = k + c/r²) gives the hub's bore, under an internal
+/// pressure p_h, the radial displacement u_h = b_h p_h (K_h + ν_h)/E_h with K_h = (c² + b_h²)/
+/// (c² − b_h²), and the shaft's surface, under an external pressure p, u_s = −b_s p (K_s −
+/// ν_s)/E_s with K_s = (b_s² + a²)/(b_s² − a²) (1 for a solid shaft). The pressure p acts on the
+/// shaft's surface; the same force on the hub's shorter bore is p_h = p b_s/b_h. The parts fit
+/// when u_h − u_s = δ:
+///
+/// p = δ / (b_s [(K_h + ν_h)/E_h + (K_s − ν_s)/E_s]).
+///
+/// With b_s = b_h = b (the textbook's, δ ≪ b) this is Shigley's interference-fit pressure; the
+/// two differ by O(δ/b). A contact model whose pressure is measured on the shaft (the first
+/// body) and applied to the hub with the same weights has exactly this one.
+#[derive(Clone, Copy, Debug)]
+pub struct ShrinkFit {
+    /// The shaft's bore a \[mm\] (0 for a solid shaft).
+    pub shaft_bore: f64,
+    /// The shaft's outer radius b_s before assembly \[mm\].
+    pub shaft_radius: f64,
+    /// The hub's bore b_h before assembly \[mm\], less than b_s.
+    pub hub_bore: f64,
+    /// The hub's outer radius c \[mm\].
+    pub hub_radius: f64,
+    /// The shaft's material.
+    pub shaft: Material,
+    /// The hub's material.
+    pub hub: Material,
+    /// Plane strain (ε_z = 0); plane stress (σ_z = 0) when false.
+    pub plane_strain: bool,
+}
+
+impl ShrinkFit {
+    /// The radial interference δ = b_s − b_h \[mm\].
+    pub fn interference(&self) -> f64 {
+        self.shaft_radius - self.hub_bore
+    }
+
+    /// E and ν of `material` in the fit's plane state: as given in plane stress, E/(1 − ν²)
+    /// and ν/(1 − ν) in plane strain.
+    fn plane(&self, material: &Material) -> (f64, f64) {
+        let (e, nu) = (material.e(), material.nu());
+        if self.plane_strain {
+            (e / (1.0 - nu * nu), nu / (1.0 - nu))
+        } else {
+            (e, nu)
+        }
+    }
+
+    /// The contact pressure on the shaft's surface \[MPa\].
+    pub fn pressure(&self) -> f64 {
+        let (a, bs, bh, c) = (
+            self.shaft_bore,
+            self.shaft_radius,
+            self.hub_bore,
+            self.hub_radius,
+        );
+        let (eh, nuh) = self.plane(&self.hub);
+        let (es, nus) = self.plane(&self.shaft);
+        let kh = (c * c + bh * bh) / (c * c - bh * bh);
+        let ks = (bs * bs + a * a) / (bs * bs - a * a);
+        self.interference() / (bs * ((kh + nuh) / eh + (ks - nus) / es))
+    }
+}
+
 /// Timoshenko's cantilever (Timoshenko & Goodier ch. 3, a cantilever loaded at the end): a
 /// plane-stress beam of length L, depth D and thickness T \[mm\] on 0 ≤ x ≤ L, |y| ≤ D/2,
 /// loaded at x = L by the parabolic shear traction whose resultant is P \[N\]. The
@@ -484,6 +554,65 @@ mod tests {
             strain,
             ROUND_OFF
         ));
+    }
+
+    /// The shrink fit closes its interference: the hub's bore under p·b_s/b_h (Lamé's
+    /// [`ThickCylinder`]) and the shaft's surface under p (a hydrostatic −p plus a tube under
+    /// the internal pressure −p, which frees its bore) move apart by δ, in plane stress and
+    /// plane strain, for a solid and a hollow shaft; with equal radii of steel parts, plane
+    /// stress, it is the textbook's p = Eδ(c² − b²)/(2bc²) to O(δ/b).
+    #[test]
+    fn shrink_fit_closes_the_interference() {
+        let aluminium = Material::new(0.7e5, 0.34).unwrap();
+        for plane_strain in [false, true] {
+            for bore in [0.0, 12.0] {
+                let fit = ShrinkFit {
+                    shaft_bore: bore,
+                    shaft_radius: 50.05,
+                    hub_bore: 50.0,
+                    hub_radius: 90.0,
+                    shaft: steel(),
+                    hub: aluminium,
+                    plane_strain,
+                };
+                let p = fit.pressure();
+                let displacement = |tube: ThickCylinder, m: &Material, r: f64| match plane_strain {
+                    true => tube.plane_strain_displacement(m, r),
+                    false => tube.plane_stress_displacement(m, r),
+                };
+                let hub = ThickCylinder {
+                    inner: 50.0,
+                    outer: 90.0,
+                    pressure: p * 50.05 / 50.0,
+                };
+                let (e, nu) = (steel().e(), steel().nu());
+                let hydrostatic = match plane_strain {
+                    true => -p * (1.0 + nu) * (1.0 - 2.0 * nu) * 50.05 / e,
+                    false => -p * (1.0 - nu) * 50.05 / e,
+                };
+                let freed = ThickCylinder {
+                    inner: bore,
+                    outer: 50.05,
+                    pressure: -p,
+                };
+                let u_hub = displacement(hub, &aluminium, 50.0);
+                let u_shaft = hydrostatic + displacement(freed, &steel(), 50.05);
+                assert!(close(u_hub - u_shaft, fit.interference(), 1e-10));
+            }
+        }
+        let (b, c, delta) = (40.0, 70.0, 0.02);
+        let steel_fit = ShrinkFit {
+            shaft_bore: 0.0,
+            shaft_radius: b + delta,
+            hub_bore: b,
+            hub_radius: c,
+            shaft: steel(),
+            hub: steel(),
+            plane_strain: false,
+        };
+        let textbook = 2e5 * delta * (c * c - b * b) / (2.0 * b * c * c);
+        assert!(close(steel_fit.pressure(), textbook, 2.0 * delta / b));
+        assert!(!close(steel_fit.pressure(), textbook, 1e-6));
     }
 
     /// The cantilever is held at the origin, its end traction sums to P (Simpson's rule is

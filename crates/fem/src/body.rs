@@ -8,8 +8,7 @@ use contopt_core::{
 };
 use faer::Mat;
 
-use crate::element::GAUSS3;
-use crate::model::FacePoint;
+use crate::pairing::{FaceSample, Projection};
 use crate::system::{Dof, System};
 use crate::{Face, FeModel};
 
@@ -23,16 +22,18 @@ pub(crate) struct PointRow {
 }
 
 impl PointRow {
-    fn new(model: &FeModel, face: Face, fp: &FacePoint) -> Self {
+    /// The row of a point at which the face's shape functions are `shape` and the outward
+    /// normal along which displacement is measured is `normal`.
+    fn new(model: &FeModel, face: Face, shape: [f64; 3], normal: [f64; 2]) -> Self {
         let nodes = model.mesh.face_nodes(face);
         let mut row = PointRow {
             dofs: [0; 6],
             coef: [0.0; 6],
         };
         for (k, &node) in nodes.iter().enumerate() {
-            for c in 0..2 {
+            for (c, n) in normal.iter().enumerate() {
                 row.dofs[2 * k + c] = 2 * node + c;
-                row.coef[2 * k + c] = fp.shape[k] * fp.normal[c];
+                row.coef[2 * k + c] = shape[k] * n;
             }
         }
         row
@@ -74,8 +75,9 @@ pub struct BuildStats {
 /// condenses it to the face (the influence matrix A = L K⁻¹ Lᵀ at the Gauss points of every
 /// contact face, §2.2) and solves once for the displacement under the given loads.
 ///
-/// Contact is checked at the three Gauss points of every contact face, as in the paper. They
-/// outnumber the face's normal displacement unknowns (3 per face against 2 per face plus
+/// Contact is checked at the three Gauss points of every contact face, as in the paper
+/// ([`FeBody::new`]), or at points given one by one ([`FeBody::sampled`]; a
+/// [`crate::ContactPairing`] samples two bodies meshed apart). The Gauss points outnumber the face's normal displacement unknowns (3 per face against 2 per face plus
 /// one), so A is only semi-definite: gaps and rigid motions are unique, Gauss-point pressures
 /// are not. The solvers of `contopt-contact` return the pressure of least Σ wᵢpᵢ², the limit
 /// of the penalty method, which is the paper's C⁰ pressure field (eq. 2.9) sampled at the
@@ -93,28 +95,70 @@ pub struct FeBody {
     load_displacement: Vec<f64>,
     rigid_modes: Vec<RigidMode>,
     gap_shape: GapShape,
+    /// The projection of a paired body's point values onto the first body's C⁰ field
+    /// ([`crate::ContactPairing::bodies`]): forces pass through Pᵀ, displacements through P.
+    pub(crate) projection: Option<Projection>,
     stats: BuildStats,
 }
 
 impl FeBody {
-    /// Builds the body with contact zone `contact` (boundary faces of the model's mesh).
+    /// Builds the body with contact zone `contact` (boundary faces of the model's mesh),
+    /// checked at the three Gauss points of every face ([`FaceSample::gauss`]).
     pub fn new(name: impl Into<String>, model: FeModel, contact: &[Face]) -> Result<Self> {
         let name = name.into();
         check_contact(&name, &model, contact)?;
-        let mut face_nodes: Vec<usize> = contact
+        let samples: Vec<FaceSample> = contact
             .iter()
-            .flat_map(|&f| model.mesh.face_nodes(f))
+            .flat_map(|&f| FaceSample::gauss(&model, f))
             .collect();
-        face_nodes.sort_unstable();
-        face_nodes.dedup();
-        let points = GAUSS3.len() * contact.len();
-        let system = System::new(&model, &name, &face_nodes, points)?;
+        Self::build(name, model, contact, &samples)
+    }
+
+    /// Builds the body with its interface points given one by one: each [`FaceSample`] names
+    /// a boundary face and a parameter on it, where the body's displacement is interpolated,
+    /// and the point, weight and normal the interface reports. [`FeBody::new`] samples each
+    /// face at its Gauss points; a [`crate::ContactPairing`] samples the second body where
+    /// the first body's normals meet it (eq. 2.1: displacements along n¹), and its
+    /// [`bodies`](crate::ContactPairing::bodies) also read the point values through the first
+    /// body's field, which bodies built here from its samples do not.
+    pub fn sampled(
+        name: impl Into<String>,
+        model: FeModel,
+        samples: &[FaceSample],
+    ) -> Result<Self> {
+        let name = name.into();
+        let mut contact: Vec<Face> = Vec::new();
+        for s in samples {
+            if !contact.contains(&s.face) {
+                contact.push(s.face);
+            }
+        }
+        check_contact(&name, &model, &contact)?;
+        if let Some(i) = samples.iter().position(|s| !(-1.0..=1.0).contains(&s.s)) {
+            return Err(Error::invalid(
+                format!("{name}.samples[{i}].s"),
+                samples[i].s,
+                "must lie in [-1, 1], the face's parameter range",
+            ));
+        }
+        Self::build(name, model, &contact, samples)
+    }
+
+    /// The body of `model` with the interface of `samples` on the (checked) faces `contact`.
+    fn build(
+        name: String,
+        model: FeModel,
+        contact: &[Face],
+        samples: &[FaceSample],
+    ) -> Result<Self> {
+        let face_nodes = nodes_of(&model, contact);
+        let system = System::new(&model, &name, &face_nodes, samples.len())?;
         let condensation_start = Instant::now();
         let Sampled {
             interface,
             gap_shape,
             rows,
-        } = Sampled::new(&model, contact, &face_nodes)?;
+        } = Sampled::new(&model, samples, &face_nodes)?;
         let influence = condense(&system, &rows);
         let condensation = condensation_start.elapsed();
 
@@ -151,14 +195,30 @@ impl FeBody {
             load_displacement,
             rigid_modes,
             gap_shape,
+            projection: None,
             stats,
         })
+    }
+
+    /// The body whose point values are read through `projection` (P, onto the first body's
+    /// field `basis`): influence P A Pᵀ, load and rigid-mode displacements P f, forces Pᵀ f,
+    /// and `basis` as its gap shape.
+    pub(crate) fn projected(mut self, projection: &Projection, basis: &GapShape) -> Self {
+        self.influence = projection.congruence(&self.influence);
+        self.load_displacement = projection.apply(&self.load_displacement);
+        for mode in &mut self.rigid_modes {
+            mode.interface_displacement = projection.apply(&mode.interface_displacement);
+        }
+        self.gap_shape = basis.clone();
+        self.projection = Some(projection.clone());
+        self
     }
 
     /// The change of initial gap described by its values at the contact face's nodes and the
     /// faces' quadratic shape functions (Δh = L(x)Δh, §4): the map Q from the nodes to the
     /// Gauss points. Displacements are interpolated the same way, so a gap change that closes
-    /// a displacement field exactly at the points exists.
+    /// a displacement field exactly at the points exists. Both bodies of a
+    /// [`crate::ContactPairing`] have the first body's: their point values are read through it.
     pub fn gap_shape(&self) -> &GapShape {
         &self.gap_shape
     }
@@ -186,6 +246,14 @@ impl FeBody {
                 format!("one per rigid mode ({})", self.system.modes.len()),
             ));
         }
+        let projected;
+        let force = match &self.projection {
+            Some(p) => {
+                projected = p.apply_transpose(force);
+                &projected
+            }
+            None => force,
+        };
         let mut extra = vec![0.0; self.model.forces.len()];
         for (r, f) in self.rows.iter().zip(force) {
             for (&g, &c) in r.dofs.iter().zip(&r.coef) {
@@ -206,7 +274,11 @@ impl FeBody {
     /// Normal displacement into the body at the interface points of a nodal displacement
     /// field (e.g. from [`FeBody::displacement`]).
     pub fn interface_displacement(&self, u: &[f64]) -> Vec<f64> {
-        self.rows.iter().map(|r| r.normal_into(u)).collect()
+        let at_points: Vec<f64> = self.rows.iter().map(|r| r.normal_into(u)).collect();
+        match &self.projection {
+            Some(p) => p.apply(&at_points),
+            None => at_points,
+        }
     }
 
     /// Sizes and timings of the build.
@@ -258,8 +330,8 @@ fn check_contact(name: &str, model: &FeModel, contact: &[Face]) -> Result<()> {
     Ok(())
 }
 
-/// The contact faces sampled at their three Gauss points (§2.2): the interface, the map Q
-/// from the face nodes to the points, and each point's normal-displacement row of L.
+/// The contact faces sampled at the points of a body's interface (§2.2): the interface, the
+/// map Q from the face nodes to the points, and each point's normal-displacement row of L.
 struct Sampled {
     interface: Interface,
     gap_shape: GapShape,
@@ -267,37 +339,63 @@ struct Sampled {
 }
 
 impl Sampled {
-    /// Samples `contact`, whose nodes are `face_nodes` (sorted, distinct).
-    fn new(model: &FeModel, contact: &[Face], face_nodes: &[usize]) -> Result<Self> {
-        let (mut points, mut weights, mut normals, mut rows) = (vec![], vec![], vec![], vec![]);
-        let mut shape_rows = vec![];
-        for &f in contact {
-            let nodes = model.mesh.face_nodes(f);
-            // Every node of a contact face is in `face_nodes`, which was built from them.
-            let index = nodes.map(|k| face_nodes.partition_point(|&j| j < k));
-            for &(s, w) in &GAUSS3 {
-                let fp = model.face_point(f, s);
-                points.push([fp.x[0], fp.x[1], 0.0]);
-                weights.push(w * fp.jacobian * model.analysis.measure(fp.x[0]));
-                normals.push([fp.normal[0], fp.normal[1], 0.0]);
-                rows.push(PointRow::new(model, f, &fp));
-                shape_rows.push((0..3).map(|k| (index[k], fp.shape[k])).collect());
-            }
+    /// Samples the faces at `samples`, whose faces' nodes are `face_nodes` (sorted, distinct).
+    fn new(model: &FeModel, samples: &[FaceSample], face_nodes: &[usize]) -> Result<Self> {
+        let n = samples.len();
+        let (mut points, mut weights, mut normals) = (vec![], vec![], vec![]);
+        let mut rows = Vec::with_capacity(n);
+        for sample in samples {
+            let shape = model.face_point(sample.face, sample.s).shape;
+            points.push([sample.point[0], sample.point[1], 0.0]);
+            weights.push(sample.weight);
+            normals.push([sample.normal[0], sample.normal[1], 0.0]);
+            rows.push(PointRow::new(model, sample.face, shape, sample.normal));
         }
         let interface = Interface::new(model.analysis.geometry(), points, weights, normals)?;
-        let nodes = face_nodes
-            .iter()
-            .map(|&k| {
-                let x = model.mesh.nodes()[k];
-                [x[0], x[1], 0.0]
-            })
-            .collect();
         Ok(Self {
             interface,
-            gap_shape: GapShape::new(nodes, shape_rows)?,
+            gap_shape: gap_basis(model, samples, face_nodes)?,
             rows,
         })
     }
+}
+
+/// The nodes of `faces`, sorted and distinct.
+pub(crate) fn nodes_of(model: &FeModel, faces: &[Face]) -> Vec<usize> {
+    let mut nodes: Vec<usize> = faces
+        .iter()
+        .flat_map(|&f| model.mesh.face_nodes(f))
+        .collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes
+}
+
+/// The map Q from the faces' nodes `face_nodes` (sorted, distinct; every node of a sample's
+/// face among them) to the `samples`: each face's quadratic shape functions at the point.
+pub(crate) fn gap_basis(
+    model: &FeModel,
+    samples: &[FaceSample],
+    face_nodes: &[usize],
+) -> Result<GapShape> {
+    let rows = samples
+        .iter()
+        .map(|sample| {
+            let nodes = model.mesh.face_nodes(sample.face);
+            let shape = model.face_point(sample.face, sample.s).shape;
+            (0..3)
+                .map(|k| (face_nodes.partition_point(|&j| j < nodes[k]), shape[k]))
+                .collect()
+        })
+        .collect();
+    let nodes = face_nodes
+        .iter()
+        .map(|&k| {
+            let x = model.mesh.nodes()[k];
+            [x[0], x[1], 0.0]
+        })
+        .collect();
+    GapShape::new(nodes, rows)
 }
 
 /// The influence matrix A = L K⁻¹ Lᵀ (eq. 2.22) from the face block of K⁻¹, the face

@@ -51,8 +51,18 @@ pub struct JointSystem<'a> {
 
 impl<'a> JointSystem<'a> {
     /// The joint system of `body1` and `body2` (their interfaces paired by position) with
-    /// initial gap `initial_gap` \[mm\] at body 1's points.
+    /// initial gap `initial_gap` \[mm\] at body 1's points. Bodies of a
+    /// [`crate::ContactPairing`], which read their point values through the first body's
+    /// field, are refused: their springs would couple every point.
     pub fn new(body1: &'a FeBody, body2: &'a FeBody, initial_gap: &[f64]) -> Result<Self> {
+        if let Some(b) = [body1, body2].iter().find(|b| b.projection.is_some()) {
+            return Err(Error::invalid(
+                "joint system",
+                b.name(),
+                "is a body of a contact pairing, which the joint system does not couple: \
+                 solve its condensed InterfaceProblem",
+            ));
+        }
         let pair = body1
             .interface()
             .partners(body2.interface(), body1.name(), body2.name())?;

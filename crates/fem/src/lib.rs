@@ -5,7 +5,8 @@
 //!
 //! A [`FeModel`] holds a [`Mesh`], a [`Material`], an [`Analysis`], supports and loads;
 //! [`FeModel::solve`] solves a supported model, and [`FeBody`] condenses a model to its contact
-//! face as a [`contopt_core::ElasticBody`].
+//! face as a [`contopt_core::ElasticBody`]. Two bodies whose contact faces are meshed apart
+//! (non-matching nodes, curved faces) are paired segment to segment by a [`ContactPairing`].
 
 mod analysis;
 mod body;
@@ -14,6 +15,7 @@ pub mod element;
 mod factor;
 mod mesh;
 mod model;
+pub mod pairing;
 mod recovery;
 mod solution;
 mod system;
@@ -25,4 +27,5 @@ pub use element::ElementKind;
 pub use factor::factorisations;
 pub use mesh::{body_bytes, mesh_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
 pub use model::{Component, FeModel};
+pub use pairing::{ContactPairing, FaceSample, PairingSettings};
 pub use solution::{Solution, Stress};
