@@ -11,6 +11,7 @@ mod body;
 pub mod coupled;
 pub mod element;
 mod factor;
+mod fields;
 mod mesh;
 mod model;
 mod recovery;
