@@ -57,6 +57,7 @@ mod scale;
 mod style;
 mod table;
 mod ticks;
+pub mod vtu;
 
 pub use figure::{Figure, PNG_SCALE};
 pub use line::LineChart;
