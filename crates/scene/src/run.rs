@@ -165,8 +165,7 @@ impl Case {
         crate::limits::judge(&mut report, self, &problem);
         crate::report::below_surface(&mut report, self, built)
             .map_err(|e| at.library("output.subsurface", e))?;
-        crate::fields::compute(&mut report, self, built, &problem, &rigid)
-            .map_err(|e| at.library("output.fields", e))?;
+        crate::fields::compute(&mut report, self, built, &problem, &rigid);
         report.reference = crate::reference::curve(self, &report);
         report.settle();
         Ok(report)
