@@ -3,7 +3,7 @@
 //! - `contopt run <scene> [--json] [--quiet] [--out DIR]`: solves every case, with a progress
 //!   bar on stderr when it is a terminal, and writes the files of
 //!   [`contopt_report::write()`] to `DIR/<name>/` (`result.json`, `interface.csv`, the charts as
-//!   SVG and PNG), then prints a table (or, with `--json`, the report as one JSON document on
+//!   SVG and PNG, a finite-element case's fields for ParaView as `.vtu`), then prints a table (or, with `--json`, the report as one JSON document on
 //!   stdout). Files go only into `DIR/<name>/`, never through a symbolic link.
 //! - `contopt check <scene>`: reads and checks the scene exactly as `run` does, without
 //!   solving;
@@ -251,21 +251,64 @@ fn solve(scene: &Scene, quiet: bool) -> Result<Vec<CaseReport>, contopt_scene::S
 /// Files listed by name up to this many; past it, counted.
 const LISTED_FILES: usize = 12;
 
-/// The line that says where the results went.
+/// The line that says where the results went: every file by name, or past
+/// [`LISTED_FILES`] every kind of file, a case's and a section's number written `*`
+/// (`fields_*.vtu`), or the first few when the kinds are too many too.
 fn written_files(dir: &ResultsDir) -> String {
     let names = dir.written();
     if names.len() <= LISTED_FILES {
-        format!(
+        return format!(
             "results: {}/{{{}}}\n",
             dir.path().display(),
             names.join(",")
-        )
+        );
+    }
+    let mut kinds: Vec<String> = vec![];
+    for kind in names.iter().map(|n| numbered(n)) {
+        if !kinds.contains(&kind) {
+            kinds.push(kind);
+        }
+    }
+    let shown = if kinds.len() <= LISTED_FILES {
+        kinds.join(", ")
     } else {
-        let shown = names[..LISTED_FILES / 2].join(", ");
-        format!(
-            "results: {}/ ({} files: {shown}, …)\n",
-            dir.path().display(),
-            names.len()
-        )
+        names[..LISTED_FILES / 2].join(", ") + ", …"
+    };
+    format!(
+        "results: {}/ ({} files: {shown})\n",
+        dir.path().display(),
+        names.len()
+    )
+}
+
+/// A file's kind: its name with each number that follows an underscore (a case's, a
+/// section's) written `*`.
+fn numbered(name: &str) -> String {
+    let mut kind = String::with_capacity(name.len());
+    let mut chars = name.chars().peekable();
+    while let Some(c) = chars.next() {
+        kind.push(c);
+        if c == '_' && chars.peek().is_some_and(char::is_ascii_digit) {
+            while chars.peek().is_some_and(char::is_ascii_digit) {
+                chars.next();
+            }
+            kind.push('*');
+        }
+    }
+    kind
+}
+
+#[cfg(test)]
+mod tests {
+    use super::numbered;
+
+    /// A case's and a section's number become `*`; other digits stay.
+    #[test]
+    fn kinds_of_files() {
+        assert_eq!(numbered("fields_12.vtu"), "fields_*.vtu");
+        assert_eq!(numbered("mises_3_2.png"), "mises_*_*.png");
+        assert_eq!(numbered("subsurface_1.csv"), "subsurface_*.csv");
+        assert_eq!(numbered("p2.svg"), "p2.svg");
+        assert_eq!(numbered("result.json"), "result.json");
     }
 }

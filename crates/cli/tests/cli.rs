@@ -111,6 +111,8 @@ fn quiet_prints_nothing_and_writes_the_files() {
     for file in ["p.svg", "p.png", "interface.csv"] {
         assert!(out.join(file).exists(), "{file}");
     }
+    // Rings of a half-space under a rigid punch: no mesh, no fields.
+    assert!(!out.join("fields_1.vtu").exists() && !out.join("contact_1.vtu").exists());
     let loud = contopt()
         .current_dir(&here)
         .args(["run", "flat-punch", "--out", "results"])
@@ -202,7 +204,8 @@ fn run_fails(path: &Path, needles: &[&str]) -> String {
 /// columns.
 #[test]
 fn paper_table1_scene_matches_the_paper() {
-    let (report, _) = run_bundled(BIN, "paper-table1");
+    let (report, folder) = run_bundled(BIN, "paper-table1");
+    paper_table1_fields(&report, &folder);
     let cases = report["cases"].as_array().unwrap();
     let paper = [
         (0.0, 333.2, 93.67),
@@ -234,6 +237,51 @@ fn paper_table1_scene_matches_the_paper() {
             "iterd",
         ] {
             assert!(row.get(key).is_some(), "{key}");
+        }
+    }
+}
+
+/// Each case of Table 1 writes its fields for ParaView, and they parse: the base's and the
+/// punch's quadratic quads (18 elements across the punch, as many layers in each body, the
+/// base 9 more across) with the six stress components, and the contact's 3 Gauss points per
+/// face with p, d and Δh (a design) equal to the report's; none of it enters result.json.
+fn paper_table1_fields(report: &Value, folder: &Path) {
+    use vtkio::model::{Attribute, CellType, DataSet, Vtk};
+    let piece = |name: String| {
+        let bytes = std::fs::read(folder.join(&name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let DataSet::UnstructuredGrid { pieces, .. } = Vtk::parse_xml(&bytes[..]).unwrap().data
+        else {
+            panic!("{name}: not an unstructured grid");
+        };
+        pieces[0].load_piece_data(None).unwrap()
+    };
+    let values = |attributes: &[Attribute], name: &str| -> Vec<f64> {
+        attributes
+            .iter()
+            .find_map(|a| match a {
+                Attribute::DataArray(d) if d.name == name => d.data.cast_into::<f64>(),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no array {name}"))
+    };
+    let result = std::fs::read_to_string(folder.join("result.json")).unwrap();
+    assert!(!result.contains("displacement_mm") && !result.contains("\"fields\": ["));
+    for (k, case) in report["cases"].as_array().unwrap().iter().enumerate() {
+        let grid = piece(format!("fields_{}.vtu", k + 1));
+        let cells = &grid.cells.types;
+        assert!(!cells.is_empty() && cells.iter().all(|&t| t == CellType::QuadraticQuad));
+        let stress = values(&grid.data.point, "stress_mpa");
+        assert_eq!(stress.len(), 6 * grid.num_points());
+        let body = values(&grid.data.cell, "body");
+        assert!(body.contains(&1.0) && body.contains(&2.0));
+        let contact = piece(format!("contact_{}.vtu", k + 1));
+        let interface = case["interface"].as_array().unwrap();
+        assert_eq!(contact.num_points(), interface.len());
+        assert_eq!(interface.len(), 3 * 18);
+        for (name, key) in [("p_mpa", "p_mpa"), ("d_um", "d_um"), ("dh_um", "dh_um")] {
+            let got = values(&contact.data.point, name);
+            let want: Vec<f64> = interface.iter().map(|q| number(&q[key])).collect();
+            assert_eq!(got, want, "case {}: {name}", k + 1);
         }
     }
 }

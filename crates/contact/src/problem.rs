@@ -191,6 +191,9 @@ pub struct InterfaceProblem<'a> {
     interface: Rc<Interface>,
     load_gap: Rc<Vec<f64>>,
     modes: Rc<Vec<FreeMode>>,
+    /// Whose each of `modes` is: (body, its index among the body's rigid modes); `None` once
+    /// [`InterfaceProblem::with_modes`] replaced them.
+    owners: Option<Rc<Vec<[usize; 2]>>>,
     pressure_basis: Option<Rc<GapShape>>,
     initial_gap: Vec<f64>,
     dense_limit: u64,
@@ -245,7 +248,7 @@ impl<'a> InterfaceProblem<'a> {
         let f1 = b1.load_displacement()?;
         let f2 = b2.load_displacement()?;
         let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
-        let modes = free_modes(b1, b2, &pair)?;
+        let (modes, owners) = free_modes(b1, b2, &pair)?;
         let pressure_basis = match (b1.pressure_basis(), b2.pressure_basis()) {
             (Some(b), _) => Some(b.clone()),
             (None, Some(b)) => Some(GapShape::new(
@@ -277,6 +280,7 @@ impl<'a> InterfaceProblem<'a> {
             operator: Rc::new(operator),
             load_gap: Rc::new(load_gap),
             modes: Rc::new(modes),
+            owners: Some(Rc::new(owners)),
             pressure_basis: pressure_basis.map(Rc::new),
             initial_gap: initial_gap.to_vec(),
             dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
@@ -336,6 +340,7 @@ impl<'a> InterfaceProblem<'a> {
         }
         Ok(Self {
             modes: Rc::new(modes),
+            owners: None,
             ..self.clone()
         })
     }
@@ -441,6 +446,39 @@ impl<'a> InterfaceProblem<'a> {
     /// The free rigid modes.
     pub fn modes(&self) -> &[FreeMode] {
         &self.modes
+    }
+
+    /// Each body's own rigid-mode amplitudes ([`ElasticBody::rigid_modes`], in the body's
+    /// order) in a solution's λ (`rigid`, one per [`InterfaceProblem::modes`]): what a body
+    /// needs to place its displacement field. A mode the problem dropped (it does not move the
+    /// interface and carries no load, so that contact leaves it where it is) has amplitude 0.
+    ///
+    /// Errors: a `rigid` of the wrong length, or a problem whose modes are no longer the
+    /// bodies' ([`InterfaceProblem::with_modes`]).
+    pub fn body_rigid(&self, rigid: &[f64]) -> Result<[Vec<f64>; 2]> {
+        let Some(owners) = &self.owners else {
+            return Err(Error::invalid(
+                "rigid",
+                "the modes of with_modes",
+                "the problem's modes are not its bodies' rigid modes",
+            ));
+        };
+        if rigid.len() != self.modes.len() {
+            return Err(Error::invalid(
+                "rigid.len()",
+                rigid.len(),
+                format!("one amplitude per free mode ({})", self.modes.len()),
+            ));
+        }
+        let mut own = self
+            .operator
+            .bodies
+            .each_ref()
+            .map(|b| vec![0.0; b.get().rigid_modes().len()]);
+        for (&[body, mode], &lambda) in owners.iter().zip(rigid) {
+            own[body][mode] = lambda;
+        }
+        Ok(own)
     }
 
     /// The interface displacements of the free rigid modes as a dense n × m matrix R, for the
@@ -717,13 +755,20 @@ const MODE_INDEPENDENCE: f64 = 1e-10;
 /// The bodies' rigid modes in the first body's numbering, with the ones that do not move the
 /// interface dropped (and refused when loaded), loads that pull the bodies apart refused, and
 /// modes that move the interface alike refused.
-fn free_modes(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Result<Vec<FreeMode>> {
+fn free_modes(
+    b1: &dyn ElasticBody,
+    b2: &dyn ElasticBody,
+    pair: &[usize],
+) -> Result<(Vec<FreeMode>, Vec<[usize; 2]>)> {
     let n = pair.len();
     let w = b1.interface().weights();
     let identity: Vec<usize> = (0..n).collect();
-    let mut kept = vec![];
-    for (b, order) in [(b1, identity.as_slice()), (b2, pair)] {
-        for m in b.rigid_modes() {
+    let (mut kept, mut owners) = (vec![], vec![]);
+    for (k, (b, order)) in [(b1, identity.as_slice()), (b2, pair)]
+        .into_iter()
+        .enumerate()
+    {
+        for (j, m) in b.rigid_modes().iter().enumerate() {
             let r: Vec<f64> = order.iter().map(|&j| m.interface_displacement[j]).collect();
             let name = format!("{} of `{}`", m.name, b.name());
             let q = m.load;
@@ -763,10 +808,11 @@ fn free_modes(b1: &dyn ElasticBody, b2: &dyn ElasticBody, pair: &[usize]) -> Res
                 displacement,
                 load: q,
             });
+            owners.push([k, j]);
         }
     }
     check_independent(&kept, w)?;
-    Ok(kept)
+    Ok((kept, owners))
 }
 
 /// Two modes that move the interface alike leave λ undetermined.

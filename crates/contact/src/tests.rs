@@ -164,6 +164,37 @@ fn three_points_with_a_rigid_mode() {
     }
 }
 
+/// A solution's λ maps back to each body's own modes: a mode that does not move the
+/// interface is dropped from the problem and gets amplitude 0, the translation its λ; a
+/// problem whose modes were replaced refuses.
+#[test]
+fn solution_amplitudes_map_back_to_the_bodies_modes() {
+    let a = Mat::from_fn(3, 3, |i, j| if i == j { 1e-3 } else { 0.0 });
+    let idle = RigidMode {
+        name: "sideways".into(),
+        interface_displacement: vec![0.0; 3],
+        load: 0.0,
+    };
+    let translation = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; 3],
+        load: -3.0,
+    };
+    let b = body(a, vec![idle, translation]);
+    let rigid = RigidBody::fixed("rigid", b.interface());
+    let problem =
+        InterfaceProblem::owned(Box::new(b), Box::new(rigid), &[0.0, 1e-3, 5e-3]).unwrap();
+    assert_eq!(problem.modes().len(), 1);
+    let st = qp().solve(&problem).unwrap();
+    let own = problem.body_rigid(&st.rigid).unwrap();
+    assert_eq!(own, [vec![0.0, st.rigid[0]], vec![]]);
+    assert!((st.rigid[0] + 2e-3).abs() < 1e-12, "{:?}", st.rigid);
+    let e = problem.body_rigid(&[]).unwrap_err();
+    assert!(e.to_string().contains("rigid.len()"), "{e}");
+    let replaced = problem.with_modes(vec![]).unwrap();
+    assert!(replaced.body_rigid(&[]).is_err());
+}
+
 /// The augmented Lagrangian reaches the same solution from a small and a large c, and
 /// counts Kalker's solves: starting with every point in contact, the open point has tension on
 /// the first solve and on no other (`iterp − iterd` = 1).

@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{GapShape, Interface, Result, Subsurface, SubsurfaceRequest};
+use crate::{BodyFields, GapShape, Interface, Result, Subsurface, SubsurfaceRequest};
 
 /// A rigid-body mode that a body's supports leave free (the floating punch of Table 1 has
 /// one: the axial translation).
@@ -118,6 +118,17 @@ pub trait ElasticBody {
         request: &SubsurfaceRequest,
     ) -> Result<Option<Subsurface>> {
         let _ = (pressure, request);
+        Ok(None)
+    }
+
+    /// The body's fields over its own mesh under the contact pressure `pressure` \[MPa\] at
+    /// the interface points (and the body's given loads) with rigid-mode amplitudes `rigid`
+    /// (one per [`ElasticBody::rigid_modes`]): its nodes and cells, and the displacement and
+    /// stress at every node, for a viewer. `None` (the default) when the body has no mesh of
+    /// its own: a half-space, a rigid body, or a user type that does not say. A body computes
+    /// them only when asked: they are as large as its mesh.
+    fn fields(&self, pressure: &[f64], rigid: &[f64]) -> Result<Option<BodyFields>> {
+        let _ = (pressure, rigid);
         Ok(None)
     }
 }

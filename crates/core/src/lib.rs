@@ -12,6 +12,7 @@
 mod body;
 pub mod check;
 mod error;
+mod fields;
 mod full_system;
 mod gap_shape;
 mod interface;
@@ -26,6 +27,7 @@ mod termination;
 pub use body::{ElasticBody, RigidMode};
 pub use error::{Error, Result};
 pub use faer;
+pub use fields::{BodyFields, Cell, CellKind};
 pub use full_system::FullSystem;
 pub use gap_shape::GapShape;
 pub use interface::{Geometry, Interface, GEOMETRY_TOLERANCE};

@@ -3,7 +3,7 @@
 use std::time::{Duration, Instant};
 
 use contopt_core::{
-    check, ElasticBody, Error, GapShape, Interface, Result, RigidMode, Subsurface,
+    check, BodyFields, ElasticBody, Error, GapShape, Interface, Result, RigidMode, Subsurface,
     SubsurfaceRequest,
 };
 use faer::Mat;
@@ -466,5 +466,11 @@ impl ElasticBody for FeBody {
         request: &SubsurfaceRequest,
     ) -> Result<Option<Subsurface>> {
         self.nodal_subsurface(pressure, request).map(Some)
+    }
+
+    /// The mesh, the nodal displacements and the recovered nodal stresses:
+    /// [`FeBody::mesh_fields`].
+    fn fields(&self, pressure: &[f64], rigid: &[f64]) -> Result<Option<BodyFields>> {
+        self.mesh_fields(pressure, rigid).map(Some)
     }
 }

@@ -13,6 +13,7 @@ mod body;
 pub mod coupled;
 pub mod element;
 mod factor;
+mod fields;
 mod mesh;
 mod model;
 pub mod pairing;

@@ -249,7 +249,7 @@ impl FeBody {
     }
 
     /// Compressive normal forces pᵢwᵢ \[N\] at the interface points, the pressure checked.
-    fn interface_forces(&self, pressure: &[f64]) -> Result<Vec<f64>> {
+    pub(crate) fn interface_forces(&self, pressure: &[f64]) -> Result<Vec<f64>> {
         let weights = self.interface().weights();
         if pressure.len() != weights.len() {
             return Err(Error::invalid(

@@ -1,6 +1,7 @@
 //! What users see of a contopt run, in one place: the charts, the table printed after a run
 //! ([`table()`]), and the files a run's [`Report`](contopt_results::Report) becomes
-//! ([`write()`]: `result.json`, the CSV files and the charts). It depends on the result types
+//! ([`write()`]: `result.json`, the CSV files, the charts and, for a finite-element case, its
+//! fields as VTK files for ParaView: [`vtu`]). It depends on the result types
 //! of `contopt-results` only, not on the bodies or solvers that produced them.
 //!
 //! One unit per kind of quantity, as in `result.json`: pressures and stresses in MPa,
@@ -57,6 +58,7 @@ mod scale;
 mod style;
 mod table;
 mod ticks;
+pub mod vtu;
 
 pub use figure::{Figure, PNG_SCALE};
 pub use line::LineChart;

@@ -1,8 +1,8 @@
 //! The files a scene's [`Report`] becomes: `result.json`, `interface.csv`, the charts of p
 //! and Δh along x (with the closed form dashed beside a validation case), a map of the
 //! pressure over a two-dimensional region, a roller envelope's centre lines, and the
-//! stresses on each vertical section below the surface (CSV and von Mises maps). Every chart
-//! is written as SVG and PNG.
+//! stresses on each vertical section below the surface (CSV and von Mises maps), and a
+//! finite-element case's fields as VTK files. Every chart is written as SVG and PNG.
 //!
 //! Units are those of `result.json`, one per kind of quantity and written in the CSV columns'
 //! names as in its fields': pressures and stresses in MPa (`_mpa`), positions and sizes in mm
@@ -39,8 +39,9 @@ const SAME_ROW: f64 = 1e-9;
 /// Writes every file of `report` to `sink`, in order: `result.json`, `interface.csv`,
 /// `p.{svg,png}` and, when some case changes the gap, `dh.{svg,png}`; per case `p_map_<case>`
 /// (a two-dimensional region), `envelope_<case>` (a roller's envelope), `subsurface_<case>.csv`
-/// and `mises_<case>_<section>` (stresses below the surface); cases and sections numbered
-/// from 1.
+/// and `mises_<case>_<section>` (stresses below the surface), `fields_<case>.vtu` and
+/// `contact_<case>.vtu` (a finite-element case's fields for ParaView: [`crate::vtu`]); cases
+/// and sections numbered from 1.
 ///
 /// The charts draw the cases whose methods converged, those outside the model's limits too
 /// (their legend says so); `interface.csv` holds every case's points.
@@ -63,6 +64,12 @@ pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
             put(sink, &format!("envelope_{number}"), &chart.draw()?)?;
         }
         sections(report, case, number, sink)?;
+        if let Some(vtu) = crate::vtu::fields_vtu(case)? {
+            sink.put(&format!("fields_{number}.vtu"), &vtu)?;
+        }
+        if let Some(vtu) = crate::vtu::contact_vtu(case)? {
+            sink.put(&format!("contact_{number}.vtu"), &vtu)?;
+        }
     }
     Ok(())
 }

@@ -22,7 +22,7 @@ pub use validate::violations;
 use std::collections::BTreeMap;
 
 use contopt_core::observe::Method;
-use contopt_core::{SectionField, Termination};
+use contopt_core::{BodyFields, SectionField, Termination};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -138,6 +138,24 @@ pub struct CaseReport {
     /// The closed-form pressure of a validation case (Hertz, Sneddon's flat punch), along the
     /// line the pressure chart draws; null where none exists.
     pub reference: Option<ReferenceCurve>,
+    /// The fields over the meshes of the case's finite-element bodies under its solution
+    /// (`[output] fields`), written as a VTK file for a viewer (not into the JSON report: they
+    /// are as large as the meshes); empty when no body has a mesh, when not asked for or when
+    /// the case did not converge.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub fields: Vec<MeshFields>,
+}
+
+/// A body's fields over its own mesh under a case's solution, and which body it is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshFields {
+    /// The body's number: 1 below the contact zone (its outward normal is n¹), 2 above it.
+    pub body: usize,
+    /// Its name (`fe_base`, `fe_punch`).
+    pub name: String,
+    /// Its mesh, displacements and stresses.
+    pub fields: BodyFields,
 }
 
 /// Where an answer leaves the model's limits.
@@ -411,6 +429,7 @@ impl CaseReport {
             roller: None,
             subsurface: None,
             reference: None,
+            fields: vec![],
         }
     }
 

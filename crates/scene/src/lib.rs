@@ -19,6 +19,7 @@ mod build;
 mod bundled;
 mod cases;
 mod error;
+mod fields;
 mod gap;
 mod limits;
 mod methods;

@@ -160,10 +160,12 @@ impl Case {
         let designed = crate::methods::design(&self.spec)
             .run(&context, &mut report)
             .map_err(|e| at.library("optimisation", e))?;
+        let rigid = designed.rigid.clone();
         crate::report::fill(&mut report, &context, designed);
         crate::limits::judge(&mut report, self, &problem);
         crate::report::below_surface(&mut report, self, built)
             .map_err(|e| at.library("output.subsurface", e))?;
+        crate::fields::compute(&mut report, self, built, &problem, &rigid);
         report.reference = crate::reference::curve(self, &report);
         report.settle();
         Ok(report)

@@ -108,10 +108,31 @@ pub struct OptimisationSpec {
 }
 
 /// What the results gain beyond the contact pressure (`[output]`).
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// Stresses below the surface (`[output.subsurface]`).
     #[serde(default)]
     pub subsurface: Option<crate::subsurface::SubsurfaceSpec>,
+    /// The fields over the meshes of the finite-element bodies under each case's solution —
+    /// displacements, nodal stresses, and the contact pressure and gap on the faces — as VTK
+    /// files for ParaView (`fields_<case>.vtu`, `contact_<case>.vtu`); default on. A case
+    /// without a finite-element body writes none.
+    #[serde(default = "OutputSpec::default_fields")]
+    pub fields: bool,
+}
+
+impl OutputSpec {
+    fn default_fields() -> bool {
+        true
+    }
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            subsurface: None,
+            fields: Self::default_fields(),
+        }
+    }
 }

@@ -112,7 +112,11 @@ pub(crate) fn compute(
 /// The pressure at body `k`'s points in its own order: the first body's as given (the
 /// interface problem lists its points so), the second's paired by position (its faces may list
 /// their Gauss points the other way round, as a punch's bottom faces do against a base's top).
-fn own_order(bodies: [&dyn ElasticBody; 2], k: usize, pressure: &[f64]) -> Result<Vec<f64>> {
+pub(crate) fn own_order(
+    bodies: [&dyn ElasticBody; 2],
+    k: usize,
+    pressure: &[f64],
+) -> Result<Vec<f64>> {
     if k == 0 {
         return Ok(pressure.to_vec());
     }
