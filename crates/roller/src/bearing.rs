@@ -60,6 +60,17 @@ const GUIDANCE_APPROACH: f64 = 1e-3;
 /// Armijo's sufficient decrease of the line searches.
 const SUFFICIENT_DECREASE: f64 = 1e-4;
 
+/// An energy may rise by this fraction of itself in a line search: its round-off, below which
+/// the last Newton steps' decrease cannot be told (they are taken on the gradient's word).
+const ENERGY_ROUNDOFF: f64 = 1e-13;
+
+/// Armijo's condition with the energy's round-off: `trial` is below `current` by at least the
+/// fraction [`SUFFICIENT_DECREASE`] of the `expected` decrease (negative), give or take
+/// [`ENERGY_ROUNDOFF`].
+fn decreased(trial: f64, current: f64, expected: f64) -> bool {
+    trial <= current + SUFFICIENT_DECREASE * expected + ENERGY_ROUNDOFF * current.abs()
+}
+
 /// The most halvings of a line search's step before it stalls.
 const MAX_HALVINGS: usize = 60;
 
@@ -515,8 +526,11 @@ impl Model {
                     approach: state.approach + alpha * step[0],
                     tilt: state.tilt + alpha * step[1],
                 };
-                let ok = self.roller_energy(trial, delta, slope).0
-                    <= energy + SUFFICIENT_DECREASE * alpha * slope_along;
+                let ok = decreased(
+                    self.roller_energy(trial, delta, slope).0,
+                    energy,
+                    alpha * slope_along,
+                );
                 if ok {
                     *state = trial;
                 } else {
@@ -686,7 +700,7 @@ impl Model {
                 }
             }
         };
-        Ok(self.distribution(&u, &states, iterations, &rings, termination, settings))
+        Ok(self.distribution(&u, &states, iterations, &rings, termination))
     }
 
     /// One Newton step of the rings from `u`, with backtracking; when no roller is loaded (the
@@ -725,7 +739,7 @@ impl Model {
                 .collect();
             let mut trial_states = states.clone();
             let next = self.rings(&trial, &mut trial_states, settings);
-            if next.potential <= rings.potential + SUFFICIENT_DECREASE * alpha * along.min(0.0) {
+            if decreased(next.potential, rings.potential, alpha * along.min(0.0)) {
                 *u = trial;
                 *states = trial_states;
                 return Some(next);
@@ -743,7 +757,6 @@ impl Model {
         iterations: usize,
         rings: &Rings,
         termination: Termination,
-        _settings: &BearingSettings,
     ) -> LoadDistribution {
         let slice_loads = |e: &dyn Fn(usize) -> f64| -> Vec<f64> {
             (0..self.x.len())

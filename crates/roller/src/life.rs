@@ -352,3 +352,157 @@ pub fn miner(cases: &[(f64, f64)]) -> Result<f64> {
     let damage: f64 = cases.iter().map(|(t, l)| t / l).sum();
     check::derived_positive("duty cycle", "its lives", "the damage Σ t/L", damage).map(|d| 1.0 / d)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Crown;
+
+    fn bearing(slices: usize) -> CylindricalRollerBearing {
+        CylindricalRollerBearing {
+            rollers: 14,
+            roller_diameter: 10.0,
+            roller_length: 10.0,
+            chamfer: 0.2,
+            pitch_diameter: 65.0,
+            clearance: 0.0,
+            roller_crown: Crown::Straight,
+            inner_crown: Crown::Straight,
+            outer_crown: Crown::Straight,
+            slices,
+            first_roller: 0.0,
+        }
+    }
+
+    /// The table of f_c is ISO/TR 1281-1's formula rounded to 0.1 (λν = 0.83): every row within
+    /// 0.05; between rows, linear; outside, an error.
+    #[test]
+    fn f_c_is_iso_tr_1281s_formula() {
+        let formula = |g: f64| {
+            let r = (1.0 - g) / (1.0 + g);
+            207.9 * 0.83 * g.powf(2.0 / 9.0) * (1.0 - g).powf(29.0 / 27.0) / (1.0 + g).powf(0.25)
+                * (1.0 + (1.04 * r.powf(143.0 / 108.0)).powf(4.5)).powf(-2.0 / 9.0)
+        };
+        for k in 0..F_C.len() {
+            let g = 0.01 * (k + 1) as f64;
+            assert!(
+                (f_c(g).unwrap() - formula(g)).abs() <= 0.05 + 1e-9,
+                "{g}: {} vs {}",
+                f_c(g).unwrap(),
+                formula(g)
+            );
+        }
+        assert!((f_c(0.155).unwrap() - 88.35).abs() < 1e-12);
+        for g in [0.005, 0.31, f64::NAN] {
+            assert!(f_c(g).unwrap_err().to_string().contains("f_c"));
+        }
+    }
+
+    /// The 209 bearing's C_r, worked by hand: f_c(10/65) = 88.2 + 0.3846·0.3 = 88.315,
+    /// C_r = 1.1·88.315·9.6^(7/9)·14^(3/4)·10^(29/27) = 48 427 N; its life at 8900 N.
+    #[test]
+    fn dynamic_load_rating_of_a_209_bearing() {
+        let c = dynamic_load_rating(&bearing(30)).unwrap();
+        assert!((c - 48_427.036).abs() < 0.01, "{c}");
+        let l = basic_rating_life(c, 8900.0).unwrap();
+        assert!((l - (c / 8900.0).powf(10.0 / 3.0)).abs() < 1e-12 * l);
+        assert!(basic_rating_life(c, 0.0).is_err());
+    }
+
+    /// Rollers loaded evenly along their length: the reference life is Lundberg–Palmgren's
+    /// [(Q_ci/Q_ei)^(−9/2) + (Q_ce/Q_ee)^(−9/2)]^(−8/9) of the whole rollers (Q_c = q_c·n_s^(7/9),
+    /// Q_ei the rollers' loads' 4-mean, Q_ee their 9/2-mean), whatever the number of slices;
+    /// with the outer ring rotating the means swap.
+    #[test]
+    fn even_slices_give_the_rollers_lives() {
+        let rating = dynamic_load_rating(&bearing(1)).unwrap();
+        let q: Vec<f64> = (0..14)
+            .map(|j| {
+                3000.0
+                    * (2.0 * std::f64::consts::PI * j as f64 / 14.0)
+                        .cos()
+                        .max(0.0)
+                        .powf(10.0 / 9.0)
+            })
+            .collect();
+        let mean = |p: f64| (q.iter().map(|q| q.powf(p)).sum::<f64>() / 14.0).powf(1.0 / p);
+        let mut lives = vec![];
+        for slices in [1, 7, 30] {
+            let b = bearing(slices);
+            let r = slice_ratings(&b, rating).unwrap();
+            let mut loads = SliceLoads::new(14, slices).unwrap();
+            for (j, qj) in q.iter().enumerate() {
+                let even = vec![qj / slices as f64; slices];
+                loads.set(Raceway::Inner, j, &even).unwrap();
+                loads.set(Raceway::Outer, j, &even).unwrap();
+            }
+            let n79 = (slices as f64).powf(7.0 / 9.0);
+            let (qci, qce) = (r.inner * n79, r.outer * n79);
+            for (rotating, (pi, pe)) in [(Raceway::Inner, (4.0, 4.5)), (Raceway::Outer, (4.5, 4.0))]
+            {
+                let life = reference_rating_life(&r, &loads, rotating).unwrap();
+                let want =
+                    ((qci / mean(pi)).powf(-4.5) + (qce / mean(pe)).powf(-4.5)).powf(-8.0 / 9.0);
+                assert!(
+                    (life.bearing / want - 1.0).abs() < 1e-12,
+                    "{slices}: {} vs {want}",
+                    life.bearing
+                );
+                assert!((life.inner / (qci / mean(pi)).powi(4) - 1.0).abs() < 1e-12);
+            }
+            lives.push(
+                reference_rating_life(&r, &loads, Raceway::Inner)
+                    .unwrap()
+                    .bearing,
+            );
+        }
+        assert!(
+            lives.iter().all(|l| (l / lives[0] - 1.0).abs() < 1e-12),
+            "{lives:?}"
+        );
+        let unloaded = SliceLoads::new(14, 7).unwrap();
+        let r = slice_ratings(&bearing(7), rating).unwrap();
+        assert!(reference_rating_life(&r, &unloaded, Raceway::Inner).is_err());
+    }
+
+    /// A pressure map's slice loads: every cell's force lands in the slices its width covers,
+    /// they sum to the map's force, and a load outside the roller is refused.
+    #[test]
+    fn slice_loads_of_a_pressure_map() {
+        // 7 columns of 0.5 mm over a 3.5 mm roller, 2 rows of 0.1 mm, cut into 3 slices.
+        let points: Vec<[f64; 3]> = (0..14)
+            .map(|i| [-1.5 + 0.5 * (i % 7) as f64, 0.1 * (i / 7) as f64, 0.0])
+            .collect();
+        let pressure: Vec<f64> = (0..14).map(|i| 100.0 * (1 + i % 7) as f64).collect();
+        let loads = slice_loads_from_pressure(&points, &pressure, [0.5, 0.1], 3.5, 3).unwrap();
+        // Per column (both rows): 10·(1..7) N over [−1.75 + 0.5i, −1.25 + 0.5i]; slices 7/6 mm.
+        let w = 3.5 / 3.0;
+        let column = |i: usize, lo: f64, hi: f64| {
+            let (a, b) = (-1.75 + 0.5 * i as f64, -1.25 + 0.5 * i as f64);
+            20.0 * (i + 1) as f64 * (hi.min(b) - lo.max(a)).max(0.0)
+        };
+        for (k, got) in loads.iter().enumerate() {
+            let (lo, hi) = (-1.75 + k as f64 * w, -1.75 + (k + 1) as f64 * w);
+            let want: f64 = (0..7).map(|i| column(i, lo, hi)).sum();
+            assert!((got - want).abs() < 1e-9, "{k}: {got} vs {want}");
+        }
+        assert!((loads.iter().sum::<f64>() - 2.0 * 0.05 * 2800.0).abs() < 1e-9);
+        let e = slice_loads_from_pressure(&points, &pressure, [0.5, 0.1], 3.0, 3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("outside the roller"), "{e}");
+    }
+
+    /// Palmgren–Miner by hand; fractions that do not sum to 1 are named.
+    #[test]
+    fn miner_sums_the_damage() {
+        let l = miner(&[(0.25, 100.0), (0.75, 10.0)]).unwrap();
+        assert!((l - 1.0 / (0.0025 + 0.075)).abs() < 1e-12);
+        let e = miner(&[(0.5, 1.0), (0.4, 2.0)]).unwrap_err().to_string();
+        assert!(e.contains("fractions") && e.contains("0.9"), "{e}");
+        assert!(miner(&[(1.0, 0.0)])
+            .unwrap_err()
+            .to_string()
+            .contains("life"));
+    }
+}
