@@ -113,8 +113,7 @@ pub struct CylindricalRollerBearing {
     pub inner_crown: Crown,
     /// The outer raceway's crown along the roller.
     pub outer_crown: Crown,
-    /// Slices per roller n_s (ISO/TS 16281 asks for at least 30 where the load varies along
-    /// the roller).
+    /// Slices per roller n_s (implementations of ISO/TS 16281 quote its minimum of 30).
     pub slices: usize,
     /// The angle of roller 0 from the load's direction \[rad\]; the others follow at 2π/Z.
     pub first_roller: f64,
@@ -968,6 +967,17 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert!(d.rollers.iter().all(|r| r.load_n.is_finite()) && d.residual > 1e-12);
+    }
+
+    /// The standard's constant is Palmgren's line contact, δ = 3.84·10⁻⁵·Q^0.9/l^0.8 for each of
+    /// the roller's two contacts, to 4 % (Palmgren's gives (1/(2·3.84·10⁻⁵))^(10/9) = 37 318 for
+    /// the pair; one contact's 80 600 would be 55 % off).
+    #[test]
+    fn line_constant_is_palmgrens_pair_of_contacts() {
+        let pair = (1.0 / (2.0 * 3.84e-5f64)).powf(LINE_EXPONENT);
+        assert!((LINE_CONTACT / pair - 1.0).abs() < 0.04, "{pair}");
+        let b = bearing(0.0);
+        assert!((b.line_constant() - LINE_CONTACT * 9.6f64.powf(8.0 / 9.0)).abs() < 1e-9);
     }
 
     /// Bad input is named: the field and its value.

@@ -43,7 +43,7 @@ pub const JOHNS_GOHAR_END: f64 = 0.303_265_329_856_316_7;
 /// Ingenieurwesens 10 (1939) 201–211; P. M. Johns & R. Gohar, *Roller bearings under radial and
 /// eccentric loads*, Tribology International 14 (1981) 131–136; H. Fujiwara & T. Kawase,
 /// *Logarithmic profiles of rollers in roller bearings and optimization of the profiles*, NTN
-/// Technical Review 75 (2007) 140–148. The standard and the 1939 and 1981 papers could not be
+/// Technical Review 75 (2007), p. 140. The standard and the 1939 and 1981 papers could not be
 /// read for this crate: each formula below says what it was checked against instead.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Crown {
