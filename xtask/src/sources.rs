@@ -154,6 +154,12 @@ pub const SOURCES: &[Source] = &[
             ("envelope_7.svg", "roller_envelope_robust.svg"),
         ],
     ),
+    // The bearing around the roller: load distribution and lives against closed forms.
+    example(
+        &["--example", "bearing_validation"],
+        "bearing_validation",
+        false,
+    ),
     example(
         &["--example", "subsurface_stresses"],
         "subsurface_stresses",

@@ -21,48 +21,73 @@ use serde::{Deserialize, Serialize};
 
 use crate::Roller;
 
+/// Johns and Gohar's end constant, 1/(2√e) = 0.30327 (printed 0.3033): the drop of their
+/// crown at the end of the effective length, Q/(π l E*)·ln[1/(0.3033·2b/l)], is the difference
+/// between the elastic approach at mid-length and at an end of a line load Q/l spread over the
+/// length with Hertz's elliptical pressure across the width 2b. Along the centre line of that
+/// load on two half-spaces (1/E* the sum of their compliances), the approach at x is
+/// 1/(πE*)·∫ p(t)·[asinh((l/2 − x)/|t|) + asinh((l/2 + x)/|t|)] dt; for b ≪ l its mid-length value
+/// less its end value is (Q/l)/(πE*)·[ln(l/(2b)) − ⟨ln|t/b|⟩], and the mean of ln|t/b| under
+/// the elliptical p(t) is −ln 2 − ½, so the end drop is (Q/l)/(πE*)·ln[l/(2b)·2√e]. (Derived
+/// here and checked by quadrature in this module's tests; the constant is the one the
+/// literature quotes for Johns & Gohar 1981.)
+pub const JOHNS_GOHAR_END: f64 = 0.303_265_329_856_316_7;
+
 /// A crown: the drop z(x) of the roller's surface below the straight generator at the axial
 /// position x, |x| < l/2 \[mm\]. The logarithmic profiles are written with the pair's modulus
 /// E* (1/E* = Σ (1 − νₖ²)/Eₖ) and the load Q on the effective length l; each is infinite or
 /// steep only at the very ends, which the cell centres of a grid over the length never reach.
+///
+/// Sources, by profile: ISO/TS 16281:2008 §6.2 (the reference profile of a cylindrical roller),
+/// G. Lundberg, *Elastische Berührung zweier Halbräume*, Forschung auf dem Gebiete des
+/// Ingenieurwesens 10 (1939) 201–211; P. M. Johns & R. Gohar, *Roller bearings under radial and
+/// eccentric loads*, Tribology International 14 (1981) 131–136; H. Fujiwara & T. Kawase,
+/// *Logarithmic profiles of rollers in roller bearings and optimization of the profiles*, NTN
+/// Technical Review 75 (2007), p. 140. The standard and the 1939 and 1981 papers could not be
+/// read for this crate: each formula below says what it was checked against instead.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Crown {
     /// No crown: edge loading at the ends.
     Straight,
-    /// ISO/TS 16281's default: z = 0.00035·D·ln[1/(1 − (2x/l)²)].
+    /// ISO/TS 16281's reference profile of a roller no longer than 2.5·D (the standard's
+    /// eq. 42): z = 0.00035·D·ln[1/(1 − (2x/l)²)]. Quoted so by the MESYS manual ("the default
+    /// relief of 0.00035·Dw for short cylindrical roller bearings", www.mesys.ag/manual) and by
+    /// implementations of the standard that cite its equation numbers; longer rollers have a
+    /// flat centre in the standard (eqs. 43–44), which this variant does not model.
     Iso {
         /// Roller diameter D \[mm\].
         diameter: f64,
     },
-    /// Lundberg (1939), the profile of a uniform line load: z = Q/(π l E*)·ln[1/(1 − (2x/l)²)]
-    /// (the form Fujiwara & Kawase, NTN Technical Review 75, 2007, quote as the profile that
-    /// "gives an axially uniform pressure distribution").
+    /// Lundberg (1939), the profile of a uniform line load: z = Q/(π l E*)·ln[1/(1 − (2x/l)²)].
+    /// The coefficient is the uniform line load's own: a line load Q/l over |x| < l/2 on two
+    /// half-spaces sinks the surface at x by (Q/l)/(πE*)·ln((l²/4 − x²)/ε²) plus a constant
+    /// (ε a width below which the load is spread), so that its approach at mid-length exceeds
+    /// that at x by exactly this z (Boussinesq's point load integrated along the line; checked
+    /// against the half-space grid in this module's tests). Fujiwara & Kawase (2007) quote it
+    /// as the profile that "gives an axially uniform pressure distribution".
     Lundberg {
         /// Q/(π l E*) \[mm\].
         scale: f64,
     },
     /// Johns & Gohar (1981), Lundberg's profile made finite at the ends:
-    /// z = Q/(π l E*)·ln[1/(1 − (1 − (2b/l)²)(2x/l)²)], b the Hertz half-width.
-    ///
-    /// What is established here: Fujiwara & Kawase (NTN Technical Review 75, 2007, abstract)
-    /// describe Johns–Gohar's function as Lundberg's logarithm "improved for the convenience
-    /// of manufacturing" (finite at the ends, no flat part) and build their K1, K2, z_m
-    /// profile on it. What is not: the end term. This code writes 1 − (2b/l)²; a reviewer
-    /// quotes the literature's form as 1 − 0.3033·(2b/l). Neither Johns & Gohar (1981) nor a
-    /// text that prints their equation could be read for this crate, so the term is left as
-    /// it was and stays unverified: both make the drop finite at |x| = l/2 and differ only
-    /// there, by the size of the end drop (ln[1/(2b/l)²] against ln[1/(0.3033·2b/l)] times
-    /// Q/(π l E*)).
+    /// z = Q/(π l E*)·ln[1/(1 − (1 − 0.3033·2b/l)·(2x/l)²)], b Hertz's half-width of the line
+    /// load Q/l, so that the end drop is Q/(π l E*)·ln[1/(0.3033·2b/l)], the end drop of
+    /// Lundberg's line load spread over Hertz's width ([`JOHNS_GOHAR_END`]). The form is the
+    /// one the literature quotes (Fujiwara & Kawase 2007 build their K1, K2, z_m profile on it);
+    /// the paper itself could not be read here, and the constant is derived and checked
+    /// instead. (This crate wrote the end term as 1 − (2b/l)² until issue 24: an end drop
+    /// ln[1/(2b/l)²], twice the logarithm the elastic end gives.)
     JohnsGohar {
         /// Q/(π l E*) \[mm\].
         scale: f64,
-        /// (2b/l)².
+        /// 0.3033·2b/l, the argument of the end drop's logarithm.
         end: f64,
     },
     /// Fujiwara & Kawase (NTN Technical Review 75, 2007): a flat centre and a logarithmic crown
     /// over the outer fraction K2 of each half-length, dropping z_m at the ends:
     /// z = A·ln[1/(1 − (1 − e^(−z_m/A))·s²)], s = (|x| − (1 − K2)·l/2)/(K2·l/2) ≥ 0,
-    /// A = K1·Q/(π l E*).
+    /// A = K1·Q/(π l E*) (Johns–Gohar's function with the three parameters the paper
+    /// introduces: K1 the load coefficient, K2 the crowned fraction, z_m the end drop).
     FujiwaraKawase {
         /// A = K1·Q/(π l E*) \[mm\].
         a: f64,
@@ -144,8 +169,8 @@ impl Crown {
     /// Johns and Gohar's profile; `half_width` is Hertz's b for the line load Q/l \[mm\].
     pub fn johns_gohar(load: f64, length: f64, e_star: f64, half_width: f64) -> Result<Self> {
         check::positive("half_width", half_width)?;
-        let end = (2.0 * half_width / length).powi(2);
-        if end.is_nan() || end >= 1.0 {
+        let ratio = 2.0 * half_width / length;
+        if ratio.is_nan() || ratio >= 1.0 {
             return Err(Error::invalid(
                 "half_width",
                 half_width,
@@ -154,7 +179,7 @@ impl Crown {
         }
         Ok(Crown::JohnsGohar {
             scale: checked_scale(load, length, e_star)?,
-            end,
+            end: JOHNS_GOHAR_END * ratio,
         })
     }
 
@@ -349,7 +374,7 @@ mod tests {
                 ),
                 (
                     Crown::johns_gohar(q, l, e_star, b).unwrap(),
-                    scale * (1.0 / (1.0 - (1.0 - (2.0 * b / l).powi(2)) * u2)).ln(),
+                    scale * (1.0 / (1.0 - (1.0 - end_constant() * 2.0 * b / l) * u2)).ln(),
                 ),
             ];
             for (crown, want) in cases {
@@ -372,6 +397,96 @@ mod tests {
         let t = Crown::table(vec![0.0, 2.0, 4.0], vec![0.0, 0.001, 0.005]).unwrap();
         assert!((t.drop(-3.0, l).unwrap() - 0.003).abs() < 1e-15);
         assert_eq!(t.drop(4.5, l).unwrap(), 0.005);
+    }
+
+    /// Johns and Gohar's end constant written out: 1/(2√e).
+    fn end_constant() -> f64 {
+        0.5 / std::f64::consts::E.sqrt()
+    }
+
+    /// The approach at mid-length less the approach at x along the centre line of a line load
+    /// over |x| < a spread across |t| < b with Hertz's elliptical pressure, in units of
+    /// (Q/l)/(πE*): ∫ p(t)/(Q/l)·[2·asinh(a/|t|) − asinh((a − x)/|t|) − asinh((a + x)/|t|)] dt,
+    /// by the midpoint rule in t = b·sin θ, θ = (π/2)s² (which smooths the log at t = 0).
+    fn approach_drop(a: f64, b: f64, x: f64) -> f64 {
+        let n = 20_000;
+        (0..n)
+            .map(|k| {
+                let s = (k as f64 + 0.5) / n as f64;
+                let theta = 0.5 * PI * s * s;
+                let t = b * theta.sin();
+                // p dt/(Q/l) = (2/π) cos²θ dθ on θ ∈ (−π/2, π/2): twice the half.
+                let weight = 2.0 * (2.0 / PI) * theta.cos().powi(2) * PI * s / n as f64;
+                let asinh = |z: f64| (z / t).asinh();
+                weight * (2.0 * asinh(a) - asinh(a - x) - asinh(a + x))
+            })
+            .sum()
+    }
+
+    /// The end drop of a line load spread over Hertz's width is ln[a/(0.3033·b)] (Johns and
+    /// Gohar's end term, a = l/2), not ln[(a/b)²] (this crate's end term before issue 24: off by
+    /// ln(a/b) − 1.19, 3.4 here); inside, the drop is Lundberg's ln[1/(1 − (x/a)²)].
+    #[test]
+    fn johns_gohar_end_is_the_elastic_end_of_a_line_load() {
+        assert!((JOHNS_GOHAR_END - end_constant()).abs() < 1e-16);
+        assert!((JOHNS_GOHAR_END - 0.3033).abs() < 5e-5, "prints as 0.3033");
+        for ratio in [0.01, 0.002] {
+            let (a, b) = (5.0, 5.0 * ratio);
+            let end = approach_drop(a, b, a);
+            let johns_gohar = (1.0 / (JOHNS_GOHAR_END * ratio)).ln();
+            assert!(
+                (end - johns_gohar).abs() < 1e-3,
+                "b/a {ratio}: {end} vs {johns_gohar}"
+            );
+            let old = (1.0 / (ratio * ratio)).ln();
+            assert!((end - old).abs() > 2.0, "{end} vs {old}");
+            for u in [0.3, 0.6, 0.9] {
+                let inside = approach_drop(a, b, u * a);
+                let lundberg = (1.0 / (1.0 - u * u)).ln();
+                assert!(
+                    (inside - lundberg).abs() < 1e-3,
+                    "{u}: {inside} vs {lundberg}"
+                );
+            }
+        }
+    }
+
+    /// Lundberg's coefficient Q/(π l E*) is the uniform line load's: on the half-space grid of
+    /// the pair's modulus, a load Q/l along the roller, elliptical across Hertz's width, sinks
+    /// the centre row at mid-length deeper than at x by Lundberg's crown within 1 % over the
+    /// inner 80 % of the length (a coefficient of Q/(2π l E*) or 2Q/(π l E*) fails by 50 %).
+    #[test]
+    fn lundberg_coefficient_is_the_uniform_line_load() {
+        use contopt_core::{ElasticBody, Material};
+        use contopt_greens::HalfSpace;
+        let (l, q, e_star, b) = (10.0, 5446.0, 1.1538e5, 0.17334);
+        let (nx, ny) = (200, 41);
+        let (dx, dy) = (l / nx as f64, 2.0 * b / ny as f64);
+        let origin = [-0.5 * l + 0.5 * dx, -b + 0.5 * dy];
+        let pair = Material::new(e_star * (1.0 - 0.09), 0.3).unwrap();
+        let body = HalfSpace::grid("pair", pair, nx, ny, dx, dy, origin).unwrap();
+        let points = body.interface().points();
+        // Hertz across, the column's cells summing to the line load times dx.
+        let across = |y: f64| (1.0 - (y / b).powi(2)).max(0.0).sqrt();
+        let column: f64 = (0..ny).map(|j| across(origin[1] + j as f64 * dy)).sum();
+        let force: Vec<f64> = points
+            .iter()
+            .map(|p| q / l * dx * across(p[1]) / column)
+            .collect();
+        let mut sink = vec![0.0; points.len()];
+        body.apply_influence(&force, &mut sink);
+        let centre = |i: usize| sink[(ny / 2) * nx + i];
+        let mid = 0.5 * (centre(nx / 2 - 1) + centre(nx / 2));
+        let lundberg = Crown::lundberg(q, l, e_star).unwrap();
+        for i in (nx / 10..nx / 2).step_by(10) {
+            let x = points[i][0];
+            let (drop, want) = (mid - centre(i), lundberg.drop(x, l).unwrap());
+            let at_mid = lundberg.drop(0.5 * dx, l).unwrap();
+            assert!(
+                ((drop + at_mid) / want - 1.0).abs() < 0.01,
+                "x = {x}: {drop} + {at_mid} vs {want}"
+            );
+        }
     }
 
     #[test]

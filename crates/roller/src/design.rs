@@ -13,7 +13,7 @@ use contopt_optimise::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::{end_ratio, Crown, Roller, EDGE_LOADING};
+use crate::{end_ratio, Crown, Roller, RollerCase, EDGE_LOADING};
 
 /// A load factor this close to 1 and a tilt this close to the scene's \[arc-minutes\] are the
 /// scene's own case, listed first already (round-off).
@@ -69,36 +69,72 @@ pub fn load_cases<'a>(
     roller: &Roller,
     envelope: Option<&Envelope>,
 ) -> Result<Vec<LoadCase<'a>>> {
+    let pairs: Vec<(f64, f64)> = match envelope {
+        None => vec![],
+        Some(envelope) => {
+            envelope.check()?;
+            envelope
+                .load_factors
+                .iter()
+                .flat_map(|&f| {
+                    envelope
+                        .tilts_arcmin
+                        .iter()
+                        .map(move |&t| (f * roller.load, t))
+                })
+                .collect()
+        }
+    };
+    cases_of(nominal, roller, &pairs)
+}
+
+/// The cases of a bearing's rollers on one raceway ([`crate::LoadDistribution::roller_cases`]):
+/// the roller's own (`nominal`) first, then each roller's load and tilt, each the nominal
+/// problem with its load scaled and its gap tilted by the difference of tilts.
+pub fn bearing_cases<'a>(
+    nominal: &InterfaceProblem<'a>,
+    roller: &Roller,
+    rollers: &[RollerCase],
+) -> Result<Vec<LoadCase<'a>>> {
+    for (j, r) in rollers.iter().enumerate() {
+        check::positive(&format!("rollers[{j}].load_n"), r.load_n)?;
+        check::finite(&format!("rollers[{j}].tilt_arcmin"), r.tilt_arcmin)?;
+    }
+    let pairs: Vec<(f64, f64)> = rollers.iter().map(|r| (r.load_n, r.tilt_arcmin)).collect();
+    cases_of(nominal, roller, &pairs)
+}
+
+/// The nominal case, then one per (load \[N\], tilt \[arc-minutes\]) of `pairs` other than it.
+fn cases_of<'a>(
+    nominal: &InterfaceProblem<'a>,
+    roller: &Roller,
+    pairs: &[(f64, f64)],
+) -> Result<Vec<LoadCase<'a>>> {
     let (load, tilt) = (roller.load, roller.tilt_arcmin());
     let mut cases = vec![LoadCase {
         load_n: load,
         tilt_arcmin: tilt,
         problem: nominal.clone(),
     }];
-    let Some(envelope) = envelope else {
-        return Ok(cases);
-    };
-    envelope.check()?;
-    for &factor in &envelope.load_factors {
-        for &t in &envelope.tilts_arcmin {
-            if (factor - 1.0).abs() < SAME_CASE && (t - tilt).abs() < SAME_CASE {
-                continue;
-            }
-            let mut modes = nominal.modes().to_vec();
-            modes.iter_mut().for_each(|m| m.load *= factor);
-            let slope = ((t - tilt) / 60.0).to_radians();
-            let gap: Vec<f64> = nominal
-                .initial_gap()
-                .iter()
-                .zip(nominal.interface().points())
-                .map(|(h, x)| h + slope * x[0])
-                .collect();
-            cases.push(LoadCase {
-                load_n: factor * load,
-                tilt_arcmin: t,
-                problem: nominal.with_modes(modes)?.with_initial_gap(&gap)?,
-            });
+    for &(case_load, t) in pairs {
+        let factor = case_load / load;
+        if (factor - 1.0).abs() < SAME_CASE && (t - tilt).abs() < SAME_CASE {
+            continue;
         }
+        let mut modes = nominal.modes().to_vec();
+        modes.iter_mut().for_each(|m| m.load *= factor);
+        let slope = ((t - tilt) / 60.0).to_radians();
+        let gap: Vec<f64> = nominal
+            .initial_gap()
+            .iter()
+            .zip(nominal.interface().points())
+            .map(|(h, x)| h + slope * x[0])
+            .collect();
+        cases.push(LoadCase {
+            load_n: case_load,
+            tilt_arcmin: t,
+            problem: nominal.with_modes(modes)?.with_initial_gap(&gap)?,
+        });
     }
     Ok(cases)
 }

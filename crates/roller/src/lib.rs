@@ -2,21 +2,36 @@
 //! ([`Crown`]) and a roller on its raceway as two elastic half-space grids ([`Roller`]), the
 //! roller floating under its load, with tilt; the crowns designed for an envelope of load
 //! cases, the robust crown of the envelope load split ([`robust_crown`]) and the tuned
-//! Fujiwara–Kawase profile ([`tune_fujiwara_kawase`]); and the figures a report shows of each
-//! case's contact ([`RollerFigures`]).
+//! Fujiwara–Kawase profile ([`tune_fujiwara_kawase`]); the figures a report shows of each
+//! case's contact ([`RollerFigures`]); and the bearing around the roller: the load distribution
+//! over a cylindrical roller bearing's rollers by ISO/TS 16281's slice model
+//! ([`CylindricalRollerBearing::solve`]), its rollers' loads and tilts as load cases
+//! ([`bearing_cases`]), and its rating lives after ISO 281 and ISO/TS 16281
+//! ([`dynamic_load_rating`], [`reference_rating_life`], [`miner`]).
 //!
 //! Coordinates: x along the roller axis (|x| ≤ l/2), y across the contact, z into the raceway.
 //! Units: N, mm, MPa.
 
+mod bearing;
 mod crown;
 mod design;
 mod figures;
 mod geometry;
+mod life;
 
-pub use crown::{Crown, CrownSettings};
+pub use bearing::{
+    BearingLoad, BearingSettings, CylindricalRollerBearing, LoadDistribution, Raceway, RollerCase,
+    RollerLoad, Tilt, LINE_CONTACT, LINE_EXPONENT,
+};
+pub use crown::{Crown, CrownSettings, JOHNS_GOHAR_END};
 pub use design::{
-    design_case, load_cases, penalised_worst, robust_crown, solve_cases, tune_fujiwara_kawase,
-    Contact, Envelope, LoadCase, RobustCrown, TunedCrown,
+    bearing_cases, design_case, load_cases, penalised_worst, robust_crown, solve_cases,
+    tune_fujiwara_kawase, Contact, Envelope, LoadCase, RobustCrown, TunedCrown,
 };
 pub use figures::{end_ratio, CaseContact, CaseFigures, RollerFigures, EDGE_LOADING};
 pub use geometry::Roller;
+pub use life::{
+    basic_rating_life, dynamic_load_rating, f_c, miner, reference_rating_life,
+    slice_loads_from_pressure, slice_ratings, ReferenceLife, SliceLoads, SliceRatings, B_M,
+    REDUCTION, ROLLER_LIFE_EXPONENT,
+};
