@@ -33,6 +33,7 @@ mod iteration;
 mod load_split;
 mod lp;
 mod passes;
+mod programme;
 mod settings;
 mod simplex;
 #[cfg(test)]
@@ -110,8 +111,13 @@ pub struct Optimum {
     pub passes: Vec<Pass>,
     /// The method that found it.
     pub method: Method,
-    /// How the method ended: [`Termination::Converged`], or why it stopped short.
+    /// How the method ended: [`Termination::Converged`], or why it stopped short. An
+    /// optimum that met its tolerance but leaves p above v·p_max on Ω_nv (χ ≥ 0 of 3.4)
+    /// ends as [`Termination::Infeasible`], never as converged.
     pub termination: Termination,
+    /// The largest p − v·p_max over Ω_nv \[MPa\] (−min χ there: at most round-off when χ ≥ 0
+    /// holds, negative where Ω_nv carries less than its bound); `None` without Ω_nv.
+    pub omega_nv_excess: Option<f64>,
 }
 
 impl Optimum {
@@ -411,6 +417,7 @@ impl<'a> Optimisation<'a> {
             passes: vec![],
             method,
             termination: Termination::Converged,
+            omega_nv_excess: None,
         }
     }
 

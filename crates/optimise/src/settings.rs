@@ -94,6 +94,9 @@ impl LinearProgrammeSettings {
     pub const MAX_PASSES: usize = 10;
     /// The interior point's default tolerance.
     pub const TOLERANCE: f64 = conic::TOLERANCE;
+    /// The n × n matrices a pass holds at once on n interface points: the influence matrix,
+    /// its equalities Eᵀ and their QR.
+    pub const DENSE_COPIES: u64 = 3;
 
     /// The settings, checked: at least one pass, the tolerance positive and finite.
     pub fn check(&self) -> Result<()> {

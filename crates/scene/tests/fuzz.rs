@@ -2854,6 +2854,7 @@ fn report_numbers(r: &CaseReport) -> Vec<(String, f64)> {
         ("p_max_mpa", r.p_max_mpa),
         ("bound_p_max_mpa", r.bound_p_max_mpa),
         ("dh_max_um", r.dh_max_um),
+        ("omega_nv_excess_mpa", r.omega_nv_excess_mpa),
         ("approach_um", r.approach_um),
         ("penetration_um", r.penetration_um),
     ] {
