@@ -278,3 +278,104 @@ impl Reduced {
             .then(|| self.missed.iter().take(NAMED_ROWS).map(|m| m.1).collect())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A programme given by its rows: (kind, entries, constant), min x[objective].
+    struct Given {
+        n: usize,
+        rows: Vec<(Kind, Vec<(usize, f64)>, f64)>,
+    }
+
+    impl RowSource for Given {
+        fn variables(&self) -> usize {
+            self.n
+        }
+
+        fn objective(&self) -> usize {
+            0
+        }
+
+        fn row(&self, kind: Kind, entries: &mut Vec<(usize, f64)>) -> f64 {
+            let (_, e, b) = self.rows.iter().find(|r| r.0 == kind).unwrap();
+            entries.clear();
+            entries.extend_from_slice(e);
+            *b
+        }
+    }
+
+    fn run(given: &Given, equal: &[Kind], at_least: &[Kind]) -> Solved {
+        let rows = Rows {
+            equal: equal.to_vec(),
+            at_least: at_least.to_vec(),
+        };
+        solve(given, &rows, conic::TOLERANCE).unwrap()
+    }
+
+    /// min x₀ with x₀ + x₁ = 1 written three times (twice scaled), x₀ ≥ ¼, x₁ ≥ 0: the QR
+    /// drops the two redundant equalities and the optimum is (¼, ¾).
+    #[test]
+    fn redundant_equalities_drop_out() {
+        use Kind::*;
+        let given = Given {
+            n: 2,
+            rows: vec![
+                (Gap(0), vec![(0, 1.0), (1, 1.0)], -1.0),
+                (Gap(1), vec![(0, 2.0), (1, 2.0)], -2.0),
+                (Gap(2), vec![(1, -3.0), (0, -3.0)], 3.0),
+                (Pressure(0), vec![(0, 1.0)], -0.25),
+                (Pressure(1), vec![(1, 1.0)], 0.0),
+            ],
+        };
+        match run(
+            &given,
+            &[Gap(0), Gap(1), Gap(2)],
+            &[Pressure(0), Pressure(1)],
+        ) {
+            Solved::Optimal(x, _) => {
+                assert!(
+                    (x[0] - 0.25).abs() < 1e-8 && (x[1] - 0.75).abs() < 1e-8,
+                    "{x:?}"
+                )
+            }
+            _ => panic!("not solved"),
+        }
+    }
+
+    /// Equalities that contradict each other (x₀ + x₁ = 1 and = 2), inequalities that do (x₀ +
+    /// x₁ = 1 with x₀ ≥ 0.8 and x₁ ≥ 0.5, by the certificate; x₀ = 1 with x₀ ≥ 1.5, where
+    /// nothing is left to choose) are named; a direction that lowers p_max without a bound is
+    /// unbounded.
+    #[test]
+    fn conflicts_are_named_and_unbounded_found() {
+        use Kind::*;
+        let given = Given {
+            n: 2,
+            rows: vec![
+                (Gap(0), vec![(0, 1.0), (1, 1.0)], -1.0),
+                (Gap(1), vec![(0, 1.0), (1, 1.0)], -2.0),
+                (Gap(2), vec![(0, 1.0)], -1.0),
+                (Equilibrium(0), vec![(1, 1.0)], -2.0),
+                (Pressure(0), vec![(0, 1.0)], -0.8),
+                (Pressure(1), vec![(1, 1.0)], -0.5),
+                (Chi(0), vec![(0, 1.0)], -1.5),
+                (Level, vec![(1, 1.0)], 0.0),
+            ],
+        };
+        let named = |s: Solved| match s {
+            Solved::Infeasible(kinds) => kinds,
+            _ => panic!("not infeasible"),
+        };
+        assert!(named(run(&given, &[Gap(0), Gap(1)], &[])).contains(&Gap(1)));
+        let both = named(run(&given, &[Gap(0)], &[Pressure(0), Pressure(1)]));
+        assert!(
+            both.contains(&Pressure(0)) && both.contains(&Pressure(1)),
+            "{both:?}"
+        );
+        let point = named(run(&given, &[Gap(2), Equilibrium(0)], &[Chi(0), Level]));
+        assert_eq!(point, vec![Chi(0)]);
+        assert!(matches!(run(&given, &[], &[Level]), Solved::Unbounded));
+    }
+}
