@@ -22,7 +22,7 @@ const RANK: f64 = 1e-9;
 
 /// How far a row scaled to one may miss its constraint and still count as met (round-off of
 /// the elimination, in the programme's units of order one).
-pub(crate) const FEASIBILITY: f64 = 1e-9;
+const FEASIBILITY: f64 = 1e-9;
 
 /// The conflicting rows named in the reason of an infeasible programme.
 const NAMED_ROWS: usize = 3;
@@ -283,10 +283,13 @@ impl Reduced {
 mod tests {
     use super::*;
 
-    /// A programme given by its rows: (kind, entries, constant), min x[objective].
+    /// A row given by its kind, entries and constant.
+    type GivenRow = (Kind, Vec<(usize, f64)>, f64);
+
+    /// A programme given by its rows, min x₀.
     struct Given {
         n: usize,
-        rows: Vec<(Kind, Vec<(usize, f64)>, f64)>,
+        rows: Vec<GivenRow>,
     }
 
     impl RowSource for Given {
