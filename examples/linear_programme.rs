@@ -135,7 +135,12 @@ fn rim() {
     let scene = Scene::bundled("steel-on-aluminium").unwrap();
     for report in scene.run() {
         let report = report.unwrap();
-        assert!(report.is_solved(), "{}: {}", report.label, report.termination);
+        assert!(
+            report.is_solved(),
+            "{}: {}",
+            report.label,
+            report.termination
+        );
         let figure = |v: Option<f64>| v.map_or("".to_string(), |v| format!("{v:.4}"));
         println!(
             "| {} | {} | {} | {} | {} | {} | {} | {:.3} |",
@@ -148,7 +153,11 @@ fn rim() {
                 .omega_nv_excess_mpa
                 .map_or("none".to_string(), |e| format!("{e:+.2e}")),
             report.passes.len(),
-            1e-3 * report.timings_ms.get("optimise").copied().unwrap_or(f64::NAN)
+            1e-3 * report
+                .timings_ms
+                .get("optimise")
+                .copied()
+                .unwrap_or(f64::NAN)
         );
     }
 }

@@ -93,6 +93,13 @@ impl Optimisation<'_> {
     ///
     /// Under [`Mode::GivenLoad`] the loop closes in two passes when Ω_v is the whole region:
     /// the second contact solve, on the optimised gap, reproduces v·p_max and changes nothing.
+    ///
+    /// On Ω_nv the paper's steps prescribe nothing, while (3.4) asks χ = v·p_max − p ≥ 0: a
+    /// point of Ω_nv whose pressure a pass finds above v·p_max joins Ω_v in steps 5–6 (χ = 0
+    /// and d = 0 prescribed there from then on) when step 6's fit reaches several nodes per
+    /// row (a finite-element face). Where every row reaches one node (a roller's columns) its
+    /// gap change is its column's, which Ω_v closes: an optimum with p above v·p_max there
+    /// ends as [`Termination::Infeasible`], naming the point.
     pub fn iterate(
         &self,
         mode: Mode,
@@ -307,10 +314,11 @@ impl Prescribed {
     }
 }
 
-/// Step 6's least-squares fit of Q on the rows of Ω_v, min ‖Q_Ω_v Δh − b‖, from the structure
-/// of Q: when every Ω_v row reaches one node (a pointwise or an extruded shape), the normal
-/// equations are diagonal and Δh_k is the weighted mean of b over its rows; otherwise (the
-/// quadratic face rows of a finite-element body, a short 1-D region) a dense pivoted QR.
+/// Step 6's least-squares fit of Q on the rows of the prescribed points (Ω_v, and where χ ≥ 0
+/// binds), min ‖Q_Ω_v Δh − b‖, from the structure of Q: when every such row reaches one node
+/// (a pointwise or an extruded shape), the normal equations are diagonal and Δh_k is the
+/// weighted mean of b over its rows; otherwise (the quadratic face rows of a finite-element
+/// body, a short 1-D region) a dense pivoted QR.
 enum StepSix {
     Diagonal {
         /// (node, weight) of each Ω_v row.

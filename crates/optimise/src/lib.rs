@@ -10,7 +10,9 @@
 //!   eq. 4.1 and Tables 1 and 3) or a given displacement (p_max from the contact pressure,
 //!   Table 2), stopping on TOLH (4.2);
 //! - as the restricted linear programme (3.5) on the dense influence matrix
-//!   ([`Optimisation::linear_programme`]), for small problems and as a cross-check;
+//!   ([`Optimisation::linear_programme`]), restricted by the contact set of the load split's or
+//!   the iteration's optimum, its equalities eliminated by a rank-revealing QR: wherever the
+//!   dense matrices fit, and as a cross-check;
 //! - or, for large problems, as the same optimum without a dense matrix: one strictly convex
 //!   contact QP per update of the loads carried by the design columns
 //!   ([`Optimisation::load_split`]), solved by any contact solver, matrix-free ones included;
@@ -23,7 +25,9 @@
 //!
 //! Every method ends with a [`Termination`] in its [`Optimum`], which always holds the last
 //! iterate: a step limit, an observer's stop, an infeasible programme or a contact solve that
-//! did not converge are outcomes, not errors. Errors are for bad input and for work refused
+//! did not converge are outcomes, not errors. Every optimum states the largest p − v·p_max over
+//! Ω_nv ([`Optimum::omega_nv_excess`]); one that breaks χ ≥ 0 there ends as
+//! [`Termination::Infeasible`], never as converged. Errors are for bad input and for work refused
 //! before it starts. Settings carry the library's defaults ([`IterationSettings`],
 //! [`LoadSplitSettings`], [`LinearProgrammeSettings`], [`OptimisationMethod`]); controllers
 //! are built from [`ControllerSettings`] too.
