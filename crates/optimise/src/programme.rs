@@ -73,7 +73,7 @@ pub(crate) enum Solved {
     Stopped(Termination),
 }
 
-/// The equalities' solution set x₀ + N u, or the equalities that contradict each other.
+/// The equalities' solution set x₀ + N u.
 struct Affine {
     x0: Vec<f64>,
     /// n × dim, orthonormal columns.
