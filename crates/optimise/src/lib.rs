@@ -111,7 +111,8 @@ pub struct Optimum {
     pub gap: Vec<f64>,
     /// Rigid-mode amplitudes λ.
     pub rigid: Vec<f64>,
-    /// The rows of the loop, one per pass (for the programme: one per restricted programme).
+    /// The rows of the loop, one per pass (for the programme: the pass that solved, its k
+    /// counting the passes before it whose contact set it corrected).
     pub passes: Vec<Pass>,
     /// The method that found it.
     pub method: Method,
@@ -191,8 +192,8 @@ impl<'a> Optimisation<'a> {
     /// Reports each pass of the optimisation to `observer` as an event of its method
     /// ([`Method::GapIteration`], [`Method::LinearProgramme`], [`Method::LoadSplit`],
     /// [`Method::EnvelopeSplit`]) at level 0, with the measure it compares with its tolerance:
-    /// TOLH (4.2) in [`Optimisation::iterate`], the number of points that carry pressure
-    /// across an open gap (tolerance 0) in [`Optimisation::linear_programme`], the miss of
+    /// TOLH (4.2) in [`Optimisation::iterate`], the number of points whose restriction a pass
+    /// could not meet (tolerance 0) in [`Optimisation::linear_programme`], the miss of
     /// v·p_max on Ω_v in the load splits; the last event says how it ended. The contact
     /// solves inside report to it through [`Nested`], one level deeper. A stop ends the loop
     /// with [`Termination::Stopped`].

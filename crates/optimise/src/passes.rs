@@ -12,6 +12,8 @@ pub(crate) struct Passes<'o> {
     method: Method,
     tolerance: f64,
     rows: Vec<Pass>,
+    /// The passes reported, with a row or without.
+    steps: usize,
     /// The measure of the last pass (NaN before the first).
     measure: f64,
     /// The bound χ ≥ 0 every optimum is checked against.
@@ -26,6 +28,7 @@ impl<'o> Passes<'o> {
             method,
             tolerance,
             rows: vec![],
+            steps: 0,
             measure: f64::NAN,
             bound: Bound::new(opt),
         }
@@ -34,15 +37,22 @@ impl<'o> Passes<'o> {
     /// Records `row` with its convergence `measure` and reports it; what the observer asks.
     pub(crate) fn push(&mut self, row: Pass, measure: f64) -> Flow {
         self.rows.push(row);
+        self.report(row.k, measure)
+    }
+
+    /// Reports pass `k` (a pass that gave no row, or one whose row was recorded) with its
+    /// convergence `measure`; what the observer asks.
+    pub(crate) fn report(&mut self, k: usize, measure: f64) -> Flow {
+        self.steps += 1;
         self.measure = measure;
-        let event = Event::step(self.method, row.k, measure, self.tolerance);
+        let event = Event::step(self.method, k, measure, self.tolerance);
         self.observer.observe(&event)
     }
 
     /// The step limit after the passes so far.
     pub(crate) fn step_limit(&self) -> Termination {
         Termination::StepLimit {
-            steps: self.rows.len(),
+            steps: self.steps,
             measure: self.measure,
             tolerance: self.tolerance,
         }
@@ -61,8 +71,8 @@ impl<'o> Passes<'o> {
             }
             (termination, _) => termination,
         };
-        let event = Event::step(self.method, self.rows.len(), self.measure, self.tolerance)
-            .ending(&termination);
+        let event =
+            Event::step(self.method, self.steps, self.measure, self.tolerance).ending(&termination);
         let _ = self.observer.observe(&event);
         Optimum {
             passes: self.rows,

@@ -24,9 +24,6 @@ const RANK: f64 = 1e-9;
 /// the elimination, in the programme's units of order one).
 const FEASIBILITY: f64 = 1e-9;
 
-/// The conflicting rows named in the reason of an infeasible programme.
-const NAMED_ROWS: usize = 3;
-
 /// What a row of a restricted programme says, to name it when the programme is infeasible.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Kind {
@@ -65,7 +62,8 @@ pub(crate) trait RowSource {
 pub(crate) enum Solved {
     /// Its optimum x and the interior point's iterations (0 when nothing was left to choose).
     Optimal(Vec<f64>, usize),
-    /// No x meets the rows; the rows that conflict, most to blame first.
+    /// No x meets the rows; the rows that conflict, most to blame first (every row x₀ misses
+    /// when nothing is left to choose, else those of the infeasibility certificate).
     Infeasible(Vec<Kind>),
     /// The objective is unbounded below.
     Unbounded,
@@ -139,15 +137,11 @@ pub(crate) fn solve(source: &dyn RowSource, rows: &Rows, tolerance: f64) -> Resu
     })
 }
 
-/// The rows of `kinds` most to blame by the certificate `z` (the largest multipliers first).
+/// The rows of `kinds` the certificate `z` blames, the largest multipliers first.
 fn blame(kinds: &[Kind], z: &[f64]) -> Vec<Kind> {
     let mut order: Vec<usize> = (0..kinds.len()).filter(|&r| z[r] > 0.0).collect();
     order.sort_by(|&a, &b| z[b].total_cmp(&z[a]));
-    order
-        .into_iter()
-        .take(NAMED_ROWS)
-        .map(|r| kinds[r])
-        .collect()
+    order.into_iter().map(|r| kinds[r]).collect()
 }
 
 /// The solution set of the equalities `equal`: a column-pivoted QR of Eᵀ (its rows scaled to
@@ -204,7 +198,6 @@ fn eliminate(source: &dyn RowSource, equal: &[Kind]) -> std::result::Result<Affi
             miss.abs() > FEASIBILITY
         })
         .map(|r| equal[r])
-        .take(NAMED_ROWS)
         .collect();
     match conflict.is_empty() {
         true => Ok(Affine { x0, null }),
@@ -272,10 +265,9 @@ impl Reduced {
         }
     }
 
-    /// The rows no u can change that x₀ misses, when there are any.
+    /// The rows no u can change that x₀ misses, most missed first, when there are any.
     fn conflict(&self) -> Option<Vec<Kind>> {
-        (!self.missed.is_empty())
-            .then(|| self.missed.iter().take(NAMED_ROWS).map(|m| m.1).collect())
+        (!self.missed.is_empty()).then(|| self.missed.iter().map(|m| m.1).collect())
     }
 }
 
