@@ -174,6 +174,12 @@ pub const SOURCES: &[Source] = &[
         args: &["dense"],
         ..example(&["--example", "roller_scaling"], "roller_dense", true)
     },
+    // The linear programme beside the load split and the iteration (optimisation.md): timings,
+    // and the 100 × 53 roller.
+    Source {
+        args: &["large"],
+        ..example(&["--example", "linear_programme"], "linear_programme", true)
+    },
     Source {
         args: &["straight"],
         ..example(&["--example", "roller_scaling"], "roller_straight", true)

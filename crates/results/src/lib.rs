@@ -28,7 +28,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 2;
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -113,6 +113,12 @@ pub struct CaseReport {
     /// the points (`interface[].dh_um`), which is the one the reported pressure was solved
     /// with.
     pub dh_max_um: Option<f64>,
+    /// The largest p − v·p̂ over Ω_nv, the points of Ω_opt outside Ω_v where only p ≤ v·p̂ is
+    /// asked (−min χ there, eq. 3.1) \[MPa\]: at most round-off when the design keeps its
+    /// bound, negative where Ω_nv carries less than it; a design that passes it beyond its
+    /// solver's accuracy does not count as solved (`termination` is `infeasible`, naming the
+    /// point). Null without optimisation or without Ω_nv.
+    pub omega_nv_excess_mpa: Option<f64>,
     /// The floating body's approach δ, positive when the bodies are pressed together \[µm\];
     /// null when nothing floats.
     pub approach_um: Option<f64>,
@@ -419,6 +425,7 @@ impl CaseReport {
             p_max_mpa: None,
             bound_p_max_mpa: None,
             dh_max_um: None,
+            omega_nv_excess_mpa: None,
             approach_um: None,
             penetration_um: None,
             hertz: None,

@@ -36,6 +36,7 @@ impl CaseReport {
             ("p_max", self.p_max_mpa),
             ("bound_p_max", self.bound_p_max_mpa),
             ("dh_max", self.dh_max_um),
+            ("omega_nv_excess", self.omega_nv_excess_mpa),
             ("approach", self.approach_um),
             ("penetration", self.penetration_um),
         ];

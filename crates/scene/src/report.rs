@@ -27,6 +27,7 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
     report.termination = d.termination;
     report.bound_p_max_mpa = d.bound_p_max;
     report.dh_max_um = d.dh_max.map(|v| UM * v);
+    report.omega_nv_excess_mpa = d.omega_nv_excess;
     report.approach_um = d.rigid.first().map(|lambda| -UM * lambda);
     report.passes = d
         .passes
