@@ -28,7 +28,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 2;
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -217,6 +217,10 @@ pub struct Point {
     /// Gap change Δh, or a roller's crown drop \[µm\]: the one the pressure `p_mpa` was
     /// solved with.
     pub dh_um: f64,
+    /// The initial gap h the contact was solved from \[µm\] (eq. 2.1): the scene's gap less
+    /// an approach, or the distance measured between two imported meshes (read as the first
+    /// body's field); 4 sizes of the interface where the gap is open for good.
+    pub h_um: f64,
 }
 
 /// A point of a pressure curve.
