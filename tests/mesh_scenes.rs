@@ -28,7 +28,10 @@ fn cylinder_on_block_meets_hertz() {
         .run()
         .unwrap();
     assert!(report.is_solved(), "{:?}", report.termination);
-    assert!(report.limit.is_none() && report.warnings.is_empty(), "{report:?}");
+    assert!(
+        report.limit.is_none() && report.warnings.is_empty(),
+        "{report:?}"
+    );
     let steel = Material::new(2.1e5, 0.3).unwrap();
     let hertz = HertzLine {
         radius: RADIUS,
@@ -119,7 +122,12 @@ fn paper_tables_on_gmsh_meshes() {
         let (built_in, gmsh) = table_rows(table);
         eprintln!("Table {table}: row | p_max | bound | Δh_max µm: built-in, Gmsh (%)");
         for (a, b) in built_in.iter().zip(&gmsh) {
-            assert!(a.is_solved() && b.is_solved(), "{}: {:?}", b.label, b.termination);
+            assert!(
+                a.is_solved() && b.is_solved(),
+                "{}: {:?}",
+                b.label,
+                b.termination
+            );
             assert!(b.limit.is_none(), "{}: {:?}", b.label, b.limit);
             let figures = [
                 (a.p_max_mpa.unwrap(), b.p_max_mpa.unwrap()),
@@ -132,10 +140,17 @@ fn paper_tables_on_gmsh_meshes() {
                 .collect();
             eprintln!("  {} | {}", a.label, row.join(" | "));
             for (x, y) in figures {
-                assert!((y / x - 1.0).abs() < 3e-3, "Table {table}, {}: {x} against {y}", a.label);
+                assert!(
+                    (y / x - 1.0).abs() < 3e-3,
+                    "Table {table}, {}: {x} against {y}",
+                    a.label
+                );
             }
         }
-        let h = gmsh[0].interface.iter().fold(0.0f64, |m, p| m.max(p.h_um.abs()));
+        let h = gmsh[0]
+            .interface
+            .iter()
+            .fold(0.0f64, |m, p| m.max(p.h_um.abs()));
         assert!(h < 1e-9, "the measured gap between the flat faces: {h} µm");
     }
 }

@@ -41,7 +41,7 @@ bundled!(
     "punch-on-block",
     "steel-on-aluminium",
     "winkler-bed",
-    "cylinder-on-block" ["../meshes/cylinder-on-block-b8.msh"],
+    "cylinder-on-block"["../meshes/cylinder-on-block-b8.msh"],
 );
 
 /// The bundled scene `name`.

@@ -46,14 +46,14 @@ pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};
 pub use error::{Located, SceneError};
 pub use gap::{GapSpec, Hertz, Radius, RollerGap};
+pub use mesh_zone::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
+pub use meshes::{Imported, MeshFiles};
 pub use methods::MethodSpec;
 pub use region::OmegaVSpec;
 pub use report::PENETRATION_WARNING;
 pub use run::Run;
 pub use spec::{CaseSpec, ContactSpec, LoadSpec, OptimisationSpec, OutputSpec};
 pub use subsurface::{SectionSpec, SubsurfaceSpec};
-pub use mesh_zone::{ChainEnd, MeshPart, MeshSurface};
-pub use meshes::{Imported, MeshFiles};
 pub use zone::{FacesZone, GridZone, Layout, MeshZone, RingsZone, StripsZone, ZoneSpec};
 
 pub use contopt_results::{CaseReport, Report};
@@ -163,7 +163,13 @@ impl Scene {
             let locator = Locator::new(&file, "".into(), Arc::new(Node::table::<&str>([])), None);
             locator.at("", format!("no bundled scene {name:?}"))
         })?;
-        Self::edited(scene.text, Format::Toml, &file, edits, bundled::meshes(scene, &file))
+        Self::edited(
+            scene.text,
+            Format::Toml,
+            &file,
+            edits,
+            bundled::meshes(scene, &file),
+        )
     }
 
     /// [`Scene::parse`] with `edits` made to the text's keys first (see
@@ -174,7 +180,13 @@ impl Scene {
         file: &Path,
         edits: &[(&str, Option<&str>)],
     ) -> Result<Self, SceneError> {
-        Self::edited(text, format, file, edits, MeshFiles::in_folder(&folder(file)))
+        Self::edited(
+            text,
+            format,
+            file,
+            edits,
+            MeshFiles::in_folder(&folder(file)),
+        )
     }
 
     /// [`Scene::parse_with`] reading its meshes from `meshes`.

@@ -140,18 +140,24 @@ fn end_reached(
     carrying: &[bool],
 ) -> Option<ModelLimit> {
     let contact = &case.spec.contact;
-    let peak = peak_index(pressure)?;
-    let p_max = pressure[peak];
+    let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
     for end in surface.open_ends() {
         let beyond = [0, 1].map(|c| end.at[c] + end.face * end.outward[c]);
-        if !contact.gap.finite_at(&contact.zone, [beyond[0], beyond[1], 0.0]) {
+        if !contact
+            .gap
+            .finite_at(&contact.zone, [beyond[0], beyond[1], 0.0])
+        {
             continue;
         }
         let Some(i) = (0..points.len()).find(|&i| carrying[i] && end.holds(points[i])) else {
             continue;
         };
-        let distance = (end.at[0] - points[peak][0]).hypot(end.at[1] - points[peak][1]);
-        let needed = GROWTH * distance;
+        // The contact's span along the group up to this end: to its farthest carrying point.
+        let span = (0..points.len())
+            .filter(|&k| carrying[k])
+            .map(|k| (end.at[0] - points[k][0]).hypot(end.at[1] - points[k][1]))
+            .fold(0.0f64, f64::max);
+        let needed = GROWTH * span;
         let edge = format!(
             "the end of \"{}\" at ({:.4}, {:.4}) mm",
             end.group, end.at[0], end.at[1]
@@ -160,14 +166,15 @@ fn end_reached(
             "the contact reaches {edge}, the contact group of `{}` (p = {:.4e} MPa there, {:.0} \
              % of p_max), where the body's boundary goes on: the contact faces end inside the \
              contact, so the pressure and all that follows from it are wrong; name more of the \
-             boundary in the group, to at least {needed:.4} mm from the largest pressure",
+             boundary in the group: the contact spans {span:.4} mm up to this end, so let the \
+             group reach at least {needed:.4} mm from the contact's far side",
             end.body,
             pressure[i],
             100.0 * pressure[i] / p_max
         );
         return Some(ModelLimit {
             edge,
-            extent_mm: distance,
+            extent_mm: span,
             needed_mm: needed,
             message,
         });

@@ -15,13 +15,11 @@
 //! goes on (the contact group was drawn too short) is outside the model, while the end of a
 //! chain at a corner of its body (a punch's rim, the axis) is the body's own edge.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use contopt_core::{check, Error, Result};
 use contopt_fem::element::lagrange2;
-use contopt_fem::{
-    Analysis, ContactPairing, Face, FaceSample, FeModel, PairingSettings, RigidMotion,
-};
+use contopt_fem::{Analysis, ContactPairing, Face, FaceSample, FeModel, PairingSettings};
 
 use contopt_results::Resolution;
 
@@ -67,38 +65,37 @@ pub struct FreeMotion {
     pub along: Vec<f64>,
     /// The work of the body's loads on it \[N·mm per unit motion\].
     pub load: f64,
+    /// Its largest nodal displacement.
+    pub size: f64,
 }
 
 impl FreeMotion {
     /// Whether it moves the contact faces (a contact can hold it).
-    pub fn moves_faces(&self, motion: &RigidMotion) -> bool {
-        let size = motion.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        self.along.iter().any(|v| v.abs() > MOVES * size)
+    pub fn moves_faces(&self) -> bool {
+        self.along.iter().any(|v| v.abs() > MOVES * self.size)
     }
 }
 
 impl MeshPart {
     /// The rigid motions its supports leave free, with how each moves the contact faces.
-    pub fn free_motions(&self) -> Result<Vec<(RigidMotion, FreeMotion)>> {
+    pub fn free_motions(&self) -> Result<Vec<FreeMotion>> {
         let forces = self.model.forces();
         Ok(self
             .model
             .free_motions()?
             .into_iter()
-            .map(|m| {
-                let free = FreeMotion {
-                    name: m.name.clone(),
-                    along: m.along_normals(&self.model, &self.contact),
-                    load: m.values.iter().zip(forces).map(|(a, b)| a * b).sum(),
-                };
-                (m, free)
+            .map(|m| FreeMotion {
+                along: m.along_normals(&self.model, &self.contact),
+                load: m.values.iter().zip(forces).map(|(a, b)| a * b).sum(),
+                size: m.values.iter().fold(0.0f64, |s, v| s.max(v.abs())),
+                name: m.name,
             })
             .collect())
     }
 
     /// Whether it floats: a free motion moves its contact faces.
     fn floats(&self) -> Result<bool> {
-        Ok(self.free_motions()?.iter().any(|(m, f)| f.moves_faces(m)))
+        Ok(self.free_motions()?.iter().any(FreeMotion::moves_faces))
     }
 
     /// The position and tangent dx/ds of a face at parameter `s`.
@@ -120,8 +117,11 @@ impl MeshPart {
     /// The number of distinct nodes of its contact faces.
     fn face_nodes(&self) -> usize {
         let mesh = self.model.mesh();
-        let nodes: std::collections::HashSet<usize> =
-            self.contact.iter().flat_map(|&f| mesh.face_nodes(f)).collect();
+        let nodes: HashSet<usize> = self
+            .contact
+            .iter()
+            .flat_map(|&f| mesh.face_nodes(f))
+            .collect();
         nodes.len()
     }
 
@@ -139,7 +139,7 @@ impl MeshPart {
             let [a, _, b] = mesh.face_nodes(f);
             (a, b)
         };
-        let in_group: std::collections::HashSet<Face> = self.contact.iter().copied().collect();
+        let in_group: HashSet<Face> = self.contact.iter().copied().collect();
         // The boundary faces outside the group, by the node they start and end at.
         let (mut starting, mut ending) = (HashMap::new(), HashMap::new());
         for f in mesh.boundary_faces() {
@@ -148,10 +148,8 @@ impl MeshPart {
                 ending.insert(corners(f).1, f);
             }
         }
-        let starts: std::collections::HashSet<usize> =
-            self.contact.iter().map(|&f| corners(f).0).collect();
-        let finishes: std::collections::HashSet<usize> =
-            self.contact.iter().map(|&f| corners(f).1).collect();
+        let starts: HashSet<usize> = self.contact.iter().map(|&f| corners(f).0).collect();
+        let finishes: HashSet<usize> = self.contact.iter().map(|&f| corners(f).1).collect();
         let mut ends = vec![];
         for &f in &self.contact {
             let (a, b) = corners(f);
@@ -178,9 +176,10 @@ impl MeshPart {
             [v[0] / l, v[1] / l]
         };
         let outward = unit(outward);
+        // A boundary that turns by a NaN (a degenerate face) counts as a corner.
         let corner = next.map(unit).is_none_or(|n| {
             let cos = outward[0] * n[0] + outward[1] * n[1];
-            !(cos > CORNER_COS)
+            cos.is_nan() || cos <= CORNER_COS
         });
         ChainEnd {
             body: self.name.clone(),
@@ -255,9 +254,9 @@ impl MeshSurface {
     /// The ends of the contact chains where the contact could go on: the body's boundary goes
     /// on beyond them, and no corner of a body (its own edge, or its partner's) lies there.
     pub fn open_ends(&self) -> impl Iterator<Item = &ChainEnd> {
-        self.ends.iter().filter(|end| {
-            !end.corner && !self.ends.iter().any(|e| e.corner && e.meets(end))
-        })
+        self.ends
+            .iter()
+            .filter(|end| !end.corner && !self.ends.iter().any(|e| e.corner && e.meets(end)))
     }
 
     /// How many faces of the first imported body's chain span the contact's half-width: the
@@ -272,7 +271,8 @@ impl MeshSurface {
         faces.sort_unstable();
         faces.dedup();
         let length: f64 = faces.iter().map(|&f| self.face_lengths[f]).sum();
-        let tolerance = contopt_core::GEOMETRY_TOLERANCE * self.half_extent[0].max(self.half_extent[1]);
+        let tolerance =
+            contopt_core::GEOMETRY_TOLERANCE * self.half_extent[0].max(self.half_extent[1]);
         let halved = !self.ends.iter().any(|e| {
             e.corner
                 && e.at[0].abs() <= tolerance
@@ -280,7 +280,12 @@ impl MeshSurface {
         });
         let share = if halved { 0.5 } else { 1.0 };
         Resolution {
-            along: if self.analysis == Analysis::Axisymmetric { "r" } else { "x" }.into(),
+            along: if self.analysis == Analysis::Axisymmetric {
+                "r"
+            } else {
+                "x"
+            }
+            .into(),
             half_width_mm: share * length,
             cells: share * faces.len() as f64,
         }
@@ -310,8 +315,9 @@ pub(crate) fn survey(
     let nodes = [0, 1].map(|k| parts[k].as_ref().map(|p| p.model.mesh().nodes().len()));
     let (owner, paired) = match &parts {
         [Some(a), Some(b)] => {
-            let survey = ContactPairing::survey((&a.model, &a.contact), (&b.model, &b.contact), &settings)
-                .map_err(|e| pairing_error(e, at))?;
+            let survey =
+                ContactPairing::survey((&a.model, &a.contact), (&b.model, &b.contact), &settings)
+                    .map_err(|e| pairing_error(e, at))?;
             (a, Some(survey.first))
         }
         [Some(a), None] | [None, Some(a)] => (a, None),
@@ -323,7 +329,12 @@ pub(crate) fn survey(
             ))
         }
     };
-    let index: HashMap<Face, usize> = owner.contact.iter().enumerate().map(|(k, &f)| (f, k)).collect();
+    let index: HashMap<Face, usize> = owner
+        .contact
+        .iter()
+        .enumerate()
+        .map(|(k, &f)| (f, k))
+        .collect();
     let samples: Vec<FaceSample> = match &paired {
         Some(first) => first.clone(),
         None => owner
@@ -385,20 +396,25 @@ fn parts(
 }
 
 /// A pairing's error at the key it concerns: a chain that breaks at its body's `contact`,
-/// the rest at the zone.
+/// faces that do not pair at the zone.
 fn pairing_error(e: Error, at: &Locator) -> SceneError {
-    let body = match &e {
-        Error::InvalidInput { field, .. } if field.starts_with("pairing.first") => Some(0),
-        Error::InvalidInput { field, .. } if field.starts_with("pairing.second") => Some(1),
-        _ => None,
+    let Error::InvalidInput {
+        field,
+        value,
+        reason,
+    } = e
+    else {
+        return at.library("contact.zone", e);
     };
-    match (body, e) {
-        (Some(k), Error::InvalidInput { value, reason, .. }) => at.at(
-            &format!("body[{k}].contact"),
-            format!("the contact faces ({value}) {reason}"),
-        ),
-        (_, e) => at.library("contact.zone", e),
-    }
+    let key = match field.as_str() {
+        f if f.starts_with("pairing.first") => "body[0].contact",
+        f if f.starts_with("pairing.second") => "body[1].contact",
+        _ => "contact.zone",
+    };
+    at.at(
+        key,
+        format!("the contact faces ({value}) do not pair: {reason}"),
+    )
 }
 
 impl Case {

@@ -25,8 +25,11 @@ pub struct MeshFiles {
     /// A bundled scene's meshes: each the path its scene writes and the file's bytes.
     bundled: &'static [(&'static str, &'static [u8])],
     /// The bodies imported so far, by path and surface group.
-    read: Mutex<HashMap<(String, Option<String>), Arc<Imported>>>,
+    read: Mutex<HashMap<BodyKey, Arc<Imported>>>,
 }
+
+/// A body of a mesh file: the file's path as the scene writes it, and its surface group.
+type BodyKey = (String, Option<String>);
 
 /// A body imported from a mesh file, with the file's physical names.
 #[derive(Debug)]

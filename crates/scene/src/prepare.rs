@@ -7,9 +7,9 @@ use contopt_roller::Roller;
 
 use crate::bodies::{check_load, check_pair, BodySpec, Placement, PunchLoad, Side};
 use crate::error::Locator;
+use crate::gap::{GapSpec, Hertz};
 use crate::mesh_zone::MeshSurface;
 use crate::meshes::MeshFiles;
-use crate::gap::{GapSpec, Hertz};
 use crate::methods::Check;
 use crate::spec::{CaseSpec, LoadSpec};
 use crate::zone::{Layout, ZoneSpec};

@@ -254,7 +254,9 @@ impl Layout {
     pub fn points(&self) -> Option<usize> {
         match self {
             Layout::Grid { nx, ny, .. } => nx.checked_mul(*ny),
-            Layout::Rings(edges) | Layout::Strips { edges, .. } => Some(edges.len().saturating_sub(1)),
+            Layout::Rings(edges) | Layout::Strips { edges, .. } => {
+                Some(edges.len().saturating_sub(1))
+            }
             Layout::Faces(f) => f.elements.checked_mul(3),
             Layout::Mesh(m) => Some(m.points.len()),
         }

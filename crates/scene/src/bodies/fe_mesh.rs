@@ -215,9 +215,9 @@ impl FeMesh {
             let groups: Vec<&str> = self.supports.iter().map(|s| s.group.as_str()).collect();
             format!("{groups:?}")
         };
-        for (motion, free) in part.free_motions()? {
+        for free in part.free_motions()? {
             let name = &free.name;
-            if !free.moves_faces(&motion) {
+            if !free.moves_faces() {
                 return Err(Error::invalid(
                     "supports",
                     supports(),
@@ -238,14 +238,15 @@ impl FeMesh {
                 let why = if pulled {
                     "its loads pull it away from its partner, which a contact cannot hold"
                 } else {
-                    "no load presses it onto its partner"
+                    "no load presses it onto its partner along it"
                 };
                 return Err(Error::invalid(
                     "supports",
                     supports(),
                     format!(
-                        "leave the body floating in its {name}, and {why}: press it \
-                         (loads = [{{ group = …, pressure_mpa = … }}]) or hold it"
+                        "leave the body free in its {name}, and {why}: hold it (a symmetry line \
+                         x = 0: {{ group = …, fix = [\"x\"] }}) or press it (loads = [{{ group = \
+                         …, pressure_mpa = … }}])"
                     ),
                 ));
             }
@@ -311,7 +312,10 @@ fn apply(model: &mut FeModel, imported: &Imported, key: &str, load: &GroupLoad) 
     if given.iter().filter(|g| **g).count() != 1 {
         return Err(Error::invalid(
             key,
-            format!("{} of pressure_mpa, traction_mpa, displacement_mm", given.iter().filter(|g| **g).count()),
+            format!(
+                "{} of pressure_mpa, traction_mpa, displacement_mm",
+                given.iter().filter(|g| **g).count()
+            ),
             "give exactly one: { group, pressure_mpa }, { group, traction_mpa = [tx, ty] } or \
              { group, displacement_mm, along }",
         ));
@@ -324,9 +328,7 @@ fn apply(model: &mut FeModel, imported: &Imported, key: &str, load: &GroupLoad) 
         ));
     }
     let within = |e: Error| match e {
-        Error::InvalidInput { value, reason, .. } => {
-            Error::invalid(key.to_string(), value, reason)
-        }
+        Error::InvalidInput { value, reason, .. } => Error::invalid(key.to_string(), value, reason),
         other => other,
     };
     if let Some(p) = load.pressure_mpa {
@@ -341,7 +343,9 @@ fn apply(model: &mut FeModel, imported: &Imported, key: &str, load: &GroupLoad) 
         let nodes = nodes(imported, &group, &load.group)?;
         check::finite(&format!("{key}.displacement_mm"), d)?;
         let along = load.along.unwrap_or(Direction::Y);
-        model.prescribe(nodes, along.component(), d).map_err(within)?;
+        model
+            .prescribe(nodes, along.component(), d)
+            .map_err(within)?;
     }
     Ok(())
 }
