@@ -97,13 +97,14 @@ fn mistakes() -> Vec<(&'static str, String)> {
             ),
         ),
         (
-            "a mesh drawn in metres",
+            "a block meshed in metres",
             changed(
                 "cylinder-on-block",
-                "mesh = \"../meshes/cylinder-on-block-b8.msh\"\nsurface = \"cylinder\"",
-                "mesh = \"../meshes/cylinder-on-block-b8.msh\"\nsurface = \"cylinder\"",
-            )
-            .replace("extent_mm = [10.0, 10.0]", "extent_mm = [10000.0, 10000.0]"),
+                "mesh = \"../meshes/cylinder-on-block-b8.msh\"\nsurface = \"block\"\n\
+                 contact = \"block_face\"\nextent_mm = [40.0, 40.0]",
+                "mesh = \"../meshes/rectangle-metres.msh\"\nsurface = \"body\"\n\
+                 contact = \"top\"\nextent_mm = [40.0, 20.0]",
+            ),
         ),
         (
             "a cylinder without its symmetry line",

@@ -58,25 +58,26 @@ fn reading_an_imported_scene_factorises_nothing() {
     assert!(built.pairing().is_some_and(|p| p.left_out() == 0));
 }
 
-/// Every error a user can act on names the file, the key and what to do: a missing mesh file
-/// (with where it was looked for), a file that is a folder, a group that does not exist (with
-/// the groups there are), a group of the wrong dimension, a mesh in metres, a contact group
-/// inside the body, contact faces that face away from each other, nodes at r < 0 in
-/// axisymmetry, supports that leave a body free in a motion its contact cannot hold or that
-/// no load presses, a load of two kinds, the measured gap without two meshes, an imported body
-/// off a zone of meshes and a zone of meshes without one.
+/// Each scene of `cases` (edits of the bundled one) is refused at its key, with its words.
+fn refused_at(cases: Vec<(Edits, &str, Vec<&str>)>) {
+    for (edits, key, needles) in cases {
+        let message = refused(&edits);
+        assert!(
+            message.contains("cylinder-on-block.toml:") && message.contains(&format!(" {key}: ")),
+            "{key}: {message}"
+        );
+        for needle in needles {
+            assert!(message.contains(needle), "{key}: {needle:?} in {message}");
+        }
+    }
+}
+
+/// The errors of the files and groups a body names, each at its key with what to do: a
+/// missing mesh file (with where it was looked for), a file that is a folder, a group that
+/// does not exist (with the groups there are), a group of the wrong dimension, a load of two
+/// kinds, a mesh in metres, a contact group inside the body.
 #[test]
-fn errors_name_the_key_and_what_to_do() {
-    let rigid_on_block = format!(
-        "[{}, {{ kind = \"rigid\" }}]",
-        block(
-            "../meshes/cylinder-on-block-b8.msh",
-            "block",
-            "block_face",
-            "[40.0, 40.0]",
-            r#"[{ group = "block_bottom", fix = ["x", "y"] }, { group = "block_axis", fix = ["x"] }]"#,
-        )
-    );
+fn errors_of_files_and_groups_name_the_key() {
     let metres = block(
         "../meshes/rectangle-metres.msh",
         "body",
@@ -91,20 +92,8 @@ fn errors_name_the_key_and_what_to_do() {
         "[20.0, 10.0]",
         r#"[{ group = "bottom", fix = ["x", "y"] }]"#,
     );
-    let left_of_axis = block(
-        "../meshes/two-bodies.msh",
-        "base",
-        "base_top",
-        "[60.0, 20.0]",
-        r#"[{ group = "base_bottom", fix = ["x", "y"] }]"#,
-    );
-    let flat_punch = r#"{ kind = "fe_mesh", mesh = "../meshes/paper-punch.msh", contact = "punch_face",
-        extent_mm = [50.0, 50.0], material = { e_mpa = 2.1e5, nu = 0.3 },
-        loads = [{ group = "punch_top", pressure_mpa = 10.0 }] }"#;
-    let faces_zone =
-        "{ kind = \"faces\", analysis = \"axisymmetric\", radius_mm = 1.0, elements = 4 }";
-    let axisymmetric = "{ kind = \"mesh\", analysis = \"axisymmetric\" }";
-    let cases: Vec<(Edits, &str, Vec<&str>)> = vec![
+    let two_loads = "[{ group = \"cylinder_axis\", pressure_mpa = 1.0, displacement_mm = 0.1 }]";
+    refused_at(vec![
         (
             vec![("body.0.mesh", Some("\"nowhere/block.msh\""))],
             "body[0].mesh",
@@ -143,10 +132,7 @@ fn errors_name_the_key_and_what_to_do() {
             vec!["group of surfaces", "points or curves"],
         ),
         (
-            vec![(
-                "body.1.loads",
-                Some("[{ group = \"cylinder_axis\", pressure_mpa = 1.0, displacement_mm = 0.1 }]"),
-            )],
+            vec![("body.1.loads", Some(two_loads))],
             "body[1].loads[0]",
             vec!["exactly one"],
         ),
@@ -160,6 +146,40 @@ fn errors_name_the_key_and_what_to_do() {
             "body[0].contact",
             vec!["\"inner\"", "inside the body", "boundary faces"],
         ),
+    ]);
+}
+
+/// The errors of the model, each at its key with what to do: contact faces that face away from
+/// each other (nothing pairs), nodes at r < 0 in axisymmetry, supports that leave a body free
+/// in a motion no load presses or its contact cannot hold, the measured gap without two
+/// meshes, an imported body off a zone of meshes and a zone of meshes without one.
+#[test]
+fn errors_of_the_model_name_the_key() {
+    let rigid_on_block = format!(
+        "[{}, {{ kind = \"rigid\" }}]",
+        block(
+            "../meshes/cylinder-on-block-b8.msh",
+            "block",
+            "block_face",
+            "[40.0, 40.0]",
+            r#"[{ group = "block_bottom", fix = ["x", "y"] }, { group = "block_axis", fix = ["x"] }]"#,
+        )
+    );
+    let left_of_axis = block(
+        "../meshes/two-bodies.msh",
+        "base",
+        "base_top",
+        "[60.0, 20.0]",
+        r#"[{ group = "base_bottom", fix = ["x", "y"] }]"#,
+    );
+    let flat_punch = r#"{ kind = "fe_mesh", mesh = "../meshes/paper-punch.msh", contact = "punch_face",
+        extent_mm = [50.0, 50.0], material = { e_mpa = 2.1e5, nu = 0.3 },
+        loads = [{ group = "punch_top", pressure_mpa = 10.0 }] }"#;
+    let faces_zone =
+        "{ kind = \"faces\", analysis = \"axisymmetric\", radius_mm = 1.0, elements = 4 }";
+    let axisymmetric = "{ kind = \"mesh\", analysis = \"axisymmetric\" }";
+    let no_import = "[{ kind = \"rigid\" }, { kind = \"winkler\", modulus_mpa_per_mm = 1.0 }]";
+    refused_at(vec![
         (
             vec![("body.1.contact", Some("\"cylinder_top\""))],
             "contact.zone",
@@ -198,24 +218,11 @@ fn errors_name_the_key_and_what_to_do() {
             vec!["zone of imported meshes"],
         ),
         (
-            vec![(
-                "body",
-                Some("[{ kind = \"rigid\" }, { kind = \"winkler\", modulus_mpa_per_mm = 1.0 }]"),
-            )],
+            vec![("body", Some(no_import))],
             "contact.zone.kind",
             vec!["fe_mesh"],
         ),
-    ];
-    for (edits, key, needles) in cases {
-        let message = refused(&edits);
-        assert!(
-            message.contains("cylinder-on-block.toml:") && message.contains(&format!(" {key}: ")),
-            "{key}: {message}"
-        );
-        for needle in needles {
-            assert!(message.contains(needle), "{key}: {needle:?} in {message}");
-        }
-    }
+    ]);
 }
 
 /// The memory of the bodies is estimated from the mesh's nodes and the contact's points before
