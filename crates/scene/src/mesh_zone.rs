@@ -13,7 +13,10 @@
 //! projection): the points, the zone's extent for the controller and the limits, and the ends
 //! of each contact chain — a contact that reaches the end of a chain where the body's boundary
 //! goes on (the contact group was drawn too short) is outside the model, while the end of a
-//! chain at a corner of its body (a punch's rim, the axis) is the body's own edge.
+//! chain at a corner of its body (a punch's rim, the axis) is the body's own edge. Points of
+//! the first body left out of a pairing (no partner within the search distance) lie beyond
+//! the end of the second body's chain, judged at that end, or across a gap wider than the
+//! search distance, which no contact of small strain closes.
 
 use std::collections::{HashMap, HashSet};
 
@@ -210,12 +213,12 @@ pub struct ChainEnd {
 }
 
 impl ChainEnd {
-    /// Whether the point `x` lies at this end ([`AT_END`] of the last face from it).
+    /// Whether the point `x` lies at this end (within 0.6 of the last face's length of it).
     pub fn holds(&self, x: [f64; 3]) -> bool {
         (x[0] - self.at[0]).hypot(x[1] - self.at[1]) < AT_END * self.face
     }
 
-    /// Whether `other` ends at the same place (within [`AT_END`] of either's last face).
+    /// Whether `other` ends at the same place (within 0.6 of either's last face).
     fn meets(&self, other: &ChainEnd) -> bool {
         let d = (self.at[0] - other.at[0]).hypot(self.at[1] - other.at[1]);
         d < AT_END * self.face.max(other.face)

@@ -2,7 +2,7 @@
 //! both bodies, so that their points pair one to one. A grid of cells on a half-space
 //! surface, rings of an axisymmetric surface, strips of a plane one, the element faces of
 //! finite-element bodies along r (or x), or the contact faces of imported meshes
-//! ([`crate::mesh_zone`]).
+//! ([`MeshSurface`]).
 
 use std::f64::consts::PI;
 
@@ -166,8 +166,7 @@ pub enum Layout {
 impl ZoneSpec {
     /// The zone with its sizes resolved; `natural` gives the cell size of a grid of so many
     /// cells that the gap spans by itself (for a grid without `cell_mm`); `surveyed` is a mesh
-    /// zone's survey of its bodies' meshes ([`crate::mesh_zone::survey`]), which the caller
-    /// makes first.
+    /// zone's survey of its bodies' meshes ([`MeshSurface`]), which the caller makes first.
     pub fn layout(
         &self,
         natural: impl FnOnce([usize; 2]) -> Result<Option<[f64; 2]>>,
