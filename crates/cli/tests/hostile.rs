@@ -244,7 +244,7 @@ fn results_stay_in_their_folder() {
     let csv = std::fs::read_to_string(results.join("hertz").join("interface.csv")).unwrap();
     let row = csv.lines().nth(1).unwrap();
     assert!(row.starts_with("\"say \"\"a, b\"\"\","), "{row}");
-    assert_eq!(row.matches(',').count(), 6 + 1, "{row}");
+    assert_eq!(row.matches(',').count(), 7 + 1, "{row}");
 }
 
 /// `contopt run … --json | head`: the reader goes away, the command ends quietly.

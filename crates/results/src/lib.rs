@@ -241,6 +241,10 @@ pub struct Point {
     /// Gap change Δh, or a roller's crown drop \[µm\]: the one the pressure `p_mpa` was
     /// solved with.
     pub dh_um: f64,
+    /// The initial gap h the contact was solved from \[µm\] (eq. 2.1): the scene's gap less
+    /// an approach, or the distance measured between two imported meshes (read as the first
+    /// body's field); 4 sizes of the interface where the gap is open for good.
+    pub h_um: f64,
 }
 
 /// A point of a pressure curve.

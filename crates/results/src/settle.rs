@@ -52,6 +52,7 @@ impl CaseReport {
                 ("pressure", q.p_mpa),
                 ("gap", q.d_um),
                 ("gap change", q.dh_um),
+                ("initial gap", q.h_um),
             ]
         });
         let passes = self.passes.iter().flat_map(|r| {
@@ -132,6 +133,7 @@ mod tests {
             p_mpa: 5.0,
             d_um: 0.0,
             dh_um: 0.0,
+            h_um: 0.0,
         }];
         let mut good = case.clone();
         good.settle();

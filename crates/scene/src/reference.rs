@@ -41,7 +41,8 @@ pub(crate) fn curve(case: &Case, report: &CaseReport) -> Option<ReferenceCurve> 
         Layout::Rings(_) => Body::Axisymmetric,
         Layout::Strips { .. } => Body::Plane,
         Layout::Faces(f) if f.analysis == contopt_fem::Analysis::Axisymmetric => Body::Axisymmetric,
-        Layout::Faces(_) => Body::Plane,
+        Layout::Mesh(m) if m.analysis == contopt_fem::Analysis::Axisymmetric => Body::Axisymmetric,
+        Layout::Faces(_) | Layout::Mesh(_) => Body::Plane,
     };
     let form = ClosedForm::new(case, body)?;
     let row = Row::of(report)?;
@@ -206,15 +207,7 @@ impl Row {
 
 /// A plane zone's thickness.
 fn plane_thickness(case: &Case) -> Option<f64> {
-    match &case.plan.layout {
-        Layout::Strips { thickness, .. } => Some(*thickness),
-        Layout::Faces(f) => match f.analysis {
-            contopt_fem::Analysis::PlaneStress { thickness }
-            | contopt_fem::Analysis::PlaneStrain { thickness } => Some(thickness),
-            contopt_fem::Analysis::Axisymmetric => None,
-        },
-        _ => None,
-    }
+    case.plan.layout.thickness()
 }
 
 /// Whether the elastic body is a half-space itself (not a block standing in for one).

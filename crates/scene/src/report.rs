@@ -50,12 +50,14 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
             .copied()
             .unwrap_or(change(i))
     };
+    let initial = c.problem.initial_gap();
     report.interface = (0..points.len().min(d.pressure.len()))
         .map(|i| Point {
             x_mm: points[i],
             p_mpa: d.pressure[i],
             d_um: UM * d.gap[i],
             dh_um: UM * shown(i),
+            h_um: UM * initial.get(i).copied().unwrap_or(0.0),
         })
         .collect();
     let elastic_gap: Vec<f64> = (0..d.gap.len()).map(|i| d.gap[i] - change(i)).collect();
