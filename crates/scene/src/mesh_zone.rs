@@ -308,13 +308,21 @@ pub(crate) fn survey(
     };
     let settings = settings(zone).map_err(|e| at.library("contact.zone", e))?;
     let parts = parts(bodies, zone, meshes, at)?;
-    let floating = parts
+    let floats = parts
         .iter()
         .flatten()
         .map(MeshPart::floats)
         .collect::<Result<Vec<bool>>>()
-        .map_err(|e| at.library("body", e))?
-        .contains(&true);
+        .map_err(|e| at.library("body", e))?;
+    if floats == [true, true] {
+        return Err(at.at(
+            "body[1].supports",
+            "both imported bodies float along the contact normal, each pressed only by the \
+             other: hold one of them (a support that stops its motion along the normal), as \
+             the run would refuse two free motions that move the contact alike",
+        ));
+    }
+    let floating = floats.contains(&true);
     let nodes = [0, 1].map(|k| parts[k].as_ref().map(|p| p.model.mesh().nodes().len()));
     let (owner, paired) = match &parts {
         [Some(a), Some(b)] => {

@@ -55,7 +55,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
             surveyed,
         )
         .map_err(|e| at.library("contact.zone", e))?;
-    let length = line_length(&layout);
+    let length = layout.line_length();
     let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
     for (k, body) in spec.body.iter().enumerate() {
         let place = placement(spec, &layout, k, at, meshes);
@@ -151,14 +151,6 @@ fn load_figures(load: LoadSpec) -> (Option<f64>, Option<f64>) {
         LoadSpec::ForceN(f) => (Some(f), None),
         LoadSpec::ApproachMm(a) => (None, Some(a)),
         LoadSpec::None => (None, None),
-    }
-}
-
-/// The length a line load spreads over: a grid's length along x, a plane body's thickness.
-fn line_length(layout: &Layout) -> Option<f64> {
-    match layout {
-        Layout::Grid { nx, dx, .. } => Some(*nx as f64 * dx),
-        _ => layout.thickness(),
     }
 }
 

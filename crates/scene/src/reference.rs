@@ -84,7 +84,7 @@ impl ClosedForm {
                 }
             }
             (GapSpec::FlatPunch(p), Body::Plane, LoadSpec::ForceN(f)) => Self::Punch {
-                p_centre: f / plane_thickness(case)? / (PI * p.radius_mm),
+                p_centre: f / case.plan.layout.line_length()? / (PI * p.radius_mm),
                 a: p.radius_mm,
                 plane: true,
             },
@@ -203,11 +203,6 @@ impl Row {
         let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         (lo < hi).then_some(Self { y, xs, lo, hi })
     }
-}
-
-/// A plane zone's thickness.
-fn plane_thickness(case: &Case) -> Option<f64> {
-    case.plan.layout.thickness()
 }
 
 /// Whether the elastic body is a half-space itself (not a block standing in for one).

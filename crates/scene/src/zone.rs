@@ -284,6 +284,20 @@ impl Layout {
         }
     }
 
+    /// The length a line load spreads over \[mm\]: a grid's length along x, a strips zone's
+    /// thickness, and half the thickness of a plane faces zone, whose bodies are the half x ≥ 0
+    /// of bodies symmetric about x = 0: a force on the half is half the whole contact's, so the
+    /// whole line load is 2F/t. `None` elsewhere, and on a mesh zone, whose meshes may be whole
+    /// or halves (nothing says which).
+    pub fn line_length(&self) -> Option<f64> {
+        match self {
+            Layout::Grid { nx, dx, .. } => Some(*nx as f64 * dx),
+            Layout::Strips { thickness, .. } => Some(*thickness),
+            Layout::Faces(_) => self.thickness().map(|t| 0.5 * t),
+            Layout::Mesh(_) | Layout::Rings(_) => None,
+        }
+    }
+
     /// The thickness of a plane zone (strips, plane faces or meshes) \[mm\].
     pub fn thickness(&self) -> Option<f64> {
         let of = |a: Analysis| match a {

@@ -152,7 +152,8 @@ fn errors_of_files_and_groups_name_the_key() {
 /// The errors of the model, each at its key with what to do: contact faces that face away from
 /// each other (nothing pairs), nodes at r < 0 in axisymmetry, supports that leave a body free
 /// in a motion no load presses or its contact cannot hold, the measured gap without two
-/// meshes, an imported body off a zone of meshes and a zone of meshes without one.
+/// meshes, an imported body off a zone of meshes and a zone of meshes without one, and two
+/// bodies that both float (which `check` used to pass and the run refused).
 #[test]
 fn errors_of_the_model_name_the_key() {
     let rigid_on_block = format!(
@@ -221,6 +222,20 @@ fn errors_of_the_model_name_the_key() {
             vec![("body", Some(no_import))],
             "contact.zone.kind",
             vec!["fe_mesh"],
+        ),
+        (
+            vec![
+                (
+                    "body.0.supports",
+                    Some(r#"[{ group = "block_axis", fix = ["x"] }]"#),
+                ),
+                (
+                    "body.0.loads",
+                    Some(r#"[{ group = "block_bottom", pressure_mpa = 40.0 }]"#),
+                ),
+            ],
+            "body[1].supports",
+            vec!["both imported bodies float", "hold one of them"],
         ),
     ]);
 }
