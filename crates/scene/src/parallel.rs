@@ -21,6 +21,10 @@ use rayon::prelude::*;
 
 use crate::{Case, Scene, SceneError};
 
+/// The stack of a thread that runs cases \[bytes\]: the main thread's on Linux, where a run
+/// on one thread solves them (rayon's default is 2 MiB).
+const CASE_STACK_BYTES: usize = 8 << 20;
+
 /// A case's report, or why it could not run.
 pub type CaseResult = Result<CaseReport, SceneError>;
 
@@ -43,6 +47,7 @@ impl Scene {
         let gate = Gate::new(limit);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(jobs.max(1))
+            .stack_size(CASE_STACK_BYTES)
             .build()
             .map_err(|e| SceneError::Io {
                 file: self.file.clone(),
