@@ -229,6 +229,18 @@ fn bad_shards_are_refused() {
         &dir.join("merged"),
     );
     fails_with(&output, 1, &["is of scene other", "of scene hertz-loads"]);
+    // A file a shard listed is gone; a partial result is not one (its line said).
+    shard(&scene, 1, 2, &out);
+    std::fs::remove_file(folder(0).join("p_map_1.svg")).unwrap();
+    let output = merge(&[folder(0), folder(1)], &dir.join("merged"));
+    fails_with(&output, 1, &["shard_0_of_2/p_map_1.svg"]);
+    std::fs::write(folder(1).join("partial.json"), "{\"shard\": 1}").unwrap();
+    let output = merge(&[folder(0), folder(1)], &dir.join("merged"));
+    fails_with(
+        &output,
+        1,
+        &["not a partial result of contopt run --shard", "line 1"],
+    );
     let output = merge(std::slice::from_ref(&dir), &dir.join("merged"));
     fails_with(&output, 1, &["no partial.json and no shard_K_of_N folders"]);
     assert!(!dir.join("merged").exists());
