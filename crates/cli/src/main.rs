@@ -9,6 +9,9 @@
 //!   task of a job array, into `DIR/<name>/shard_K_of_N/` (`partial.json` and the files of its
 //!   cases); `contopt merge DIR/<name>` joins the shards into exactly the files one run writes
 //!   ([`contopt_results::shard`], the book's "Many cases").
+//! - `contopt run <scene> --jobs N`: N cases at once, one per thread (default: one per core
+//!   this process may use), within the scene's memory limit, every file the same as on one
+//!   thread ([`Scene::run_parallel`]).
 //! - `contopt check <scene>`: reads and checks the scene exactly as `run` does, without
 //!   solving;
 //! - `contopt list`: the bundled scenes; `contopt show <name>`: one as a template to copy;
