@@ -5,6 +5,13 @@
 //!   [`contopt_report::write()`] to `DIR/<name>/` (`result.json`, `interface.csv`, the charts as
 //!   SVG and PNG, a finite-element case's fields for ParaView as `.vtu`), then prints a table (or, with `--json`, the report as one JSON document on
 //!   stdout). Files go only into `DIR/<name>/`, never through a symbolic link.
+//! - `contopt run <scene> --shard K/N`: runs shard K (from 0) of N of the scene's cases, one
+//!   task of a job array, into `DIR/<name>/shard_K_of_N/` (`partial.json` and the files of its
+//!   cases); `contopt merge DIR/<name>` joins the shards into exactly the files one run writes
+//!   ([`contopt_results::shard`], the book's "Many cases").
+//! - `contopt run <scene> --jobs N`: N cases at once, one per thread (default: one per core
+//!   this process may use), within the scene's memory limit, every file the same as on one
+//!   thread ([`Scene::run_parallel`]).
 //! - `contopt check <scene>`: reads and checks the scene exactly as `run` does, without
 //!   solving;
 //! - `contopt list`: the bundled scenes; `contopt show <name>`: one as a template to copy;
@@ -14,6 +21,7 @@
 //! name here) is refused, saying how to choose. Exit status: see [`EXIT_CODES`].
 
 mod files;
+mod merge;
 mod progress;
 mod source;
 
@@ -22,6 +30,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use contopt_results::shard::{Partial, Shard};
 use contopt_results::{CaseReport, Report, SCHEMA_VERSION};
 use contopt_scene::{Scene, BUNDLED};
 use files::ResultsDir;
@@ -69,6 +78,31 @@ enum Command {
         /// Print nothing but errors: no progress bar, no warnings (they stay in
         /// result.json), no table; the files are written as usual (and --json still prints
         /// the report).
+        #[arg(long, short)]
+        quiet: bool,
+        /// Folder for the results (a subfolder per scene).
+        #[arg(long, default_value = "results")]
+        out: PathBuf,
+        /// Run shard K (counted from 0) of N of the cases, one task of a job array
+        /// (`--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`), into
+        /// `<out>/<name>/shard_K_of_N/`; `contopt merge` joins the shards.
+        #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+        shard: Option<Shard>,
+        /// Solve this many cases at once, each on its own thread (default: one per core),
+        /// within the scene's memory limit; the results are the same for any N.
+        #[arg(long, short, value_name = "N", value_parser = parse_jobs)]
+        jobs: Option<usize>,
+    },
+    /// Join the shards of a job array (`run --shard K/N`) into the results one run writes.
+    Merge {
+        /// The shards' folders (`results/<name>/shard_K_of_N`), or the folder that holds them
+        /// (`results/<name>`).
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// Print the report as JSON on stdout (and nothing else there).
+        #[arg(long)]
+        json: bool,
+        /// Print nothing but errors.
         #[arg(long, short)]
         quiet: bool,
         /// Folder for the results (a subfolder per scene).
@@ -140,11 +174,46 @@ fn main() -> ExitCode {
             json,
             quiet,
             out,
+            shard,
+            jobs,
         } => match source::load(&scene, bundled, "run") {
-            Ok(s) => run(&s, Print { json, quiet }, &out),
+            Ok(s) => {
+                let jobs = jobs.unwrap_or_else(all_cores);
+                run(&s, Print { json, quiet }, &out, shard, jobs)
+            }
             Err(e) => fail(&e),
         },
+        Command::Merge {
+            shards,
+            json,
+            quiet,
+            out,
+        } => merge::merge(&shards, Print { json, quiet }, &out),
     }
+}
+
+/// `--jobs N`: a whole number, at least 1.
+fn parse_jobs(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "{text:?} is not a number of threads: give a whole number ≥ 1 (the default is one \
+             per core)"
+        )),
+    }
+}
+
+/// The cores this process may use (one when the system does not say).
+fn all_cores() -> usize {
+    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+}
+
+/// `--shard K/N`, checked.
+fn parse_shard(text: &str) -> Result<Shard, String> {
+    Shard::parse(text).map_err(|e| match e {
+        contopt_results::shard::ShardError::Spec { reason, .. } => reason,
+        other => other.to_string(),
+    })
 }
 
 /// Prints an error and gives the bad-input status.
@@ -173,13 +242,15 @@ struct Print {
     quiet: bool,
 }
 
-/// Runs every case, writes the results and prints them; the exit code.
-fn run(scene: &Scene, print: Print, out: &Path) -> ExitCode {
+/// Runs every case (or a shard's), writes the results and prints them; the exit code.
+fn run(scene: &Scene, print: Print, out: &Path, shard: Option<Shard>, jobs: usize) -> ExitCode {
     if let Err(e) = files::check_out(out) {
         eprintln!("error: {e}");
         return ExitCode::from(EXIT_WRITE);
     }
-    let cases = match solve(scene, print.quiet) {
+    let total = scene.cases().len();
+    let range = shard.map_or(0..total, |s| s.cases(total));
+    let cases = match solve(scene, range.clone(), print.quiet, jobs) {
         Ok(cases) => cases,
         Err(e) => return fail(&e),
     };
@@ -189,17 +260,52 @@ fn run(scene: &Scene, print: Print, out: &Path) -> ExitCode {
         description: scene.description.clone(),
         cases,
     };
+    let written = match shard {
+        None => ResultsDir::create(out, &scene.name).and_then(|mut dir| {
+            contopt_report::write(&report, &mut dir)?;
+            dir.finish()
+        }),
+        Some(shard) => {
+            let partial = Partial {
+                contopt_version: env!("CARGO_PKG_VERSION").to_string(),
+                shard,
+                scene_cases: total,
+                fingerprint: scene.fingerprint(),
+                report,
+            };
+            let written = write_shard(&partial, range.start + 1, out);
+            return finish(&partial.report, print, written, &out.join(&scene.name));
+        }
+    };
+    finish(&report, print, written, &out.join(&scene.name))
+}
+
+/// Writes a shard's `partial.json` and the files of its cases, numbered from `first`, to
+/// `<out>/<scene>/shard_K_of_N/`.
+fn write_shard(partial: &Partial, first: usize, out: &Path) -> std::io::Result<ResultsDir> {
+    let scene = ResultsDir::create(out, &partial.report.scene)?;
+    let mut dir = ResultsDir::create(scene.path(), &partial.shard.folder())?;
+    let json = serde_json::to_string_pretty(partial).map_err(std::io::Error::other)?;
+    dir.write(merge::PARTIAL, json.as_bytes())?;
+    contopt_report::write_cases(&partial.report, first, &mut dir)?;
+    dir.finish()
+}
+
+/// Prints what a run or a merge gave, and says where its files went (into `folder`, or why
+/// they could not be written); the exit code.
+fn finish(
+    report: &Report,
+    print: Print,
+    written: std::io::Result<ResultsDir>,
+    folder: &Path,
+) -> ExitCode {
     if !print.quiet {
-        warn(&report);
+        warn(report);
     }
-    let written = ResultsDir::create(out, &scene.name).and_then(|mut dir| {
-        contopt_report::write(&report, &mut dir)?;
-        dir.finish()
-    });
     if print.json {
-        emit(&(serde_json::to_string_pretty(&report).unwrap_or_default() + "\n"));
+        emit(&(serde_json::to_string_pretty(report).unwrap_or_default() + "\n"));
     } else if !print.quiet {
-        emit(&contopt_report::table(&report));
+        emit(&contopt_report::table(report));
     }
     match written {
         Ok(dir) if !print.json && !print.quiet => emit(&written_files(&dir)),
@@ -207,7 +313,7 @@ fn run(scene: &Scene, print: Print, out: &Path) -> ExitCode {
         Err(e) => {
             eprintln!(
                 "error: could not write the results to {}: {e}",
-                out.join(&scene.name).display()
+                folder.display()
             );
             return ExitCode::from(EXIT_WRITE);
         }
@@ -230,11 +336,27 @@ fn warn(report: &Report) {
     }
 }
 
-/// Runs the cases in turn under a progress bar, cleared when they end (or one fails); cases
-/// that share their bodies share one build of them ([`Scene::run_observed`]).
-fn solve(scene: &Scene, quiet: bool) -> Result<Vec<CaseReport>, contopt_scene::SceneError> {
+/// Runs the cases `range` under a progress bar, cleared when they end (or one fails); cases
+/// that share their bodies share one build of them. On one thread in turn, the bar showing
+/// each case's methods ([`Scene::run_cases`]); on several, the cases done
+/// ([`Scene::run_parallel`]), and the first error in the scene's order.
+fn solve(
+    scene: &Scene,
+    range: std::ops::Range<usize>,
+    quiet: bool,
+    jobs: usize,
+) -> Result<Vec<CaseReport>, contopt_scene::SceneError> {
     let progress = Progress::new(quiet);
-    let mut run = scene.run_observed(&progress);
+    if jobs > 1 {
+        progress.cases(range.len());
+        progress.start(&format!("{jobs} threads"));
+        let counter = progress.counter();
+        return scene
+            .run_parallel(range, jobs, &counter)?
+            .into_iter()
+            .collect();
+    }
+    let mut run = scene.run_cases(range, &progress);
     progress.cases(run.len());
     let mut reports = Vec::with_capacity(run.len());
     for k in 0..run.len() {

@@ -55,6 +55,12 @@ impl Progress {
         self.bar.enable_steady_tick(TICK);
     }
 
+    /// Counts a case done, from any thread (a run of several cases at once).
+    pub fn counter(&self) -> impl Fn() + Sync {
+        let bar = self.bar.clone();
+        move || bar.inc(1)
+    }
+
     /// The case has ended.
     pub fn done(&self) {
         self.bar.inc(1);

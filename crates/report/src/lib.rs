@@ -64,5 +64,5 @@ pub use figure::{Figure, PNG_SCALE};
 pub use line::LineChart;
 pub use loglog::{log_log, Panel};
 pub use map::{heat_map, section_map};
-pub use results::{csv_field, write, Sink};
+pub use results::{csv_field, write, write_cases, write_scene, Sink};
 pub use table::table;

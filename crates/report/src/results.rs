@@ -46,6 +46,14 @@ const SAME_ROW: f64 = 1e-9;
 /// The charts draw the cases whose methods converged, those outside the model's limits too
 /// (their legend says so); `interface.csv` holds every case's points.
 pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
+    write_scene(report, sink)?;
+    write_cases(report, 1, sink)
+}
+
+/// Writes the files of `report` drawn from all its cases together: `result.json`,
+/// `interface.csv`, `p.{svg,png}` and `dh.{svg,png}` — the first part of [`write()`], which a
+/// merge of job-array shards writes from their joined report.
+pub fn write_scene(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(io::Error::other)?;
     sink.put("result.json", json.as_bytes())?;
     sink.put("interface.csv", interface_csv(report).as_bytes())?;
@@ -55,8 +63,15 @@ pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
     if let Some(chart) = gap_change_chart(report) {
         put(sink, "dh", &chart.draw()?)?;
     }
+    Ok(())
+}
+
+/// Writes the files of each case of `report` on its own (the second part of [`write()`]),
+/// numbering the cases from `first`: a job-array shard that holds cases 5 to 8 of its scene
+/// writes them as one run of the whole scene would, `p_map_5` to `p_map_8`.
+pub fn write_cases(report: &Report, first: usize, sink: &mut dyn Sink) -> io::Result<()> {
     for (k, case) in report.cases.iter().enumerate() {
-        let number = k + 1;
+        let number = first + k;
         if let Some(map) = pressure_map(report, case)? {
             put(sink, &format!("p_map_{number}"), &map)?;
         }

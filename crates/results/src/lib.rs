@@ -13,6 +13,7 @@
 
 mod doc;
 mod settle;
+pub mod shard;
 mod validate;
 pub mod words;
 

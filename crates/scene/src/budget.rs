@@ -30,6 +30,16 @@ pub(crate) fn dense_limit(spec: &CaseSpec) -> Result<u64> {
     }
 }
 
+/// A case's memory: its estimate and its limit \[bytes\]. Cases run at once share the limit
+/// ([`crate::Scene::run_parallel`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Budget {
+    /// The estimate of the case's peak.
+    pub bytes: u64,
+    /// The scene's `memory_limit_mb`, or [`DEFAULT_MEMORY_LIMIT_BYTES`].
+    pub limit: u64,
+}
+
 /// The case's estimate \[bytes\] against its limit.
 pub(crate) fn check(
     spec: &CaseSpec,
@@ -37,7 +47,7 @@ pub(crate) fn check(
     solver: &dyn ContactSolver,
     at: &Locator,
     meshes: &MeshFiles,
-) -> std::result::Result<u64, SceneError> {
+) -> std::result::Result<Budget, SceneError> {
     let limit = match spec.memory_limit_mb {
         None => DEFAULT_MEMORY_LIMIT_BYTES,
         Some(mb) => {
@@ -72,5 +82,7 @@ pub(crate) fn check(
     } else {
         "use fewer points or raise memory_limit_mb"
     };
-    memory::require(what, total, limit, advice).map_err(|e| at.library("contact.zone", e))
+    let bytes =
+        memory::require(what, total, limit, advice).map_err(|e| at.library("contact.zone", e))?;
+    Ok(Budget { bytes, limit })
 }

@@ -25,6 +25,7 @@ mod limits;
 mod mesh_zone;
 mod meshes;
 mod methods;
+pub mod parallel;
 mod prepare;
 mod reference;
 mod region;
@@ -280,7 +281,28 @@ impl Scene {
     pub fn cases(&self) -> &[Case] {
         &self.cases
     }
+
+    /// A fingerprint of the scene as it runs: FNV-1a (64 bits, in hexadecimal) of every
+    /// case's label, changed keys and resolved inputs, so that two copies of a scene that
+    /// differ only in comments, layout or the order of keys agree, and any change to what is
+    /// solved differs. Shards of a job array carry it, and their merge refuses to join two
+    /// that differ.
+    pub fn fingerprint(&self) -> String {
+        let mut hash = FNV_OFFSET;
+        for case in &self.cases {
+            let text = serde_json::json!([case.label, case.params, case.input()]).to_string();
+            for byte in text.bytes().chain([0]) {
+                hash = (hash ^ u64::from(byte)).wrapping_mul(FNV_PRIME);
+            }
+        }
+        format!("{hash:016x}")
+    }
 }
+
+/// FNV-1a's offset basis (64 bits).
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+/// FNV-1a's prime (64 bits).
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 
 impl Case {
     /// Reads a case's tree into its settings and checks them ([`prepare`]).

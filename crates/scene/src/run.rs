@@ -44,7 +44,19 @@ impl Scene {
     /// [`Scene::run`], reporting each iteration of the contact solves and of the designs to
     /// `observer` (see [`Case::run_observed`]).
     pub fn run_observed<'o>(&self, observer: &'o dyn Observer) -> Run<'_, 'o> {
-        let cases = self.cases();
+        self.run_cases(0..self.cases.len(), observer)
+    }
+
+    /// [`Scene::run_observed`] over the cases `range` only (a job array's shard, see
+    /// [`contopt_results::shard`]): their reports are those of the same cases in a run of the
+    /// whole scene. A range past the cases is cut to them.
+    pub fn run_cases<'o>(
+        &self,
+        range: std::ops::Range<usize>,
+        observer: &'o dyn Observer,
+    ) -> Run<'_, 'o> {
+        let all = self.cases();
+        let cases = &all[range.start.min(all.len())..range.end.min(all.len())];
         let last = cases
             .iter()
             .enumerate()
