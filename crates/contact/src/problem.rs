@@ -5,7 +5,8 @@ use std::sync::{Mutex, OnceLock};
 
 use contopt_core::observe::Method;
 use contopt_core::{
-    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
+    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, RigidBody,
+    Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -40,21 +41,54 @@ impl Body<'_> {
     }
 }
 
+/// How the summed operator A = A¹ + P A² Pᵀ is applied.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Product {
+    /// A = factor·Aᵏ: the other body is rigid (factor 1), or both bodies' operators are
+    /// multiples of one, paired point for point ([`ElasticBody::influence_shape`]); one product.
+    One { body: usize, factor: f64 },
+    /// Both bodies' products, summed.
+    Both,
+}
+
+impl Product {
+    /// The product that two bodies' shapes allow (`identity`: paired point for point).
+    fn of(shapes: [Option<(String, f64)>; 2], identity: bool) -> Self {
+        match shapes {
+            [_, Some((_, c2))] if c2 == 0.0 => Product::One {
+                body: 0,
+                factor: 1.0,
+            },
+            [Some((_, c1)), _] if c1 == 0.0 => Product::One {
+                body: 1,
+                factor: 1.0,
+            },
+            [Some((shape1, c1)), Some((shape2, c2))]
+                if identity && shape1 == shape2 && c1 > 0.0 =>
+            {
+                Product::One {
+                    body: 0,
+                    factor: (c1 + c2) / c1,
+                }
+            }
+            _ => Product::Both,
+        }
+    }
+}
+
 /// The summed influence operator A = A¹ + P A² Pᵀ of the two bodies through their point
 /// pairing P, with the buffers its products reuse and the dense matrix once it is asked for.
 struct Operator<'a> {
     bodies: [Body<'a>; 2],
     /// `pair[i]`: the index of point i among the second body's points; `None` for the identity.
     pair: Option<Vec<usize>>,
-    /// The second body's input and output in its own numbering.
-    scratch: Mutex<[Vec<f64>; 2]>,
+    /// The second body's input and output in its own numbering (only with a pairing).
+    scratch: Option<Mutex<[Vec<f64>; 2]>>,
     dense: OnceLock<Mat<f64>>,
     /// Each body's share of the compliance at the first point, (Aᵏ)₀₀ / A₀₀ (a uniform load
     /// moves a periodic grid not at all), for the preconditioner.
     shares: OnceLock<[f64; 2]>,
-    /// A = factor·A¹ when the second body's operator is a multiple of the first's
-    /// ([`ElasticBody::influence_shape`]): one product instead of two.
-    merged: Option<f64>,
+    product: Product,
 }
 
 impl Operator<'_> {
@@ -68,10 +102,9 @@ impl Operator<'_> {
         map: impl FnOnce(&dyn ElasticBody, &[f64], &mut [f64]) -> T,
     ) -> T {
         let b = self.bodies[body].get();
-        match (&self.pair, body) {
-            (None, _) | (_, 0) => map(b, input, output),
-            (Some(pair), _) => {
-                let mut scratch = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+        match (&self.pair, &self.scratch, body) {
+            (Some(pair), Some(scratch), 1) => {
+                let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
                 let [own_in, own_out] = &mut *scratch;
                 for (i, &j) in pair.iter().enumerate() {
                     own_in[j] = input[i];
@@ -82,6 +115,7 @@ impl Operator<'_> {
                 }
                 result
             }
+            _ => map(b, input, output),
         }
     }
 
@@ -91,19 +125,29 @@ impl Operator<'_> {
     }
 
     fn apply(&self, force: &[f64], out: &mut [f64], spare: &mut [f64]) {
-        if let Some(factor) = self.merged {
-            self.apply_one(0, force, out);
-            out.iter_mut().for_each(|u| *u *= factor);
-            return;
-        }
-        self.apply_one(0, force, out);
-        self.apply_one(1, force, spare);
-        for (o, s) in out.iter_mut().zip(spare.iter()) {
-            *o += s;
+        match self.product {
+            Product::One { body, factor } => {
+                self.apply_one(body, force, out);
+                if factor != 1.0 {
+                    out.iter_mut().for_each(|u| *u *= factor);
+                }
+            }
+            Product::Both => {
+                self.apply_one(0, force, out);
+                self.apply_one(1, force, spare);
+                for (o, s) in out.iter_mut().zip(spare.iter()) {
+                    *o += s;
+                }
+            }
         }
     }
 
     fn shares(&self, n: usize) -> [f64; 2] {
+        if let Product::One { body, factor } = self.product {
+            let mut shares = [0.0; 2];
+            shares[body] = 1.0 / factor;
+            return shares;
+        }
         *self.shares.get_or_init(|| {
             let (mut unit, mut u) = (vec![0.0; n], vec![0.0; n]);
             unit[0] = 1.0;
@@ -133,7 +177,9 @@ impl Operator<'_> {
             let done =
                 self.in_own_numbering(body, displacement, force, |b, d, f| b.precondition(d, f));
             if done {
-                force.iter_mut().for_each(|f| *f *= share);
+                if share != 1.0 {
+                    force.iter_mut().for_each(|f| *f *= share);
+                }
                 return true;
             }
         }
@@ -167,6 +213,15 @@ impl FreeMode {
     }
 }
 
+/// What a problem holds besides its bodies and their pairing.
+struct Parts {
+    load_gap: Option<Rc<Vec<f64>>>,
+    modes: Rc<Vec<FreeMode>>,
+    owners: Option<Rc<Vec<[usize; 2]>>>,
+    initial_gap: Vec<f64>,
+    dense_limit: u64,
+}
+
 /// Frictionless normal contact of two bodies, condensed to their common interface points.
 ///
 /// With W = diag(wᵢ) the point weights, A = A¹ + A² the summed influence operators of the
@@ -189,7 +244,8 @@ impl FreeMode {
 pub struct InterfaceProblem<'a> {
     operator: Rc<Operator<'a>>,
     interface: Rc<Interface>,
-    load_gap: Rc<Vec<f64>>,
+    /// f¹ + f², the displacements under the bodies' own loads; `None` when they are zero.
+    load_gap: Option<Rc<Vec<f64>>>,
     modes: Rc<Vec<FreeMode>>,
     /// Whose each of `modes` is: (body, its index among the body's rigid modes); `None` once
     /// [`InterfaceProblem::with_modes`] replaced them.
@@ -247,8 +303,26 @@ impl<'a> InterfaceProblem<'a> {
         check::gap(initial_gap, n)?;
         let f1 = b1.load_displacement()?;
         let f2 = b2.load_displacement()?;
-        let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
+        let load_gap: Vec<f64> = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
+        let load_gap = load_gap
+            .iter()
+            .any(|&f| f != 0.0)
+            .then(|| Rc::new(load_gap));
         let (modes, owners) = free_modes(b1, b2, &pair)?;
+        let parts = Parts {
+            load_gap,
+            modes: Rc::new(modes),
+            owners: Some(Rc::new(owners)),
+            initial_gap: initial_gap.to_vec(),
+            dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
+        };
+        Self::assemble(bodies, pair, parts)
+    }
+
+    /// The problem of `bodies`, paired by `pair`, with the rest given.
+    fn assemble(bodies: [Body<'a>; 2], pair: Vec<usize>, parts: Parts) -> Result<Self> {
+        let (b1, b2) = (bodies[0].get(), bodies[1].get());
+        let n = pair.len();
         let pressure_basis = match (b1.pressure_basis(), b2.pressure_basis()) {
             (Some(b), _) => Some(b.clone()),
             (None, Some(b)) => Some(GapShape::new(
@@ -257,19 +331,12 @@ impl<'a> InterfaceProblem<'a> {
             )?),
             (None, None) => None,
         };
-        let interface = Rc::new(s1.clone());
+        let interface = Rc::new(b1.interface().clone());
         let identity = pair.iter().enumerate().all(|(i, &j)| i == j);
-        let merged = match (b1.influence_shape(), b2.influence_shape()) {
-            (Some((shape1, c1)), Some((shape2, c2)))
-                if identity && shape1 == shape2 && c1 > 0.0 =>
-            {
-                Some((c1 + c2) / c1)
-            }
-            _ => None,
-        };
+        let product = Product::of([b1.influence_shape(), b2.influence_shape()], identity);
         let operator = Operator {
-            merged,
-            scratch: Mutex::new([vec![0.0; n], vec![0.0; n]]),
+            product,
+            scratch: (!identity).then(|| Mutex::new([vec![0.0; n], vec![0.0; n]])),
             pair: (!identity).then_some(pair),
             bodies,
             dense: OnceLock::new(),
@@ -278,12 +345,12 @@ impl<'a> InterfaceProblem<'a> {
         Ok(Self {
             interface,
             operator: Rc::new(operator),
-            load_gap: Rc::new(load_gap),
-            modes: Rc::new(modes),
-            owners: Some(Rc::new(owners)),
+            load_gap: parts.load_gap,
+            modes: parts.modes,
+            owners: parts.owners,
             pressure_basis: pressure_basis.map(Rc::new),
-            initial_gap: initial_gap.to_vec(),
-            dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
+            initial_gap: parts.initial_gap,
+            dense_limit: parts.dense_limit,
         })
     }
 
@@ -368,14 +435,26 @@ impl<'a> InterfaceProblem<'a> {
     /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the
     /// bodies' operators (an FFT convolution on a half-space grid).
     pub fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let mut spare = vec![0.0; force.len()];
+        let mut spare = if self.sums_two_products() {
+            vec![0.0; force.len()]
+        } else {
+            vec![]
+        };
         self.operator.apply(force, displacement, &mut spare);
     }
 
     /// As [`InterfaceProblem::apply_influence`] with a caller's buffer `spare` of the same
-    /// length, for loops that must not allocate.
+    /// length, for loops that must not allocate; it may be empty unless
+    /// [`InterfaceProblem::sums_two_products`].
     pub fn apply_influence_with(&self, force: &[f64], displacement: &mut [f64], spare: &mut [f64]) {
         self.operator.apply(force, displacement, spare);
+    }
+
+    /// Whether the influence product sums two bodies' products (and so needs a `spare` buffer
+    /// in [`InterfaceProblem::apply_influence_with`]): not when one body is rigid, nor when the
+    /// two operators are multiples of one ([`ElasticBody::influence_shape`]).
+    pub fn sums_two_products(&self) -> bool {
+        self.operator.product == Product::Both
     }
 
     /// An approximate inverse of A for preconditioning: writes forces that roughly produce
@@ -436,11 +515,22 @@ impl<'a> InterfaceProblem<'a> {
 
     /// g = h + f¹ + f²: the gap before any contact pressure, rigid modes held \[mm\].
     pub fn free_gap(&self) -> Vec<f64> {
-        self.initial_gap
-            .iter()
-            .zip(self.load_gap.iter())
-            .map(|(h, f)| h + f)
-            .collect()
+        let mut g = vec![0.0; self.len()];
+        self.add_free_gap(&mut g);
+        g
+    }
+
+    /// Adds the free gap g = h + f¹ + f² to `gap` (one value per point), for loops that must
+    /// not allocate.
+    pub fn add_free_gap(&self, gap: &mut [f64]) {
+        for (d, h) in gap.iter_mut().zip(&self.initial_gap) {
+            *d += h;
+        }
+        if let Some(load_gap) = &self.load_gap {
+            for (d, f) in gap.iter_mut().zip(load_gap.iter()) {
+                *d += f;
+            }
+        }
     }
 
     /// The free rigid modes.
@@ -535,13 +625,7 @@ impl<'a> InterfaceProblem<'a> {
         }
         gap.fill(0.0);
         self.apply_influence_with(force, gap, spare);
-        for ((d, h), f) in gap
-            .iter_mut()
-            .zip(&self.initial_gap)
-            .zip(self.load_gap.iter())
-        {
-            *d += h + f;
-        }
+        self.add_free_gap(gap);
         self.add_rigid_motion(rigid, gap);
     }
 
@@ -660,31 +744,70 @@ impl<'a> InterfaceProblem<'a> {
     pub fn restrict(&self, keep: &[bool]) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
         let op = &self.operator;
         let (part1, index) = op.bodies[0].get().restrict(keep)?;
-        let n2 = op.bodies[1].get().interface().len();
-        let to_second = |i: usize| op.pair.as_ref().map_or(i, |p| p[i]);
-        let mut keep2 = vec![false; n2];
-        for &i in &index {
+        let part2 = self.second_part(part1.interface(), &index)?;
+        let pair = part1
+            .interface()
+            .partners(part2.interface(), part1.name(), part2.name())
+            .ok()?;
+        let modes = self.modes_on(&index)?;
+        let parts = Parts {
+            load_gap: self
+                .load_gap
+                .as_ref()
+                .map(|f| Rc::new(index.iter().map(|&i| f[i]).collect())),
+            modes: Rc::new(modes),
+            owners: None,
+            initial_gap: index.iter().map(|&i| self.initial_gap[i]).collect(),
+            dense_limit: self.dense_limit,
+        };
+        let part = Self::assemble([Body::Owned(part1), Body::Owned(part2)], pair, parts).ok()?;
+        Some((part, index))
+    }
+
+    /// The second body over the points `index` of the first (whose part has the surface
+    /// `surface`): a body without compliance ([`ElasticBody::influence_shape`] of scale 0) is
+    /// held there, on that surface (its modes are the problem's); another restricts itself to
+    /// the same points, or `None`.
+    fn second_part(
+        &self,
+        surface: &Interface,
+        index: &[usize],
+    ) -> Option<Box<dyn ElasticBody + 'a>> {
+        let second = self.operator.bodies[1].get();
+        if matches!(second.influence_shape(), Some((_, c)) if c == 0.0) {
+            return Some(Box::new(RigidBody::fixed(second.name(), surface)));
+        }
+        let to_second = |i: usize| self.operator.pair.as_ref().map_or(i, |p| p[i]);
+        let mut keep2 = vec![false; second.interface().len()];
+        for &i in index {
             keep2[to_second(i)] = true;
         }
-        let (part2, mut index2) = op.bodies[1].get().restrict(&keep2)?;
+        let (part2, mut index2) = second.restrict(&keep2)?;
         let mut wanted: Vec<usize> = index.iter().map(|&i| to_second(i)).collect();
         wanted.sort_unstable();
         index2.sort_unstable();
-        if wanted != index2 {
-            return None;
-        }
-        let mut position = vec![usize::MAX; self.len()];
-        for (a, &i) in index.iter().enumerate() {
-            position[i] = a;
-        }
+        (wanted == index2).then_some(part2)
+    }
+
+    /// The free modes over the points `index` (renumbered), with their loads: the points left
+    /// out carry no pressure. `None` when a loaded mode would lose all its points.
+    fn modes_on(&self, index: &[usize]) -> Option<Vec<FreeMode>> {
+        let sorted: Option<Vec<(usize, usize)>> = (!index.is_sorted()).then(|| {
+            let mut s: Vec<(usize, usize)> = index.iter().copied().zip(0..).collect();
+            s.sort_unstable();
+            s
+        });
+        let position = |i: usize| match &sorted {
+            None => index.binary_search(&i).ok(),
+            Some(s) => s.binary_search_by_key(&i, |&(k, _)| k).ok().map(|k| s[k].1),
+        };
         let mut modes = Vec::with_capacity(self.modes.len());
         for mode in self.modes.iter() {
             let (points, displacement): (Vec<usize>, Vec<f64>) = mode
                 .points
                 .iter()
                 .zip(&mode.displacement)
-                .filter(|(&i, _)| position[i] != usize::MAX)
-                .map(|(&i, &r)| (position[i], r))
+                .filter_map(|(&i, &r)| position(i).map(|a| (a, r)))
                 .unzip();
             if points.is_empty() && mode.load != 0.0 {
                 return None;
@@ -695,12 +818,7 @@ impl<'a> InterfaceProblem<'a> {
                 ..mode.clone()
             });
         }
-        let gap: Vec<f64> = index.iter().map(|&i| self.initial_gap[i]).collect();
-        let mut part = Self::from_bodies([Body::Owned(part1), Body::Owned(part2)], &gap).ok()?;
-        part.load_gap = Rc::new(index.iter().map(|&i| self.load_gap[i]).collect());
-        part.modes = Rc::new(modes);
-        part.dense_limit = self.dense_limit;
-        Some((part, index))
+        Some(modes)
     }
 }
 

@@ -75,8 +75,9 @@ pub trait ElasticBody {
     /// The influence operator as a multiple of a fixed one: `(shape, scale)` when A = scale·A₀
     /// with A₀ named by `shape` (a half-space grid: its cells and spacing; scale (1 − ν²)/E).
     /// Two bodies of one shape, paired point for point, share one product: the interface
-    /// problem applies one of them and scales it. `None` (the default) when the body does not
-    /// say.
+    /// problem applies one of them and scales it. A scale of 0 says the operator is zero (a
+    /// rigid body): the problem applies the partner's alone. `None` (the default) when the body
+    /// does not say.
     fn influence_shape(&self) -> Option<(String, f64)> {
         None
     }
