@@ -18,6 +18,13 @@ const PENETRATION: f64 = 1e-12;
 /// A cold start looks for contact within this fraction of the free gap's range above its
 /// lowest point (a guess: the part grows until nothing outside it penetrates).
 const SEED_FRACTION: f64 = 0.25;
+/// A cold start on at least this many points starts from the solution of the coarser problem
+/// (nested iteration), when the bodies offer one.
+const NESTED_POINTS: usize = 256;
+/// The tolerance of a coarser problem's solve (unless the solver's own is looser): its
+/// solution is a start, whose distance from the finer one is the discretisation's, far above
+/// this.
+const NESTED_TOLERANCE: f64 = 1e-6;
 
 /// Polonsky–Keer: conjugate gradients on the pressure restricted to the contact set, with
 /// the set updated every step (points that leave get p = 0, penetrating points re-enter and
@@ -112,13 +119,48 @@ impl ContactSolver for PolonskyKeer {
             }
             check::all_finite("start", start)?;
         }
-        let state = self.solve_cropped(problem, start, Watch::new(observer, self.method()))?;
+        let state = self.solve_nested(problem, start, Watch::new(observer, self.method()))?;
         watch::announce(observer, &state);
         Ok(state)
     }
 }
 
 impl PolonskyKeer {
+    /// Solves from `start`; a cold start on a problem with a coarser version
+    /// ([`InterfaceProblem::coarsen`]) starts from the coarse solution (itself found so, to
+    /// [`NESTED_TOLERANCE`]), each point given its coarse point's pressure. Its steps count
+    /// with the solve's.
+    fn solve_nested(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        watch: Watch,
+    ) -> Result<ContactState> {
+        let cold = start.is_none_or(|p| p.iter().all(|&v| v <= 0.0));
+        if !cold || problem.len() < NESTED_POINTS {
+            return self.solve_cropped(problem, start, watch);
+        }
+        let Some((coarse, parent)) = problem.coarsen() else {
+            return self.solve_cropped(problem, start, watch);
+        };
+        let nested = PolonskyKeer {
+            settings: PolonskyKeerSettings {
+                tolerance: self.settings.tolerance.max(NESTED_TOLERANCE),
+                ..self.settings
+            },
+        };
+        let solved = nested.solve_nested(&coarse, None, watch).ok();
+        drop(coarse);
+        let Some(solved) = solved.filter(ContactState::is_converged) else {
+            return self.solve_cropped(problem, start, watch);
+        };
+        let fine: Vec<f64> = parent.iter().map(|&c| solved.pressure[c]).collect();
+        drop(solved.pressure);
+        let mut state = self.solve_cropped(problem, Some(&fine), watch.after(solved.iterations))?;
+        state.iterations += solved.iterations;
+        Ok(state)
+    }
+
     /// Solves on a growing part of the interface when the problem can be restricted; each
     /// larger part starts from the pressure of the last.
     fn solve_cropped(
@@ -498,7 +540,7 @@ impl Buffers {
         for i in 0..n {
             self.forces[i] = if self.contact[i] { self.d[i] } else { 0.0 };
         }
-        self.preconditioned = problem.precondition(&self.forces, &mut self.z);
+        self.preconditioned = problem.precondition(&self.forces, &self.contact, &mut self.z);
         if self.preconditioned {
             for i in 0..n {
                 self.z[i] = if self.contact[i] {

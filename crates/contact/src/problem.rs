@@ -55,11 +55,11 @@ impl Product {
     /// The product that two bodies' shapes allow (`identity`: paired point for point).
     fn of(shapes: [Option<(String, f64)>; 2], identity: bool) -> Self {
         match shapes {
-            [_, Some((_, c2))] if c2 == 0.0 => Product::One {
+            [_, Some((_, 0.0))] => Product::One {
                 body: 0,
                 factor: 1.0,
             },
-            [Some((_, c1)), _] if c1 == 0.0 => Product::One {
+            [Some((_, 0.0)), _] => Product::One {
                 body: 1,
                 factor: 1.0,
             },
@@ -76,14 +76,22 @@ impl Product {
     }
 }
 
+/// The second body's vectors in its own numbering.
+struct Scratch {
+    input: Vec<f64>,
+    output: Vec<f64>,
+    contact: Vec<bool>,
+}
+
 /// The summed influence operator A = A¹ + P A² Pᵀ of the two bodies through their point
 /// pairing P, with the buffers its products reuse and the dense matrix once it is asked for.
 struct Operator<'a> {
     bodies: [Body<'a>; 2],
     /// `pair[i]`: the index of point i among the second body's points; `None` for the identity.
     pair: Option<Vec<usize>>,
-    /// The second body's input and output in its own numbering (only with a pairing).
-    scratch: Option<Mutex<[Vec<f64>; 2]>>,
+    /// The second body's input and output, and the contact set, in its own numbering (only
+    /// with a pairing).
+    scratch: Option<Mutex<Scratch>>,
     dense: OnceLock<Mat<f64>>,
     /// Each body's share of the compliance at the first point, (Aᵏ)₀₀ / A₀₀ (a uniform load
     /// moves a periodic grid not at all), for the preconditioner.
@@ -94,34 +102,47 @@ struct Operator<'a> {
 impl Operator<'_> {
     /// `map(body, input, output)` in the body's own numbering, with `input` and `output` in the
     /// first body's: the second body's points are permuted through the pairing P.
+    /// `map(body, input, contact, output)` in the body's own numbering, with `input`,
+    /// `contact` and `output` in the first body's: the second body's points are permuted
+    /// through the pairing P.
     fn in_own_numbering<T>(
         &self,
         body: usize,
         input: &[f64],
+        contact: &[bool],
         output: &mut [f64],
-        map: impl FnOnce(&dyn ElasticBody, &[f64], &mut [f64]) -> T,
+        map: impl FnOnce(&dyn ElasticBody, &[f64], &[bool], &mut [f64]) -> T,
     ) -> T {
         let b = self.bodies[body].get();
         match (&self.pair, &self.scratch, body) {
             (Some(pair), Some(scratch), 1) => {
                 let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
-                let [own_in, own_out] = &mut *scratch;
+                let Scratch {
+                    input: own_in,
+                    output: own_out,
+                    contact: own_contact,
+                } = &mut *scratch;
                 for (i, &j) in pair.iter().enumerate() {
                     own_in[j] = input[i];
                 }
-                let result = map(b, own_in, own_out);
+                if !contact.is_empty() {
+                    for (i, &j) in pair.iter().enumerate() {
+                        own_contact[j] = contact[i];
+                    }
+                }
+                let result = map(b, own_in, own_contact, own_out);
                 for (i, &j) in pair.iter().enumerate() {
                     output[i] = own_out[j];
                 }
                 result
             }
-            _ => map(b, input, output),
+            _ => map(b, input, contact, output),
         }
     }
 
     /// `out = A¹ force` (first body) or `out = P A² Pᵀ force` (second).
     fn apply_one(&self, body: usize, force: &[f64], out: &mut [f64]) {
-        self.in_own_numbering(body, force, out, |b, f, o| b.apply_influence(f, o));
+        self.in_own_numbering(body, force, &[], out, |b, f, _, o| b.apply_influence(f, o));
     }
 
     fn apply(&self, force: &[f64], out: &mut [f64], spare: &mut [f64]) {
@@ -165,17 +186,18 @@ impl Operator<'_> {
         })
     }
 
-    /// Approximate inverse: the first body's (or else the second's) scaled by its share of the
-    /// compliance, exact when the kernels are proportional (two half-spaces on one grid, or a
-    /// half-space against a rigid body).
-    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+    /// Approximate inverse on the set `contact`: the first body's (or else the second's)
+    /// scaled by its share of the compliance, exact when the kernels are proportional (two
+    /// half-spaces on one grid, or a half-space against a rigid body).
+    fn precondition(&self, displacement: &[f64], contact: &[bool], force: &mut [f64]) -> bool {
         let shares = self.shares(displacement.len());
         for (body, &share) in shares.iter().enumerate() {
             if share <= 0.0 {
                 continue;
             }
-            let done =
-                self.in_own_numbering(body, displacement, force, |b, d, f| b.precondition(d, f));
+            let done = self.in_own_numbering(body, displacement, contact, force, |b, d, c, f| {
+                b.precondition_on(d, c, f)
+            });
             if done {
                 if share != 1.0 {
                     force.iter_mut().for_each(|f| *f *= share);
@@ -336,7 +358,13 @@ impl<'a> InterfaceProblem<'a> {
         let product = Product::of([b1.influence_shape(), b2.influence_shape()], identity);
         let operator = Operator {
             product,
-            scratch: (!identity).then(|| Mutex::new([vec![0.0; n], vec![0.0; n]])),
+            scratch: (!identity).then(|| {
+                Mutex::new(Scratch {
+                    input: vec![0.0; n],
+                    output: vec![0.0; n],
+                    contact: vec![false; n],
+                })
+            }),
             pair: (!identity).then_some(pair),
             bodies,
             dense: OnceLock::new(),
@@ -457,11 +485,12 @@ impl<'a> InterfaceProblem<'a> {
         self.operator.product == Product::Both
     }
 
-    /// An approximate inverse of A for preconditioning: writes forces that roughly produce
-    /// `displacement` and returns `true`, or `false` when neither body offers one
-    /// ([`ElasticBody::precondition`]).
-    pub fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
-        self.operator.precondition(displacement, force)
+    /// An approximate inverse of A on the points marked in `contact` (the others unloaded),
+    /// for preconditioning: writes forces on those points that roughly produce `displacement`
+    /// there (zero elsewhere) and returns `true`, or `false` when neither body offers one
+    /// ([`ElasticBody::precondition_on`]).
+    pub fn precondition(&self, displacement: &[f64], contact: &[bool], force: &mut [f64]) -> bool {
+        self.operator.precondition(displacement, contact, force)
     }
 
     /// The dense summed influence matrix A = A¹ + P A² Pᵀ \[mm/N\], built on the first call and
@@ -762,6 +791,92 @@ impl<'a> InterfaceProblem<'a> {
         };
         let part = Self::assemble([Body::Owned(part1), Body::Owned(part2)], pair, parts).ok()?;
         Some((part, index))
+    }
+
+    /// The problem on coarser bodies ([`ElasticBody::coarsen`]), with the coarse point of
+    /// each point (`parent`): the first body coarsens itself, the second too (grouped alike)
+    /// or, without compliance, is held on the coarse surface; the gaps are the W-weighted
+    /// means over each coarse point's points, each mode moves the coarse points of its points
+    /// by their mean and keeps its load. `None` when a body offers no coarser version, the
+    /// two group differently, or two modes would share a coarse point.
+    pub fn coarsen(&self) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
+        let op = &self.operator;
+        let (coarse1, parent) = op.bodies[0].get().coarsen()?;
+        let second = op.bodies[1].get();
+        let coarse2: Box<dyn ElasticBody + 'a> = if matches!(second.influence_shape(), Some((_, c)) if c == 0.0)
+        {
+            Box::new(RigidBody::fixed(second.name(), coarse1.interface()))
+        } else {
+            let (coarse2, parent2) = second.coarsen()?;
+            (op.pair.is_none() && parent2 == parent).then_some(coarse2)?
+        };
+        let pair = coarse1
+            .interface()
+            .partners(coarse2.interface(), coarse1.name(), coarse2.name())
+            .ok()?;
+        let m = coarse1.interface().len();
+        let w = self.weights();
+        let mut total = vec![0.0; m];
+        for (i, &c) in parent.iter().enumerate() {
+            total[c] += w[i];
+        }
+        let mean = |v: &[f64]| {
+            let mut sum = vec![0.0; m];
+            for (i, &c) in parent.iter().enumerate() {
+                sum[c] += w[i] * v[i];
+            }
+            sum.iter()
+                .zip(&total)
+                .map(|(s, t)| s / t)
+                .collect::<Vec<f64>>()
+        };
+        let parts = Parts {
+            load_gap: self.load_gap.as_ref().map(|f| Rc::new(mean(f))),
+            modes: Rc::new(self.coarse_modes(&parent, &total)?),
+            owners: None,
+            initial_gap: mean(&self.initial_gap),
+            dense_limit: self.dense_limit,
+        };
+        let coarse =
+            Self::assemble([Body::Owned(coarse1), Body::Owned(coarse2)], pair, parts).ok()?;
+        Some((coarse, parent))
+    }
+
+    /// The modes on the coarse points of `parent` (of W-weights `total`): each moves a coarse
+    /// point by the W-mean of its points' rᵢ; `None` when two modes share a coarse point, or a
+    /// mode moves only some of a coarse point's points.
+    fn coarse_modes(&self, parent: &[usize], total: &[f64]) -> Option<Vec<FreeMode>> {
+        let w = self.weights();
+        let m = total.len();
+        let mut owner = vec![usize::MAX; m];
+        let (mut moved, mut covered) = (vec![0.0; m], vec![0.0; m]);
+        let mut modes = Vec::with_capacity(self.modes.len());
+        for (k, mode) in self.modes.iter().enumerate() {
+            let mut points = vec![];
+            for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
+                let c = parent[i];
+                if owner[c] == usize::MAX {
+                    owner[c] = k;
+                    points.push(c);
+                } else if owner[c] != k {
+                    return None;
+                }
+                moved[c] += w[i] * r;
+                covered[c] += w[i];
+            }
+            if points
+                .iter()
+                .any(|&c| (covered[c] - total[c]).abs() > WEIGHT_MATCH * total[c])
+            {
+                return None;
+            }
+            modes.push(FreeMode {
+                displacement: points.iter().map(|&c| moved[c] / covered[c]).collect(),
+                points,
+                ..mode.clone()
+            });
+        }
+        Some(modes)
     }
 
     /// The second body over the points `index` of the first (whose part has the surface

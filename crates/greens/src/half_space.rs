@@ -40,6 +40,7 @@ pub struct HalfSpace {
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
     compliance: f64,
+    material: Material,
     /// Cell sizes \[mm\].
     pub(crate) dx: f64,
     pub(crate) dy: f64,
@@ -160,6 +161,7 @@ impl HalfSpace {
             convolution,
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
+            material,
             dx,
             dy,
             nu: material.nu(),
@@ -211,6 +213,7 @@ impl HalfSpace {
             convolution,
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
+            material,
             dx,
             dy,
             nu: material.nu(),
@@ -304,6 +307,7 @@ impl HalfSpace {
                     })
                     .collect(),
                 compliance: self.compliance,
+                material: self.material,
                 dx: self.dx,
                 dy: self.dy,
                 nu: self.nu,
@@ -398,6 +402,41 @@ impl ElasticBody for HalfSpace {
         Some((Box::new(sub), index))
     }
 
+    /// A grid of cells twice as large each way (a side of one cell stays), ⌈nx/2⌉ × ⌈ny/2⌉
+    /// over the same surface, each coarse cell the parent of the cells it covers (an odd
+    /// side's last coarse cell reaches half a coarse cell past the grid); pressed by the same
+    /// force, facing the same way. A periodic grid coarsens only when its sides are even.
+    fn coarsen(&self) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
+        let (nx, ny) = (self.nx, self.ny);
+        let (fx, fy) = (if nx > 1 { 2 } else { 1 }, if ny > 1 { 2 } else { 1 });
+        if fx * fy == 1 || (self.periodic && (nx % fx != 0 || ny % fy != 0)) {
+            return None;
+        }
+        let (cx, cy) = (nx.div_ceil(fx), ny.div_ceil(fy));
+        let (dx, dy) = (fx as f64 * self.dx, fy as f64 * self.dy);
+        let first = self.interface.points()[0];
+        let origin = [
+            first[0] + 0.5 * (fx - 1) as f64 * self.dx,
+            first[1] + 0.5 * (fy - 1) as f64 * self.dy,
+        ];
+        let build = if self.periodic {
+            HalfSpace::periodic
+        } else {
+            HalfSpace::grid
+        };
+        let mut coarse = build(&self.name, self.material, cx, cy, dx, dy, origin).ok()?;
+        if let Some(mode) = self.modes.first() {
+            coarse = coarse.pressed(-mode.load).ok()?;
+        }
+        if self.interface.normals()[0][2] < 0.0 {
+            coarse = coarse.upper();
+        }
+        let parent = (0..nx * ny)
+            .map(|k| (k / nx / fy) * cx + (k % nx) / fx)
+            .collect();
+        Some((Box::new(coarse), parent))
+    }
+
     /// The grid's cells, spacing and kind; the kernel is (1 − ν²)/E times one of those alone.
     fn influence_shape(&self) -> Option<(String, f64)> {
         let p = &self.interface.points();
@@ -449,6 +488,34 @@ mod tests {
     use super::*;
 
     /// The FFT product agrees with the dense matrix on an irregular grid, free and periodic.
+    /// A 7 × 4 grid, pressed and facing down, coarsens to 4 × 2 cells twice as large: each
+    /// cell lies inside its parent (a wrong parent index or origin puts cells a coarse cell
+    /// away), every coarse cell has a child, and the coarse grid keeps the load and the
+    /// normal; a periodic grid of an odd side offers none.
+    #[test]
+    fn coarsen_covers_the_grid() {
+        let steel = Material::new(2e5, 0.3).unwrap();
+        let fine = HalfSpace::grid("g", steel, 7, 4, 0.5, 0.25, [1.0, -2.0])
+            .unwrap()
+            .pressed(30.0)
+            .unwrap()
+            .upper();
+        let (coarse, parent) = fine.coarsen().unwrap();
+        let c = coarse.interface();
+        assert_eq!(c.len(), 8);
+        for (x, &k) in fine.interface().points().iter().zip(&parent) {
+            let y = c.points()[k];
+            assert!((x[0] - y[0]).abs() <= 0.5 + 1e-12, "{x:?} in {y:?}");
+            assert!((x[1] - y[1]).abs() <= 0.25 + 1e-12, "{x:?} in {y:?}");
+        }
+        assert!((0..8).all(|k| parent.contains(&k)));
+        assert!((c.weights()[0] - 0.5).abs() < 1e-12);
+        assert_eq!(c.normals()[0], fine.interface().normals()[0]);
+        assert_eq!(coarse.rigid_modes()[0].load, fine.rigid_modes()[0].load);
+        let periodic = HalfSpace::periodic("p", steel, 7, 4, 0.5, 0.25, [0.0; 2]).unwrap();
+        assert!(periodic.coarsen().is_none());
+    }
+
     #[test]
     fn fft_product_matches_dense() {
         let steel = Material::new(2e5, 0.3).unwrap();
