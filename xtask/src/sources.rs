@@ -208,4 +208,6 @@ pub const SOURCES: &[Source] = &[
     },
     // Writes book/src/solver_benchmark.{csv,svg} itself.
     example(&["--example", "solver_benchmark"], "solver_benchmark", true),
+    // `solver = "auto"` against both exact solvers on every bundled scene (performance.md).
+    example(&["--example", "solver_auto"], "solver_auto", true),
 ];

@@ -493,6 +493,14 @@ impl<'a> InterfaceProblem<'a> {
         self.operator.precondition(displacement, contact, force)
     }
 
+    /// Whether a body offers an approximate inverse of A ([`InterfaceProblem::precondition`]):
+    /// found by applying it once to zero displacements on every point (one FFT pair on a
+    /// half-space grid, nothing for a body without one).
+    pub fn offers_inverse(&self) -> bool {
+        let n = self.len();
+        self.precondition(&vec![0.0; n], &vec![true; n], &mut vec![0.0; n])
+    }
+
     /// The dense summed influence matrix A = A¹ + P A² Pᵀ \[mm/N\], built on the first call and
     /// shared by every problem derived from this one. `copies` is how many n × n matrices the
     /// calling solver will hold at once, this one included; the call fails with
