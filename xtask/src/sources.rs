@@ -203,7 +203,7 @@ pub const SOURCES: &[Source] = &[
     },
     // Our column beside the peers' published figures (greens.md).
     Source {
-        args: &["--table", "256", "512", "1024"],
+        args: &["--table", "256", "512", "1024", "2048", "4096"],
         ..example(&["--example", "halfspace_peers"], "halfspace_peers", true)
     },
     // Writes book/src/solver_benchmark.{csv,svg} itself.
