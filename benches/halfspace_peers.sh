@@ -7,7 +7,10 @@
 #   PEERS_PYTHON=/path/to/venv/bin/python bash benches/halfspace_peers.sh [SIZES] [OUT]
 #
 # SIZES defaults to 256,512,1024 and OUT to target/halfspace_peers. The peers' venv is set up
-# as their README says (requirements.txt, and requirements-aspher.txt for ASPHER).
+# as their README says (requirements.txt, and requirements-aspher.txt for ASPHER). PEERS_TOOLS
+# (e.g. aspher) runs some of the peers only, PEERS_TIMEOUT and PEERS_BUDGET (s) pass the
+# harness's --timeout (one run) and --budget (no larger grid after a slower run): 4096² takes
+# ASPHER minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sizes=${1:-256,512,1024}
@@ -18,7 +21,8 @@ mkdir -p "$out"
 cargo build --release --quiet --example halfspace_peers
 # OMP_WAIT_POLICY=passive: ASPHER's OpenMP threads otherwise spin against other jobs.
 OMP_WAIT_POLICY=passive "$python" "$peers/run_peers.py" --sizes "$sizes" --threads 1 \
-    --out "$out/peers.json" >/dev/null
+    ${PEERS_TOOLS:+--tools "$PEERS_TOOLS"} --timeout "${PEERS_TIMEOUT:-240}" \
+    --budget "${PEERS_BUDGET:-60}" --out "$out/peers.json" >/dev/null
 ./target/release/examples/halfspace_peers ${sizes//,/ } >"$out/contopt.json"
 "$python" - "$out/peers.json" "$out/contopt.json" <<'PY' | tee "$out/table.md"
 import json, sys

@@ -131,7 +131,8 @@ fn optimum(
 }
 
 /// One case, in this process: prints `seconds peak_MB p_max centre_miss dh_min dh_ref dh_max
-/// solves` on one line.
+/// solves steps` on one line (steps: the contact solver's conjugate-gradient steps, summed over
+/// the solves).
 fn case(nx: usize, ny: usize, l1: f64) {
     let (body, h) = roller_grid(nx, ny);
     let v = Profile::cubic(l1, 0.5 * LENGTH).unwrap();
@@ -154,11 +155,12 @@ fn case(nx: usize, ny: usize, l1: f64) {
         .min_by(|a, b| a.1[0].abs().total_cmp(&b.1[0].abs()))
         .map_or(f64::NAN, |(d, _)| *d);
     println!(
-        "{seconds} {} {} {miss} {dh_min} {reference} {} {}",
+        "{seconds} {} {} {miss} {dh_min} {reference} {} {} {}",
         peak_mb(),
         opt.p_max,
         opt.dh_max(),
-        opt.passes.len()
+        opt.passes.len(),
+        opt.passes.iter().map(|p| p.iterp).sum::<usize>()
     );
 }
 
@@ -175,6 +177,7 @@ struct Row {
     dh_ref: f64,
     dh_max: f64,
     solves: usize,
+    steps: usize,
 }
 
 fn child(nx: usize, ny: usize, l1: f64) -> Row {
@@ -188,7 +191,7 @@ fn child(nx: usize, ny: usize, l1: f64) -> Row {
         .map(|t| t.parse().unwrap_or(f64::NAN))
         .collect();
     assert!(
-        f.len() == 8,
+        f.len() == 9,
         "case {nx} x {ny}, L1 = {l1}: {text}{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -204,14 +207,15 @@ fn child(nx: usize, ny: usize, l1: f64) -> Row {
         dh_ref: f[5],
         dh_max: f[6],
         solves: f[7] as usize,
+        steps: f[8] as usize,
     }
 }
 
 /// Item 4's table: both grids, every L1.
 fn production(grids: &[(usize, usize)]) -> Vec<Row> {
     eprintln!("\n## The optimised roller (load split, Polonsky–Keer, one core)\n");
-    println!("| grid | L1 mm | time s | peak MB | solves | p_max MPa | Δp_max to the finer grid | largest miss of v·p_max on Ω_v | Δh_max µm | min Δh µm | Δh at x = 0 µm |");
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!("| grid | L1 mm | time s | peak MB | solves | CG steps | p_max MPa | Δp_max to the finer grid | largest miss of v·p_max on Ω_v | Δh_max µm | min Δh µm | Δh at x = 0 µm |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let l1s = [0.0, 2.0, 3.0, 4.0, 5.0];
     let rows: Vec<Row> = grids
         .iter()
@@ -225,13 +229,14 @@ fn production(grids: &[(usize, usize)]) -> Vec<Row> {
                 format!("{:+.4} %", 100.0 * (r.p_max / o.p_max - 1.0))
             });
         println!(
-            "| {} × {} | {} | {:.2} | {:.0} | {} | {:.2} | {finer} | {:.1e} | {:.3} | {:.1e} | {:.1e} |",
+            "| {} × {} | {} | {:.2} | {:.0} | {} | {} | {:.2} | {finer} | {:.1e} | {:.3} | {:.1e} | {:.1e} |",
             r.nx,
             r.ny,
             r.l1,
             r.seconds,
             r.peak_mb,
             r.solves,
+            r.steps,
             r.p_max,
             r.miss,
             1e3 * r.dh_max,
@@ -302,8 +307,8 @@ fn dense_agreement() {
 /// The straight roller against Hertz's line contact with the local centre line load.
 fn straight(grids: &[(usize, usize)]) {
     eprintln!("\n## The straight roller against Hertz (local centre line load)\n");
-    println!("| grid | cell mm | centre line load N/mm | p at the centre MPa | Hertz local p₀ | error | / nominal p₀ 2000.1 | end pressure MPa (cell-dependent) | time s |");
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!("| grid | cell mm | centre line load N/mm | p at the centre MPa | Hertz local p₀ | error | / nominal p₀ 2000.1 | end pressure MPa (cell-dependent) | CG steps | time s |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for &(nx, ny) in grids {
         let (body, h) = roller_grid(nx, ny);
         let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], LOAD).unwrap();
@@ -328,10 +333,11 @@ fn straight(grids: &[(usize, usize)]) {
         let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);
         let (_, p0) = hertz(q);
         println!(
-            "| {nx} × {ny} | {dx} | {q:.2} | {p:.1} | {p0:.1} | {:+.3} % | {:.4} | {:.0} | {seconds:.2} |",
+            "| {nx} × {ny} | {dx} | {q:.2} | {p:.1} | {p0:.1} | {:+.3} % | {:.4} | {:.0} | {} | {seconds:.2} |",
             100.0 * (p / p0 - 1.0),
             p / hertz(LOAD / LENGTH).1,
-            st.p_max()
+            st.p_max(),
+            st.iterations
         );
     }
 }
@@ -367,7 +373,7 @@ fn read_scaling(csv: &str) -> Vec<(f64, f64)> {
         .skip(1)
         .filter_map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
-            Some((fields.get(2)?.parse().ok()?, fields.get(4)?.parse().ok()?))
+            Some((fields.get(2)?.parse().ok()?, fields.get(5)?.parse().ok()?))
         })
         .collect()
 }
@@ -375,23 +381,24 @@ fn read_scaling(csv: &str) -> Vec<(f64, f64)> {
 /// The solve against the number of points (L1 = 3 mm): the CSV and the log-log chart.
 fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
     eprintln!("\n## Scaling (L1 = 3 mm)\n");
-    println!("| grid | points | solves | time s | time per solve ms | peak MB |");
-    println!("| --- | --- | --- | --- | --- | --- |");
-    let mut csv = String::from("nx,ny,points,solves,seconds,peak_mb,p_max_mpa\n");
+    println!("| grid | points | solves | CG steps | time s | time per solve ms | peak MB |");
+    println!("| --- | --- | --- | --- | --- | --- | --- |");
+    let mut csv = String::from("nx,ny,points,solves,steps,seconds,peak_mb,p_max_mpa\n");
     let mut points = vec![];
     for &(nx, ny) in grids {
         let r = child(nx, ny, 3.0);
         let n = nx * ny;
         println!(
-            "| {nx} × {ny} | {n} | {} | {:.3} | {:.1} | {:.0} |",
+            "| {nx} × {ny} | {n} | {} | {} | {:.3} | {:.1} | {:.0} |",
             r.solves,
+            r.steps,
             r.seconds,
             1e3 * r.seconds / r.solves as f64,
             r.peak_mb
         );
         csv.push_str(&format!(
-            "{nx},{ny},{n},{},{},{},{}\n",
-            r.solves, r.seconds, r.peak_mb, r.p_max
+            "{nx},{ny},{n},{},{},{},{},{}\n",
+            r.solves, r.steps, r.seconds, r.peak_mb, r.p_max
         ));
         points.push((n as f64, r.seconds));
     }

@@ -203,9 +203,11 @@ pub const SOURCES: &[Source] = &[
     },
     // Our column beside the peers' published figures (greens.md).
     Source {
-        args: &["--table", "256", "512", "1024"],
+        args: &["--table", "256", "512", "1024", "2048", "4096"],
         ..example(&["--example", "halfspace_peers"], "halfspace_peers", true)
     },
     // Writes book/src/solver_benchmark.{csv,svg} itself.
     example(&["--example", "solver_benchmark"], "solver_benchmark", true),
+    // `solver = "auto"` against both exact solvers on every bundled scene (performance.md).
+    example(&["--example", "solver_auto"], "solver_auto", true),
 ];

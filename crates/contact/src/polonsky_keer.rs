@@ -18,6 +18,13 @@ const PENETRATION: f64 = 1e-12;
 /// A cold start looks for contact within this fraction of the free gap's range above its
 /// lowest point (a guess: the part grows until nothing outside it penetrates).
 const SEED_FRACTION: f64 = 0.25;
+/// A cold start on at least this many points starts from the solution of the coarser problem
+/// (nested iteration), when the bodies offer one.
+const NESTED_POINTS: usize = 256;
+/// The tolerance of a coarser problem's solve (unless the solver's own is looser): its
+/// solution is a start, whose distance from the finer one is the discretisation's, far above
+/// this.
+const NESTED_TOLERANCE: f64 = 1e-6;
 
 /// Polonsky–Keer: conjugate gradients on the pressure restricted to the contact set, with
 /// the set updated every step (points that leave get p = 0, penetrating points re-enter and
@@ -112,14 +119,50 @@ impl ContactSolver for PolonskyKeer {
             }
             check::all_finite("start", start)?;
         }
-        let state = self.solve_cropped(problem, start, Watch::new(observer, self.method()))?;
+        let state = self.solve_nested(problem, start, Watch::new(observer, self.method()))?;
         watch::announce(observer, &state);
         Ok(state)
     }
 }
 
 impl PolonskyKeer {
-    /// Solves on a growing part of the interface when the problem can be restricted.
+    /// Solves from `start`; a cold start on a problem with a coarser version
+    /// ([`InterfaceProblem::coarsen`]) starts from the coarse solution (itself found so, to
+    /// [`NESTED_TOLERANCE`]), each point given its coarse point's pressure. Its steps count
+    /// with the solve's.
+    fn solve_nested(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        watch: Watch,
+    ) -> Result<ContactState> {
+        let cold = start.is_none_or(|p| p.iter().all(|&v| v <= 0.0));
+        if !cold || problem.len() < NESTED_POINTS {
+            return self.solve_cropped(problem, start, watch);
+        }
+        let Some((coarse, parent)) = problem.coarsen() else {
+            return self.solve_cropped(problem, start, watch);
+        };
+        let nested = PolonskyKeer {
+            settings: PolonskyKeerSettings {
+                tolerance: self.settings.tolerance.max(NESTED_TOLERANCE),
+                ..self.settings
+            },
+        };
+        let solved = nested.solve_nested(&coarse, None, watch).ok();
+        drop(coarse);
+        let Some(solved) = solved.filter(ContactState::is_converged) else {
+            return self.solve_cropped(problem, start, watch);
+        };
+        let fine: Vec<f64> = parent.iter().map(|&c| solved.pressure[c]).collect();
+        drop(solved.pressure);
+        let mut state = self.solve_cropped(problem, Some(&fine), watch.after(solved.iterations))?;
+        state.iterations += solved.iterations;
+        Ok(state)
+    }
+
+    /// Solves on a growing part of the interface when the problem can be restricted; each
+    /// larger part starts from the pressure of the last.
     fn solve_cropped(
         &self,
         problem: &InterfaceProblem,
@@ -127,53 +170,35 @@ impl PolonskyKeer {
         watch: Watch,
     ) -> Result<ContactState> {
         let n = problem.len();
-        let g = problem.free_gap();
-        let mut keep: Vec<bool> = match start {
-            Some(p) if p.iter().any(|&v| v > 0.0) => p.iter().map(|&v| v > 0.0).collect(),
-            _ => {
-                let (lo, hi) = g
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
-                        (a.min(h), b.max(h))
-                    });
-                g.iter()
-                    .map(|&h| h <= lo + SEED_FRACTION * (hi - lo))
-                    .collect()
-            }
-        };
+        let mut keep = seed(problem, start);
+        let mut pressure: Option<Vec<f64>> = start.map(<[f64]>::to_vec);
         let mut steps = 0;
         while let Some((part, index)) = problem.restrict(&keep) {
-            let part_start: Option<Vec<f64>> = start.map(|p| index.iter().map(|&k| p[k]).collect());
+            let part_start: Option<Vec<f64>> =
+                pressure.map(|p| index.iter().map(|&k| p[k]).collect());
             let state = self.solve_whole(&part, part_start.as_deref(), watch.after(steps))?;
-            steps += state.iterations;
-            let mut pressure = vec![0.0; n];
-            for (a, &k) in index.iter().enumerate() {
-                pressure[k] = state.pressure[a];
-            }
             drop(part);
-            let mut groups = Groups::new(problem)?;
-            let (gap, rigid) = groups.final_gap(problem, &pressure);
-            let scale = g
-                .iter()
-                .zip(&gap)
-                .fold(0.0f64, |m, (h, d)| m.max(h.abs() + d.abs()));
-            let mut inside = vec![false; n];
-            for &k in &index {
-                inside[k] = true;
+            steps += state.iterations;
+            let mut whole = vec![0.0; n];
+            for (a, &k) in index.iter().enumerate() {
+                whole[k] = state.pressure[a];
             }
-            let penetrating: Vec<usize> = (0..n)
-                .filter(|&k| !inside[k] && gap[k] < -PENETRATION * scale)
-                .collect();
+            let mut groups = Groups::new(problem)?;
+            let mut forces = vec![0.0; n];
+            let (gap, rigid) = groups.final_gap(problem, &whole, &mut forces, &mut []);
+            drop(forces);
+            let penetrating = penetrating(problem, &gap, &index);
             if penetrating.is_empty() || !state.is_converged() {
-                let mut whole = outcome(problem, pressure, (gap, rigid), steps);
+                let mut whole = outcome(problem, whole, (gap, rigid), steps);
                 watch::end(&mut whole, state.termination);
                 return Ok(whole);
             }
             for k in index.into_iter().chain(penetrating) {
                 keep[k] = true;
             }
+            pressure = Some(whole);
         }
-        let mut state = self.solve_whole(problem, start, watch.after(steps))?;
+        let mut state = self.solve_whole(problem, pressure.as_deref(), watch.after(steps))?;
         state.iterations += steps;
         Ok(state)
     }
@@ -223,8 +248,14 @@ impl PolonskyKeer {
                 tolerance,
             });
         }
-        let Descent { mut groups, p, .. } = cg;
-        let gap_rigid = groups.final_gap(problem, &p);
+        let Descent {
+            mut groups,
+            p,
+            mut cg,
+            ..
+        } = cg;
+        let gap_rigid = groups.final_gap(problem, &p, &mut cg.forces, &mut cg.spare);
+        drop(cg);
         let mut state = outcome(problem, p, gap_rigid, steps);
         if let Some(halt) = halt {
             watch::end(&mut state, halt);
@@ -233,12 +264,49 @@ impl PolonskyKeer {
     }
 }
 
+/// Where a solve starts: where the start carries pressure, or (a cold start, or a start without
+/// pressure) within [`SEED_FRACTION`] of the free gap's range above its lowest point.
+fn seed(problem: &InterfaceProblem, start: Option<&[f64]>) -> Vec<bool> {
+    match start {
+        Some(p) if p.iter().any(|&v| v > 0.0) => p.iter().map(|&v| v > 0.0).collect(),
+        _ => {
+            let g = problem.free_gap();
+            let (lo, hi) = g
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
+                    (a.min(h), b.max(h))
+                });
+            g.iter()
+                .map(|&h| h <= lo + SEED_FRACTION * (hi - lo))
+                .collect()
+        }
+    }
+}
+
+/// The points outside a solved part (`index`) that the part's answer makes penetrate, beyond
+/// round-off of the gaps' size.
+fn penetrating(problem: &InterfaceProblem, gap: &[f64], index: &[usize]) -> Vec<usize> {
+    let n = problem.len();
+    let mut scale = vec![0.0; n];
+    problem.add_free_gap(&mut scale);
+    let scale = scale
+        .iter()
+        .zip(gap)
+        .fold(0.0f64, |m, (h, d)| m.max(h.abs() + d.abs()));
+    let mut inside = vec![false; n];
+    for &k in index {
+        inside[k] = true;
+    }
+    (0..n)
+        .filter(|&k| !inside[k] && gap[k] < -PENETRATION * scale)
+        .collect()
+}
+
 /// The state of Polonsky and Keer's iteration: the pressure, its previous value, the modes
 /// and the conjugate-gradient buffers.
 struct Descent {
     groups: Groups,
     cg: Buffers,
-    g: Vec<f64>,
     kappa: f64,
     p: Vec<f64>,
     previous: Vec<f64>,
@@ -253,18 +321,22 @@ impl Descent {
         let mut groups = Groups::new(problem)?;
         let w = problem.weights();
         let n = w.len();
-        let g = problem.free_gap();
-        let mut cg = Buffers::new(n);
+        let mut cg = Buffers::new(problem);
         let kappa = cg.self_compliance(problem)?;
         let mut p = match start {
             Some(s) => s.iter().map(|v| v.max(0.0)).collect(),
-            None => groups.initial(w, &g, kappa),
+            None => {
+                let mut g = vec![0.0; n];
+                problem.add_free_gap(&mut g);
+                groups.initial(w, &g, kappa)
+            }
         };
-        groups.restore(w, &g, &mut p);
+        cg.d.fill(0.0);
+        problem.add_free_gap(&mut cg.d);
+        groups.restore(w, &cg.d, &mut p);
         Ok(Self {
             groups,
             cg,
-            g,
             kappa,
             p,
             previous: vec![0.0; n],
@@ -277,7 +349,7 @@ impl Descent {
     /// returns whether any entered.
     fn step(&mut self, problem: &InterfaceProblem) -> std::result::Result<bool, String> {
         let (cg, groups) = (&mut self.cg, &mut self.groups);
-        cg.residual(problem, groups, &self.g, &self.p);
+        cg.residual(problem, groups, &self.p);
         cg.direction(problem, groups, self.conjugate, &mut self.gz_old);
         self.previous.copy_from_slice(&self.p);
         let entered = cg.step(problem, groups, &mut self.p, self.kappa)?;
@@ -333,13 +405,13 @@ fn outcome(
 
 /// The vectors of the iteration, allocated once per solve.
 struct Buffers {
+    /// Forces W·p or W·t, the operator's input; the masked residual, the preconditioner's.
     forces: Vec<f64>,
-    u: Vec<f64>,
+    /// The second body's product when the operator sums two (else empty).
     spare: Vec<f64>,
     /// The gap residual d = g + A W p + R λ.
     d: Vec<f64>,
     d_previous: Vec<f64>,
-    masked: Vec<f64>,
     z: Vec<f64>,
     /// The search direction.
     t: Vec<f64>,
@@ -351,15 +423,18 @@ struct Buffers {
 }
 
 impl Buffers {
-    fn new(n: usize) -> Self {
+    fn new(problem: &InterfaceProblem) -> Self {
+        let n = problem.len();
         let zero = || vec![0.0; n];
         Self {
             forces: zero(),
-            u: zero(),
-            spare: zero(),
+            spare: if problem.sums_two_products() {
+                zero()
+            } else {
+                vec![]
+            },
             d: zero(),
             d_previous: zero(),
-            masked: zero(),
             z: zero(),
             t: zero(),
             r: zero(),
@@ -374,10 +449,9 @@ impl Buffers {
         let w = problem.weights();
         self.forces.fill(0.0);
         self.forces[0] = w[0];
-        problem.apply_influence_with(&self.forces, &mut self.u, &mut self.spare);
-        problem::compliance(self.u[0])
+        problem.apply_influence_with(&self.forces, &mut self.r, &mut self.spare);
+        problem::compliance(self.r[0])
     }
-
     /// Moves `p` along the direction t by the residual's component over the curvature, clipped
     /// at p = 0, and lets the penetrating points outside the contact set re-enter with the
     /// pressure −τ·dᵢ of that step. τ converts a gap into a pressure only when t is a gap (no
@@ -437,15 +511,15 @@ impl Buffers {
     }
 
     /// The contact set of `p` and the gap residual d, with the modes' amplitudes fitted on it.
-    fn residual(&mut self, problem: &InterfaceProblem, groups: &mut Groups, g: &[f64], p: &[f64]) {
+    fn residual(&mut self, problem: &InterfaceProblem, groups: &mut Groups, p: &[f64]) {
         let w = problem.weights();
         for ((f, p), w) in self.forces.iter_mut().zip(p).zip(w) {
             *f = p * w;
         }
-        problem.apply_influence_with(&self.forces, &mut self.u, &mut self.spare);
-        for i in 0..p.len() {
-            self.contact[i] = p[i] > 0.0;
-            self.d[i] = g[i] + self.u[i];
+        problem.apply_influence_with(&self.forces, &mut self.d, &mut self.spare);
+        problem.add_free_gap(&mut self.d);
+        for (c, &p) in self.contact.iter_mut().zip(p) {
+            *c = p > 0.0;
         }
         groups.fit(w, &mut self.d, &self.contact);
     }
@@ -462,10 +536,11 @@ impl Buffers {
     ) {
         let w = problem.weights();
         let n = w.len();
+        // The masked residual, in the forces' buffer (free until the step).
         for i in 0..n {
-            self.masked[i] = if self.contact[i] { self.d[i] } else { 0.0 };
+            self.forces[i] = if self.contact[i] { self.d[i] } else { 0.0 };
         }
-        self.preconditioned = problem.precondition(&self.masked, &mut self.z);
+        self.preconditioned = problem.precondition(&self.forces, &self.contact, &mut self.z);
         if self.preconditioned {
             for i in 0..n {
                 self.z[i] = if self.contact[i] {
@@ -475,7 +550,7 @@ impl Buffers {
                 };
             }
         } else {
-            self.z.copy_from_slice(&self.masked);
+            self.z.copy_from_slice(&self.forces);
         }
         groups.project(w, &mut self.z, &self.contact);
         let gz = self.dot(w, &self.d, &self.z);
@@ -683,16 +758,29 @@ impl Groups {
         }
     }
 
-    /// The gap d = g + A W p + R λ of a final pressure, and λ.
-    fn final_gap(&mut self, problem: &InterfaceProblem, p: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    /// The gap d = g + A W p + R λ of a final pressure, and λ; `forces` and `spare` are the
+    /// product's buffers (n values each; `spare` empty when the operator is one product).
+    fn final_gap(
+        &mut self,
+        problem: &InterfaceProblem,
+        p: &[f64],
+        forces: &mut [f64],
+        spare: &mut [f64],
+    ) -> (Vec<f64>, Vec<f64>) {
         let w = problem.weights();
-        let force: Vec<f64> = p.iter().zip(w).map(|(p, w)| p * w).collect();
-        let mut d = problem.free_gap();
-        let mut u = vec![0.0; p.len()];
-        problem.apply_influence(&force, &mut u);
-        for (d, u) in d.iter_mut().zip(&u) {
-            *d += u;
+        for ((f, p), w) in forces.iter_mut().zip(p).zip(w) {
+            *f = p * w;
         }
+        let mut d = vec![0.0; p.len()];
+        let mut own;
+        let spare = if spare.len() == p.len() || !problem.sums_two_products() {
+            spare
+        } else {
+            own = vec![0.0; p.len()];
+            &mut own[..]
+        };
+        problem.apply_influence_with(forces, &mut d, spare);
+        problem.add_free_gap(&mut d);
         let contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
         self.amplitudes(w, &d, &contact);
         problem.add_rigid_motion(&self.lambda, &mut d);

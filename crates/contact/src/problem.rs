@@ -5,7 +5,8 @@ use std::sync::{Mutex, OnceLock};
 
 use contopt_core::observe::Method;
 use contopt_core::{
-    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
+    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, RigidBody,
+    Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -40,70 +41,134 @@ impl Body<'_> {
     }
 }
 
+/// How the summed operator A = A¹ + P A² Pᵀ is applied.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Product {
+    /// A = factor·Aᵏ: the other body is rigid (factor 1), or both bodies' operators are
+    /// multiples of one, paired point for point ([`ElasticBody::influence_shape`]); one product.
+    One { body: usize, factor: f64 },
+    /// Both bodies' products, summed.
+    Both,
+}
+
+impl Product {
+    /// The product that two bodies' shapes allow (`identity`: paired point for point).
+    fn of(shapes: [Option<(String, f64)>; 2], identity: bool) -> Self {
+        match shapes {
+            [_, Some((_, 0.0))] => Product::One {
+                body: 0,
+                factor: 1.0,
+            },
+            [Some((_, 0.0)), _] => Product::One {
+                body: 1,
+                factor: 1.0,
+            },
+            [Some((shape1, c1)), Some((shape2, c2))]
+                if identity && shape1 == shape2 && c1 > 0.0 =>
+            {
+                Product::One {
+                    body: 0,
+                    factor: (c1 + c2) / c1,
+                }
+            }
+            _ => Product::Both,
+        }
+    }
+}
+
+/// The second body's vectors in its own numbering.
+struct Scratch {
+    input: Vec<f64>,
+    output: Vec<f64>,
+    contact: Vec<bool>,
+}
+
 /// The summed influence operator A = A¹ + P A² Pᵀ of the two bodies through their point
 /// pairing P, with the buffers its products reuse and the dense matrix once it is asked for.
 struct Operator<'a> {
     bodies: [Body<'a>; 2],
     /// `pair[i]`: the index of point i among the second body's points; `None` for the identity.
     pair: Option<Vec<usize>>,
-    /// The second body's input and output in its own numbering.
-    scratch: Mutex<[Vec<f64>; 2]>,
+    /// The second body's input and output, and the contact set, in its own numbering (only
+    /// with a pairing).
+    scratch: Option<Mutex<Scratch>>,
     dense: OnceLock<Mat<f64>>,
     /// Each body's share of the compliance at the first point, (Aᵏ)₀₀ / A₀₀ (a uniform load
     /// moves a periodic grid not at all), for the preconditioner.
     shares: OnceLock<[f64; 2]>,
-    /// A = factor·A¹ when the second body's operator is a multiple of the first's
-    /// ([`ElasticBody::influence_shape`]): one product instead of two.
-    merged: Option<f64>,
+    product: Product,
 }
 
 impl Operator<'_> {
     /// `map(body, input, output)` in the body's own numbering, with `input` and `output` in the
     /// first body's: the second body's points are permuted through the pairing P.
+    /// `map(body, input, contact, output)` in the body's own numbering, with `input`,
+    /// `contact` and `output` in the first body's: the second body's points are permuted
+    /// through the pairing P.
     fn in_own_numbering<T>(
         &self,
         body: usize,
         input: &[f64],
+        contact: &[bool],
         output: &mut [f64],
-        map: impl FnOnce(&dyn ElasticBody, &[f64], &mut [f64]) -> T,
+        map: impl FnOnce(&dyn ElasticBody, &[f64], &[bool], &mut [f64]) -> T,
     ) -> T {
         let b = self.bodies[body].get();
-        match (&self.pair, body) {
-            (None, _) | (_, 0) => map(b, input, output),
-            (Some(pair), _) => {
-                let mut scratch = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-                let [own_in, own_out] = &mut *scratch;
+        match (&self.pair, &self.scratch, body) {
+            (Some(pair), Some(scratch), 1) => {
+                let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
+                let Scratch {
+                    input: own_in,
+                    output: own_out,
+                    contact: own_contact,
+                } = &mut *scratch;
                 for (i, &j) in pair.iter().enumerate() {
                     own_in[j] = input[i];
                 }
-                let result = map(b, own_in, own_out);
+                if !contact.is_empty() {
+                    for (i, &j) in pair.iter().enumerate() {
+                        own_contact[j] = contact[i];
+                    }
+                }
+                let result = map(b, own_in, own_contact, own_out);
                 for (i, &j) in pair.iter().enumerate() {
                     output[i] = own_out[j];
                 }
                 result
             }
+            _ => map(b, input, contact, output),
         }
     }
 
     /// `out = A¹ force` (first body) or `out = P A² Pᵀ force` (second).
     fn apply_one(&self, body: usize, force: &[f64], out: &mut [f64]) {
-        self.in_own_numbering(body, force, out, |b, f, o| b.apply_influence(f, o));
+        self.in_own_numbering(body, force, &[], out, |b, f, _, o| b.apply_influence(f, o));
     }
 
     fn apply(&self, force: &[f64], out: &mut [f64], spare: &mut [f64]) {
-        if let Some(factor) = self.merged {
-            self.apply_one(0, force, out);
-            out.iter_mut().for_each(|u| *u *= factor);
-            return;
-        }
-        self.apply_one(0, force, out);
-        self.apply_one(1, force, spare);
-        for (o, s) in out.iter_mut().zip(spare.iter()) {
-            *o += s;
+        match self.product {
+            Product::One { body, factor } => {
+                self.apply_one(body, force, out);
+                if factor != 1.0 {
+                    out.iter_mut().for_each(|u| *u *= factor);
+                }
+            }
+            Product::Both => {
+                self.apply_one(0, force, out);
+                self.apply_one(1, force, spare);
+                for (o, s) in out.iter_mut().zip(spare.iter()) {
+                    *o += s;
+                }
+            }
         }
     }
 
     fn shares(&self, n: usize) -> [f64; 2] {
+        if let Product::One { body, factor } = self.product {
+            let mut shares = [0.0; 2];
+            shares[body] = 1.0 / factor;
+            return shares;
+        }
         *self.shares.get_or_init(|| {
             let (mut unit, mut u) = (vec![0.0; n], vec![0.0; n]);
             unit[0] = 1.0;
@@ -121,19 +186,22 @@ impl Operator<'_> {
         })
     }
 
-    /// Approximate inverse: the first body's (or else the second's) scaled by its share of the
-    /// compliance, exact when the kernels are proportional (two half-spaces on one grid, or a
-    /// half-space against a rigid body).
-    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+    /// Approximate inverse on the set `contact`: the first body's (or else the second's)
+    /// scaled by its share of the compliance, exact when the kernels are proportional (two
+    /// half-spaces on one grid, or a half-space against a rigid body).
+    fn precondition(&self, displacement: &[f64], contact: &[bool], force: &mut [f64]) -> bool {
         let shares = self.shares(displacement.len());
         for (body, &share) in shares.iter().enumerate() {
             if share <= 0.0 {
                 continue;
             }
-            let done =
-                self.in_own_numbering(body, displacement, force, |b, d, f| b.precondition(d, f));
+            let done = self.in_own_numbering(body, displacement, contact, force, |b, d, c, f| {
+                b.precondition_on(d, c, f)
+            });
             if done {
-                force.iter_mut().for_each(|f| *f *= share);
+                if share != 1.0 {
+                    force.iter_mut().for_each(|f| *f *= share);
+                }
                 return true;
             }
         }
@@ -167,6 +235,15 @@ impl FreeMode {
     }
 }
 
+/// What a problem holds besides its bodies and their pairing.
+struct Parts {
+    load_gap: Option<Rc<Vec<f64>>>,
+    modes: Rc<Vec<FreeMode>>,
+    owners: Option<Rc<Vec<[usize; 2]>>>,
+    initial_gap: Vec<f64>,
+    dense_limit: u64,
+}
+
 /// Frictionless normal contact of two bodies, condensed to their common interface points.
 ///
 /// With W = diag(wᵢ) the point weights, A = A¹ + A² the summed influence operators of the
@@ -189,7 +266,8 @@ impl FreeMode {
 pub struct InterfaceProblem<'a> {
     operator: Rc<Operator<'a>>,
     interface: Rc<Interface>,
-    load_gap: Rc<Vec<f64>>,
+    /// f¹ + f², the displacements under the bodies' own loads; `None` when they are zero.
+    load_gap: Option<Rc<Vec<f64>>>,
     modes: Rc<Vec<FreeMode>>,
     /// Whose each of `modes` is: (body, its index among the body's rigid modes); `None` once
     /// [`InterfaceProblem::with_modes`] replaced them.
@@ -247,8 +325,26 @@ impl<'a> InterfaceProblem<'a> {
         check::gap(initial_gap, n)?;
         let f1 = b1.load_displacement()?;
         let f2 = b2.load_displacement()?;
-        let load_gap = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
+        let load_gap: Vec<f64> = (0..n).map(|i| f1[i] + f2[pair[i]]).collect();
+        let load_gap = load_gap
+            .iter()
+            .any(|&f| f != 0.0)
+            .then(|| Rc::new(load_gap));
         let (modes, owners) = free_modes(b1, b2, &pair)?;
+        let parts = Parts {
+            load_gap,
+            modes: Rc::new(modes),
+            owners: Some(Rc::new(owners)),
+            initial_gap: initial_gap.to_vec(),
+            dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
+        };
+        Self::assemble(bodies, pair, parts)
+    }
+
+    /// The problem of `bodies`, paired by `pair`, with the rest given.
+    fn assemble(bodies: [Body<'a>; 2], pair: Vec<usize>, parts: Parts) -> Result<Self> {
+        let (b1, b2) = (bodies[0].get(), bodies[1].get());
+        let n = pair.len();
         let pressure_basis = match (b1.pressure_basis(), b2.pressure_basis()) {
             (Some(b), _) => Some(b.clone()),
             (None, Some(b)) => Some(GapShape::new(
@@ -257,19 +353,18 @@ impl<'a> InterfaceProblem<'a> {
             )?),
             (None, None) => None,
         };
-        let interface = Rc::new(s1.clone());
+        let interface = Rc::new(b1.interface().clone());
         let identity = pair.iter().enumerate().all(|(i, &j)| i == j);
-        let merged = match (b1.influence_shape(), b2.influence_shape()) {
-            (Some((shape1, c1)), Some((shape2, c2)))
-                if identity && shape1 == shape2 && c1 > 0.0 =>
-            {
-                Some((c1 + c2) / c1)
-            }
-            _ => None,
-        };
+        let product = Product::of([b1.influence_shape(), b2.influence_shape()], identity);
         let operator = Operator {
-            merged,
-            scratch: Mutex::new([vec![0.0; n], vec![0.0; n]]),
+            product,
+            scratch: (!identity).then(|| {
+                Mutex::new(Scratch {
+                    input: vec![0.0; n],
+                    output: vec![0.0; n],
+                    contact: vec![false; n],
+                })
+            }),
             pair: (!identity).then_some(pair),
             bodies,
             dense: OnceLock::new(),
@@ -278,12 +373,12 @@ impl<'a> InterfaceProblem<'a> {
         Ok(Self {
             interface,
             operator: Rc::new(operator),
-            load_gap: Rc::new(load_gap),
-            modes: Rc::new(modes),
-            owners: Some(Rc::new(owners)),
+            load_gap: parts.load_gap,
+            modes: parts.modes,
+            owners: parts.owners,
             pressure_basis: pressure_basis.map(Rc::new),
-            initial_gap: initial_gap.to_vec(),
-            dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
+            initial_gap: parts.initial_gap,
+            dense_limit: parts.dense_limit,
         })
     }
 
@@ -368,21 +463,42 @@ impl<'a> InterfaceProblem<'a> {
     /// The influence product `displacement = A force`, A = A¹ + A² \[mm/N\], through the
     /// bodies' operators (an FFT convolution on a half-space grid).
     pub fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let mut spare = vec![0.0; force.len()];
+        let mut spare = if self.sums_two_products() {
+            vec![0.0; force.len()]
+        } else {
+            vec![]
+        };
         self.operator.apply(force, displacement, &mut spare);
     }
 
     /// As [`InterfaceProblem::apply_influence`] with a caller's buffer `spare` of the same
-    /// length, for loops that must not allocate.
+    /// length, for loops that must not allocate; it may be empty unless
+    /// [`InterfaceProblem::sums_two_products`].
     pub fn apply_influence_with(&self, force: &[f64], displacement: &mut [f64], spare: &mut [f64]) {
         self.operator.apply(force, displacement, spare);
     }
 
-    /// An approximate inverse of A for preconditioning: writes forces that roughly produce
-    /// `displacement` and returns `true`, or `false` when neither body offers one
-    /// ([`ElasticBody::precondition`]).
-    pub fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
-        self.operator.precondition(displacement, force)
+    /// Whether the influence product sums two bodies' products (and so needs a `spare` buffer
+    /// in [`InterfaceProblem::apply_influence_with`]): not when one body is rigid, nor when the
+    /// two operators are multiples of one ([`ElasticBody::influence_shape`]).
+    pub fn sums_two_products(&self) -> bool {
+        self.operator.product == Product::Both
+    }
+
+    /// An approximate inverse of A on the points marked in `contact` (the others unloaded),
+    /// for preconditioning: writes forces on those points that roughly produce `displacement`
+    /// there (zero elsewhere) and returns `true`, or `false` when neither body offers one
+    /// ([`ElasticBody::precondition_on`]).
+    pub fn precondition(&self, displacement: &[f64], contact: &[bool], force: &mut [f64]) -> bool {
+        self.operator.precondition(displacement, contact, force)
+    }
+
+    /// Whether a body offers an approximate inverse of A ([`InterfaceProblem::precondition`]):
+    /// found by applying it once to zero displacements on every point (one FFT pair on a
+    /// half-space grid, nothing for a body without one).
+    pub fn offers_inverse(&self) -> bool {
+        let n = self.len();
+        self.precondition(&vec![0.0; n], &vec![true; n], &mut vec![0.0; n])
     }
 
     /// The dense summed influence matrix A = A¹ + P A² Pᵀ \[mm/N\], built on the first call and
@@ -436,11 +552,22 @@ impl<'a> InterfaceProblem<'a> {
 
     /// g = h + f¹ + f²: the gap before any contact pressure, rigid modes held \[mm\].
     pub fn free_gap(&self) -> Vec<f64> {
-        self.initial_gap
-            .iter()
-            .zip(self.load_gap.iter())
-            .map(|(h, f)| h + f)
-            .collect()
+        let mut g = vec![0.0; self.len()];
+        self.add_free_gap(&mut g);
+        g
+    }
+
+    /// Adds the free gap g = h + f¹ + f² to `gap` (one value per point), for loops that must
+    /// not allocate.
+    pub fn add_free_gap(&self, gap: &mut [f64]) {
+        for (d, h) in gap.iter_mut().zip(&self.initial_gap) {
+            *d += h;
+        }
+        if let Some(load_gap) = &self.load_gap {
+            for (d, f) in gap.iter_mut().zip(load_gap.iter()) {
+                *d += f;
+            }
+        }
     }
 
     /// The free rigid modes.
@@ -535,13 +662,7 @@ impl<'a> InterfaceProblem<'a> {
         }
         gap.fill(0.0);
         self.apply_influence_with(force, gap, spare);
-        for ((d, h), f) in gap
-            .iter_mut()
-            .zip(&self.initial_gap)
-            .zip(self.load_gap.iter())
-        {
-            *d += h + f;
-        }
+        self.add_free_gap(gap);
         self.add_rigid_motion(rigid, gap);
     }
 
@@ -660,31 +781,156 @@ impl<'a> InterfaceProblem<'a> {
     pub fn restrict(&self, keep: &[bool]) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
         let op = &self.operator;
         let (part1, index) = op.bodies[0].get().restrict(keep)?;
-        let n2 = op.bodies[1].get().interface().len();
-        let to_second = |i: usize| op.pair.as_ref().map_or(i, |p| p[i]);
-        let mut keep2 = vec![false; n2];
-        for &i in &index {
+        let part2 = self.second_part(part1.interface(), &index)?;
+        let pair = part1
+            .interface()
+            .partners(part2.interface(), part1.name(), part2.name())
+            .ok()?;
+        let modes = self.modes_on(&index)?;
+        let parts = Parts {
+            load_gap: self
+                .load_gap
+                .as_ref()
+                .map(|f| Rc::new(index.iter().map(|&i| f[i]).collect())),
+            modes: Rc::new(modes),
+            owners: None,
+            initial_gap: index.iter().map(|&i| self.initial_gap[i]).collect(),
+            dense_limit: self.dense_limit,
+        };
+        let part = Self::assemble([Body::Owned(part1), Body::Owned(part2)], pair, parts).ok()?;
+        Some((part, index))
+    }
+
+    /// The problem on coarser bodies ([`ElasticBody::coarsen`]), with the coarse point of
+    /// each point (`parent`): the first body coarsens itself, the second too (grouped alike)
+    /// or, without compliance, is held on the coarse surface; the gaps are the W-weighted
+    /// means over each coarse point's points, each mode moves the coarse points of its points
+    /// by their mean and keeps its load. `None` when a body offers no coarser version, the
+    /// two group differently, or two modes would share a coarse point.
+    pub fn coarsen(&self) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
+        let op = &self.operator;
+        let (coarse1, parent) = op.bodies[0].get().coarsen()?;
+        let second = op.bodies[1].get();
+        let coarse2: Box<dyn ElasticBody + 'a> = if matches!(second.influence_shape(), Some((_, c)) if c == 0.0)
+        {
+            Box::new(RigidBody::fixed(second.name(), coarse1.interface()))
+        } else {
+            let (coarse2, parent2) = second.coarsen()?;
+            (op.pair.is_none() && parent2 == parent).then_some(coarse2)?
+        };
+        let pair = coarse1
+            .interface()
+            .partners(coarse2.interface(), coarse1.name(), coarse2.name())
+            .ok()?;
+        let m = coarse1.interface().len();
+        let w = self.weights();
+        let mut total = vec![0.0; m];
+        for (i, &c) in parent.iter().enumerate() {
+            total[c] += w[i];
+        }
+        let mean = |v: &[f64]| {
+            let mut sum = vec![0.0; m];
+            for (i, &c) in parent.iter().enumerate() {
+                sum[c] += w[i] * v[i];
+            }
+            sum.iter()
+                .zip(&total)
+                .map(|(s, t)| s / t)
+                .collect::<Vec<f64>>()
+        };
+        let parts = Parts {
+            load_gap: self.load_gap.as_ref().map(|f| Rc::new(mean(f))),
+            modes: Rc::new(self.coarse_modes(&parent, &total)?),
+            owners: None,
+            initial_gap: mean(&self.initial_gap),
+            dense_limit: self.dense_limit,
+        };
+        let coarse =
+            Self::assemble([Body::Owned(coarse1), Body::Owned(coarse2)], pair, parts).ok()?;
+        Some((coarse, parent))
+    }
+
+    /// The modes on the coarse points of `parent` (of W-weights `total`): each moves a coarse
+    /// point by the W-mean of its points' rᵢ; `None` when two modes share a coarse point, or a
+    /// mode moves only some of a coarse point's points.
+    fn coarse_modes(&self, parent: &[usize], total: &[f64]) -> Option<Vec<FreeMode>> {
+        let w = self.weights();
+        let m = total.len();
+        let mut owner = vec![usize::MAX; m];
+        let (mut moved, mut covered) = (vec![0.0; m], vec![0.0; m]);
+        let mut modes = Vec::with_capacity(self.modes.len());
+        for (k, mode) in self.modes.iter().enumerate() {
+            let mut points = vec![];
+            for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
+                let c = parent[i];
+                if owner[c] == usize::MAX {
+                    owner[c] = k;
+                    points.push(c);
+                } else if owner[c] != k {
+                    return None;
+                }
+                moved[c] += w[i] * r;
+                covered[c] += w[i];
+            }
+            if points
+                .iter()
+                .any(|&c| (covered[c] - total[c]).abs() > WEIGHT_MATCH * total[c])
+            {
+                return None;
+            }
+            modes.push(FreeMode {
+                displacement: points.iter().map(|&c| moved[c] / covered[c]).collect(),
+                points,
+                ..mode.clone()
+            });
+        }
+        Some(modes)
+    }
+
+    /// The second body over the points `index` of the first (whose part has the surface
+    /// `surface`): a body without compliance ([`ElasticBody::influence_shape`] of scale 0) is
+    /// held there, on that surface (its modes are the problem's); another restricts itself to
+    /// the same points, or `None`.
+    fn second_part(
+        &self,
+        surface: &Interface,
+        index: &[usize],
+    ) -> Option<Box<dyn ElasticBody + 'a>> {
+        let second = self.operator.bodies[1].get();
+        if matches!(second.influence_shape(), Some((_, c)) if c == 0.0) {
+            return Some(Box::new(RigidBody::fixed(second.name(), surface)));
+        }
+        let to_second = |i: usize| self.operator.pair.as_ref().map_or(i, |p| p[i]);
+        let mut keep2 = vec![false; second.interface().len()];
+        for &i in index {
             keep2[to_second(i)] = true;
         }
-        let (part2, mut index2) = op.bodies[1].get().restrict(&keep2)?;
+        let (part2, mut index2) = second.restrict(&keep2)?;
         let mut wanted: Vec<usize> = index.iter().map(|&i| to_second(i)).collect();
         wanted.sort_unstable();
         index2.sort_unstable();
-        if wanted != index2 {
-            return None;
-        }
-        let mut position = vec![usize::MAX; self.len()];
-        for (a, &i) in index.iter().enumerate() {
-            position[i] = a;
-        }
+        (wanted == index2).then_some(part2)
+    }
+
+    /// The free modes over the points `index` (renumbered), with their loads: the points left
+    /// out carry no pressure. `None` when a loaded mode would lose all its points.
+    fn modes_on(&self, index: &[usize]) -> Option<Vec<FreeMode>> {
+        let sorted: Option<Vec<(usize, usize)>> = (!index.is_sorted()).then(|| {
+            let mut s: Vec<(usize, usize)> = index.iter().copied().zip(0..).collect();
+            s.sort_unstable();
+            s
+        });
+        let position = |i: usize| match &sorted {
+            None => index.binary_search(&i).ok(),
+            Some(s) => s.binary_search_by_key(&i, |&(k, _)| k).ok().map(|k| s[k].1),
+        };
         let mut modes = Vec::with_capacity(self.modes.len());
         for mode in self.modes.iter() {
             let (points, displacement): (Vec<usize>, Vec<f64>) = mode
                 .points
                 .iter()
                 .zip(&mode.displacement)
-                .filter(|(&i, _)| position[i] != usize::MAX)
-                .map(|(&i, &r)| (position[i], r))
+                .filter_map(|(&i, &r)| position(i).map(|a| (a, r)))
                 .unzip();
             if points.is_empty() && mode.load != 0.0 {
                 return None;
@@ -695,12 +941,7 @@ impl<'a> InterfaceProblem<'a> {
                 ..mode.clone()
             });
         }
-        let gap: Vec<f64> = index.iter().map(|&i| self.initial_gap[i]).collect();
-        let mut part = Self::from_bodies([Body::Owned(part1), Body::Owned(part2)], &gap).ok()?;
-        part.load_gap = Rc::new(index.iter().map(|&i| self.load_gap[i]).collect());
-        part.modes = Rc::new(modes);
-        part.dense_limit = self.dense_limit;
-        Some((part, index))
+        Some(modes)
     }
 }
 

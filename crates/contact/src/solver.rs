@@ -17,6 +17,12 @@ pub trait ContactSolver {
     /// The method, in events and reports.
     fn method(&self) -> Method;
 
+    /// The method that solves `problem`: [`ContactSolver::method`], unless the solver chooses
+    /// one per problem ([`crate::Auto`]).
+    fn method_for(&self, _problem: &InterfaceProblem) -> Method {
+        self.method()
+    }
+
     /// The n × n matrices the solver holds at once on an interface of `points` points (0 for
     /// a matrix-free solver): what a memory estimate counts before it builds anything.
     fn dense_copies(&self, points: usize) -> u64;

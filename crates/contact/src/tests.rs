@@ -10,9 +10,9 @@ use contopt_core::{
 use faer::Mat;
 
 use crate::{
-    ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
-    FullPenalty, InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer, PolonskyKeerSettings,
-    Qp, QpSettings,
+    ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, Auto,
+    ContactSolver, FullPenalty, InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer,
+    PolonskyKeerSettings, Qp, QpSettings,
 };
 
 fn qp() -> Qp {
@@ -143,6 +143,64 @@ fn floating_three_points(coupling: f64) -> InterfaceProblem<'static> {
     let b = body(a, vec![mode]);
     let rigid = RigidBody::fixed("rigid", b.interface());
     InterfaceProblem::owned(Box::new(b), Box::new(rigid), &[0.0, 1e-3, 5e-3]).unwrap()
+}
+
+/// A body of diagonal compliance that offers its exact inverse.
+struct Springs(MatrixBody);
+
+impl ElasticBody for Springs {
+    fn name(&self) -> &str {
+        "springs"
+    }
+    fn interface(&self) -> &Interface {
+        &self.0.interface
+    }
+    fn apply_influence(&self, force: &[f64], out: &mut [f64]) {
+        self.0.apply_influence(force, out)
+    }
+    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        for (i, f) in force.iter_mut().enumerate() {
+            *f = displacement[i] / self.0.a[(i, i)];
+        }
+        true
+    }
+    fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
+        self.0.load_displacement()
+    }
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &self.0.modes
+    }
+}
+
+/// `auto` picks Polonsky–Keer for a body that offers its inverse and the active set for one
+/// that does not (on the same three floating points), says so, and both give the exact
+/// p = (2, 1, 0); past `Auto::DENSE_POINTS` points the choice is Polonsky–Keer whatever the
+/// bodies.
+#[test]
+fn auto_chooses_by_the_bodies() {
+    let auto = Auto::new().unwrap();
+    let plain = floating_three_points(0.0);
+    let mode = RigidMode {
+        name: "translation".into(),
+        interface_displacement: vec![1.0; 3],
+        load: -3.0,
+    };
+    let a = Mat::from_fn(3, 3, |i, j| if i == j { 1e-3 } else { 0.0 });
+    let springs = Springs(body(a, vec![mode]));
+    let rigid = RigidBody::fixed("rigid", springs.interface());
+    let inverted = InterfaceProblem::new(&springs, &rigid, &[0.0, 1e-3, 5e-3]).unwrap();
+    for (problem, method) in [
+        (&plain, Method::ActiveSet),
+        (&inverted, Method::PolonskyKeer),
+    ] {
+        assert_eq!(auto.method_for(problem), method);
+        let st = auto.solve(problem).unwrap();
+        assert_eq!(st.method, method);
+        assert_close(&st.pressure, &[2.0, 1.0, 0.0], 1e-10, &method.to_string());
+    }
+    let large = Auto::DENSE_POINTS + 1;
+    assert_eq!(auto.choice(large).method(), Method::PolonskyKeer);
+    assert_eq!(auto.choice(Auto::DENSE_POINTS).method(), Method::ActiveSet);
 }
 
 /// Three points on a floating body (one axial mode, load 3 N), diagonal compliance 1e-3 and

@@ -72,11 +72,36 @@ pub trait ElasticBody {
         false
     }
 
+    /// An approximate inverse of the influence operator on the points marked in `contact`
+    /// while the others carry no force, A_CC⁻¹ (what an iterative solver on a contact set
+    /// needs): writes forces on the marked points (zero elsewhere) that roughly produce
+    /// `displacement` there (it is zero elsewhere), and returns `true`; `false` when the body
+    /// has no inverse.
+    ///
+    /// The default is [`ElasticBody::precondition`], masked: the whole operator's inverse on
+    /// the set, (A⁻¹)_CC. With A⁻¹ = K it exceeds A_CC⁻¹ by K_CN K_NN⁻¹ K_NC, the set's ties
+    /// to the unloaded points around it, which sit on the set's edge: small for a half-space
+    /// grid's circulant, but large for a bed whose points are tied strongly to their
+    /// neighbours (a Pasternak layer), whose directions it then swamps at the edge. A body
+    /// whose inverse K is local gives the exact A_CC⁻¹ = K_CC − K_CN K_NN⁻¹ K_NC.
+    fn precondition_on(&self, displacement: &[f64], contact: &[bool], force: &mut [f64]) -> bool {
+        if !self.precondition(displacement, force) {
+            return false;
+        }
+        for (f, &c) in force.iter_mut().zip(contact) {
+            if !c {
+                *f = 0.0;
+            }
+        }
+        true
+    }
+
     /// The influence operator as a multiple of a fixed one: `(shape, scale)` when A = scale·A₀
     /// with A₀ named by `shape` (a half-space grid: its cells and spacing; scale (1 − ν²)/E).
     /// Two bodies of one shape, paired point for point, share one product: the interface
-    /// problem applies one of them and scales it. `None` (the default) when the body does not
-    /// say.
+    /// problem applies one of them and scales it. A scale of 0 says the operator is zero (a
+    /// rigid body): the problem applies the partner's alone. `None` (the default) when the body
+    /// does not say.
     fn influence_shape(&self) -> Option<(String, f64)> {
         None
     }
@@ -87,6 +112,15 @@ pub trait ElasticBody {
     /// solvers use it to work where contact can occur, and check the answer on the whole body.
     fn restrict(&self, keep: &[bool]) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
         let _ = keep;
+        None
+    }
+
+    /// The same body discretised coarser, about half as finely each way (a grid of cells twice
+    /// as large, strips merged in pairs), with the coarse point of each of this body's points
+    /// (`parent[i]`, the points of a coarse point being the ones it covers); `None` (the
+    /// default) when the body offers none. An iterative solver starts from the coarse body's
+    /// solution (nested iteration): where contact is, and its pressure, are then nearly found.
+    fn coarsen(&self) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
         None
     }
 

@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
 use crate::{check, Error, Result};
@@ -25,13 +27,118 @@ pub const GEOMETRY_TOLERANCE: f64 = 1e-9;
 ///
 /// For finite-element bodies these are the three Gauss points of every contact face (as in
 /// the paper, §2.2); for Green's-function bodies the grid-cell centres. Stored as columns
-/// (structure of arrays) because the solvers sweep them.
+/// (structure of arrays) because the solvers sweep them, and shared: a clone, or the partner's
+/// surface ([`Interface::mirrored`]), holds the same columns, not a copy (a grid of 10⁶ cells
+/// has 32 MB of points and weights). Normals that are all alike (a plane) are stored once.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(into = "Columns", try_from = "Columns")]
 pub struct Interface {
+    geometry: Geometry,
+    points: Arc<[[f64; 3]]>,
+    weights: Arc<[f64]>,
+    normals: Normals,
+}
+
+/// The outward normals of an interface: one for all points, or one each.
+#[derive(Clone, Debug, PartialEq)]
+enum Normals {
+    Uniform([f64; 3]),
+    Each(Arc<[[f64; 3]]>),
+}
+
+impl Normals {
+    /// One normal when all are equal, else each.
+    fn new(normals: Vec<[f64; 3]>) -> Self {
+        match normals.first() {
+            Some(&first) if normals.iter().all(|&n| n == first) => Normals::Uniform(first),
+            _ => Normals::Each(normals.into()),
+        }
+    }
+
+    fn reversed(&self) -> Self {
+        match self {
+            Normals::Uniform(n) => Normals::Uniform(n.map(|c| -c)),
+            Normals::Each(each) => Normals::Each(each.iter().map(|n| n.map(|c| -c)).collect()),
+        }
+    }
+}
+
+/// The unit outward normals of an interface's points, by index or in order
+/// ([`Interface::normals`]).
+#[derive(Clone, Copy, Debug)]
+pub struct NormalsView<'a> {
+    normals: &'a Normals,
+    len: usize,
+}
+
+impl<'a> NormalsView<'a> {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there are none (never for a constructed interface).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The normals in order of the points.
+    pub fn iter(&self) -> impl Iterator<Item = &'a [f64; 3]> + 'a {
+        let (normals, len) = (self.normals, self.len);
+        (0..len).map(move |i| match normals {
+            Normals::Uniform(n) => n,
+            Normals::Each(each) => &each[i],
+        })
+    }
+}
+
+impl std::ops::Index<usize> for NormalsView<'_> {
+    type Output = [f64; 3];
+
+    fn index(&self, i: usize) -> &[f64; 3] {
+        assert!(i < self.len, "normal {i} of {} points", self.len);
+        match self.normals {
+            Normals::Uniform(n) => n,
+            Normals::Each(each) => &each[i],
+        }
+    }
+}
+
+impl<'a> IntoIterator for NormalsView<'a> {
+    type Item = &'a [f64; 3];
+    type IntoIter = Box<dyn Iterator<Item = &'a [f64; 3]> + 'a>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        Box::new(self.iter())
+    }
+}
+
+/// An interface as its columns, for files: read back through [`Interface::new`]'s checks.
+#[derive(Serialize, Deserialize)]
+struct Columns {
     geometry: Geometry,
     points: Vec<[f64; 3]>,
     weights: Vec<f64>,
     normals: Vec<[f64; 3]>,
+}
+
+impl From<Interface> for Columns {
+    fn from(s: Interface) -> Self {
+        Columns {
+            geometry: s.geometry,
+            points: s.points.to_vec(),
+            weights: s.weights.to_vec(),
+            normals: s.normals().iter().copied().collect(),
+        }
+    }
+}
+
+impl TryFrom<Columns> for Interface {
+    type Error = Error;
+
+    fn try_from(c: Columns) -> Result<Self> {
+        Interface::new(c.geometry, c.points, c.weights, c.normals)
+    }
 }
 
 impl Interface {
@@ -67,9 +174,9 @@ impl Interface {
         }
         let interface = Self {
             geometry,
-            points,
-            weights,
-            normals,
+            points: points.into(),
+            weights: weights.into(),
+            normals: Normals::new(normals),
         };
         interface.check_sums()?;
         Ok(interface)
@@ -103,17 +210,26 @@ impl Interface {
     }
 
     /// Unit outward normal of this body at each point.
-    pub fn normals(&self) -> &[[f64; 3]] {
-        &self.normals
+    pub fn normals(&self) -> NormalsView<'_> {
+        NormalsView {
+            normals: &self.normals,
+            len: self.points.len(),
+        }
     }
 
     /// The same points seen from the partner across the contact: the normals reversed (a
-    /// rigid body's or a bed's surface facing this one).
+    /// rigid body's or a bed's surface facing this one). The points and weights are shared.
     pub fn mirrored(&self) -> Interface {
         Interface {
-            normals: self.normals.iter().map(|n| n.map(|c| -c)).collect(),
+            normals: self.normals.reversed(),
             ..self.clone()
         }
+    }
+
+    /// Whether `other` holds the very same points and weights (a clone or a mirror of this
+    /// one): then they pair point for point without a comparison.
+    fn shares_points(&self, other: &Interface) -> bool {
+        Arc::ptr_eq(&self.points, &other.points) && Arc::ptr_eq(&self.weights, &other.weights)
     }
 
     /// The points kept by `keep`, in order (one flag per point), with their weights and
@@ -125,11 +241,15 @@ impl Interface {
         if index.is_empty() {
             return None;
         }
+        let normals = match &self.normals {
+            Normals::Uniform(n) => Normals::Uniform(*n),
+            Normals::Each(each) => Normals::Each(index.iter().map(|&i| each[i]).collect()),
+        };
         Some(Interface {
             geometry: self.geometry,
             points: index.iter().map(|&i| self.points[i]).collect(),
             weights: index.iter().map(|&i| self.weights[i]).collect(),
-            normals: index.iter().map(|&i| self.normals[i]).collect(),
+            normals,
         })
     }
 
@@ -147,6 +267,9 @@ impl Interface {
                     other.len()
                 ),
             });
+        }
+        if self.shares_points(other) {
+            return Ok((0..n).collect());
         }
         let scale = self
             .points
@@ -211,7 +334,7 @@ impl Interface {
     fn bounds(&self) -> ([f64; 3], [f64; 3]) {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
-        for x in &self.points {
+        for x in self.points.iter() {
             for c in 0..3 {
                 lo[c] = lo[c].min(x[c]);
                 hi[c] = hi[c].max(x[c]);

@@ -30,7 +30,7 @@ pub use faer;
 pub use fields::{BodyFields, Cell, CellKind};
 pub use full_system::FullSystem;
 pub use gap_shape::GapShape;
-pub use interface::{Geometry, Interface, GEOMETRY_TOLERANCE};
+pub use interface::{Geometry, Interface, NormalsView, GEOMETRY_TOLERANCE};
 pub use material::{Material, MaterialValues};
 pub use rigid::RigidBody;
 pub use state::{ContactState, Residuals};

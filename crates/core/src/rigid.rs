@@ -72,6 +72,11 @@ impl ElasticBody for RigidBody {
         Mat::zeros(self.interface.len(), self.interface.len())
     }
 
+    /// A = 0·A₀: no compliance, whatever the shape.
+    fn influence_shape(&self) -> Option<(String, f64)> {
+        Some(("rigid".into(), 0.0))
+    }
+
     fn load_displacement(&self) -> Result<Vec<f64>> {
         Ok(vec![0.0; self.interface.len()])
     }

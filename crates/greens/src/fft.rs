@@ -11,15 +11,20 @@ use rustfft::{Fft, FftPlanner};
 
 /// Buffers reused by every product (the hot loop of iterative solvers allocates nothing).
 /// Only the ny rows of the field are held in the x-transformed form, not the py rows of the
-/// padded grid: each column is padded, transformed, multiplied and transformed back on its
-/// own, which halves the largest buffer of a free grid.
+/// padded grid: the columns are padded, transformed, multiplied and transformed back a block
+/// at a time, which halves the largest buffer of a free grid.
 struct Work {
     row: Vec<f64>,
     /// The x-spectra of the ny rows, row after row: [j·cx + i].
     rows: Vec<Complex<f64>>,
-    column: Vec<Complex<f64>>,
+    /// A block of [`BLOCK`] columns, each of py values, one after another.
+    block: Vec<Complex<f64>>,
     scratch: Vec<Complex<f64>>,
 }
+
+/// Columns transformed together: a block is gathered from the rows in runs of this many
+/// neighbouring values (a run fills whole cache lines), and its transforms share one call.
+const BLOCK: usize = 16;
 
 /// The transforms of a `px` × `py` grid: real rows along x, complex columns along y, and the
 /// scratch length that serves all four.
@@ -61,9 +66,10 @@ pub(crate) struct Convolution {
     /// Transformed lengths: 2nx × 2ny (free) or nx × ny (periodic).
     px: usize,
     py: usize,
-    /// Spectrum of the (padded) kernel, column-major: [i·py + j] for x-frequency i; real,
-    /// because the kernel is even. Its reciprocal, where positive, is the circulant
-    /// approximation of the inverse operator used for preconditioning.
+    /// Spectrum of the (padded) kernel, column-major: [i·(py/2 + 1) + j] for x-frequency i
+    /// and y-frequency j ≤ py/2; real and even in j (the kernel is even), so that frequency
+    /// py − j is j's. Its reciprocal, where positive, is the circulant approximation of the
+    /// inverse operator used for preconditioning.
     spectrum: Vec<f64>,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
@@ -96,7 +102,7 @@ impl Convolution {
         let work = Work {
             row: vec![0.0; px],
             rows: vec![Complex::new(0.0, 0.0); cx * ny],
-            column: vec![Complex::new(0.0, 0.0); py],
+            block: vec![Complex::new(0.0, 0.0); BLOCK * py],
             scratch: vec![Complex::new(0.0, 0.0); scratch_len],
         };
         Self {
@@ -115,47 +121,45 @@ impl Convolution {
 
     /// The exact (linear, non-periodic) convolution with `kernel(|Δi|, |Δj|)` (|Δi| < nx,
     /// |Δj| < ny), by zero padding to 2nx × 2ny.
+    ///
+    /// The padded grid is a period of the kernel at the circular distance, `kernel(a, b)` with
+    /// a = min(i, 2nx − i) ≤ nx and b ≤ ny: the distances nx and ny never reach the field's
+    /// cells, so the product is the same for any value there, but the value decides the
+    /// preconditioner. With the kernel's own values the circulant is the kernel's periodic
+    /// repetition, positive like the kernel; with zeros there (a gap in the period) its spectrum
+    /// turns negative at some frequencies (anisotropic cells, odd sides), and its inverse is no
+    /// approximation of the operator's there.
     pub fn free(nx: usize, ny: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
         let (px, py) = (2 * nx, 2 * ny);
         let mut conv = Self::plan(nx, ny, px, py);
-        // Distance along an axis on the padded (circular) grid; the middle entry is never used.
-        let distance = |i: usize, n: usize| {
-            if i < n {
-                Some(i)
-            } else if i > n {
-                Some(2 * n - i)
-            } else {
-                None
-            }
-        };
+        let distance = |i: usize, n: usize| i.min(2 * n - i);
         // The padded kernel fills all py rows: transform it whole, once.
         let cx = px / 2 + 1;
+        let hy = py / 2 + 1;
         let mut spectra = vec![Complex::new(0.0, 0.0); cx * py];
         let mut work = conv.work.lock().expect("fresh lock");
         let Work {
             row,
-            column,
+            block,
             scratch,
             ..
         } = &mut *work;
         for j in 0..py {
             for (i, v) in row.iter_mut().enumerate() {
-                *v = match (distance(i, nx), distance(j, ny)) {
-                    (Some(a), Some(b)) => kernel(a, b),
-                    _ => 0.0,
-                };
+                *v = kernel(distance(i, nx), distance(j, ny));
             }
             conv.r2c
                 .process_with_scratch(row, &mut spectra[j * cx..(j + 1) * cx], scratch)
                 .expect("buffer lengths match the plan");
         }
-        let mut spectrum = vec![0.0; cx * py];
+        let mut spectrum = vec![0.0; cx * hy];
+        let column = &mut block[..py];
         for i in 0..cx {
             for (j, c) in column.iter_mut().enumerate() {
                 *c = spectra[j * cx + i];
             }
             conv.forward_y.process_with_scratch(column, scratch);
-            for (s, c) in spectrum[i * py..(i + 1) * py].iter_mut().zip(column.iter()) {
+            for (s, c) in spectrum[i * hy..(i + 1) * hy].iter_mut().zip(column.iter()) {
                 *s = c.re;
             }
         }
@@ -175,12 +179,18 @@ impl Convolution {
                 k as isize - n as isize
             }
         };
-        let cx = nx / 2 + 1;
+        let (cx, hy) = (nx / 2 + 1, ny / 2 + 1);
         conv.spectrum = (0..cx)
-            .flat_map(|i| (0..ny).map(move |j| (i, j)))
+            .flat_map(|i| (0..hy).map(move |j| (i, j)))
             .map(|(i, j)| spectrum(signed(i, nx), signed(j, ny)))
             .collect();
         conv
+    }
+
+    /// The smallest value of the kernel's spectrum (the circulant's smallest eigenvalue).
+    #[cfg(test)]
+    pub fn smallest_eigenvalue(&self) -> f64 {
+        self.spectrum.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
     /// output = kernel ∗ input on the nx × ny grid (x fastest).
@@ -196,7 +206,7 @@ impl Convolution {
 
     fn convolve(&self, multiplier: impl Fn(f64) -> f64, input: &[f64], output: &mut [f64]) {
         let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
-        let cx = px / 2 + 1;
+        let (cx, hy) = (px / 2 + 1, py / 2 + 1);
         let mut work = self
             .work
             .lock()
@@ -204,7 +214,7 @@ impl Convolution {
         let Work {
             row,
             rows,
-            column,
+            block,
             scratch,
         } = &mut *work;
         for (j, spectrum) in rows.chunks_exact_mut(cx).enumerate() {
@@ -214,18 +224,32 @@ impl Convolution {
                 .process_with_scratch(row, spectrum, scratch)
                 .expect("buffer lengths match the plan");
         }
-        for (i, kernel) in self.spectrum.chunks_exact(py).enumerate() {
+        for i0 in (0..cx).step_by(BLOCK) {
+            let width = BLOCK.min(cx - i0);
+            let columns = &mut block[..width * py];
             for j in 0..ny {
-                column[j] = rows[j * cx + i];
+                for (b, &c) in rows[j * cx + i0..j * cx + i0 + width].iter().enumerate() {
+                    columns[b * py + j] = c;
+                }
             }
-            column[ny..].fill(Complex::new(0.0, 0.0));
-            self.forward_y.process_with_scratch(column, scratch);
-            for (c, &s) in column.iter_mut().zip(kernel) {
-                *c *= multiplier(s);
+            for column in columns.chunks_exact_mut(py) {
+                column[ny..].fill(Complex::new(0.0, 0.0));
             }
-            self.inverse_y.process_with_scratch(column, scratch);
+            self.forward_y.process_with_scratch(columns, scratch);
+            for (b, column) in columns.chunks_exact_mut(py).enumerate() {
+                let kernel = &self.spectrum[(i0 + b) * hy..(i0 + b + 1) * hy];
+                for (j, c) in column.iter_mut().enumerate() {
+                    *c *= multiplier(kernel[j.min(py - j)]);
+                }
+            }
+            self.inverse_y.process_with_scratch(columns, scratch);
             for j in 0..ny {
-                rows[j * cx + i] = column[j];
+                for (b, c) in rows[j * cx + i0..j * cx + i0 + width]
+                    .iter_mut()
+                    .enumerate()
+                {
+                    *c = columns[b * py + j];
+                }
             }
         }
         let scale = 1.0 / (px * py) as f64;

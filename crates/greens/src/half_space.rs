@@ -32,13 +32,15 @@ pub struct HalfSpace {
     pub(crate) ny: usize,
     pub(crate) periodic: bool,
     /// K[(Δi, Δj)]: deflection at a cell centre per unit force on a cell Δi, Δj away; the
-    /// index is |Δ| on a free grid and Δ mod n on a periodic one.
-    kernel: Mat<f64>,
+    /// index is |Δ| ≤ n on a free grid (n itself for the FFT's padding) and Δ mod n on a
+    /// periodic one. Shared by the grid's sub-grids ([`ElasticBody::restrict`]).
+    kernel: Arc<Mat<f64>>,
     convolution: Arc<Convolution>,
     /// The free translation of a pressed body ([`HalfSpace::pressed`]), or none.
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
     compliance: f64,
+    material: Material,
     /// Cell sizes \[mm\].
     pub(crate) dx: f64,
     pub(crate) dy: f64,
@@ -141,7 +143,7 @@ impl HalfSpace {
         origin: [f64; 2],
     ) -> Result<Self> {
         let interface = Self::cells_interface(nx, ny, dx, dy, origin)?;
-        let kernel = love_kernel(material, nx, ny, dx, dy);
+        let kernel = love_kernel(material, nx + 1, ny + 1, dx, dy);
         let what = format!(
             "the kernel (1 − ν²)/(πE)·Love/(dx·dy) with dy = {dy} mm, E = {}",
             material.e()
@@ -155,10 +157,11 @@ impl HalfSpace {
             nx,
             ny,
             periodic: false,
-            kernel,
+            kernel: Arc::new(kernel),
             convolution,
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
+            material,
             dx,
             dy,
             nu: material.nu(),
@@ -206,10 +209,11 @@ impl HalfSpace {
             nx,
             ny,
             periodic: true,
-            kernel,
+            kernel: Arc::new(kernel),
             convolution,
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
+            material,
             dx,
             dy,
             nu: material.nu(),
@@ -283,7 +287,7 @@ impl HalfSpace {
             weights,
             vec![self.interface.normals()[0]; cx * cy],
         )?;
-        let kernel = Mat::from_fn(cx, cy, |i, j| self.kernel[(i, j)]);
+        let kernel = &self.kernel;
         let convolution = Arc::new(Convolution::free(cx, cy, |i, j| kernel[(i, j)]));
         Ok((
             Self {
@@ -292,7 +296,7 @@ impl HalfSpace {
                 nx: cx,
                 ny: cy,
                 periodic: false,
-                kernel,
+                kernel: self.kernel.clone(),
                 convolution,
                 modes: self
                     .modes
@@ -303,6 +307,7 @@ impl HalfSpace {
                     })
                     .collect(),
                 compliance: self.compliance,
+                material: self.material,
                 dx: self.dx,
                 dy: self.dy,
                 nu: self.nu,
@@ -397,6 +402,41 @@ impl ElasticBody for HalfSpace {
         Some((Box::new(sub), index))
     }
 
+    /// A grid of cells twice as large each way (a side of one cell stays), ⌈nx/2⌉ × ⌈ny/2⌉
+    /// over the same surface, each coarse cell the parent of the cells it covers (an odd
+    /// side's last coarse cell reaches half a coarse cell past the grid); pressed by the same
+    /// force, facing the same way. A periodic grid coarsens only when its sides are even.
+    fn coarsen(&self) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
+        let (nx, ny) = (self.nx, self.ny);
+        let (fx, fy) = (if nx > 1 { 2 } else { 1 }, if ny > 1 { 2 } else { 1 });
+        if fx * fy == 1 || (self.periodic && (nx % fx != 0 || ny % fy != 0)) {
+            return None;
+        }
+        let (cx, cy) = (nx.div_ceil(fx), ny.div_ceil(fy));
+        let (dx, dy) = (fx as f64 * self.dx, fy as f64 * self.dy);
+        let first = self.interface.points()[0];
+        let origin = [
+            first[0] + 0.5 * (fx - 1) as f64 * self.dx,
+            first[1] + 0.5 * (fy - 1) as f64 * self.dy,
+        ];
+        let build = if self.periodic {
+            HalfSpace::periodic
+        } else {
+            HalfSpace::grid
+        };
+        let mut coarse = build(&self.name, self.material, cx, cy, dx, dy, origin).ok()?;
+        if let Some(mode) = self.modes.first() {
+            coarse = coarse.pressed(-mode.load).ok()?;
+        }
+        if self.interface.normals()[0][2] < 0.0 {
+            coarse = coarse.upper();
+        }
+        let parent = (0..nx * ny)
+            .map(|k| (k / nx / fy) * cx + (k % nx) / fx)
+            .collect();
+        Some((Box::new(coarse), parent))
+    }
+
     /// The grid's cells, spacing and kind; the kernel is (1 − ν²)/E times one of those alone.
     fn influence_shape(&self) -> Option<(String, f64)> {
         let p = &self.interface.points();
@@ -448,6 +488,34 @@ mod tests {
     use super::*;
 
     /// The FFT product agrees with the dense matrix on an irregular grid, free and periodic.
+    /// A 7 × 4 grid, pressed and facing down, coarsens to 4 × 2 cells twice as large: each
+    /// cell lies inside its parent (a wrong parent index or origin puts cells a coarse cell
+    /// away), every coarse cell has a child, and the coarse grid keeps the load and the
+    /// normal; a periodic grid of an odd side offers none.
+    #[test]
+    fn coarsen_covers_the_grid() {
+        let steel = Material::new(2e5, 0.3).unwrap();
+        let fine = HalfSpace::grid("g", steel, 7, 4, 0.5, 0.25, [1.0, -2.0])
+            .unwrap()
+            .pressed(30.0)
+            .unwrap()
+            .upper();
+        let (coarse, parent) = fine.coarsen().unwrap();
+        let c = coarse.interface();
+        assert_eq!(c.len(), 8);
+        for (x, &k) in fine.interface().points().iter().zip(&parent) {
+            let y = c.points()[k];
+            assert!((x[0] - y[0]).abs() <= 0.5 + 1e-12, "{x:?} in {y:?}");
+            assert!((x[1] - y[1]).abs() <= 0.25 + 1e-12, "{x:?} in {y:?}");
+        }
+        assert!((0..8).all(|k| parent.contains(&k)));
+        assert!((c.weights()[0] - 0.5).abs() < 1e-12);
+        assert_eq!(c.normals()[0], fine.interface().normals()[0]);
+        assert_eq!(coarse.rigid_modes()[0].load, fine.rigid_modes()[0].load);
+        let periodic = HalfSpace::periodic("p", steel, 7, 4, 0.5, 0.25, [0.0; 2]).unwrap();
+        assert!(periodic.coarsen().is_none());
+    }
+
     #[test]
     fn fft_product_matches_dense() {
         let steel = Material::new(2e5, 0.3).unwrap();
@@ -600,6 +668,40 @@ mod tests {
         let soft = Material::new(2.2250738585072014e-308, -4.1e-15).unwrap();
         let e = HalfSpace::grid("hs", soft, 18, 16, 281.39, 1e-6, [0.0, 0.0]).unwrap_err();
         assert!(e.to_string().contains("FFT product"), "{e}");
+    }
+
+    /// The padded circulant of a free grid is positive (its inverse preconditions), also for
+    /// long cells and odd sides, where a period with zeros at the distances n (the padding's
+    /// middle) has negative eigenvalues as large as its median ones; the product is the same.
+    #[test]
+    fn padded_circulant_is_positive() {
+        let steel = Material::new(2e5, 0.3).unwrap();
+        for (nx, ny, dx, dy) in [
+            (100, 53, 0.1, 0.0173),
+            (60, 30, 1.0, 1.0),
+            (41, 40, 1.0, 1.0),
+        ] {
+            let kernel = love_kernel(steel, nx + 1, ny + 1, dx, dy);
+            let periodic = Convolution::free(nx, ny, |i, j| kernel[(i, j)]);
+            let gap = Convolution::free(nx, ny, |i, j| {
+                if i == nx || j == ny {
+                    0.0
+                } else {
+                    kernel[(i, j)]
+                }
+            });
+            let k00 = kernel[(0, 0)];
+            assert!(periodic.smallest_eigenvalue() > 0.05 * k00, "{nx} x {ny}");
+            if (nx, ny) != (41, 40) {
+                assert!(gap.smallest_eigenvalue() < 0.0, "{nx} x {ny}");
+            }
+            let force: Vec<f64> = (0..nx * ny).map(|k| ((k * 7 % 13) as f64).cos()).collect();
+            let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+            periodic.apply(&force, &mut a);
+            gap.apply(&force, &mut b);
+            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            assert!(a.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12 * scale));
+        }
     }
 
     /// Love's formula at the centre of a square 2a × 2a: (1 − ν²)pa/(πE) · 4 ln(1 + √2)·2

@@ -7,7 +7,8 @@
 //! - [`HalfSpace`]: a regular grid of rectangular cells on the surface of a half-space (Love);
 //! - [`HalfPlane`]: strips on the edge of a half-plane in plane strain or plane stress
 //!   (Flamant);
-//! - [`Winkler`]: a bed of independent springs under any surface (kernel δ(x − x')/k).
+//! - [`Winkler`]: a bed of independent springs under any surface (kernel δ(x − x')/k);
+//! - [`Pasternak`]: springs tied by a shear layer, under a row of strips (p = kw − G_p w'').
 //!
 //! Each also gives the stresses below its surface under a contact pressure
 //! ([`contopt_core::ElasticBody::subsurface`]): FFT products of Love's rectangle kernels on a
@@ -18,6 +19,7 @@ pub mod elliptic;
 mod fft;
 mod half_plane;
 mod half_space;
+mod pasternak;
 mod subsurface;
 mod subsurface_2d;
 mod winkler;
@@ -25,6 +27,7 @@ mod winkler;
 pub use axisymmetric::AxisymmetricHalfSpace;
 pub use half_plane::{HalfPlane, PlaneState};
 pub use half_space::HalfSpace;
+pub use pasternak::Pasternak;
 pub use winkler::Winkler;
 
 use contopt_core::{check, Error, Result};

@@ -33,8 +33,8 @@ pub struct CaseSpec {
     /// The two bodies: the first below the zone (its outward normal is n¹ of eq. 2.1), the
     /// second above it.
     pub body: Vec<BodySpec>,
-    /// The contact solver (default `auto`: the dense active set on small interfaces,
-    /// Polonsky–Keer on large ones).
+    /// The contact solver (default `auto`: Polonsky–Keer on large interfaces and where a body
+    /// offers an inverse of its operator, the dense active set on the other small ones).
     #[serde(default)]
     pub solver: SolverSettings,
     /// The design of the initial gap (none: the contact is analysed as it is).

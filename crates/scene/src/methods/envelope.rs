@@ -67,7 +67,7 @@ impl Design for EnvelopeSplit {
             .flatten();
         Ok(Designed {
             method: Some(Method::EnvelopeSplit),
-            solver: Some(c.solver.method()),
+            solver: Some(c.solver.method_for(c.problem)),
             termination: crown.termination.clone(),
             pressure: own.map(|s| s.pressure.clone()).unwrap_or_default(),
             gap: own.map(|s| s.gap.clone()).unwrap_or_default(),

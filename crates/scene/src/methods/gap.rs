@@ -66,7 +66,7 @@ impl Design for Gap {
         let optimisation = optimisation_of(c, &setup)?;
         let optimum = self.0.run(&optimisation, c.solver)?;
         report.time("optimise", started);
-        let solver: Option<Method> = Some(c.solver.method());
+        let solver: Option<Method> = Some(c.solver.method_for(c.problem));
         let mut designed = Designed {
             method: Some(optimum.method),
             solver,

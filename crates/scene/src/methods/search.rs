@@ -58,7 +58,7 @@ impl Design for ProfileSearch {
             .flatten();
         Ok(Designed {
             method: Some(Method::ProfileSearch),
-            solver: Some(c.solver.method()),
+            solver: Some(c.solver.method_for(c.problem)),
             termination: tuned.termination.clone(),
             pressure: own.map(|s| s.pressure.clone()).unwrap_or_default(),
             gap: own.map(|s| s.gap.clone()).unwrap_or_default(),
