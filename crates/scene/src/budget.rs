@@ -30,14 +30,23 @@ pub(crate) fn dense_limit(spec: &CaseSpec) -> Result<u64> {
     }
 }
 
-/// The case's estimate \[bytes\] against its limit.
+/// A case's memory: what it needs, estimated before anything is built, and the scene's limit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Memory {
+    /// The estimate of the case: its bodies, dense matrices and per-point vectors \[bytes\].
+    pub estimate_bytes: u64,
+    /// The scene's limit (`memory_limit_mb`, else [`DEFAULT_MEMORY_LIMIT_BYTES`]) \[bytes\].
+    pub limit_bytes: u64,
+}
+
+/// The case's estimate against its limit.
 pub(crate) fn check(
     spec: &CaseSpec,
     layout: &Layout,
     solver: &dyn ContactSolver,
     at: &Locator,
     meshes: &MeshFiles,
-) -> std::result::Result<u64, SceneError> {
+) -> std::result::Result<Memory, SceneError> {
     let limit = match spec.memory_limit_mb {
         None => DEFAULT_MEMORY_LIMIT_BYTES,
         Some(mb) => {
@@ -72,5 +81,10 @@ pub(crate) fn check(
     } else {
         "use fewer points or raise memory_limit_mb"
     };
-    memory::require(what, total, limit, advice).map_err(|e| at.library("contact.zone", e))
+    let estimate_bytes =
+        memory::require(what, total, limit, advice).map_err(|e| at.library("contact.zone", e))?;
+    Ok(Memory {
+        estimate_bytes,
+        limit_bytes: limit,
+    })
 }
