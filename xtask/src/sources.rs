@@ -178,6 +178,9 @@ pub const SOURCES: &[Source] = &[
         true,
     ),
     example(&["--example", "scene_rebuilds"], "scene_rebuilds", true),
+    // Gmsh meshes of 12k-200k nodes (performance.md): needs `python3 meshes/generate.py
+    // --bench target/gmsh-bench` first (the meshes are not committed), and takes a minute.
+    example(&["--example", "mesh_scaling"], "mesh_scaling", true),
     Source {
         args: &["production"],
         ..example(&["--example", "roller_scaling"], "roller_production", true)

@@ -30,24 +30,23 @@ pub(crate) fn dense_limit(spec: &CaseSpec) -> Result<u64> {
     }
 }
 
-/// A case's memory: its estimate and its limit \[bytes\]. Cases run at once share the limit
-/// ([`crate::Scene::run_parallel`]).
+/// A case's memory: what it needs, estimated before anything is built, and the scene's limit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Budget {
-    /// The estimate of the case's peak.
-    pub bytes: u64,
-    /// The scene's `memory_limit_mb`, or [`DEFAULT_MEMORY_LIMIT_BYTES`].
-    pub limit: u64,
+pub struct Memory {
+    /// The estimate of the case: its bodies, dense matrices and per-point vectors \[bytes\].
+    pub estimate_bytes: u64,
+    /// The scene's limit (`memory_limit_mb`, else [`DEFAULT_MEMORY_LIMIT_BYTES`]) \[bytes\].
+    pub limit_bytes: u64,
 }
 
-/// The case's estimate \[bytes\] against its limit.
+/// The case's estimate against its limit.
 pub(crate) fn check(
     spec: &CaseSpec,
     layout: &Layout,
     solver: &dyn ContactSolver,
     at: &Locator,
     meshes: &MeshFiles,
-) -> std::result::Result<Budget, SceneError> {
+) -> std::result::Result<Memory, SceneError> {
     let limit = match spec.memory_limit_mb {
         None => DEFAULT_MEMORY_LIMIT_BYTES,
         Some(mb) => {
@@ -82,7 +81,10 @@ pub(crate) fn check(
     } else {
         "use fewer points or raise memory_limit_mb"
     };
-    let bytes =
+    let estimate_bytes =
         memory::require(what, total, limit, advice).map_err(|e| at.library("contact.zone", e))?;
-    Ok(Budget { bytes, limit })
+    Ok(Memory {
+        estimate_bytes,
+        limit_bytes: limit,
+    })
 }

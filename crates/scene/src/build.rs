@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use contopt_core::{ElasticBody, Interface};
-use contopt_fem::ContactPairing;
+use contopt_fem::{BuildStats, ContactPairing};
 
 use crate::bodies::Side;
 use crate::{Case, SceneError};
@@ -17,6 +17,8 @@ pub struct Built {
     took: Duration,
     /// The pairing of two imported bodies, which measured the gap between them.
     pairing: Option<ContactPairing>,
+    /// The sizes and times of the two imported bodies' builds, when paired.
+    stats: Option<[BuildStats; 2]>,
 }
 
 impl Built {
@@ -24,13 +26,21 @@ impl Built {
     pub(crate) fn paired(
         bodies: [Box<dyn ElasticBody>; 2],
         pairing: ContactPairing,
+        stats: [BuildStats; 2],
         took: Duration,
     ) -> Self {
         Self {
             bodies,
             took,
             pairing: Some(pairing),
+            stats: Some(stats),
         }
+    }
+
+    /// The sizes and times of the two imported bodies' builds (assembly, factorisation,
+    /// condensation), first body first, when they were paired and built together.
+    pub fn stats(&self) -> Option<&[BuildStats; 2]> {
+        self.stats.as_ref()
     }
 
     /// The pairing of two imported bodies meshed apart, which measured the gap between them.
@@ -97,6 +107,7 @@ impl Case {
             bodies: [first, second],
             took: start.elapsed(),
             pairing: None,
+            stats: None,
         })
     }
 

@@ -44,6 +44,7 @@ pub use bodies::{
     BodyKind, BodySpec, Direction, FeBase, FeBlock, FeMesh, FePunch, GroupLoad, GroupSupport,
     HalfSpaceBody, PunchLoad, Rigid, Support, WinklerBed,
 };
+pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};
 pub use error::{Located, SceneError};
@@ -333,6 +334,18 @@ impl Case {
             plan,
             meshes: meshes.clone(),
         })
+    }
+
+    /// The memory the case needs, estimated by its check from what each part says of itself
+    /// before anything is built, and the scene's limit it was checked against.
+    pub fn memory(&self) -> budget::Memory {
+        self.plan.memory
+    }
+
+    /// The case's zone with every size known, as its check laid it out (for a zone of
+    /// imported meshes, [`MeshSurface`]: the points, the bodies' node counts).
+    pub fn layout(&self) -> &Layout {
+        &self.plan.layout
     }
 
     /// The folder of the scene file, where the files it names are read.

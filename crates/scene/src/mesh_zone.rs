@@ -450,7 +450,8 @@ impl Case {
         let (a, b) = pairing
             .bodies((first.name, first.model), (second.name, second.model))
             .map_err(|e| at.library("body", e))?;
+        let stats = [*a.stats(), *b.stats()];
         let bodies: [Box<dyn contopt_core::ElasticBody>; 2] = [Box::new(a), Box::new(b)];
-        Ok(Some(Built::paired(bodies, pairing, start.elapsed())))
+        Ok(Some(Built::paired(bodies, pairing, stats, start.elapsed())))
     }
 }

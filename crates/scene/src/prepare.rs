@@ -29,8 +29,8 @@ pub(crate) struct Plan {
     pub roller: Option<Roller>,
     /// The memory limit of dense matrices \[bytes\].
     pub dense_limit: u64,
-    /// The case's memory estimate and limit.
-    pub budget: crate::budget::Budget,
+    /// The case's memory estimate and limit, checked.
+    pub memory: crate::budget::Memory,
     /// The key of the case's bodies: cases with one key share one build.
     pub key: String,
 }
@@ -92,14 +92,14 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
     }
     let solver = spec.solver.build().map_err(|e| at.library("solver", e))?;
     let dense_limit = crate::budget::dense_limit(spec).map_err(|e| at.library("", e))?;
-    let budget = crate::budget::check(spec, &layout, solver.as_ref(), at, meshes)?;
+    let memory = crate::budget::check(spec, &layout, solver.as_ref(), at, meshes)?;
     Ok(Plan {
+        memory,
         layout,
         e_star,
         hertz,
         roller,
         dense_limit,
-        budget,
         key: format!("{:?}", (&contact.zone, &spec.body, contact.load)),
     })
 }
