@@ -154,3 +154,26 @@ fn paper_tables_on_gmsh_meshes() {
         assert!(h < 1e-9, "the measured gap between the flat faces: {h} µm");
     }
 }
+
+#[test]
+fn baseline_exact_solvers_on_cylinder() {
+    let scene = Scene::bundled("cylinder-on-block").unwrap();
+    let case = &scene.cases()[0];
+    let problem = case.problem().unwrap();
+    eprintln!("points {}", problem.len());
+    let solvers: Vec<Box<dyn ContactSolver>> = vec![
+        Box::new(Penalty::new(PenaltySettings { c_mpa_per_mm: 2.1e9 }).unwrap()),
+        Box::new(ActiveSet::new(ActiveSetSettings::default()).unwrap()),
+        Box::new(Qp::new(QpSettings::default()).unwrap()),
+    ];
+    let x: Vec<f64> = problem.interface().points().iter().map(|p| p[0]).collect();
+    for s in &solvers {
+        let t = std::time::Instant::now();
+        let st = s.solve(&problem).unwrap();
+        let pmax = st.pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+        let jump = st.pressure.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0f64, f64::max);
+        eprintln!("{}: {} iterp {} p_max {pmax:.3} jump {jump:.1} {:?}", st.method, st.termination, st.iterp, t.elapsed());
+        let line: Vec<String> = (0..x.len()).filter(|&i| x[i] < 0.4).map(|i| format!("{:.3}:{:.0}/{:.1e}", x[i], st.pressure[i], st.gap[i])).collect();
+        eprintln!("  {}", line.join(" "));
+    }
+}
