@@ -202,14 +202,14 @@ impl FeBody {
 
     /// The body whose point values are read at the nodes of `interface` through `mortar`
     /// (T, [`crate::ContactPairing`]): influence T A Tᵀ, load and rigid-mode displacements
-    /// T f, forces Tᵀ f, and the nodes themselves as its gap shape.
-    pub(crate) fn mortar(mut self, mortar: &Mortar, interface: Interface) -> Self {
+    /// T f, forces Tᵀ f, and `shape` as its gap shape.
+    pub(crate) fn mortar(mut self, mortar: &Mortar, interface: Interface, shape: &GapShape) -> Self {
         self.influence = mortar.congruence(&self.influence);
         self.load_displacement = mortar.apply(&self.load_displacement);
         for mode in &mut self.rigid_modes {
             mode.interface_displacement = mortar.apply(&mode.interface_displacement);
         }
-        self.gap_shape = GapShape::pointwise(&interface);
+        self.gap_shape = shape.clone();
         self.interface = interface;
         self.mortar = Some(mortar.clone());
         self
@@ -219,8 +219,8 @@ impl FeBody {
     /// faces' quadratic shape functions (Δh = L(x)Δh, §4): the map Q from the nodes to the
     /// Gauss points. Displacements are interpolated the same way, so a gap change that closes
     /// a displacement field exactly at the points exists. Both bodies of a
-    /// [`crate::ContactPairing`] have the first body's face nodes, their interface, one design
-    /// value each.
+    /// [`crate::ContactPairing`] have the first body's, weighted onto the nodes that check
+    /// contact.
     pub fn gap_shape(&self) -> &GapShape {
         &self.gap_shape
     }

@@ -40,16 +40,18 @@
 //! The force at each node acts on the two bodies along n¹ and −n¹ through the same
 //! distribution N¹ₖ/w̃ₖ, so momentum is conserved; a uniform pressure gives every node its
 //! consistent force ∫ N¹ₖ p dS on both sides (the patch test). The gap shape of the
-//! optimisation (§3, [`FeBody::gap_shape`]) is the nodes themselves.
+//! optimisation (§3, [`FeBody::gap_shape`]) is the first body's field h = Σⱼ N¹ⱼ hⱼ on its face
+//! nodes that check contact, weighted onto them (T B): its design values are the field's
+//! nodal values, as on a body's own faces.
 
 use std::collections::{HashMap, HashSet};
 
-use contopt_core::{check, memory, Error, Interface, Result, GEOMETRY_TOLERANCE};
+use contopt_core::{check, memory, Error, GapShape, Interface, Result, GEOMETRY_TOLERANCE};
 use faer::Mat;
 
 use crate::body::{gap_basis, nodes_of};
 use crate::element::GAUSS3;
-use crate::{Face, FeBody, FeModel};
+use crate::{Analysis, Face, FeBody, FeModel};
 
 /// Sub-segments shorter than this part of their face's parameter range [−1, 1] merge with a
 /// neighbour: a node of the second body that projects this close to another cut or to the
@@ -72,10 +74,9 @@ const ROOT_STEPS: usize = 100;
 /// A face node of the first body checks contact when its weight w̃ₖ = ∫ N¹ₖ dS over the paired
 /// part of its faces is at least this share of ∫ |N¹ₖ| dS there (2/3 on a whole quadratic edge
 /// for a corner node, 1 for a middle one). A corner node whose faces are paired only near
-/// their far end, where N¹ₖ < 0, or a corner node on the axis in axisymmetry (∫ N¹ₖ 2πr dr
-/// = 0 on a quadratic edge), would have a weight near zero or negative, and its gap
+/// their far end, where N¹ₖ < 0, would have a weight near zero or negative, and its gap
 /// d̃ₖ = ∫ N¹ₖ d dS / w̃ₖ would divide by it: its shape function joins its face's middle
-/// node's.
+/// node's ([`ties`]).
 const NODE_SHARE: f64 = 0.1;
 
 /// One interface point of a finite-element body: where on which face the body's displacement
@@ -180,6 +181,8 @@ pub struct ContactPairing {
     /// The first body's face nodes that check contact, and T from the points to them.
     nodes: Nodes,
     mortar: Mortar,
+    /// The first body's field weighted onto the nodes, T B: the bodies' gap shape.
+    shape: GapShape,
     initial_gap: Vec<f64>,
     segments: usize,
     left_out: usize,
@@ -202,6 +205,7 @@ impl ContactPairing {
         let (paired, search_distance) = pair(first, second, settings)?;
         let (nodes, shares) = Nodes::new(first.0, &paired.first)?;
         let mortar = Mortar::new(&nodes, &shares, paired.first.len())?;
+        let shape = shares.shape;
         Ok(Self {
             initial_gap: mortar.apply(&paired.measured_gap),
             first: paired.first,
@@ -210,6 +214,7 @@ impl ContactPairing {
             measured_gap: paired.measured_gap,
             nodes,
             mortar,
+            shape,
             segments: paired.segments,
             left_out: paired.left_out,
             search_distance,
@@ -462,10 +467,10 @@ impl ContactPairing {
                 normals.collect(),
             )
         };
-        let m = &self.mortar;
+        let (m, shape) = (&self.mortar, &self.shape);
         Ok((
-            FeBody::sampled(first.0, first.1, &self.first)?.mortar(m, interface(1.0)?),
-            FeBody::sampled(second.0, second.1, &self.second)?.mortar(m, interface(-1.0)?),
+            FeBody::sampled(first.0, first.1, &self.first)?.mortar(m, interface(1.0)?, shape),
+            FeBody::sampled(second.0, second.1, &self.second)?.mortar(m, interface(-1.0)?, shape),
         ))
     }
 }
@@ -836,12 +841,11 @@ impl Nodes {
     /// (point, share). A node whose weight is short of [`NODE_SHARE`] of its reach passes its
     /// shape function to the middle node of the face that holds most of it: the functions
     /// still sum to one, so a uniform pressure is still a nodal field.
-    fn new(model: &FeModel, samples: &[FaceSample]) -> Result<(Self, Vec<Vec<(usize, f64)>>)> {
+    fn new(model: &FeModel, samples: &[FaceSample]) -> Result<(Self, Shares)> {
         let faces: Vec<Face> = samples.iter().map(|s| s.face).collect();
         let face_nodes = nodes_of(model, &faces);
         let basis = gap_basis(model, samples, &face_nodes)?;
         let m = face_nodes.len();
-        let index = |node: usize| face_nodes.partition_point(|&j| j < node);
         let mut shares: Vec<Vec<(usize, f64)>> = vec![vec![]; m];
         // Each node's reach Σ|N¹ₖ wᵢ| on each of its faces.
         let mut reach: Vec<Vec<(Face, f64)>> = vec![vec![]; m];
@@ -854,20 +858,20 @@ impl Nodes {
                 }
             }
         }
-        let mut kept = vec![true; m];
-        for k in 0..m {
-            let weight: f64 = shares[k].iter().map(|s| s.1).sum();
-            let total: f64 = reach[k].iter().map(|r| r.1).sum();
-            if weight > 0.0 && weight >= NODE_SHARE * total {
-                continue;
-            }
-            let face = reach[k].iter().max_by(|a, b| a.1.total_cmp(&b.1)).map(|r| r.0);
-            let Some(target) = face.map(|f| index(model.mesh.face_nodes(f)[1])) else {
-                continue;
-            };
-            kept[k] = false;
+        let ties = ties(model, &face_nodes, &shares, &reach);
+        let kept: Vec<bool> = (0..m).map(|k| ties[k] == [(k, 1.0)]).collect();
+        // The number of each kept node among the kept ones.
+        let mut column = vec![0; m];
+        let mut count = 0;
+        for k in (0..m).filter(|&k| kept[k]) {
+            column[k] = count;
+            count += 1;
+        }
+        for k in (0..m).filter(|&k| !kept[k]) {
             let moved = std::mem::take(&mut shares[k]);
-            shares[target].extend(moved);
+            for &(target, factor) in &ties[k] {
+                shares[target].extend(moved.iter().map(|&(i, w)| (i, factor * w)));
+            }
         }
         let mut nodes = Nodes {
             points: vec![],
@@ -876,6 +880,7 @@ impl Nodes {
             faces: vec![],
         };
         let mut held = vec![];
+        let mut design = vec![];
         for (k, share) in shares.into_iter().enumerate().filter(|&(k, _)| kept[k]) {
             let weight: f64 = share.iter().map(|s| s.1).sum();
             let mut n = [0.0; 2];
@@ -889,10 +894,85 @@ impl Nodes {
             nodes.weights.push(weight);
             nodes.normals.push(n.map(|c| c / length));
             nodes.faces.push(reach[k].iter().map(|r| r.0).collect());
+            let mut row: Vec<(usize, f64)> = vec![];
+            for &(i, w) in &share {
+                for &(j, b) in basis.row(i) {
+                    for &(target, factor) in &ties[j] {
+                        let (l, v) = (column[target], factor * w * b / weight);
+                        match row.iter_mut().find(|(c, _)| *c == l) {
+                            Some((_, sum)) => *sum += v,
+                            None => row.push((l, v)),
+                        }
+                    }
+                }
+            }
+            design.push(row);
             held.push(share);
         }
-        Ok((nodes, held))
+        let at = |x: &[f64; 2]| [x[0], x[1], 0.0];
+        let shape = GapShape::new(nodes.points.iter().map(at).collect(), design)?;
+        Ok((nodes, Shares { points: held, shape }))
     }
+}
+
+/// How each face node's shape function is carried (face node, factor). In axisymmetry the
+/// face at the axis carries the quadratic of zero slope there (symmetry), a + c r²: its middle
+/// node's value is 3/4 of the axis node's and 1/4 of the far node's, so that the node on the
+/// axis, whose own weight ∫ N¹ₖ 2πr dr is zero on a quadratic edge, checks contact with the
+/// weight the middle node gives it. Any other node whose weight is short of [`NODE_SHARE`] of
+/// its reach passes its function to the middle node of the face that holds most of it (a flat
+/// pressure there). The factors sum to one: the functions still sum to one, so a uniform
+/// pressure is still a nodal field.
+fn ties(
+    model: &FeModel,
+    face_nodes: &[usize],
+    shares: &[Vec<(usize, f64)>],
+    reach: &[Vec<(Face, f64)>],
+) -> Vec<Vec<(usize, f64)>> {
+    let index = |node: usize| face_nodes.partition_point(|&j| j < node);
+    let m = face_nodes.len();
+    let mut ties: Vec<Vec<(usize, f64)>> = (0..m).map(|k| vec![(k, 1.0)]).collect();
+    let mut axis = vec![false; m];
+    if model.analysis == Analysis::Axisymmetric {
+        for k in 0..m {
+            for &(face, _) in &reach[k] {
+                let [a, middle, b] = model.mesh.face_nodes(face).map(index);
+                let r = model.mesh.nodes()[face_nodes[k]][0];
+                let length = model.face_point(face, 0.0).jacobian;
+                if middle != k && r.abs() <= GEOMETRY_TOLERANCE * length {
+                    let far = if a == k { b } else { a };
+                    ties[middle] = vec![(k, 0.75), (far, 0.25)];
+                    axis[k] = true;
+                }
+            }
+        }
+    }
+    for k in 0..m {
+        if axis[k] || ties[k] != [(k, 1.0)] {
+            continue;
+        }
+        let weight: f64 = shares[k].iter().map(|s| s.1).sum();
+        let total: f64 = reach[k].iter().map(|r| r.1).sum();
+        let face = reach[k].iter().max_by(|a, b| a.1.total_cmp(&b.1)).map(|r| r.0);
+        if let Some(face) = face.filter(|_| !(weight > 0.0 && weight >= NODE_SHARE * total)) {
+            let middle = index(model.mesh.face_nodes(face)[1]);
+            // The middle node of the face at the axis is itself carried by two others.
+            let carried = match ties[middle].as_slice() {
+                [(j, _)] if *j == middle => vec![(middle, 1.0)],
+                carried => carried.to_vec(),
+            };
+            ties[k] = carried;
+        }
+    }
+    ties
+}
+
+/// Each node's shares N¹ₖ(xᵢ) wᵢ of the points (point, share), and the gap shape of the first
+/// body's field at the nodes, T B: a gap h = Σⱼ N¹ⱼ hⱼ of the nodes' values hⱼ (a node left
+/// out takes its middle node's value), weighted onto each node.
+struct Shares {
+    points: Vec<Vec<(usize, f64)>>,
+    shape: GapShape,
 }
 
 /// The mortar map T = W̃⁻¹ Bᵀ W from the pairing's points to the interface's nodes (see the
@@ -905,7 +985,7 @@ pub(crate) struct Mortar {
 }
 
 impl Mortar {
-    fn new(nodes: &Nodes, shares: &[Vec<(usize, f64)>], points: usize) -> Result<Self> {
+    fn new(nodes: &Nodes, shares: &Shares, points: usize) -> Result<Self> {
         let m = nodes.points.len();
         memory::require(
             format!("the map of {points} paired points onto {m} nodes"),
@@ -914,7 +994,7 @@ impl Mortar {
             "pair fewer faces",
         )?;
         let mut t = Mat::<f64>::zeros(m, points);
-        for (k, share) in shares.iter().enumerate() {
+        for (k, share) in shares.points.iter().enumerate() {
             for &(i, w) in share {
                 t[(k, i)] += w / nodes.weights[k];
             }
@@ -980,7 +1060,8 @@ mod tests {
         ((lower, f1), (upper, f2))
     }
 
-    /// The interface is the first body's face nodes (but the one on the axis in axisymmetry),
+    /// The interface is the first body's face nodes (but the middle one of the face at the axis
+    /// in axisymmetry, whose pressure is symmetric there),
     /// each weighing w̃ₖ = ∫ N¹ₖ dS (a quadratic edge of length L gives its corners L/6 and its
     /// middle 2L/3, times the thickness; the weights sum to the faces' area), on matching meshes and on the second block's 7 faces against the first's 3. Both
     /// bodies' compliance at the nodes, T A Tᵀ, is symmetric and positive definite (both
@@ -1012,7 +1093,7 @@ mod tests {
             for (second, f) in spacings.iter().map(above) {
                 let pairing = ContactPairing::new((&m1, &f1), (&second, &f), &PairingSettings::default())
                     .unwrap();
-                // The node on the axis weighs ∫ N¹ₖ 2πr dr = 0: it joins its face's middle node.
+                // At the axis the face carries a + c r²: its middle node is no unknown.
                 let nodes = if analysis == Analysis::Axisymmetric { 6 } else { 7 };
                 assert_eq!((pairing.len(), pairing.left_out()), (nodes, 0));
                 assert!(pairing.initial_gap().iter().all(|h| h.abs() < 1e-14));
