@@ -203,7 +203,12 @@ impl FeBody {
     /// The body whose point values are read at the nodes of `interface` through `mortar`
     /// (T, [`crate::ContactPairing`]): influence T A Tᵀ, load and rigid-mode displacements
     /// T f, forces Tᵀ f, and `shape` as its gap shape.
-    pub(crate) fn mortar(mut self, mortar: &Mortar, interface: Interface, shape: &GapShape) -> Self {
+    pub(crate) fn mortar(
+        mut self,
+        mortar: &Mortar,
+        interface: Interface,
+        shape: &GapShape,
+    ) -> Self {
         self.influence = mortar.congruence(&self.influence);
         self.load_displacement = mortar.apply(&self.load_displacement);
         for mode in &mut self.rigid_modes {

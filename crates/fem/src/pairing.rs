@@ -911,7 +911,13 @@ impl Nodes {
         }
         let at = |x: &[f64; 2]| [x[0], x[1], 0.0];
         let shape = GapShape::new(nodes.points.iter().map(at).collect(), design)?;
-        Ok((nodes, Shares { points: held, shape }))
+        Ok((
+            nodes,
+            Shares {
+                points: held,
+                shape,
+            },
+        ))
     }
 }
 
@@ -953,7 +959,10 @@ fn ties(
         }
         let weight: f64 = shares[k].iter().map(|s| s.1).sum();
         let total: f64 = reach[k].iter().map(|r| r.1).sum();
-        let face = reach[k].iter().max_by(|a, b| a.1.total_cmp(&b.1)).map(|r| r.0);
+        let face = reach[k]
+            .iter()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|r| r.0);
         if let Some(face) = face.filter(|_| !(weight > 0.0 && weight >= NODE_SHARE * total)) {
             let middle = index(model.mesh.face_nodes(face)[1]);
             // The middle node of the face at the axis is itself carried by two others.
@@ -1091,15 +1100,28 @@ mod tests {
                 Spacing::uniform(0.0, 10.0, 7).unwrap(),
             ];
             for (second, f) in spacings.iter().map(above) {
-                let pairing = ContactPairing::new((&m1, &f1), (&second, &f), &PairingSettings::default())
-                    .unwrap();
+                let pairing =
+                    ContactPairing::new((&m1, &f1), (&second, &f), &PairingSettings::default())
+                        .unwrap();
                 // At the axis the face carries a + c r²: its middle node is no unknown.
-                let nodes = if analysis == Analysis::Axisymmetric { 6 } else { 7 };
+                let nodes = if analysis == Analysis::Axisymmetric {
+                    6
+                } else {
+                    7
+                };
                 assert_eq!((pairing.len(), pairing.left_out()), (nodes, 0));
                 assert!(pairing.initial_gap().iter().all(|h| h.abs() < 1e-14));
                 let x = [0.0, 1.5, 3.0, 5.25, 7.5, 8.75, 10.0];
                 // ∫ N_k dS on the faces [0, 3], [3, 7.5], [7.5, 10] along x.
-                let along = [0.5, 2.0, 0.5 + 0.75, 3.0, 0.75 + 5.0 / 12.0, 5.0 / 3.0, 5.0 / 12.0];
+                let along = [
+                    0.5,
+                    2.0,
+                    0.5 + 0.75,
+                    3.0,
+                    0.75 + 5.0 / 12.0,
+                    5.0 / 3.0,
+                    5.0 / 12.0,
+                ];
                 for (&node, &w) in pairing.nodes().iter().zip(pairing.node_weights()) {
                     let k = x.iter().position(|&v| (v - node[0]).abs() < 1e-14).unwrap();
                     assert!(node[1].abs() < 1e-14);
@@ -1115,7 +1137,9 @@ mod tests {
                     }
                 };
                 assert!((total / area - 1.0).abs() < 1e-13, "{total} against {area}");
-                let (b1, b2) = pairing.bodies(("lower", m1.clone()), ("upper", second)).unwrap();
+                let (b1, b2) = pairing
+                    .bodies(("lower", m1.clone()), ("upper", second))
+                    .unwrap();
                 for body in [&b1, &b2] {
                     let a = body.influence_matrix();
                     let n = a.nrows();
@@ -1127,8 +1151,14 @@ mod tests {
                         }
                     }
                     let eigen = a.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
-                    let (lo, hi) = eigen.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &e| (l.min(e), h.max(e)));
-                    assert!(lo > 1e-6 * hi, "{}: eigenvalues {lo:e} .. {hi:e}", body.name());
+                    let (lo, hi) = eigen
+                        .iter()
+                        .fold((f64::INFINITY, 0.0f64), |(l, h), &e| (l.min(e), h.max(e)));
+                    assert!(
+                        lo > 1e-6 * hi,
+                        "{}: eigenvalues {lo:e} .. {hi:e}",
+                        body.name()
+                    );
                 }
             }
         }

@@ -202,7 +202,8 @@ impl Case {
             }
             (Some(pairing), _) => {
                 let samples = pairing.first_samples().iter();
-                let points: Vec<[f64; 3]> = samples.map(|s| [s.point[0], s.point[1], 0.0]).collect();
+                let points: Vec<[f64; 3]> =
+                    samples.map(|s| [s.point[0], s.point[1], 0.0]).collect();
                 let shape: Vec<f64> = (self.gap_shape_at(&points)?.into_iter())
                     .map(reach)
                     .collect();
