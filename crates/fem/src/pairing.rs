@@ -862,10 +862,8 @@ impl Nodes {
         let kept: Vec<bool> = (0..m).map(|k| ties[k] == [(k, 1.0)]).collect();
         // The number of each kept node among the kept ones.
         let mut column = vec![0; m];
-        let mut count = 0;
-        for k in (0..m).filter(|&k| kept[k]) {
+        for (count, k) in (0..m).filter(|&k| kept[k]).enumerate() {
             column[k] = count;
-            count += 1;
         }
         for k in (0..m).filter(|&k| !kept[k]) {
             let moved = std::mem::take(&mut shares[k]);
@@ -883,30 +881,16 @@ impl Nodes {
         let mut design = vec![];
         for (k, share) in shares.into_iter().enumerate().filter(|&(k, _)| kept[k]) {
             let weight: f64 = share.iter().map(|s| s.1).sum();
-            let mut n = [0.0; 2];
-            for &(i, w) in &share {
-                for c in 0..2 {
-                    n[c] += w * samples[i].normal[c];
-                }
-            }
+            let n = share.iter().fold([0.0; 2], |n, &(i, w)| {
+                [0, 1].map(|c| n[c] + w * samples[i].normal[c])
+            });
             let length = n[0].hypot(n[1]);
             nodes.points.push(model.mesh.nodes()[face_nodes[k]]);
             nodes.weights.push(weight);
             nodes.normals.push(n.map(|c| c / length));
             nodes.faces.push(reach[k].iter().map(|r| r.0).collect());
-            let mut row: Vec<(usize, f64)> = vec![];
-            for &(i, w) in &share {
-                for &(j, b) in basis.row(i) {
-                    for &(target, factor) in &ties[j] {
-                        let (l, v) = (column[target], factor * w * b / weight);
-                        match row.iter_mut().find(|(c, _)| *c == l) {
-                            Some((_, sum)) => *sum += v,
-                            None => row.push((l, v)),
-                        }
-                    }
-                }
-            }
-            design.push(row);
+            let tied = |j: usize| ties[j].iter().map(|&(t, f)| (column[t], f));
+            design.push(design_row(&share, &basis, tied, weight));
             held.push(share);
         }
         let at = |x: &[f64; 2]| [x[0], x[1], 0.0];
@@ -974,6 +958,29 @@ fn ties(
         }
     }
     ties
+}
+
+/// The row of T B of a node with `share` of the points and weight `weight`: its weighted gap
+/// of the field of the nodes that check contact, the face nodes' functions carried by `tied`.
+fn design_row<I: Iterator<Item = (usize, f64)>>(
+    share: &[(usize, f64)],
+    basis: &GapShape,
+    tied: impl Fn(usize) -> I,
+    weight: f64,
+) -> Vec<(usize, f64)> {
+    let mut row: Vec<(usize, f64)> = vec![];
+    for &(i, w) in share {
+        for &(j, b) in basis.row(i) {
+            for (l, factor) in tied(j) {
+                let v = factor * w * b / weight;
+                match row.iter_mut().find(|(c, _)| *c == l) {
+                    Some((_, sum)) => *sum += v,
+                    None => row.push((l, v)),
+                }
+            }
+        }
+    }
+    row
 }
 
 /// Each node's shares N¹ₖ(xᵢ) wᵢ of the points (point, share), and the gap shape of the first
