@@ -8,7 +8,7 @@ use contopt_core::{
 };
 use faer::Mat;
 
-use crate::pairing::{FaceSample, Projection};
+use crate::pairing::{FaceSample, Mortar};
 use crate::system::{Dof, System};
 use crate::{Face, FeModel};
 
@@ -95,9 +95,9 @@ pub struct FeBody {
     load_displacement: Vec<f64>,
     rigid_modes: Vec<RigidMode>,
     gap_shape: GapShape,
-    /// The projection of a paired body's point values onto the first body's C⁰ field
-    /// ([`crate::ContactPairing::bodies`]): forces pass through Pᵀ, displacements through P.
-    pub(crate) projection: Option<Projection>,
+    /// The map T of a paired body's point values onto the first body's face nodes
+    /// ([`crate::ContactPairing::bodies`]): forces pass through Tᵀ, displacements through T.
+    pub(crate) mortar: Option<Mortar>,
     stats: BuildStats,
 }
 
@@ -119,8 +119,8 @@ impl FeBody {
     /// and the point, weight and normal the interface reports. [`FeBody::new`] samples each
     /// face at its Gauss points; a [`crate::ContactPairing`] samples the second body where
     /// the first body's normals meet it (eq. 2.1: displacements along n¹), and its
-    /// [`bodies`](crate::ContactPairing::bodies) also read the point values through the first
-    /// body's field, which bodies built here from its samples do not.
+    /// [`bodies`](crate::ContactPairing::bodies) also condense them onto the first body's face
+    /// nodes, which bodies built here from its samples are not.
     pub fn sampled(
         name: impl Into<String>,
         model: FeModel,
@@ -195,22 +195,28 @@ impl FeBody {
             load_displacement,
             rigid_modes,
             gap_shape,
-            projection: None,
+            mortar: None,
             stats,
         })
     }
 
-    /// The body whose point values are read through `projection` (P, onto the first body's
-    /// field `basis`): influence P A Pᵀ, load and rigid-mode displacements P f, forces Pᵀ f,
-    /// and `basis` as its gap shape.
-    pub(crate) fn projected(mut self, projection: &Projection, basis: &GapShape) -> Self {
-        self.influence = projection.congruence(&self.influence);
-        self.load_displacement = projection.apply(&self.load_displacement);
+    /// The body whose point values are read at the nodes of `interface` through `mortar`
+    /// (T, [`crate::ContactPairing`]): influence T A Tᵀ, load and rigid-mode displacements
+    /// T f, forces Tᵀ f, and `shape` as its gap shape.
+    pub(crate) fn mortar(
+        mut self,
+        mortar: &Mortar,
+        interface: Interface,
+        shape: &GapShape,
+    ) -> Self {
+        self.influence = mortar.congruence(&self.influence);
+        self.load_displacement = mortar.apply(&self.load_displacement);
         for mode in &mut self.rigid_modes {
-            mode.interface_displacement = projection.apply(&mode.interface_displacement);
+            mode.interface_displacement = mortar.apply(&mode.interface_displacement);
         }
-        self.gap_shape = basis.clone();
-        self.projection = Some(projection.clone());
+        self.gap_shape = shape.clone();
+        self.interface = interface;
+        self.mortar = Some(mortar.clone());
         self
     }
 
@@ -218,7 +224,8 @@ impl FeBody {
     /// faces' quadratic shape functions (Δh = L(x)Δh, §4): the map Q from the nodes to the
     /// Gauss points. Displacements are interpolated the same way, so a gap change that closes
     /// a displacement field exactly at the points exists. Both bodies of a
-    /// [`crate::ContactPairing`] have the first body's: their point values are read through it.
+    /// [`crate::ContactPairing`] have the first body's, weighted onto the nodes that check
+    /// contact.
     pub fn gap_shape(&self) -> &GapShape {
         &self.gap_shape
     }
@@ -232,11 +239,11 @@ impl FeBody {
     /// forces `force` at the interface points \[N\] and rigid-mode amplitudes `rigid`
     /// (one per [`ElasticBody::rigid_modes`]).
     pub fn displacement(&self, force: &[f64], rigid: &[f64]) -> Result<Vec<f64>> {
-        if force.len() != self.rows.len() {
+        if force.len() != self.interface.len() {
             return Err(Error::invalid(
                 format!("{}.force", self.name),
                 force.len(),
-                format!("one per interface point ({})", self.rows.len()),
+                format!("one per interface point ({})", self.interface.len()),
             ));
         }
         if rigid.len() != self.system.modes.len() {
@@ -247,9 +254,9 @@ impl FeBody {
             ));
         }
         let projected;
-        let force = match &self.projection {
-            Some(p) => {
-                projected = p.apply_transpose(force);
+        let force = match &self.mortar {
+            Some(t) => {
+                projected = t.apply_transpose(force);
                 &projected
             }
             None => force,
@@ -275,8 +282,8 @@ impl FeBody {
     /// field (e.g. from [`FeBody::displacement`]).
     pub fn interface_displacement(&self, u: &[f64]) -> Vec<f64> {
         let at_points: Vec<f64> = self.rows.iter().map(|r| r.normal_into(u)).collect();
-        match &self.projection {
-            Some(p) => p.apply(&at_points),
+        match &self.mortar {
+            Some(t) => t.apply(&at_points),
             None => at_points,
         }
     }
@@ -443,7 +450,7 @@ impl ElasticBody for FeBody {
     }
 
     fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let n = self.rows.len();
+        let n = self.interface.len();
         for (i, d) in displacement.iter_mut().enumerate().take(n) {
             *d = (0..n).map(|j| self.influence[(i, j)] * force[j]).sum();
         }

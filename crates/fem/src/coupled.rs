@@ -52,10 +52,10 @@ pub struct JointSystem<'a> {
 impl<'a> JointSystem<'a> {
     /// The joint system of `body1` and `body2` (their interfaces paired by position) with
     /// initial gap `initial_gap` \[mm\] at body 1's points. Bodies of a
-    /// [`crate::ContactPairing`], which read their point values through the first body's
-    /// field, are refused: their springs would couple every point.
+    /// [`crate::ContactPairing`], which read their point values at the first body's face
+    /// nodes, are refused: their springs would couple every point.
     pub fn new(body1: &'a FeBody, body2: &'a FeBody, initial_gap: &[f64]) -> Result<Self> {
-        if let Some(b) = [body1, body2].iter().find(|b| b.projection.is_some()) {
+        if let Some(b) = [body1, body2].iter().find(|b| b.mortar.is_some()) {
             return Err(Error::invalid(
                 "joint system",
                 b.name(),

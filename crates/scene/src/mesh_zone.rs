@@ -3,14 +3,14 @@
 //!
 //! Two imported bodies are paired before either is condensed: the first body's contact faces
 //! are cut where the second body's face nodes project and sampled segment to segment along
-//! the first body's normal n¹ (eq. 2.1, [`ContactPairing`]), and both bodies are built at
-//! those points. The zone therefore builds the pair itself from what each kind offers, its
+//! the first body's normal n¹ (eq. 2.1, [`ContactPairing`]), both bodies are built at those
+//! points and condensed onto the first body's face nodes, where contact is checked. The zone therefore builds the pair itself from what each kind offers, its
 //! model and contact faces ([`crate::bodies::BodyKind::part`]), rather than each kind
 //! building its own body. A rigid body or a bed stands on an imported body's faces, sampled
 //! at their Gauss points, as on a zone of faces.
 //!
-//! The check surveys the pair without building it (the pairing's points without its
-//! projection): the points, the zone's extent for the controller and the limits, and the ends
+//! The check surveys the pair without building it (the pairing's points and nodes without
+//! the map between them): the points, the zone's extent for the controller and the limits, and the ends
 //! of each contact chain — a contact that reaches the end of a chain where the body's boundary
 //! goes on (the contact group was drawn too short) is outside the model, while the end of a
 //! chain at a corner of its body (a punch's rim, the axis) is the body's own edge. Points of
@@ -115,17 +115,6 @@ impl MeshPart {
             }
         }
         (x, t)
-    }
-
-    /// The number of distinct nodes of its contact faces.
-    fn face_nodes(&self) -> usize {
-        let mesh = self.model.mesh();
-        let nodes: HashSet<usize> = self
-            .contact
-            .iter()
-            .flat_map(|&f| mesh.face_nodes(f))
-            .collect();
-        nodes.len()
     }
 
     /// The length of the chord of face `f` \[mm\].
@@ -233,16 +222,18 @@ pub struct MeshSurface {
     pub analysis: Analysis,
     /// The interface points \[mm\] (x = r in axisymmetry).
     pub points: Vec<[f64; 2]>,
-    /// The face of the first imported body's chain that holds each point (its index).
-    pub faces_of: Vec<usize>,
+    /// The faces of the first imported body's chain that hold each point (their indices: one,
+    /// or two at a node where faces meet).
+    pub faces_of: Vec<Vec<usize>>,
     /// The length of each face of that chain \[mm\].
     pub face_lengths: Vec<f64>,
     /// Whether two imported bodies are paired (else a partner stands on one).
     pub paired: bool,
-    /// Each imported body's node count, by side, and the first body's contact face nodes.
+    /// Each imported body's node count, by side.
     pub nodes: [Option<usize>; 2],
-    /// The face nodes of the first imported body's contact chain.
-    pub face_nodes: usize,
+    /// The points where a pairing integrates, at which both bodies are condensed before their
+    /// compliance is mapped onto the nodes (the points themselves when not paired).
+    pub samples: usize,
     /// How far the points reach from the origin along x and y \[mm\].
     pub half_extent: [f64; 2],
     /// The longest face of the first imported body's chain \[mm\].
@@ -263,13 +254,13 @@ impl MeshSurface {
     }
 
     /// How many faces of the first imported body's chain span the contact's half-width: the
-    /// faces that hold a carrying point, their length the contact's; all of it when the
+    /// faces that hold a carrying point (a node carries on both its faces), their length the contact's; all of it when the
     /// contact reaches a corner on the axis or a symmetry line x = 0 (a half model), else
     /// half of it.
     pub fn resolution(&self, points: &[[f64; 3]], carrying: &[bool]) -> Resolution {
         let mut faces: Vec<usize> = (0..points.len().min(self.faces_of.len()))
             .filter(|&i| carrying[i])
-            .map(|i| self.faces_of[i])
+            .flat_map(|i| self.faces_of[i].iter().copied())
             .collect();
         faces.sort_unstable();
         faces.dedup();
@@ -329,7 +320,7 @@ pub(crate) fn survey(
             let survey =
                 ContactPairing::survey((&a.model, &a.contact), (&b.model, &b.contact), &settings)
                     .map_err(|e| pairing_error(e, at))?;
-            (a, Some(survey.first))
+            (a, Some(survey))
         }
         [Some(a), None] | [None, Some(a)] => (a, None),
         [None, None] => {
@@ -346,16 +337,25 @@ pub(crate) fn survey(
         .enumerate()
         .map(|(k, &f)| (f, k))
         .collect();
-    let samples: Vec<FaceSample> = match &paired {
-        Some(first) => first.clone(),
-        None => owner
-            .contact
-            .iter()
-            .flat_map(|&f| FaceSample::gauss(&owner.model, f))
-            .collect(),
+    let (points, faces_of, samples): (Vec<[f64; 2]>, Vec<Vec<usize>>, usize) = match &paired {
+        Some(survey) => (
+            survey.nodes.clone(),
+            (survey.node_faces.iter())
+                .map(|faces| faces.iter().map(|f| index[f]).collect())
+                .collect(),
+            survey.first.len(),
+        ),
+        None => {
+            let gauss: Vec<FaceSample> = (owner.contact.iter())
+                .flat_map(|&f| FaceSample::gauss(&owner.model, f))
+                .collect();
+            (
+                gauss.iter().map(|s| s.point).collect(),
+                gauss.iter().map(|s| vec![index[&s.face]]).collect(),
+                gauss.len(),
+            )
+        }
     };
-    let points: Vec<[f64; 2]> = samples.iter().map(|s| s.point).collect();
-    let faces_of = samples.iter().map(|s| index[&s.face]).collect();
     let face_lengths: Vec<f64> = owner.contact.iter().map(|&f| owner.chord(f)).collect();
     let half_extent = points.iter().fold([0.0f64; 2], |m, p| {
         [m[0].max(p[0].abs()), m[1].max(p[1].abs())]
@@ -366,7 +366,7 @@ pub(crate) fn survey(
     }
     Ok(Some(MeshSurface {
         analysis: zone.analysis,
-        face_nodes: owner.face_nodes(),
+        samples,
         cell: face_lengths.iter().fold(0.0, |m: f64, &l| m.max(l)),
         points,
         faces_of,

@@ -196,9 +196,9 @@ impl Case {
 
     /// The initial gap at the first body's points \[mm\]: the gap's shape less the approach;
     /// where the gap is open for good (beyond a flat punch's rim), out of reach. Between two
-    /// imported meshes the measured gap, or the gap's shape read as the first body's field
-    /// (the pairing's projection: a gap outside it leaves pressures that jump from point to
-    /// point).
+    /// imported meshes, whose interface is the first body's face nodes, the measured gap or
+    /// the gap's shape at the pairing's points, each weighted onto the nodes (∫ N¹ₖ h dS / w̃ₖ,
+    /// [`contopt_fem::ContactPairing::project`]).
     pub fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
         let at = &self.locator;
         let contact = &self.spec.contact;
@@ -213,7 +213,12 @@ impl Case {
                 pairing.initial_gap().iter().map(|h| h - approach).collect()
             }
             (Some(pairing), _) => {
-                let shape: Vec<f64> = self.gap_shape(built)?.into_iter().map(reach).collect();
+                let samples = pairing.first_samples().iter();
+                let points: Vec<[f64; 3]> =
+                    samples.map(|s| [s.point[0], s.point[1], 0.0]).collect();
+                let shape: Vec<f64> = (self.gap_shape_at(&points)?.into_iter())
+                    .map(reach)
+                    .collect();
                 let projected = pairing
                     .project(&shape)
                     .map_err(|e| at.library("contact.gap", e))?;
@@ -228,18 +233,21 @@ impl Case {
     /// The gap's shape h(x) at the first body's points \[mm\], infinite where it is open for
     /// good.
     fn gap_shape(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
+        self.gap_shape_at(built.first().interface().points())
+    }
+
+    /// The gap's shape h(x) at `points` \[mm\], infinite where it is open for good.
+    fn gap_shape_at(&self, points: &[[f64; 3]]) -> Result<Vec<f64>, SceneError> {
         let at = &self.locator;
         let contact = &self.spec.contact;
-        let interface = built.first().interface();
-        let gap = interface
-            .points()
+        let gap = points
             .iter()
             .map(|&x| contact.gap.at(&contact.zone, x, self.plan.roller.as_ref()))
             .collect::<contopt_core::Result<Vec<f64>>>()
             .map_err(|e| at.library("contact.gap", e))?;
         contact
             .gap
-            .covers(interface.points(), &gap, &self.plan.layout)
+            .covers(points, &gap, &self.plan.layout)
             .map_err(|e| at.library("contact.gap", e))?;
         Ok(gap)
     }

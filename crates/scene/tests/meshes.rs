@@ -276,7 +276,7 @@ fn a_contact_group_drawn_too_short_is_outside_the_model() {
     assert_eq!(full.status, CaseStatus::Solved);
 }
 
-/// A gap given for two imported bodies is read through the pairing's projection: the
+/// A gap given for two imported bodies is weighted onto the nodes as the measured one is: the
 /// cylinder's own shape given as a gap (the meshes then only pair the points) gives the
 /// contact of the gap measured between the meshes, within 0.1 % (the quadratic arcs' geometry
 /// against the exact parabola).

@@ -14,7 +14,7 @@
 //! it; one that does must be pressed by the body's loads, not pulled away.
 
 use contopt_core::{check, ElasticBody, Error, Interface, Material, Result, GEOMETRY_TOLERANCE};
-use contopt_fem::{mesh_bytes, pairing::projection_bytes, Analysis, Component, FeBody, FeModel};
+use contopt_fem::{mesh_bytes, pairing::mortar_bytes, Analysis, Component, FeBody, FeModel};
 use serde::{Deserialize, Serialize};
 
 use super::{misplaced, BodyKind, Placement, Side, Takes};
@@ -376,20 +376,23 @@ impl BodyKind for FeMesh {
     }
 
     /// The sparse factor of its nodes and the condensation on the zone's points
-    /// ([`mesh_bytes`]), and when paired its share of the projection onto the first body's
-    /// field.
+    /// ([`mesh_bytes`]), and when paired its map from the pairing's points onto the first
+    /// body's face nodes.
     fn memory(&self, at: &Placement) -> Option<u64> {
         let Layout::Mesh(surface) = at.layout else {
             return None;
         };
         let k = usize::from(at.side == Side::Above);
         let points = surface.points.len();
-        let own = mesh_bytes(surface.nodes[k]?, points)?;
-        let projection = match surface.paired {
-            true => projection_bytes(points, surface.face_nodes)?,
-            false => 0,
+        let (own, mortar) = match surface.paired {
+            // Condensed at the pairing's points, then mapped onto the nodes.
+            true => (
+                mesh_bytes(surface.nodes[k]?, surface.samples)?,
+                mortar_bytes(surface.samples, points)?,
+            ),
+            false => (mesh_bytes(surface.nodes[k]?, points)?, 0),
         };
-        own.checked_add(projection)
+        own.checked_add(mortar)
     }
 
     fn owns_surface(&self) -> bool {
