@@ -197,8 +197,8 @@ fn resultant(report: &CaseReport) -> f64 {
 /// - the load is balanced: 2π∫ p r dr of the points' pressures is πR²p̃ within 0.5 %
 ///   (measured −0.03 %, the trapezoidal rule's);
 /// - p = v·p̂ on the flat face within 0.5 % of p̂ (measured 0.2 %) but at the contact's edge,
-///   the last element before the fillet, where p ≤ v·p̂ + 3 % of p̂ (measured 2.1 %: a Gauss
-///   point of the penalty's grazing contact, p = c·4 nm); the fillet carries none and follows
+///   its last millimetre, where p ≤ v·p̂ + 3 % of p̂ (measured 2.1 %: a Gauss point of the
+///   penalty's grazing contact, p = c·0.004 nm); the fillet carries none and follows
 ///   the face's edge: its gap change is Δh_max, constant.
 #[test]
 fn filleted_punch_design_meets_its_bound() {
