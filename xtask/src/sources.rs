@@ -137,6 +137,18 @@ pub const SOURCES: &[Source] = &[
         "cylinder_on_block",
         false,
     ),
+    // Your own part (own_part.md): the bundled filleted punch, its plots, and its meshes
+    // before and after the design.
+    scene(
+        &["run", "filleted-punch", "--out", "{out}"],
+        "filleted-punch",
+        false,
+        &[
+            ("p.svg", "filleted_punch_p.svg"),
+            ("dh.svg", "filleted_punch_dh.svg"),
+        ],
+    ),
+    example(&["--example", "filleted_punch"], "filleted_punch", false),
     // The scenes chapter's errors and the results' reference, from the code.
     example(&["--example", "scene_errors"], "scene_errors", false),
     example(&["--example", "result_schema"], "result_schema", false),

@@ -5,7 +5,7 @@ light grey behind. The book's picture book/src/fields_punch.png was made so (see
 "Fields in ParaView"); CI does not need it.
 
     xvfb-run -a pvpython book/src/scripts/render_fields.py FIELDS.vtu OUT.png \
-        [--scale 200] [--max-mpa 300] [--no-mirror]
+        [--scale 200] [--max-mpa 300] [--no-mirror] [--window X0 X1 Y0 Y1]
 
 Needs ParaView's pvpython (Debian: apt-get install paraview xvfb; tried with 5.11).
 """
@@ -37,6 +37,8 @@ def main():
     parser.add_argument("--no-mirror", action="store_true",
                         help="draw the half section only (a plane model)")
     parser.add_argument("--size", type=int, nargs=2, default=[1200, 800])
+    parser.add_argument("--window", type=float, nargs=4, metavar=("X0", "X1", "Y0", "Y1"),
+                        help="show only this window of the undeformed coordinates [mm]")
     args = parser.parse_args()
 
     fields = XMLUnstructuredGridReader(FileName=[args.fields])
@@ -95,6 +97,13 @@ def main():
     view.CameraFocalPoint = [0.0, 0.0, 0.0]
     view.CameraViewUp = [0.0, 1.0, 0.0]
     view.ResetCamera(False)
+    if args.window:
+        x0, x1, y0, y1 = args.window
+        centre = [(x0 + x1) / 2, (y0 + y1) / 2]
+        view.CameraFocalPoint = [centre[0], centre[1], 0.0]
+        view.CameraPosition = [centre[0], centre[1], 1.0]
+        aspect = args.size[0] / args.size[1]
+        view.CameraParallelScale = max((y1 - y0) / 2, (x1 - x0) / (2 * aspect))
     Render(view)
     SaveScreenshot(args.png, view, ImageResolution=args.size)
 

@@ -147,6 +147,7 @@ every_bundled_scene!(
     steel_on_aluminium: "steel-on-aluminium",
     winkler_bed: "winkler-bed",
     cylinder_on_block: "cylinder-on-block",
+    filleted_punch: "filleted-punch",
 );
 
 /// The first field of a CSV row (RFC 4180: quoted when it holds a comma or a quote, quotes

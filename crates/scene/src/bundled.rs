@@ -42,6 +42,7 @@ bundled!(
     "steel-on-aluminium",
     "winkler-bed",
     "cylinder-on-block"["../meshes/cylinder-on-block-b8.msh"],
+    "filleted-punch"["../meshes/filleted-punch.msh"],
 );
 
 /// The bundled scene `name`.

@@ -258,18 +258,14 @@ fn controller(c: &Context) -> Result<Box<dyn Controller>> {
 }
 
 /// The gap shape, the controller and Ω_v of an optimisation of `c`: the profile along
-/// `profile_axis` (a roller's axis by default), else at the finite-element face nodes, else at every point; Ω_v from `omega_v`, a roller's
-/// centre row by default, else everywhere.
+/// `profile_axis` (a roller's axis by default), else at the finite-element face nodes (the
+/// faces beyond Ω_v following its edge, [`follow_edge`]), else at every point; Ω_v from
+/// `omega_v`, a roller's centre row by default, else everywhere.
 fn setup(c: &Context) -> Result<Setup> {
     let opt = optimisation(c.spec)?;
     let roller = c.plan.roller.is_some();
     let iface = c.problem.interface();
     let axis = opt.profile_axis.or(roller.then_some(0));
-    let shape = match (axis, c.problem.pressure_basis()) {
-        (Some(axis), _) => GapShape::extruded(iface, axis)?,
-        (None, Some(basis)) => basis.clone(),
-        (None, None) => GapShape::pointwise(iface),
-    };
     let controller = controller(c)?;
     let dy = cell_across(c.plan);
     let omega_v = match (&opt.omega_v, roller) {
@@ -283,11 +279,59 @@ fn setup(c: &Context) -> Result<Setup> {
         ),
         (None, false) => None,
     };
+    let shape = match (axis, c.problem.pressure_basis(), &omega_v) {
+        (Some(axis), _, _) => GapShape::extruded(iface, axis)?,
+        (None, Some(basis), Some(mask)) => follow_edge(basis, mask)?,
+        (None, Some(basis), None) => basis.clone(),
+        (None, None, _) => GapShape::pointwise(iface),
+    };
     Ok(Setup {
         shape,
         controller,
         omega_v,
     })
+}
+
+/// The finite-element faces' gap shape `basis` with every design node that no point of Ω_v
+/// (`mask`) reaches tied to the nearest node that one does: the faces beyond Ω_v (a punch's
+/// fillet kept as drawn) move with the designed face's edge, as one piece, rather than being
+/// left undetermined. Nodes that Ω_v reaches keep their rows, so a shape whose nodes are all
+/// tied is returned as it is.
+fn follow_edge(basis: &GapShape, mask: &[bool]) -> Result<GapShape> {
+    let nodes = basis.nodes();
+    let mut tied = vec![false; nodes.len()];
+    for i in (0..basis.len()).filter(|&i| mask[i]) {
+        for &(k, w) in basis.row(i) {
+            tied[k] |= w != 0.0;
+        }
+    }
+    let tied_nodes: Vec<usize> = (0..nodes.len()).filter(|&k| tied[k]).collect();
+    if tied_nodes.is_empty() || tied.iter().all(|&t| t) {
+        return Ok(basis.clone());
+    }
+    let distance =
+        |a: [f64; 3], b: [f64; 3]| -> f64 { a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum() };
+    let nearest = |k: usize| -> usize {
+        tied_nodes
+            .iter()
+            .copied()
+            .min_by(|&a, &b| distance(nodes[a], nodes[k]).total_cmp(&distance(nodes[b], nodes[k])))
+            .unwrap_or(k)
+    };
+    let rows = (0..basis.len())
+        .map(|i| {
+            let mut row: Vec<(usize, f64)> = vec![];
+            for &(k, w) in basis.row(i) {
+                let k = if tied[k] { k } else { nearest(k) };
+                match row.iter_mut().find(|(j, _)| *j == k) {
+                    Some((_, sum)) => *sum += w,
+                    None => row.push((k, w)),
+                }
+            }
+            row
+        })
+        .collect();
+    GapShape::new(nodes.to_vec(), rows)
 }
 
 /// The regions of a mask: Ω_v inside, Ω_nv outside.

@@ -1,0 +1,4 @@
+// The sharp punch (no fillet) of filleted-punch.geo.inc with elements of 0.25 mm at its rim: its rim pressure grows as the mesh is refined (singular).
+rho = 0;
+hc = 0.25;
+Include "filleted-punch.geo.inc";

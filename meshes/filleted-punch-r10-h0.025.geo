@@ -1,0 +1,4 @@
+// The punch of filleted-punch.geo.inc with a fillet of 10 mm, elements of 0.025 mm where it begins (radius series).
+rho = 10;
+hc = 0.025;
+Include "filleted-punch.geo.inc";

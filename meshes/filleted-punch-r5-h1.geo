@@ -1,0 +1,4 @@
+// The filleted punch of filleted-punch.geo (fillet 5 mm) with elements of 1 mm where the fillet begins (the design's mesh series).
+rho = 5;
+hc = 1;
+Include "filleted-punch.geo.inc";
