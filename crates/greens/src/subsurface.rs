@@ -73,6 +73,31 @@ fn corner(x: f64, y: f64, z: f64, nu: f64) -> [f64; COMPONENTS] {
     ]
 }
 
+/// The stress \[xx, yy, zz, xy, xz, yz\] at (`x`, `y`, `z`), z > 0, under unit pressure on the
+/// rectangle `xs` × `ys` of the surface: the corner sum G(X₁, Y₁) − G(X₁, Y₂) − G(X₂, Y₁) +
+/// G(X₂, Y₂) of [`corner`], each corner at |X|, |Y| with its parity (a Green's body's single
+/// evaluation, where the grids take a whole lattice: [`Corners`]).
+pub(crate) fn rectangle_stress(
+    x: f64,
+    y: f64,
+    z: f64,
+    xs: [f64; 2],
+    ys: [f64; 2],
+    nu: f64,
+) -> [f64; COMPONENTS] {
+    let signed = |cx: f64, cy: f64| -> [f64; COMPONENTS] {
+        let g = corner(cx.abs(), cy.abs(), z, nu);
+        std::array::from_fn(|c| {
+            let sx = if cx < 0.0 { -PARITY[c][0] } else { 1.0 };
+            let sy = if cy < 0.0 { -PARITY[c][1] } else { 1.0 };
+            sx * sy * g[c]
+        })
+    };
+    let (a, b) = (signed(x - xs[0], y - ys[0]), signed(x - xs[0], y - ys[1]));
+    let (c, d) = (signed(x - xs[1], y - ys[0]), signed(x - xs[1], y - ys[1]));
+    std::array::from_fn(|k| a[k] - b[k] - c[k] + d[k])
+}
+
 /// The corner functions of one depth on the lattice of cell edges X = (k + ½)dx,
 /// Y = (l + ½)dy, k < nx, l < ny, one table per component: [c][l·nx + k].
 struct Corners {
@@ -431,7 +456,11 @@ impl HalfSpace {
 
     /// The cells of the row (or column) nearest a section, the section moved onto it, and
     /// the positions along it.
-    fn section_cells(&self, section: Section, origin: [f64; 3]) -> (Section, Vec<usize>, Vec<f64>) {
+    pub(crate) fn section_cells(
+        &self,
+        section: Section,
+        origin: [f64; 3],
+    ) -> (Section, Vec<usize>, Vec<f64>) {
         let (nx, ny) = (self.nx, self.ny);
         let nearest = |at: f64, start: f64, step: f64, n: usize| {
             (((at - start) / step).round().max(0.0) as usize).min(n - 1)

@@ -184,7 +184,7 @@ fn tuned_search_improves_and_stops_when_asked() {
         eprintln!(
             "tuned: K1 {:.3}, K2 {:.3}, z_m {:.2} µm, worst {:.1} MPa from {first:.1} in {} \
              crowns ({})",
-            tuned.k1,
+            tuned.k1.unwrap_or(f64::NAN),
             tuned.k2,
             1e3 * tuned.z_m_mm,
             tuned.worst,

@@ -2935,7 +2935,12 @@ fn roller_numbers(r: &CaseReport, out: &mut Vec<(String, f64)>) {
         put("worst_p_max_mpa", w);
     }
     if let Some(t) = &roller.tuned {
-        put("tuned.k1", t.k1);
+        if let Some(k1) = t.k1 {
+            put("tuned.k1", k1);
+        }
+        if let Some(r) = t.radius_mm {
+            put("tuned.radius_mm", r);
+        }
         put("tuned.k2", t.k2);
         put("tuned.z_m_um", t.z_m_um);
     }
@@ -2970,6 +2975,8 @@ fn subsurface_numbers(r: &CaseReport, out: &mut Vec<(String, f64)>) {
             ("tresca", p.tresca),
             ("max_principal", p.max_principal),
             ("min_principal", p.min_principal),
+            ("shear_xz", p.shear_xz),
+            ("shear_yz", p.shear_yz),
         ] {
             for v in [peak.value_mpa, peak.x_mm, peak.y_mm, peak.depth_mm] {
                 out.push((format!("subsurface.peaks.{name}"), v));

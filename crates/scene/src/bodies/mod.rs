@@ -21,7 +21,7 @@ use crate::spec::LoadSpec;
 use crate::zone::{Layout, ZoneSpec};
 
 pub use fe::{FeBase, FeBlock, FePunch, PunchLoad, Support};
-pub use half_space::HalfSpaceBody;
+pub use half_space::{FreeEndsSpec, HalfSpaceBody};
 pub use rigid::Rigid;
 pub use winkler::WinklerBed;
 
