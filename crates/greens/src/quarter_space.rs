@@ -20,9 +20,9 @@
 //! half-space moves the top plane only across it, not along z (its loads are even in z), so
 //! the top surface's deflection is Love's operator on T and its image alone.
 //!
-//! Truncation: the face's loads are taken on the grid's rows (its width across) down to
-//! `depth_cells` cells of the grid's size across, and the top's corrections on the
-//! `columns` cells nearest each face; loads beyond decay with distance and are left out.
+//! Truncation: the face's loads are taken on the grid's rows and `margin_rows` more on each
+//! side, down to `depth_cells` cells of the grid's size across, and the top's corrections on
+//! the `columns` cells nearest each face; loads beyond decay with distance and are left out.
 
 use contopt_core::{check, Error, Result};
 
@@ -33,6 +33,9 @@ use crate::subsurface::rectangle_stress;
 pub struct HetenyiSettings {
     /// Depth of the face's cells, in cells of the grid's size across (`dy` each).
     pub depth_cells: usize,
+    /// Rows of the face's cells beyond the grid's rows on each side (the face's stresses
+    /// reach wider than the contact).
+    pub margin_rows: usize,
     /// The top's columns nearest each face that load it and take its corrections.
     pub columns: usize,
     /// The iteration stops when a round changes the load by this fraction of the largest
@@ -45,7 +48,8 @@ pub struct HetenyiSettings {
 impl Default for HetenyiSettings {
     fn default() -> Self {
         Self {
-            depth_cells: 40,
+            depth_cells: 80,
+            margin_rows: 40,
             columns: 40,
             tolerance: 1e-6,
             max_rounds: 200,
@@ -87,14 +91,17 @@ pub struct HetenyiLoad {
 
 /// One face's tables: the top cell's pressure (with its image) to the face's σ_xx, and the
 /// face cell's pressure (with its image) to the top plane's σ_zz, by column, depth and row
-/// distance |Δj|.
+/// distance. The face's rows run `margin` rows beyond the grid's on each side.
 struct Face {
     /// Top columns in reach, by index on the grid, nearest the face first.
     columns: Vec<usize>,
-    /// b\[(k·ncol + c)·ny + |Δj|\]: σ_xx at face cell (·, k) under unit top pressure on column
-    /// c, |Δj| rows away.
+    /// The face's rows: the grid's and `margin` more on each side.
+    rows: usize,
+    margin: usize,
+    /// b\[(k·ncol + c)·rows + |Δj|\]: σ_xx at face cell (·, k) under unit top pressure on
+    /// column c, |Δj| rows away.
     to_face: Vec<f64>,
-    /// a\[(c·nz + k)·ny + |Δj|\]: σ_zz at top column c under unit face pressure at depth k.
+    /// a\[(c·nz + k)·rows + |Δj|\]: σ_zz at top column c under unit face pressure at depth k.
     to_top: Vec<f64>,
 }
 
@@ -105,36 +112,41 @@ impl Face {
         columns: Vec<usize>,
         distance: impl Fn(usize) -> f64,
         nz: usize,
+        margin: usize,
     ) -> Self {
-        let (ny, dx, dy, nu) = (grid.ny, grid.dx, grid.dy, grid.nu);
+        let (dx, dy, nu) = (grid.dx, grid.dy, grid.nu);
+        let rows = grid.ny + 2 * margin;
         let (h, w) = (0.5 * dx, 0.5 * dy);
         let ncol = columns.len();
-        let mut to_face = vec![0.0; nz * ncol * ny];
-        let mut to_top = vec![0.0; ncol * nz * ny];
+        let mut to_face = vec![0.0; nz * ncol * rows];
+        let mut to_top = vec![0.0; ncol * nz * rows];
         for (c, &i) in columns.iter().enumerate() {
             let d = distance(i);
             for k in 0..nz {
                 let z = (k as f64 + 0.5) * dy;
-                for j in 0..ny {
+                for j in 0..rows {
                     let y = j as f64 * dy;
                     // The top cell and its image are mirror images across the face: equal σ_xx.
                     let sxx = rectangle_stress(0.0, y, z, [-d - h, -d + h], [-w, w], nu)[0];
-                    to_face[(k * ncol + c) * ny + j] = 2.0 * sxx;
+                    to_face[(k * ncol + c) * rows + j] = 2.0 * sxx;
                     // The face cell and its image below the top plane: equal σ_zz on it. In the
                     // face's frame: depth d, across y, along z (the frame's second axis).
                     let szz = rectangle_stress(y, 0.0, d, [-w, w], [z - w, z + w], nu)[1];
-                    to_top[(c * nz + k) * ny + j] = 2.0 * szz;
+                    to_top[(c * nz + k) * rows + j] = 2.0 * szz;
                 }
             }
         }
         Self {
             columns,
+            rows,
+            margin,
             to_face,
             to_top,
         }
     }
 
-    /// Adds this face's correction σ_zz\[S\], S = σ_xx\[T\], to `out` on the top grid.
+    /// Adds this face's correction σ_zz\[S\], S = σ_xx\[T\], to `out` on the top grid; `face`
+    /// holds S (`nz` × the face's rows).
     fn correct(
         &self,
         grid: &FacedGrid,
@@ -143,28 +155,28 @@ impl Face {
         face: &mut [f64],
         out: &mut [f64],
     ) {
-        let (nx, ny) = (grid.nx, grid.ny);
+        let (nx, ny, rows, m) = (grid.nx, grid.ny, self.rows, self.margin);
         let ncol = self.columns.len();
         face.fill(0.0);
         for k in 0..nz {
             for (c, &i) in self.columns.iter().enumerate() {
-                let table = &self.to_face[(k * ncol + c) * ny..(k * ncol + c + 1) * ny];
-                for js in 0..ny {
+                let table = &self.to_face[(k * ncol + c) * rows..(k * ncol + c + 1) * rows];
+                for js in 0..rows {
                     let mut s = 0.0;
                     for jt in 0..ny {
-                        s += table[js.abs_diff(jt)] * load[jt * nx + i];
+                        s += table[js.abs_diff(jt + m)] * load[jt * nx + i];
                     }
-                    face[k * ny + js] += s;
+                    face[k * rows + js] += s;
                 }
             }
         }
         for (c, &i) in self.columns.iter().enumerate() {
             for k in 0..nz {
-                let table = &self.to_top[(c * nz + k) * ny..(c * nz + k + 1) * ny];
+                let table = &self.to_top[(c * nz + k) * rows..(c * nz + k + 1) * rows];
                 for jt in 0..ny {
                     let mut s = 0.0;
-                    for js in 0..ny {
-                        s += table[jt.abs_diff(js)] * face[k * ny + js];
+                    for js in 0..rows {
+                        s += table[(jt + m).abs_diff(js)] * face[k * rows + js];
                     }
                     out[jt * nx + i] += s;
                 }
@@ -188,7 +200,8 @@ pub fn hetenyi_load(
     check::count("settings.depth_cells", settings.depth_cells, 1, 100_000)?;
     check::count("settings.columns", settings.columns, 1, usize::MAX)?;
     check::positive("settings.tolerance", settings.tolerance)?;
-    let nz = settings.depth_cells;
+    let (nz, margin) = (settings.depth_cells, settings.margin_rows);
+    check::count("settings.margin_rows", margin, 0, 100_000)?;
     let reach = settings.columns.min(nx);
     let (lo, hi) = (
         grid.origin[0] - 0.5 * grid.dx,
@@ -215,6 +228,7 @@ pub fn hetenyi_load(
             (0..reach).collect(),
             |i| g + centre(i) - lo,
             nz,
+            margin,
         ));
     }
     if let Some(f) = grid.faces[1] {
@@ -224,12 +238,13 @@ pub fn hetenyi_load(
             (nx - reach..nx).rev().collect(),
             |i| g + hi - centre(i),
             nz,
+            margin,
         ));
     }
     let scale = pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()));
     let mut load = pressure.to_vec();
     let mut next = vec![0.0; nx * ny];
-    let mut face = vec![0.0; nz * ny];
+    let mut face = vec![0.0; nz * (ny + 2 * margin)];
     for round in 1..=settings.max_rounds {
         next.copy_from_slice(pressure);
         for f in &faces {
@@ -329,6 +344,7 @@ mod tests {
         let p = strip(&grid, 0.15);
         let settings = HetenyiSettings {
             depth_cells: 15,
+            margin_rows: 10,
             columns: 30,
             ..Default::default()
         };

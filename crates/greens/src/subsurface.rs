@@ -674,6 +674,27 @@ mod tests {
         }
     }
 
+    /// The orthogonal shear of a line contact rolling across it: the largest |τ_xz| is
+    /// 0.25·p₀ at z = 0.5·b, x = ±0.87·b (Johnson, *Contact Mechanics*, §4.2), and the peaks
+    /// say so (to 2e-3 of p₀, a depth step, a cell and a half); |τ_yz| vanishes along the
+    /// contact (below 1e-3 of p₀ at the cells' centres, 50 b from the strip's ends).
+    #[test]
+    fn orthogonal_shear_of_a_line_contact() {
+        let b = 1.0;
+        let hertz = |x: f64, _: f64| (1.0 - (x / b).powi(2)).max(0.0).sqrt();
+        let (body, p, _) = centred(161, 201, [b / 64.0, 100.0 * b], hertz, false);
+        let request = SubsurfaceRequest {
+            depths: depths(0.40, 0.60, 0.01),
+            sections: vec![],
+        };
+        let peaks = body.stresses_below(&p, &request).unwrap().peaks;
+        let s = peaks.shear_xz;
+        assert!((s.value - 0.25).abs() < 2e-3, "{s:?}");
+        assert!((s.depth - 0.5).abs() < 0.011, "{s:?}");
+        assert!((s.x.abs() - 0.866).abs() < 1.5 / 64.0, "{s:?}");
+        assert!(peaks.shear_yz.value < 1e-3, "{:?}", peaks.shear_yz);
+    }
+
     /// Hertz contact of a sphere, ν = 0.3: below the centre the largest shear is 0.310 p₀ at
     /// 0.481 a, von Mises 0.620 p₀ there (Johnson eq. 3.45 on the axis).
     #[test]

@@ -195,7 +195,7 @@ mod tests {
             &["half-space", "slices", "ISO 281"],
         )
         .group("robust, L1 = 4.5 mm, a long label", &[612.0, 598.5, 217.6])
-        .group("ISO/TS 16281", &[583.25, f64::NAN, 217.6])
+        .group("ISO/TS 16281", &[583.26, f64::NAN, 217.6])
         .group("circular", &[0.5, 1.0, 20.0]);
         assert!(!chart.is_empty());
         let svg = chart.draw().unwrap().svg().to_string();

@@ -103,11 +103,13 @@ fn bearing_loads_chart(case: &CaseReport) -> Option<LineChart> {
 }
 
 /// The duty cycle's lives of every bearing case, one group of bars per case: ISO/TS 16281's
-/// from the half-space contacts and from the slice model, and ISO 281's.
+/// from the half-space contacts (their peak pressures' Hertzian slice loads, and their slice
+/// loads) and from the slice model, and ISO 281's.
 fn lives_chart(report: &Report) -> Option<BarChart> {
     let title = format!("{}: rating lives over the duty cycle", report.scene);
     let series = [
-        "L10r, half-space contacts",
+        "L10r, peak pressures",
+        "L10r, half-space slice loads",
         "L10r, slice model",
         "L10, ISO 281",
     ];
@@ -115,10 +117,13 @@ fn lives_chart(report: &Report) -> Option<BarChart> {
     for c in report.cases.iter().filter(|c| converged(c)) {
         if let Some(b) = &c.bearing {
             let l = &b.duty_cycle;
-            chart = chart.group(
-                &legend(c),
-                &[l.half_space_mrev, l.slice_model_mrev, l.iso_281_mrev],
-            );
+            let lives = [
+                l.peak_pressure_mrev,
+                l.half_space_mrev,
+                l.slice_model_mrev,
+                l.iso_281_mrev,
+            ];
+            chart = chart.group(&legend(c), &lives);
         }
     }
     (!chart.is_empty()).then_some(chart)

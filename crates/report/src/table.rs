@@ -28,13 +28,13 @@ pub fn table(report: &Report) -> String {
 fn bearing_table(report: &Report) -> String {
     let width = label_width(report);
     let mut s = format!(
-        "{:<width$} {:>10} {:>12} {:>12} {:>16} {:>10}\n",
-        "case", "p_max MPa", "L10 ISO 281", "L10r slices", "L10r half-space", "time ms"
+        "{:<width$} {:>10} {:>11} {:>11} {:>11} {:>11} {:>9}\n",
+        "case", "p_max MPa", "L10", "L10r", "L10r", "L10r", "time ms"
     );
     let _ = writeln!(
         s,
-        "{:<width$} {:>10} {:>12}",
-        "", "(worst)", "(duty cycle, 10⁶ revolutions)"
+        "{:<width$} {:>10} {:>11} {:>11} {:>11} {:>11}",
+        "", "(worst)", "ISO 281", "slices", "half-space", "peaks"
     );
     for c in &report.cases {
         let Some(b) = &c.bearing else {
@@ -45,21 +45,30 @@ fn bearing_table(report: &Report) -> String {
         let l = &b.duty_cycle;
         let _ = writeln!(
             s,
-            "{:<width$} {:>10.1} {:>12.2} {:>12.2} {:>16.2} {:>10.0}",
+            "{:<width$} {:>10.1} {:>11.2} {:>11.2} {:>11.2} {:>11.2} {:>9.0}",
             c.label,
             b.worst.p_max_mpa,
             l.iso_281_mrev,
             l.slice_model_mrev,
             l.half_space_mrev,
+            l.peak_pressure_mrev,
             total_ms(c)
         );
         s += &bearing_lines(b);
+        if let Some([l1, l2]) = b.controller_mm {
+            let _ = writeln!(
+                s,
+                "  the controller chosen for the life: L1 = {l1:.3} mm, L2 = {l2:.3} mm"
+            );
+        }
         if let Some(t) = c.roller.as_ref().and_then(|r| r.tuned.as_ref()) {
             s += &format!("  {}", tuned_line("tuned", t));
         }
         s += &notes(c);
     }
-    s
+    s + "(lives over the duty cycle by Palmgren–Miner, 10⁶ revolutions: ISO 281's L10, ISO/TS \
+         16281's L10r from the slice model, from the half-space contacts' slice loads, and \
+         with those raised to their peak pressures' Hertzian loads)\n"
 }
 
 /// A bearing case's worst contact and its load cases, indented under its row.
@@ -78,7 +87,7 @@ fn bearing_lines(b: &contopt_results::BearingReport) -> String {
     );
     let _ = writeln!(
         s,
-        "  {:<18} {:>8} {:>8} {:>8} {:>9} {:>7} {:>10} {:>10} {:>10} {:>10}",
+        "  {:<18} {:>8} {:>7} {:>6} {:>8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9}",
         "load case",
         "fraction",
         "F_r N",
@@ -88,13 +97,15 @@ fn bearing_lines(b: &contopt_results::BearingReport) -> String {
         "p_max MPa",
         "L10",
         "L10r sl.",
-        "L10r h.-s."
+        "h.-s.",
+        "peaks"
     );
     for c in &b.load_cases {
         let q_max = c.rollers.iter().map(|r| r.load_n).fold(0.0, f64::max);
+        let l = &c.lives;
         let _ = writeln!(
             s,
-            "  {:<18} {:>8.3} {:>8.0} {:>8.3} {:>9.1} {:>7.1} {:>10.1} {:>10.2} {:>10.2} {:>10.2}",
+            "  {:<18} {:>8.3} {:>7.0} {:>6.2} {:>8.1} {:>6.1} {:>9.1} {:>9.2} {:>9.2} {:>9.2} {:>9.2}",
             c.label,
             c.fraction,
             c.radial_n,
@@ -102,9 +113,10 @@ fn bearing_lines(b: &contopt_results::BearingReport) -> String {
             q_max,
             c.loaded_zone_deg,
             c.p_max_mpa,
-            c.lives.iso_281_mrev,
-            c.lives.slice_model_mrev,
-            c.lives.half_space_mrev
+            l.iso_281_mrev,
+            l.slice_model_mrev,
+            l.half_space_mrev,
+            l.peak_pressure_mrev
         );
     }
     s

@@ -28,7 +28,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 3;
+pub const SCHEMA_VERSION: u32 = 4;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -350,6 +350,9 @@ pub struct BearingReport {
     /// The crown's tolerance band ±t on its end drop \[µm\] (0: none); lives and pressures are
     /// the worst over the band.
     pub tolerance_um: f64,
+    /// The robust crown's controller L1 and L2 the life chose (`objective = "life"`) \[mm\];
+    /// null otherwise.
+    pub controller_mm: Option<[f64; 2]>,
     /// The solved contacts: loaded rollers of every load case, duplicates (a roller and its
     /// mirror across the load line) solved once, times the band's three crowns.
     pub contacts_solved: usize,
@@ -421,6 +424,10 @@ pub struct Lives {
     /// L10r with the solved raceway's slice loads from the half-space contacts (the band's
     /// worst).
     pub half_space_mrev: f64,
+    /// L10r with each of those slices' loads raised to the Hertzian line load of its peak
+    /// pressure, π·R·w·p²/E* (the edge stresses of the contact, which a slice load alone
+    /// does not see; the band's worst).
+    pub peak_pressure_mrev: f64,
 }
 
 /// The contact with the largest pressure of a bearing case.

@@ -80,6 +80,7 @@ impl CaseReport {
                 ("ISO 281 life", l.iso_281_mrev),
                 ("slice model life", l.slice_model_mrev),
                 ("half-space life", l.half_space_mrev),
+                ("peak-pressure life", l.peak_pressure_mrev),
             ]
         };
         let mut values = vec![

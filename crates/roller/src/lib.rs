@@ -32,7 +32,7 @@ pub use design::{
 pub use figures::{end_ratio, CaseContact, CaseFigures, RollerFigures, EDGE_LOADING};
 pub use geometry::{Roller, RollerEnds};
 pub use life::{
-    basic_rating_life, dynamic_load_rating, f_c, miner, reference_rating_life,
-    slice_loads_from_pressure, slice_ratings, ReferenceLife, SliceLoads, SliceRatings, B_M,
-    REDUCTION, ROLLER_LIFE_EXPONENT,
+    basic_rating_life, dynamic_load_rating, f_c, hertz_slice_load, miner, reference_rating_life,
+    slice_loads_from_pressure, slice_peaks_from_pressure, slice_ratings, ReferenceLife, SliceLoads,
+    SliceRatings, B_M, REDUCTION, ROLLER_LIFE_EXPONENT,
 };

@@ -2545,7 +2545,9 @@ impl SceneTree {
         let field = |name: &str| zone.and_then(|z| z.get(name));
         // The dense methods (the QP, the linear programme) take seconds past a few hundred
         // points (14 s for the linear programme on 26 × 31 cells).
-        let cells = match field("cells") {
+        // A bearing composes its roller's grid from `bearing.cells`.
+        let bearing = self.get(&["bearing"]).and_then(fields);
+        let cells = match field("cells").or_else(|| bearing.and_then(|b| b.get("cells"))) {
             Some(Value::Array(a)) => a
                 .iter()
                 .map(|v| v.as_integer().unwrap_or(1))

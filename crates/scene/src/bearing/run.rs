@@ -13,14 +13,18 @@ use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
+use std::ops::ControlFlow;
+
+use contopt_optimise::{nelder_mead, ControllerSettings, SearchSettings};
 use contopt_results::{
     BearingLoadCase, BearingReport, BearingRoller, CaseReport, Lives, TunedProfile, WorstContact,
 };
 use contopt_roller::{
-    basic_rating_life, bearing_cases, end_ratio, miner, penalised_worst, reference_rating_life,
-    robust_crown, slice_loads_from_pressure, solve_cases, tolerance_band, tune_profile,
-    BearingSettings, CaseContact, Crown, CylindricalRollerBearing, LoadCase, LoadDistribution,
-    ProfileFamily, Raceway, Roller, RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
+    basic_rating_life, bearing_cases, end_ratio, hertz_slice_load, miner, penalised_worst,
+    reference_rating_life, robust_crown, slice_loads_from_pressure, slice_peaks_from_pressure,
+    solve_cases, tolerance_band, tune_profile, BearingSettings, CaseContact, Crown,
+    CylindricalRollerBearing, LoadCase, LoadDistribution, ProfileFamily, Raceway, Roller,
+    RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
 };
 
 use super::{BearingObjective, BearingPlan};
@@ -95,6 +99,10 @@ struct Geometry<'p> {
     cell: [f64; 2],
     /// The effective length \[mm\].
     length: f64,
+    /// The pair's radius across the contact and its modulus \[mm, MPa\] (Hertz's line load of
+    /// a slice's peak).
+    radius: f64,
+    e_star: f64,
 }
 
 /// Each load case's distribution for `bearing`; an unmet equilibrium is its termination.
@@ -120,32 +128,42 @@ fn lives(
     plan: &BearingPlan,
     distributions: &[LoadDistribution],
     env: &Envelope,
-    states: &[ContactState],
+    pressures: &[&[f64]],
     at: &Geometry,
 ) -> Result<(Vec<Lives>, Lives)> {
     let n = env.contacts.len();
     let slices = plan.bearing.slices;
+    let width = at.length / slices as f64;
     let mut per_case = Vec::with_capacity(distributions.len());
     for (i, d) in distributions.iter().enumerate() {
         let base = SliceLoads::from_distribution(d)?;
         let life = |loads: &SliceLoads| -> Result<f64> {
             Ok(reference_rating_life(&plan.ratings, loads, plan.rotating)?.bearing)
         };
-        let mut half_space = f64::INFINITY;
-        for band in 0..env.bands(states.len()) {
-            let mut loads = base.clone();
+        let (mut half_space, mut peak) = (f64::INFINITY, f64::INFINITY);
+        for band in 0..env.bands(pressures.len()) {
+            let (mut loads, mut raised) = (base.clone(), base.clone());
             for (j, contact) in env.index[i].iter().enumerate() {
                 let Some(k) = contact else { continue };
-                let pressure = &states[band * n + k].pressure;
-                let q = slice_loads_from_pressure(at.points, pressure, at.cell, at.length, slices)?;
+                let p = pressures[band * n + k];
+                let q = slice_loads_from_pressure(at.points, p, at.cell, at.length, slices)?;
+                let peaks = slice_peaks_from_pressure(at.points, p, at.cell, at.length, slices)?;
+                let hertz: Vec<f64> = q
+                    .iter()
+                    .zip(&peaks)
+                    .map(|(q, p)| q.max(hertz_slice_load(*p, width, at.radius, at.e_star)))
+                    .collect();
                 loads.set(plan.raceway, j, &q)?;
+                raised.set(plan.raceway, j, &hertz)?;
             }
             half_space = half_space.min(life(&loads)?);
+            peak = peak.min(life(&raised)?);
         }
         per_case.push(Lives {
             iso_281_mrev: basic_rating_life(plan.rating, plan.loads[i].1.radial_n)?,
             slice_model_mrev: life(&base)?,
             half_space_mrev: half_space,
+            peak_pressure_mrev: peak,
         });
     }
     let cycle = |f: fn(&Lives) -> f64| -> Result<f64> {
@@ -161,6 +179,7 @@ fn lives(
         iso_281_mrev: cycle(|l| l.iso_281_mrev)?,
         slice_model_mrev: cycle(|l| l.slice_model_mrev)?,
         half_space_mrev: cycle(|l| l.half_space_mrev)?,
+        peak_pressure_mrev: cycle(|l| l.peak_pressure_mrev)?,
     };
     Ok((per_case, duty))
 }
@@ -172,7 +191,88 @@ struct Crowned {
     termination: Termination,
     bound_p_max: Option<f64>,
     tuned: Option<TunedProfile>,
+    /// The cases' pressures under the crown, as the design found them (a robust crown's).
+    cases: Vec<Vec<f64>>,
+    /// The controller's L1 and L2 the life chose \[mm\].
+    controller: Option<[f64; 2]>,
 }
+
+/// The life as a search's objective: −1000·ln L, so that the search's tolerance (absolute, in
+/// the objective's units) is in thousandths of the life's logarithm, whatever its size.
+const LOG_SCALE: f64 = 1000.0;
+
+/// The life's search over the robust crown's controller: at most this many robust crowns, the
+/// simplex's spread then 0.05 thousandths of the life's logarithm.
+const LIFE_SEARCH: SearchSettings = SearchSettings {
+    tolerance: 0.05,
+    max_evaluations: 30,
+};
+
+/// The robust crown whose controller's L1 and L2 give the longest life: a Nelder–Mead search
+/// ([`nelder_mead`]) of robust crowns from the scene's controller, L1 = h·σ(u₀) within the
+/// half-length h, L2 = L1 + h·e^u₁ (beyond h when the ends may carry load). `robust` designs a
+/// crown, `life` rates it; the longest-lived is kept.
+fn life_over_controller(
+    controller: &ControllerSettings,
+    half: f64,
+    robust: &dyn Fn(&ControllerSettings) -> Result<Crowned>,
+    life: &dyn Fn(&Crowned) -> Result<f64>,
+) -> Result<Crowned> {
+    let (l1, l2, axis, cubic) = match *controller {
+        ControllerSettings::Cubic { l1_mm, l2_mm, axis } => (l1_mm, l2_mm, axis, true),
+        ControllerSettings::Trapezoid { l1_mm, l2_mm, axis } => (l1_mm, l2_mm, axis, false),
+        ref other => {
+            return Err(Error::invalid(
+                "controller",
+                format!("{other:?}"),
+                "the life's search varies L1 and L2 of a cubic or trapezoid controller",
+            ))
+        }
+    };
+    let lengths = |u: &[f64]| {
+        let l1_mm = half / (1.0 + (-u[0]).exp());
+        [l1_mm, l1_mm + half * u[1].exp()]
+    };
+    // The scene's controller as the start, its L1 kept inside (0, h) and L2 past it.
+    let fraction = (l1 / half).clamp(LIFE_START_MARGIN, 1.0 - LIFE_START_MARGIN);
+    let start = [
+        (fraction / (1.0 - fraction)).ln(),
+        ((l2 - l1).max(LIFE_START_MARGIN * half) / half).ln(),
+    ];
+    let mut best: Option<(f64, Crowned)> = None;
+    nelder_mead(
+        |u| {
+            let [l1_mm, l2_mm] = lengths(u);
+            let settings = match cubic {
+                true => ControllerSettings::Cubic { l1_mm, l2_mm, axis },
+                false => ControllerSettings::Trapezoid { l1_mm, l2_mm, axis },
+            };
+            let mut crowned = robust(&settings)?;
+            crowned.controller = Some([l1_mm, l2_mm]);
+            let value = life(&crowned)?;
+            let objective = match value > 0.0 {
+                true => -LOG_SCALE * value.ln(),
+                false => f64::INFINITY,
+            };
+            if best.as_ref().is_none_or(|b| value > b.0) {
+                best = Some((value, crowned));
+            }
+            Ok(ControlFlow::Continue(objective))
+        },
+        &start,
+        &LIFE_START_STEP,
+        &LIFE_SEARCH,
+    )?;
+    best.map(|b| b.1)
+        .ok_or_else(|| Error::invalid("controller", "l1_mm", "no robust crown was designed"))
+}
+
+/// The life's search starts L1 at least this fraction of the half-length inside it, and L2 at
+/// least this far beyond L1.
+const LIFE_START_MARGIN: f64 = 0.02;
+
+/// The life's search's first steps in (u₀, u₁).
+const LIFE_START_STEP: [f64; 2] = [1.0, 0.7];
 
 /// The design of the crown over the envelope `cases` of `first` (the distributions under the
 /// scene's roller), by the scene's method; `None` without `[optimisation]`.
@@ -200,23 +300,45 @@ fn design(
             let controller = opt
                 .controller
                 .as_ref()
-                .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?
-                .build()?;
-            let crown = robust_crown(
-                cases,
-                controller.as_ref(),
-                at.cell[1],
-                solver,
-                settings,
-                observer,
-            )?;
-            return Ok(Some(Crowned {
-                change: crown.drop,
-                method: Method::EnvelopeSplit,
-                termination: crown.termination,
-                bound_p_max: Some(crown.p_max),
-                tuned: None,
-            }));
+                .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?;
+            let robust = |c: &ControllerSettings| -> Result<Crowned> {
+                let crown = robust_crown(
+                    cases,
+                    c.build()?.as_ref(),
+                    at.cell[1],
+                    solver,
+                    settings,
+                    observer,
+                )?;
+                Ok(Crowned {
+                    change: crown.drop,
+                    method: Method::EnvelopeSplit,
+                    termination: crown.termination,
+                    bound_p_max: Some(crown.p_max),
+                    tuned: None,
+                    cases: crown.cases.into_iter().map(|c| c.pressure).collect(),
+                    controller: None,
+                })
+            };
+            return match plan.objective {
+                BearingObjective::PMax => robust(controller).map(Some),
+                BearingObjective::Life => {
+                    let life = |crowned: &Crowned| -> Result<f64> {
+                        let pressures: Vec<&[f64]> =
+                            crowned.cases.iter().map(Vec::as_slice).collect();
+                        let complete =
+                            pressures.len() == cases.len() && crowned.termination.is_converged();
+                        match complete {
+                            true => Ok(lives(plan, first, env, &pressures, at)?
+                                .1
+                                .peak_pressure_mrev),
+                            false => Ok(0.0),
+                        }
+                    };
+                    let half = 0.5 * at.length;
+                    life_over_controller(controller, half, &robust, &life).map(Some)
+                }
+            };
         }
         MethodSpec::ProfileSearch(s) => (ProfileFamily::FujiwaraKawase, s),
         MethodSpec::CircularSearch(s) => (ProfileFamily::Circular, s),
@@ -233,8 +355,9 @@ fn design(
         match plan.objective {
             BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
             BearingObjective::Life => {
-                let (_, duty) = lives(plan, first, env, states, at)?;
-                Ok(-duty.half_space_mrev.ln())
+                let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
+                let (_, duty) = lives(plan, first, env, &pressures, at)?;
+                Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
             }
         }
     };
@@ -253,6 +376,8 @@ fn design(
         method: Method::ProfileSearch,
         termination: tuned.termination,
         bound_p_max: None,
+        cases: vec![],
+        controller: None,
     }))
 }
 
@@ -294,6 +419,8 @@ pub(crate) fn run<'a>(
         points: problem.interface().points(),
         cell: [dx, dy],
         length: roller.length,
+        radius: roller.radius()?,
+        e_star: roller.e_star(),
     };
     let started = Instant::now();
     let first = match distributions(&plan.bearing, plan)? {
@@ -347,13 +474,15 @@ pub(crate) fn run<'a>(
         return Ok((unsolved(why, solver), problem.clone()));
     }
     let started = Instant::now();
-    let (per_case, duty) = lives(plan, &dists, &env, &states, &at)?;
+    let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
+    let (per_case, duty) = lives(plan, &dists, &env, &pressures, &at)?;
     report.time("lives", started);
     let worst = (0..states.len())
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(0);
+    let l1 = designed.as_ref().and_then(|d| d.controller);
     report.bearing = Some(bearing_report(
-        plan, &dists, &env, &states, worst, &at, per_case, duty,
+        plan, &dists, &env, &states, worst, &at, per_case, duty, l1,
     ));
     let drop: Vec<f64> = match &designed {
         Some(d) => d.change.clone(),
@@ -428,6 +557,7 @@ fn bearing_report(
     at: &Geometry,
     per_case: Vec<Lives>,
     duty: Lives,
+    l1: Option<[f64; 2]>,
 ) -> BearingReport {
     let n = env.contacts.len();
     let bands = env.bands(states.len());
@@ -487,6 +617,7 @@ fn bearing_report(
         design_load_n: plan.design_load,
         free_ends_weight: plan.free_ends,
         tolerance_um: 1e3 * plan.tolerance,
+        controller_mm: l1,
         contacts_solved: states.len(),
         load_cases,
         duty_cycle: duty,
