@@ -99,6 +99,36 @@ impl HertzLine {
     }
 }
 
+/// The peak pressure p₀ and the half-width b \[MPa, mm\] of a computed line contact centred
+/// on y = 0, read as Hertz's p = p₀√(1 − y²/b²): the least-squares line p² = p₀² − (p₀/b)²·y²
+/// through the samples (y, p) within 0.8 of the outermost sample that carries pressure (at the
+/// contact's edge, where quadratic elements round off the square root with a ripple, the
+/// samples are left out). `None` with fewer than two such samples, or a line that does not
+/// fall.
+pub fn fit_line_contact(samples: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let edge = samples
+        .iter()
+        .filter(|s| s.1 > 0.0)
+        .fold(0.0f64, |m, s| m.max(s.0.abs()));
+    let kept: Vec<(f64, f64)> = samples
+        .iter()
+        .filter(|s| s.0.abs() <= 0.8 * edge)
+        .map(|&(y, p)| (y * y, p * p))
+        .collect();
+    let n = kept.len() as f64;
+    if kept.len() < 2 {
+        return None;
+    }
+    let (mx, my) = kept
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let sxx: f64 = kept.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    let sxy: f64 = kept.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let slope = sxy / sxx;
+    let p0_squared = my - slope * mx;
+    (slope < 0.0 && p0_squared > 0.0).then(|| (p0_squared.sqrt(), (-p0_squared / slope).sqrt()))
+}
+
 /// A rigid flat-ended cylindrical punch of radius a \[mm\] pressed by F \[N\] into a
 /// half-space of contact modulus E* \[MPa\] (Boussinesq; Sneddon 1946; Johnson ch. 3, pressure
 /// applied to a circular region).

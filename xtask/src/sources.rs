@@ -125,6 +125,18 @@ pub const SOURCES: &[Source] = &[
         false,
         &[],
     ),
+    // Bodies meshed in Gmsh (scenes.md): the bundled scene and its convergence to Hertz.
+    scene(
+        &["run", "cylinder-on-block", "--out", "{out}"],
+        "cylinder-on-block",
+        false,
+        &[],
+    ),
+    example(
+        &["--example", "cylinder_on_block"],
+        "cylinder_on_block",
+        false,
+    ),
     // The scenes chapter's errors and the results' reference, from the code.
     example(&["--example", "scene_errors"], "scene_errors", false),
     example(&["--example", "result_schema"], "result_schema", false),
@@ -173,6 +185,12 @@ pub const SOURCES: &[Source] = &[
     Source {
         args: &["dense"],
         ..example(&["--example", "roller_scaling"], "roller_dense", true)
+    },
+    // The linear programme beside the load split and the iteration (optimisation.md): timings,
+    // and the 100 × 53 roller.
+    Source {
+        args: &["large"],
+        ..example(&["--example", "linear_programme"], "linear_programme", true)
     },
     Source {
         args: &["straight"],

@@ -32,13 +32,16 @@ const SHRUNK: [(&str, &str, &str); 4] = [
     ("bearing", "cells = [80, 49]", "cells = [24, 11]"),
 ];
 
-/// The bundled scene `name` as a file in a scratch folder, shrunk when it is in [`SHRUNK`].
+/// The bundled scene `name` as a file in a scratch folder, shrunk when it is in [`SHRUNK`],
+/// with its meshes where it names them.
 fn scene_file(name: &str) -> std::path::PathBuf {
     let text = match SHRUNK.iter().find(|(n, _, _)| *n == name) {
         Some((_, from, to)) => bundled(name, &[(from, to)]),
         None => bundled_text(name).to_string(),
     };
-    write_scene(&scratch(BIN, name), name, &text)
+    let dir = scratch(BIN, name);
+    common::write_meshes(&dir, name);
+    write_scene(&dir, name, &text)
 }
 
 /// Runs the bundled scene `name` and checks its report: the exit status agrees with the cases'
@@ -147,6 +150,7 @@ every_bundled_scene!(
     punch_on_block: "punch-on-block",
     steel_on_aluminium: "steel-on-aluminium",
     winkler_bed: "winkler-bed",
+    cylinder_on_block: "cylinder-on-block",
 );
 
 /// The first field of a CSV row (RFC 4180: quoted when it holds a comma or a quote, quotes

@@ -339,7 +339,7 @@ fn dense_matrix_past_the_limit_is_refused() {
         &path,
         &[
             "dense-roller.toml:",
-            "10 dense 21000 × 21000 matrices",
+            "6 dense 21000 × 21000 matrices",
             "over the limit of 4000 MB",
             "polonsky_keer",
         ],

@@ -142,6 +142,51 @@ fn a_contact_off_its_grid_is_outside_the_model() {
     );
 }
 
+/// A body meshed in Gmsh whose contact group is drawn shorter than the contact (the block's
+/// top to 0.2 mm under a contact 0.3 mm wide, the top going on beyond): `check` accepts it,
+/// `run` exits 3 naming the group and where it ends, and result.json says `outside_model`;
+/// a mesh that is not there is refused by `check` with the path looked for and the scene's
+/// folder, and nothing is run.
+#[test]
+fn an_imported_contact_group_too_short_is_outside_the_model() {
+    let here = scratch(BIN, "mesh-limit");
+    common::write_meshes(&here, "cylinder-on-block");
+    let short = bundled(
+        "cylinder-on-block",
+        &[("contact = \"block_face\"", "contact = \"block_short\"")],
+    );
+    std::fs::write(here.join("short.toml"), short).unwrap();
+    let checked = in_folder(&here, &["check", "short.toml"]);
+    assert_eq!(checked.status.code(), Some(0), "{}", stderr(&checked));
+    let output = in_folder(&here, &["run", "short.toml"]);
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    let report = read_json(&here.join("results/cylinder-on-block/result.json"));
+    let case = &report["cases"][0];
+    assert_eq!(case["status"], "outside_model", "{}", case["status"]);
+    let message = case["limit"]["message"].as_str().unwrap();
+    assert!(
+        message.contains("\"block_short\"") && message.contains("goes on"),
+        "{message}"
+    );
+    assert!(stderr(&output).contains(message), "{}", stderr(&output));
+    let missing = bundled(
+        "cylinder-on-block",
+        &[("../meshes/cylinder-on-block-b8.msh", "block.msh")],
+    );
+    std::fs::write(here.join("missing.toml"), missing).unwrap();
+    let output = in_folder(&here, &["check", "missing.toml"]);
+    fails_with(
+        &output,
+        1,
+        &[
+            "missing.toml:",
+            "body[0].mesh",
+            "block.msh",
+            "scene's folder",
+        ],
+    );
+}
+
 /// What `run` refuses, `check` refuses first, in the same words, and in the scene's words
 /// rather than a Rust enum's: a given-load method where nothing floats (a punch pressed down
 /// by a displacement), an envelope split without an `[envelope]`.
@@ -199,6 +244,7 @@ fn show_prints_a_template_that_check_accepts() {
         assert_eq!(shown, std::fs::read_to_string(file).unwrap(), "{}", b.name);
         let copy = format!("my-{}.toml", b.name);
         std::fs::write(here.join(&copy), &shown).unwrap();
+        common::write_meshes(&here, b.name);
         let checked = in_folder(&here, &["check", &copy]);
         assert_eq!(checked.status.code(), Some(0), "{}", stderr(&checked));
         let cases = contopt_scene::Scene::bundled(b.name).unwrap().cases().len();

@@ -28,5 +28,6 @@ pub use element::ElementKind;
 pub use factor::factorisations;
 pub use mesh::{body_bytes, mesh_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
 pub use model::{Component, FeModel};
-pub use pairing::{ContactPairing, FaceSample, PairingSettings};
+pub use pairing::{ContactPairing, FaceSample, PairingSettings, PairingSurvey};
 pub use solution::{Solution, Stress};
+pub use system::RigidMotion;

@@ -185,36 +185,7 @@ impl ContactPairing {
         second: (&FeModel, &[Face]),
         settings: &PairingSettings,
     ) -> Result<Self> {
-        let chains = [
-            Chain::new("first", first.0, first.1)?,
-            Chain::new("second", second.0, second.1)?,
-        ];
-        let search_distance = settings
-            .search_distance
-            .unwrap_or_else(|| 0.5 * chains[0].extent().min(chains[1].extent()));
-        check::positive("pairing.search_distance", search_distance)?;
-        let mut paired = Paired::default();
-        let corners = chains[1].corners();
-        for curve in &chains[0].curves {
-            for (a, b) in curve.segments(&corners, search_distance) {
-                paired.sample_segment(&chains, curve, (a, b), search_distance)?;
-            }
-        }
-        if paired.first.is_empty() {
-            return Err(Error::invalid(
-                "pairing",
-                format!(
-                    "{} faces of the first body, {} of the second",
-                    first.1.len(),
-                    second.1.len()
-                ),
-                format!(
-                    "no point of the first body's faces meets the second body's faces along \
-                     its normal within the search distance {search_distance} mm: the faces do \
-                     not overlap, or they face away from each other"
-                ),
-            ));
-        }
+        let (paired, search_distance) = pair(first, second, settings)?;
         let faces: Vec<Face> = paired.first.iter().map(|s| s.face).collect();
         let basis = gap_basis(first.0, &paired.first, &nodes_of(first.0, &faces))?;
         let weights: Vec<f64> = paired.first.iter().map(|s| s.weight).collect();
@@ -232,6 +203,77 @@ impl ContactPairing {
             search_distance,
         })
     }
+
+    /// The points [`ContactPairing::new`] would pair, with its errors, without the projection
+    /// onto the first body's field (a decomposition of the points × the first body's face
+    /// nodes, the costly part): what a caller checks before anything is built.
+    pub fn survey(
+        first: (&FeModel, &[Face]),
+        second: (&FeModel, &[Face]),
+        settings: &PairingSettings,
+    ) -> Result<PairingSurvey> {
+        let (paired, search_distance) = pair(first, second, settings)?;
+        Ok(PairingSurvey {
+            first: paired.first,
+            segments: paired.segments,
+            left_out: paired.left_out,
+            search_distance,
+        })
+    }
+}
+
+/// The points of a [`ContactPairing`] before its projection ([`ContactPairing::survey`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairingSurvey {
+    /// The interface points on the first body's faces, in the pairing's order.
+    pub first: Vec<FaceSample>,
+    /// Sub-segments of the first body's faces that hold paired points.
+    pub segments: usize,
+    /// Points of the first body's faces left out (no partner within the search distance).
+    pub left_out: usize,
+    /// The search distance used \[mm\].
+    pub search_distance: f64,
+}
+
+/// The pairing's points and the search distance: the first body's faces cut where the second
+/// body's face nodes project and sampled, each point with its partner. Errors: see
+/// [`ContactPairing::new`].
+fn pair(
+    first: (&FeModel, &[Face]),
+    second: (&FeModel, &[Face]),
+    settings: &PairingSettings,
+) -> Result<(Paired, f64)> {
+    let chains = [
+        Chain::new("first", first.0, first.1)?,
+        Chain::new("second", second.0, second.1)?,
+    ];
+    let search_distance = settings
+        .search_distance
+        .unwrap_or_else(|| 0.5 * chains[0].extent().min(chains[1].extent()));
+    check::positive("pairing.search_distance", search_distance)?;
+    let mut paired = Paired::default();
+    let corners = chains[1].corners();
+    for curve in &chains[0].curves {
+        for (a, b) in curve.segments(&corners, search_distance) {
+            paired.sample_segment(&chains, curve, (a, b), search_distance)?;
+        }
+    }
+    if paired.first.is_empty() {
+        return Err(Error::invalid(
+            "pairing",
+            format!(
+                "{} faces of the first body, {} of the second",
+                first.1.len(),
+                second.1.len()
+            ),
+            format!(
+                "no point of the first body's faces meets the second body's faces along \
+                 its normal within the search distance {search_distance} mm: the faces do \
+                 not overlap, or they face away from each other"
+            ),
+        ));
+    }
+    Ok((paired, search_distance))
 }
 
 /// The points paired so far.
@@ -727,6 +769,16 @@ fn check_connected(field: &str, model: &FeModel, faces: &[Face]) -> Result<()> {
     Ok(())
 }
 
+/// The memory the projection of a pairing of `points` points onto a first body's field of
+/// `nodes` face nodes takes to build \[bytes\] (the weighted basis and its decomposition, n × m
+/// and n × n), `None` when the count overflows; each of the two bodies holds n × m of it.
+pub fn projection_bytes(points: usize, nodes: usize) -> Option<u64> {
+    memory::sum(&[
+        memory::bytes(&[points, nodes], 4 * 8),
+        memory::bytes(&[points, points], 2 * 8),
+    ])
+}
+
 /// The W-orthogonal projection P = B (BᵀWB)⁻¹BᵀW onto the first body's field B (its faces'
 /// quadratic shape functions at the points, W the point weights), held as W^−½ U and W^½ U
 /// with U an orthonormal basis of the range of W^½B (its singular vectors): P = W^−½ U Uᵀ W^½.
@@ -743,7 +795,7 @@ impl Projection {
         let (n, m) = (weights.len(), basis.nodes().len());
         memory::require(
             format!("the projection of {n} paired points onto {m} nodes"),
-            memory::sum(&[memory::bytes(&[n, m], 4 * 8), memory::bytes(&[n, n], 2 * 8)]),
+            projection_bytes(n, m),
             memory::BODY_LIMIT_BYTES,
             "pair fewer faces",
         )?;

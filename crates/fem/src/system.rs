@@ -7,10 +7,10 @@ use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Side};
 use nalgebra::{Matrix4, SMatrix};
 
-use crate::element::{ElementKind, MAX_NODES};
+use crate::element::{ElementKind, GAUSS3, MAX_NODES};
 use crate::factor::Factor;
 use crate::mesh::mesh_bytes;
-use crate::{Analysis, FeModel};
+use crate::{Analysis, Face, FeModel};
 
 /// A candidate rigid mode whose Gram eigenvalue on the held DOFs (relative to its norm) is
 /// below this moves no support: it is free (round-off).
@@ -35,11 +35,38 @@ pub(crate) enum Dof {
     Pinned,
 }
 
-/// A rigid-body mode over all global DOFs, with its name.
-#[derive(Clone, Debug)]
-pub(crate) struct Mode {
+/// A rigid-body motion of a model over all its global DOFs (u_x, u_y per node), with its
+/// name (`"x translation"`, `"y translation"`, `"rotation"`, `"axial translation"`, or
+/// `"combined rigid motion"`): one its supports leave free ([`FeModel::free_motions`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidMotion {
+    /// Its name, as a body's rigid modes are named.
     pub name: String,
+    /// Its nodal displacements (u_x, u_y per node).
     pub values: Vec<f64>,
+}
+
+impl RigidMotion {
+    /// Its displacement along the outward normal at the three Gauss points of each of `faces`
+    /// (boundary faces of `model`'s mesh), face after face: zero where the motion slides along
+    /// the faces (a contact on them cannot hold it).
+    pub fn along_normals(&self, model: &FeModel, faces: &[Face]) -> Vec<f64> {
+        faces
+            .iter()
+            .flat_map(|&f| {
+                let nodes = model.mesh.face_nodes(f);
+                GAUSS3.map(|(s, _)| {
+                    let fp = model.face_point(f, s);
+                    (0..3)
+                        .map(|k| {
+                            let u = [self.values[2 * nodes[k]], self.values[2 * nodes[k] + 1]];
+                            fp.shape[k] * (u[0] * fp.normal[0] + u[1] * fp.normal[1])
+                        })
+                        .sum::<f64>()
+                })
+            })
+            .collect()
+    }
 }
 
 /// Stiffness matrix of the free unknowns, factorised, with the free unknowns of `tail_nodes`
@@ -48,7 +75,7 @@ pub(crate) struct System {
     pub dofs: Vec<Dof>,
     pub n_free: usize,
     pub n_tail: usize,
-    pub modes: Vec<Mode>,
+    pub modes: Vec<RigidMotion>,
     /// K_fp u_p: the effect of prescribed displacements on the free equations.
     pub prescribed_load: Vec<f64>,
     pub factor: Factor,
@@ -75,7 +102,7 @@ pub(crate) struct Numbering {
     pub dofs: Vec<Dof>,
     pub n_free: usize,
     pub n_tail: usize,
-    pub modes: Vec<Mode>,
+    pub modes: Vec<RigidMotion>,
 }
 
 impl Numbering {
@@ -367,7 +394,7 @@ impl Triplets {
 /// Candidate rigid-body modes of the analysis, over all global DOFs: the axial translation
 /// in axisymmetry (a radial translation strains the hoop direction); two translations and
 /// the rotation about the centroid in plane analyses.
-fn candidate_modes(model: &FeModel) -> Vec<Mode> {
+fn candidate_modes(model: &FeModel) -> Vec<RigidMotion> {
     let nodes = model.mesh.nodes();
     let n = nodes.len();
     let field = |f: &dyn Fn([f64; 2]) -> [f64; 2]| -> Vec<f64> {
@@ -375,12 +402,12 @@ fn candidate_modes(model: &FeModel) -> Vec<Mode> {
     };
     let mut modes = vec![];
     if model.analysis != Analysis::Axisymmetric {
-        modes.push(Mode {
+        modes.push(RigidMotion {
             name: "x translation".into(),
             values: field(&|_| [1.0, 0.0]),
         });
     }
-    modes.push(Mode {
+    modes.push(RigidMotion {
         name: if model.analysis == Analysis::Axisymmetric {
             "axial translation"
         } else {
@@ -393,7 +420,7 @@ fn candidate_modes(model: &FeModel) -> Vec<Mode> {
         let c = nodes.iter().fold([0.0; 2], |s, p| {
             [s[0] + p[0] / n as f64, s[1] + p[1] / n as f64]
         });
-        modes.push(Mode {
+        modes.push(RigidMotion {
             name: "rotation".into(),
             values: field(&|p| [-(p[1] - c[1]), p[0] - c[0]]),
         });
@@ -403,7 +430,7 @@ fn candidate_modes(model: &FeModel) -> Vec<Mode> {
 
 /// The rigid-body modes that no prescribed DOF restrains: the null space of the candidate
 /// modes restricted to the prescribed DOFs.
-fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<Mode>> {
+fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<RigidMotion>> {
     let candidates = candidate_modes(model);
     let m = candidates.len();
     let held: Vec<usize> = (0..dofs.len())
@@ -436,7 +463,7 @@ fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<Mode>> {
             .find(|&a| (0..m).all(|b| b == a || coef[b].abs() < ONE_CANDIDATE * coef[a].abs()));
         let mode = match single {
             Some(a) => candidates[a].clone(),
-            None => Mode {
+            None => RigidMotion {
                 name: "combined rigid motion".into(),
                 values: (0..dofs.len())
                     .map(|g| (0..m).map(|a| coef[a] * candidates[a].values[g]).sum())
@@ -450,7 +477,7 @@ fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<Mode>> {
 
 /// One unknown per free mode to hold at zero, chosen by pivoted Gram–Schmidt on the mode
 /// values so the modes stay well determined; unknowns off the contact face are preferred.
-fn pins(modes: &[Mode], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
+fn pins(modes: &[RigidMotion], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
     let m = modes.len();
     let mut rows: Vec<(usize, Vec<f64>)> = (0..dofs.len())
         .filter(|&g| matches!(dofs[g], Dof::Free(_)))

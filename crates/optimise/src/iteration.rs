@@ -9,7 +9,7 @@ use faer::linalg::solvers::{ColPivQr, SolveLstsq};
 use faer::Mat;
 
 use crate::passes::Passes;
-use crate::{IterationSettings, Optimisation, Optimum, Region, ROUND_OFF};
+use crate::{IterationSettings, Optimisation, Optimum, Region, ROUND_OFF, SOLVER_ACCURACY};
 
 /// What is given on the bodies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,6 +93,13 @@ impl Optimisation<'_> {
     ///
     /// Under [`Mode::GivenLoad`] the loop closes in two passes when Ω_v is the whole region:
     /// the second contact solve, on the optimised gap, reproduces v·p_max and changes nothing.
+    ///
+    /// On Ω_nv the paper's steps prescribe nothing, while (3.4) asks χ = v·p_max − p ≥ 0: a
+    /// point of Ω_nv whose pressure a pass finds above v·p_max joins Ω_v in steps 5–6 (χ = 0
+    /// and d = 0 prescribed there from then on) when step 6's fit reaches several nodes per
+    /// row (a finite-element face). Where every row reaches one node (a roller's columns) its
+    /// gap change is its column's, which Ω_v closes: an optimum with p above v·p_max there
+    /// ends as [`Termination::Infeasible`], naming the point.
     pub fn iterate(
         &self,
         mode: Mode,
@@ -101,10 +108,9 @@ impl Optimisation<'_> {
     ) -> Result<Optimum> {
         settings.check()?;
         self.check_mode(mode)?;
-        let omega_v = self.omega_v();
-        let fit = StepSix::new(self, &omega_v)?;
+        let mut prescribed = Prescribed::new(self)?;
         let tolh = settings.tolh_mm2;
-        let mut passes = Passes::new(self.observer, Method::GapIteration, tolh);
+        let mut passes = Passes::new(self, Method::GapIteration, tolh);
         let mut dh = vec![0.0; self.shape.nodes().len()];
         let mut last: Option<Iterate> = None;
         for k in 1..=settings.max_iterations {
@@ -114,12 +120,15 @@ impl Optimisation<'_> {
                 self.solve_with_gap_change(solver, self.problem, &self.shape.apply(&dh), warm)?;
             if !state.is_converged() {
                 let end = state.termination.clone().inside(state.method);
-                let held = self.held(last, state, dh, mode);
+                let held = self.held(last, state, dh, mode, &prescribed.mask);
                 return Ok(passes.finish(held, end));
             }
-            let p_max = self.step_four(mode, &state.pressure)?;
+            let mut p_max = self.step_four(mode, &state.pressure, &prescribed.mask)?;
+            if prescribed.bind(self, &state.pressure, p_max)? {
+                p_max = self.step_four(mode, &state.pressure, &prescribed.mask)?;
+            }
             // Steps 5–6.
-            let next = self.steps_five_and_six(&fit, &omega_v, &state, p_max);
+            let next = self.steps_five_and_six(&prescribed, &state, p_max);
             let tolh_k: f64 = next.iter().zip(&dh).map(|(a, b)| (a - b).powi(2)).sum();
             let flow = passes.push(Pass::new(k, p_max, &next, tolh_k, [&state]), tolh_k);
             // Step 7.
@@ -149,6 +158,7 @@ impl Optimisation<'_> {
         state: ContactState,
         dh: Vec<f64>,
         mode: Mode,
+        prescribed: &[bool],
     ) -> Optimum {
         let (state, dh) = match last {
             Some((s, d, p_max)) if state.non_finite().is_some() => {
@@ -157,7 +167,9 @@ impl Optimisation<'_> {
             _ => (state, dh),
         };
         let p_max = match mode {
-            Mode::GivenLoad => self.equilibrium_p_max(&state.pressure).unwrap_or(f64::NAN),
+            Mode::GivenLoad => self
+                .equilibrium_p_max(&state.pressure, prescribed)
+                .unwrap_or(f64::NAN),
             Mode::GivenDisplacement => self.p_max_on_omega_opt(&state.pressure),
         };
         self.optimum(state, dh, p_max, Method::GapIteration)
@@ -184,8 +196,8 @@ impl Optimisation<'_> {
     /// Step 4: p_max of the contact pressure. Under a given displacement, the largest
     /// pressure on Ω_opt read as a field ([`InterfaceProblem::recovered_pressure`]); under a
     /// given load, the value equilibrium asks of v·p_max
-    /// ([`Optimisation::equilibrium_p_max`]).
-    fn step_four(&self, mode: Mode, pressure: &[f64]) -> Result<f64> {
+    /// ([`Optimisation::equilibrium_p_max`]) with p = v·p_max on the `prescribed` points.
+    fn step_four(&self, mode: Mode, pressure: &[f64], prescribed: &[bool]) -> Result<f64> {
         match mode {
             Mode::GivenDisplacement => {
                 let field = self.problem.recovered_pressure(pressure)?;
@@ -194,25 +206,26 @@ impl Optimisation<'_> {
                     .map(|i| field[i])
                     .fold(0.0, f64::max))
             }
-            Mode::GivenLoad => self.equilibrium_p_max(pressure),
+            Mode::GivenLoad => self.equilibrium_p_max(pressure, prescribed),
         }
     }
 
-    /// Steps 5–6: prescribe p = v·p_max on Ω_v, take the residual gap m on Ω_v with the
-    /// original initial gap h₀ and fit Δh = −(m − m_N) through Q.
+    /// Steps 5–6: prescribe p = v·p_max on the `prescribed` points (Ω_v and where χ ≥ 0
+    /// binds), take the residual gap m there with the original initial gap h₀ and fit
+    /// Δh = −(m − m_N) through Q.
     fn steps_five_and_six(
         &self,
-        fit: &StepSix,
-        omega_v: &[usize],
+        prescribed: &Prescribed,
         state: &ContactState,
         p_max: f64,
     ) -> Vec<f64> {
         let mut p = state.pressure.clone();
-        for &i in omega_v {
+        for &i in &prescribed.points {
             p[i] = self.v[i] * p_max;
         }
         let m = self.problem.gap(&p, &state.rigid);
-        let fitted = fit.solve(&omega_v.iter().map(|&i| -m[i]).collect::<Vec<_>>());
+        let rhs: Vec<f64> = prescribed.points.iter().map(|&i| -m[i]).collect();
+        let fitted = prescribed.fit.solve(&rhs);
         // Q's rows sum to one, so subtracting Δh_N from every node moves the gap by −m_N
         // everywhere: the uniform part of the residual (the approach, a rigid translation)
         // is left to the contact solver and the gap does not change at N.
@@ -220,15 +233,16 @@ impl Optimisation<'_> {
     }
 
     /// p_max of a given load: the least-squares solution over the rigid modes of
-    /// p_max·(Rᵀ W v)_Ω_v + (Rᵀ W p)_rest = −q; fails when the loads cannot be carried by
-    /// v·p_max (a moment against a symmetric controller, say) or would need p_max ≤ 0.
-    pub(crate) fn equilibrium_p_max(&self, pressure: &[f64]) -> Result<f64> {
+    /// p_max·(Rᵀ W v)_prescribed + (Rᵀ W p)_rest = −q, with the `prescribed` points (Ω_v and
+    /// where χ ≥ 0 binds) at v·p_max; fails when the loads cannot be carried by v·p_max (a
+    /// moment against a symmetric controller, say) or would need p_max ≤ 0.
+    pub(crate) fn equilibrium_p_max(&self, pressure: &[f64], prescribed: &[bool]) -> Result<f64> {
         let problem = self.problem;
         let (w, q) = (problem.weights(), problem.load());
         let (mut a, mut b) = (vec![0.0; q.len()], vec![0.0; q.len()]);
         for (m, mode) in problem.modes().iter().enumerate() {
             for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
-                if self.regions[i] == Region::OmegaV {
+                if prescribed[i] {
                     a[m] += r * w[i] * self.v[i];
                 } else {
                     b[m] += r * w[i] * pressure[i];
@@ -252,10 +266,59 @@ impl Optimisation<'_> {
     }
 }
 
-/// Step 6's least-squares fit of Q on the rows of Ω_v, min ‖Q_Ω_v Δh − b‖, from the structure
-/// of Q: when every Ω_v row reaches one node (a pointwise or an extruded shape), the normal
-/// equations are diagonal and Δh_k is the weighted mean of b over its rows; otherwise (the
-/// quadratic face rows of a finite-element body, a short 1-D region) a dense pivoted QR.
+/// The points where step 5 prescribes p = v·p_max and step 6 closes the gap: Ω_v, joined by
+/// each point of Ω_nv where a pass finds p above v·p_max, so that χ ≥ 0 (3.4) binds there
+/// as an equality, as in an active set. A point joins only when the fit can close it
+/// independently, i.e. when it is a least-squares fit over rows that reach several nodes (the
+/// quadratic faces of a finite-element body); where every row reaches one node (a roller's
+/// extruded columns) an Ω_nv point's gap change is that of its column, which Ω_v closes, and
+/// the loop's end says so when χ ≥ 0 fails there ([`Termination::Infeasible`]).
+struct Prescribed {
+    points: Vec<usize>,
+    mask: Vec<bool>,
+    fit: StepSix,
+}
+
+impl Prescribed {
+    /// Ω_v, with its fit.
+    fn new(opt: &Optimisation) -> Result<Self> {
+        let points = opt.omega_v();
+        let mut mask = vec![false; opt.v.len()];
+        points.iter().for_each(|&i| mask[i] = true);
+        Ok(Self {
+            fit: StepSix::new(opt, &points)?,
+            points,
+            mask,
+        })
+    }
+
+    /// Joins the points of Ω_nv whose `pressure` passes v·`p_max` (beyond the contact solve's
+    /// accuracy) when the fit can take them; whether any joined.
+    fn bind(&mut self, opt: &Optimisation, pressure: &[f64], p_max: f64) -> Result<bool> {
+        if matches!(self.fit, StepSix::Diagonal { .. }) {
+            return Ok(false);
+        }
+        let over: Vec<usize> = (0..pressure.len())
+            .filter(|&i| opt.regions[i] == Region::OmegaNv && !self.mask[i])
+            .filter(|&i| pressure[i] > opt.v[i] * p_max + SOLVER_ACCURACY * p_max)
+            .collect();
+        if over.is_empty() {
+            return Ok(false);
+        }
+        for &i in &over {
+            self.mask[i] = true;
+        }
+        self.points = (0..self.mask.len()).filter(|&i| self.mask[i]).collect();
+        self.fit = StepSix::new(opt, &self.points)?;
+        Ok(true)
+    }
+}
+
+/// Step 6's least-squares fit of Q on the rows of the prescribed points (Ω_v, and where χ ≥ 0
+/// binds), min ‖Q_Ω_v Δh − b‖, from the structure of Q: when every such row reaches one node
+/// (a pointwise or an extruded shape), the normal equations are diagonal and Δh_k is the
+/// weighted mean of b over its rows; otherwise (the quadratic face rows of a finite-element
+/// body, a short 1-D region) a dense pivoted QR.
 enum StepSix {
     Diagonal {
         /// (node, weight) of each Ω_v row.

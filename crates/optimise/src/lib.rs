@@ -10,7 +10,9 @@
 //!   eq. 4.1 and Tables 1 and 3) or a given displacement (p_max from the contact pressure,
 //!   Table 2), stopping on TOLH (4.2);
 //! - as the restricted linear programme (3.5) on the dense influence matrix
-//!   ([`Optimisation::linear_programme`]), for small problems and as a cross-check;
+//!   ([`Optimisation::linear_programme`]), restricted by the contact set of the load split's or
+//!   the iteration's optimum, its equalities eliminated by a rank-revealing QR: wherever the
+//!   dense matrices fit, and as a cross-check;
 //! - or, for large problems, as the same optimum without a dense matrix: one strictly convex
 //!   contact QP per update of the loads carried by the design columns
 //!   ([`Optimisation::load_split`]), solved by any contact solver, matrix-free ones included;
@@ -23,7 +25,9 @@
 //!
 //! Every method ends with a [`Termination`] in its [`Optimum`], which always holds the last
 //! iterate: a step limit, an observer's stop, an infeasible programme or a contact solve that
-//! did not converge are outcomes, not errors. Errors are for bad input and for work refused
+//! did not converge are outcomes, not errors. Every optimum states the largest p − v·p_max over
+//! Ω_nv ([`Optimum::omega_nv_excess`]); one that breaks χ ≥ 0 there ends as
+//! [`Termination::Infeasible`], never as converged. Errors are for bad input and for work refused
 //! before it starts. Settings carry the library's defaults ([`IterationSettings`],
 //! [`LoadSplitSettings`], [`LinearProgrammeSettings`], [`OptimisationMethod`]); controllers
 //! are built from [`ControllerSettings`] too.
@@ -33,6 +37,7 @@ mod iteration;
 mod load_split;
 mod lp;
 mod passes;
+mod programme;
 mod settings;
 mod simplex;
 #[cfg(test)]
@@ -106,12 +111,18 @@ pub struct Optimum {
     pub gap: Vec<f64>,
     /// Rigid-mode amplitudes λ.
     pub rigid: Vec<f64>,
-    /// The rows of the loop, one per pass (for the programme: one per restricted programme).
+    /// The rows of the loop, one per pass (for the programme: the pass that solved, its k
+    /// counting the passes before it whose contact set it corrected).
     pub passes: Vec<Pass>,
     /// The method that found it.
     pub method: Method,
-    /// How the method ended: [`Termination::Converged`], or why it stopped short.
+    /// How the method ended: [`Termination::Converged`], or why it stopped short. An
+    /// optimum that met its tolerance but leaves p above v·p_max on Ω_nv (χ ≥ 0 of 3.4)
+    /// ends as [`Termination::Infeasible`], never as converged.
     pub termination: Termination,
+    /// The largest p − v·p_max over Ω_nv \[MPa\] (−min χ there: at most round-off when χ ≥ 0
+    /// holds, negative where Ω_nv carries less than its bound); `None` without Ω_nv.
+    pub omega_nv_excess: Option<f64>,
 }
 
 impl Optimum {
@@ -181,8 +192,8 @@ impl<'a> Optimisation<'a> {
     /// Reports each pass of the optimisation to `observer` as an event of its method
     /// ([`Method::GapIteration`], [`Method::LinearProgramme`], [`Method::LoadSplit`],
     /// [`Method::EnvelopeSplit`]) at level 0, with the measure it compares with its tolerance:
-    /// TOLH (4.2) in [`Optimisation::iterate`], the number of points that carry pressure
-    /// across an open gap (tolerance 0) in [`Optimisation::linear_programme`], the miss of
+    /// TOLH (4.2) in [`Optimisation::iterate`], the number of points whose restriction a pass
+    /// could not meet (tolerance 0) in [`Optimisation::linear_programme`], the miss of
     /// v·p_max on Ω_v in the load splits; the last event says how it ended. The contact
     /// solves inside report to it through [`Nested`], one level deeper. A stop ends the loop
     /// with [`Termination::Stopped`].
@@ -411,6 +422,7 @@ impl<'a> Optimisation<'a> {
             passes: vec![],
             method,
             termination: Termination::Converged,
+            omega_nv_excess: None,
         }
     }
 

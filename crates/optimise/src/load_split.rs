@@ -6,7 +6,7 @@ use contopt_core::{ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
 
-use crate::passes::Passes;
+use crate::passes::{Bound, Passes};
 use crate::{
     LoadSplitSettings, Optimisation, Optimum, Pass, Reference, Region, ROUND_OFF, SOLVER_ACCURACY,
 };
@@ -32,7 +32,7 @@ const NEWTON_STEP: f64 = 1e-14;
 /// The design columns of a gap shape whose rows each reach one node: the points of each node,
 /// their rigid-mode displacement r (one value per column), and the column's Ω_v measure and mean
 /// controller value.
-struct Columns {
+pub(crate) struct Columns {
     points: Vec<Vec<usize>>,
     r: Vec<f64>,
     /// L_k = Σ wᵢ over the column's Ω_v points.
@@ -114,7 +114,7 @@ impl Optimisation<'_> {
             solver,
             cases,
             columns: &columns,
-            passes: Passes::new(self.observer, method, settings.tolerance),
+            passes: Passes::new(self, method, settings.tolerance),
         };
         let mut update = ShareUpdate::new(&columns);
         let mut last: Option<SplitIterate> = None;
@@ -127,7 +127,7 @@ impl Optimisation<'_> {
                 .passes
                 .push(iterate.row(k, last.as_ref()), iterate.miss);
             if iterate.miss <= settings.tolerance {
-                self.check_envelope(&iterate)?;
+                self.check_sign(&iterate.dh)?;
                 return Ok(split.finish(iterate, Termination::Converged));
             }
             if flow == Flow::Stop {
@@ -162,7 +162,7 @@ impl Optimisation<'_> {
 
     /// The design columns, checked: one rigid mode, rows that each reach one node, and one
     /// displacement r per column.
-    fn columns(&self) -> Result<Columns> {
+    pub(crate) fn columns(&self) -> Result<Columns> {
         let problem = self.problem;
         let modes = problem.modes();
         if modes.len() != 1 {
@@ -255,31 +255,6 @@ impl Optimisation<'_> {
             measure,
             v,
         })
-    }
-
-    /// The pressure of Ω_nv in every case of a converged split is within v·p_max (χ ≥ 0 of
-    /// 3.5), and the crown's sign fits a given reference node.
-    fn check_envelope(&self, iterate: &SplitIterate) -> Result<()> {
-        self.check_sign(&iterate.dh)?;
-        let p_max = iterate.p_max;
-        let excess = std::iter::once(&iterate.state)
-            .chain(&iterate.cases)
-            .flat_map(|s| {
-                (0..s.pressure.len())
-                    .filter(|&i| self.regions[i] == Region::OmegaNv)
-                    .map(|i| s.pressure[i] - self.v[i] * p_max)
-            })
-            .fold(f64::NEG_INFINITY, f64::max);
-        // An Ω_nv pressure may lie above v·p_max by the contact solve's accuracy.
-        if excess > SOLVER_ACCURACY * p_max {
-            return Err(Error::invalid(
-                "omega_v",
-                format!("{excess:.4e} MPa above v·p_max on Ω_nv"),
-                "Ω_v does not hold the largest pressure of its columns, so no crown along them \
-                 meets χ ≥ 0 (3.5): put Ω_v where each column peaks",
-            ));
-        }
-        Ok(())
     }
 }
 
@@ -415,17 +390,43 @@ impl Split<'_, '_, '_> {
         (dh, lambda[n])
     }
 
-    /// The optimum of `iterate`, ended as `termination`.
+    /// The optimum of `iterate`, ended as `termination`: its largest p − v·p_max on Ω_nv is
+    /// that of every case, and a converged split whose further case breaks χ ≥ 0 there ends
+    /// as infeasible, naming it (its design case is checked as every optimum is).
     fn finish(self, iterate: SplitIterate, termination: Termination) -> EnvelopeOptimum {
         let (_, approach) = self.crown(&iterate.state.rigid);
+        let bound = Bound::new(self.opt);
+        let worst = iterate
+            .cases
+            .iter()
+            .enumerate()
+            .filter_map(|(c, s)| Some((bound.excess(&s.pressure, iterate.p_max)?, c)))
+            .max_by(|a, b| a.0 .0.total_cmp(&b.0 .0));
+        let termination = match (termination, worst) {
+            (Termination::Converged, Some(((value, i), c)))
+                if value > SOLVER_ACCURACY * iterate.p_max =>
+            {
+                match bound.broken(value, i) {
+                    Termination::Infeasible { reason } => Termination::Infeasible {
+                        reason: format!("in case {}: {reason}", c + 1),
+                    },
+                    other => other,
+                }
+            }
+            (termination, _) => termination,
+        };
         let optimum = Optimum {
             rigid: vec![approach],
             ..self
                 .opt
                 .optimum(iterate.state, iterate.dh, iterate.p_max, Method::LoadSplit)
         };
+        let mut optimum = self.passes.finish(optimum, termination);
+        if let (Some(own), Some(((value, _), _))) = (optimum.omega_nv_excess, worst) {
+            optimum.omega_nv_excess = Some(own.max(value));
+        }
         EnvelopeOptimum {
-            optimum: self.passes.finish(optimum, termination),
+            optimum,
             cases: iterate.cases,
         }
     }

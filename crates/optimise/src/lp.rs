@@ -1,51 +1,44 @@
-//! The restricted linear programme (3.5) by clarabel.
+//! The restricted linear programme (3.5): its passes, each a programme restricted by a contact
+//! set, and the seed of the first.
 
-use contopt_contact::conic::{self, CscMatrix, Outcome};
 use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
-use contopt_core::observe::{Flow, Method};
+use contopt_core::observe::{Flow, Method, Nested};
 use contopt_core::{check, Error, Result, Termination};
 use faer::Mat;
 
 use crate::passes::Passes;
+use crate::programme::{self, Kind, RowSource, Rows, Solved};
 use crate::{
-    LinearProgrammeSettings, Optimisation, Optimum, Pass, Reference, Region, ROUND_OFF,
-    SOLVER_ACCURACY,
+    IterationSettings, LinearProgrammeSettings, LoadSplitSettings, Mode, Optimisation, Optimum,
+    Pass, Reference, Region, ROUND_OFF, SOLVER_ACCURACY,
 };
-
-/// The n × n arrays of a pass held at once: A, its rows, the triplets and the CSC matrix, and
-/// the interior point's factor.
-const LP_COPIES: u64 = 10;
-
-/// Relative pressure (of p_max) and gap (of the gap unit) above which a point of a pass's
-/// solution carries pressure across an open gap: two orders above the interior point's
-/// tolerance (convergence).
-const COMPLEMENTARITY: f64 = 1e-8;
 
 /// Programmes a pass solves under [`Reference::Least`] when no rigid translation takes up a
 /// uniform gap change: each moves the pinned node to where the last one's Δh came out least,
 /// which settles in one or two.
 const PIN_MOVES: usize = 4;
 
-/// A constraint row: its (column, coefficient) entries and its right-hand side.
-type Row = (Vec<(usize, f64)>, f64);
+/// The conflicting constraints an infeasible programme's reason names.
+const NAMED_ROWS: usize = 3;
 
-/// How a point enters a pass of the programme.
+/// How a point enters a pass of the programme: the complementarity pᵀd = 0 of (3.5) as a
+/// restriction, d = 0 or p = 0, with p ≥ 0 and d ≥ 0 as inequalities.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Restriction {
-    /// p ≥ 0 and d ≥ 0 (the relaxed first pass).
-    Free,
-    /// In contact: d = 0 (always on Ω_v).
+    /// In contact: d = 0, p ≥ 0 (always on Ω_v, where p = v·p_max).
     Closed,
-    /// Open: p = 0.
+    /// Open: p = 0, d ≥ 0.
     Open,
 }
 
-/// How a pass's programme ended: its optimum and the number of points that carry pressure
-/// across an open gap, or why it has none.
+/// How a pass ended: its optimum; the points whose restriction its programme could not meet
+/// (a closed point that would have to pull, an open one that would have to penetrate), with
+/// the termination that says so; or why it has none.
 enum PassEnd {
-    Solved(Box<Optimum>, usize),
+    Solved(Box<Optimum>),
+    Flip(Vec<usize>, Termination),
     Ended(Termination),
 }
 
@@ -54,15 +47,22 @@ impl Optimisation<'_> {
     /// Rᵀ W p = −q, p ≥ 0, χ = v·p_max − p ≥ 0 on Ω_opt (= 0 on Ω_v),
     /// d = g + A W p + R λ + QΔh ≥ 0 (= 0 on Ω_v), Δh ≥ 0 and Δh = 0 at the reference node.
     ///
-    /// The complementarity pᵀd = 0 is kept by restriction: the programme is solved without
-    /// it; while some point outside Ω_v carries pressure across an open gap, the contact
-    /// problem is solved on the programme's gap and its contact set restricts
-    /// the next pass, d = 0 on the points in contact and p = 0 on the others, until a pass is
-    /// complementary (on a one-dimensional region, where Ω_v is everything, the first is), at
-    /// most [`LinearProgrammeSettings::max_passes`] passes. The contact solves use
-    /// `contact_solver`; each pass is reported to the observer
-    /// ([`Optimisation::with_observer`]) with its number of such points. Dense: it needs the
-    /// influence matrix ([`InterfaceProblem::dense_influence`]); large problems take
+    /// The complementarity pᵀd = 0 is kept by restriction: each pass solves the programme with
+    /// d = 0 on the points of a contact set and p = 0 on the others, p ≥ 0 and d ≥ 0 as
+    /// inequalities. The first pass's contact set is that of an optimum found without the
+    /// dense matrix: the load split's where it applies, else the iteration of §3.2's (else the
+    /// contact without a gap change); where Ω_v is the whole region there is nothing to seed.
+    /// A pass whose programme cannot meet its restriction (a closed point that would have to
+    /// pull, an open one that would have to penetrate, as its infeasibility certificate names
+    /// them) flips those points for the next, as Kalker's active set does, at most
+    /// [`LinearProgrammeSettings::max_passes`] passes; a contact set that comes back ends it
+    /// as stalled. A programme is solved by eliminating its equalities (a rank-revealing QR,
+    /// which drops the redundant ones) and handing the few directions left to clarabel; on a
+    /// bearing roller, whose Ω_v closes every design column, none are left and the pass is one
+    /// dense solve. Each pass is reported to the observer ([`Optimisation::with_observer`])
+    /// with the number of points it flipped (0 on the last), the seed's optimisation one level
+    /// deeper; `contact_solver` serves the seed. Dense: it needs the influence matrix
+    /// ([`InterfaceProblem::dense_influence`]), so large problems take
     /// [`Optimisation::load_split`].
     ///
     /// Under [`Reference::Least`] a node is pinned (Δh = 0) and Δh is free in sign: when a
@@ -72,9 +72,9 @@ impl Optimisation<'_> {
     /// came out least and the programme is solved again, until Δh ≥ 0. Under
     /// [`Reference::Node`] the node is pinned and Δh ≥ 0 is a constraint, as (3.5) writes it.
     ///
-    /// An infeasible or unbounded programme ends it with [`Termination::Infeasible`] or
-    /// [`Termination::Unbounded`], holding the last pass's optimum (or, before the first, the
-    /// contact solution without a gap change).
+    /// An infeasible or unbounded programme ends it with [`Termination::Infeasible`] (naming
+    /// the constraints that conflict) or [`Termination::Unbounded`], holding the contact
+    /// solution without a gap change.
     pub fn linear_programme(
         &self,
         contact_solver: &dyn ContactSolver,
@@ -82,64 +82,54 @@ impl Optimisation<'_> {
     ) -> Result<Optimum> {
         settings.check()?;
         let lp = Programme::new(self, settings.tolerance)?;
-        let mut passes = Passes::new(self.observer, Method::LinearProgramme, 0.0);
-        let mut restricted = match lp.first_restrictions(contact_solver)? {
+        let mut passes = Passes::new(self, Method::LinearProgramme, 0.0);
+        let mut restricted = match lp.seed(contact_solver)? {
             Ok(restricted) => restricted,
-            Err(end) => return self.programme_ended(contact_solver, passes, None, end),
+            Err(end) => return self.programme_ended(contact_solver, passes, end),
         };
-        let mut tried = vec![restricted.clone()];
-        let mut last: Option<Optimum> = None;
+        let mut tried = vec![];
         for pass in 1..=settings.max_passes {
-            let (optimum, violated) = match lp.solve_pass(&restricted)? {
-                PassEnd::Solved(optimum, violated) => (*optimum, violated),
-                PassEnd::Ended(end) => {
-                    return self.programme_ended(contact_solver, passes, last, end)
-                }
-            };
-            let row = Pass {
-                k: pass,
-                ..optimum.passes[0]
-            };
-            let flow = passes.push(row, violated as f64);
-            if violated == 0 {
-                self.check_sign(&optimum.dh)?;
-                return Ok(passes.finish(optimum, Termination::Converged));
-            }
-            if flow == Flow::Stop {
-                return Ok(passes.finish(optimum, Termination::Stopped { after: pass }));
-            }
-            restricted = match lp.restrict(contact_solver, &optimum.gap_change)? {
-                Ok(restricted) => restricted,
-                Err(end) => return Ok(passes.finish(optimum, end)),
-            };
-            if tried.contains(&restricted) {
-                let reason = format!(
-                    "the contact sets of its passes repeat; {violated} points carry pressure \
-                     across an open gap"
-                );
-                return Ok(passes.finish(optimum, Termination::Stalled { reason }));
-            }
             tried.push(restricted.clone());
-            last = Some(optimum);
+            let end = match lp.solve_pass(&restricted)? {
+                PassEnd::Solved(optimum) => {
+                    let row = Pass {
+                        k: pass,
+                        ..optimum.passes[0]
+                    };
+                    let _ = passes.push(row, 0.0);
+                    self.check_sign(&optimum.dh)?;
+                    return Ok(passes.finish(*optimum, Termination::Converged));
+                }
+                PassEnd::Flip(points, end) => {
+                    let flow = passes.report(pass, points.len() as f64);
+                    points
+                        .iter()
+                        .for_each(|&i| restricted[i] = restricted[i].flipped());
+                    match (flow, tried.contains(&restricted)) {
+                        (Flow::Stop, _) => Termination::Stopped { after: pass },
+                        (_, true) => Termination::Stalled {
+                            reason: format!("the contact sets of its passes repeat ({end})"),
+                        },
+                        _ => continue,
+                    }
+                }
+                PassEnd::Ended(end) => end,
+            };
+            return self.programme_ended(contact_solver, passes, end);
         }
         let end = passes.step_limit();
-        let last = last.ok_or_else(|| Error::invalid("max_passes", 0, "at least one pass"))?;
-        Ok(passes.finish(last, end))
+        self.programme_ended(contact_solver, passes, end)
     }
 
-    /// The optimum of a programme that ended short: the last pass's, or the contact solution
-    /// without a gap change when no pass gave one.
+    /// The optimum of a programme that ended short, `end`: the contact solution without a gap
+    /// change (no pass gave an optimum).
     fn programme_ended(
         &self,
         contact_solver: &dyn ContactSolver,
         passes: Passes,
-        last: Option<Optimum>,
         end: Termination,
     ) -> Result<Optimum> {
-        let held = match last {
-            Some(optimum) => optimum,
-            None => self.unoptimised(contact_solver, Method::LinearProgramme, end.clone())?,
-        };
+        let held = self.unoptimised(contact_solver, Method::LinearProgramme, end.clone())?;
         let end = match &held.termination {
             Termination::Converged => end,
             inner => inner.clone(),
@@ -168,25 +158,57 @@ impl Optimisation<'_> {
                 (uniform && r != 0.0).then_some((m, r))
             })
     }
+
+    /// The optimum whose contact set seeds the programme: the load split's where its columns
+    /// apply, else the iteration's (under the given load, or the given displacement when
+    /// nothing floats), reported one level deeper; `None` when that method refuses the
+    /// problem.
+    fn seeding_optimum(&self, contact_solver: &dyn ContactSolver) -> Result<Option<Optimum>> {
+        let nested = Nested(self.observer);
+        let seeding = Optimisation {
+            problem: self.problem,
+            shape: std::borrow::Cow::Borrowed(self.shape.as_ref()),
+            v: self.v.clone(),
+            regions: self.regions.clone(),
+            kept: self.kept.clone(),
+            reference: self.reference,
+            observer: &nested,
+        };
+        let found = match (seeding.columns(), self.problem.modes().is_empty()) {
+            (Ok(_), _) => seeding.load_split(contact_solver, &LoadSplitSettings::default()),
+            (Err(_), floating) => {
+                let mode = match floating {
+                    true => Mode::GivenDisplacement,
+                    false => Mode::GivenLoad,
+                };
+                seeding.iterate(mode, contact_solver, &IterationSettings::default())
+            }
+        };
+        match found {
+            Ok(optimum) => Ok(Some(optimum)),
+            // A refusal of the seeding method (its own limits) leaves the programme to the
+            // contact without a gap change; bad data fails the programme's checks as well.
+            Err(Error::InvalidInput { .. }) => Ok(None),
+            Err(other) => Err(other),
+        }
+    }
 }
 
 /// The variables of the gap change in one programme: the design nodes other than the pinned
-/// one and the unused ones, and where each sits.
+/// one and the unused ones.
 struct Layout {
     pin: usize,
     /// Whether Δh ≥ 0 is a constraint (a given reference node).
     signed: bool,
+    /// The free design nodes, in the order of their variables.
     free: Vec<usize>,
-    /// The variable of each design node's Δh (`usize::MAX` for the pin and unused nodes).
-    column_of: Vec<usize>,
-    ih: usize,
-    il: usize,
+    /// The position of each design node among `free` (`usize::MAX` for the pin and unused
+    /// nodes).
+    slot: Vec<usize>,
 }
 
 /// The data of (3.5) in units that make its columns of order one: P for pressures, G =
-/// P·max(A W 1) for gaps, each rigid mode by its largest displacement. The variables are
-/// p (n) | p_max (at `i_max`) | Δh on the free design nodes (from `ih`, see [`Layout`]) |
-/// λ (r, from `il`).
+/// P·max(A W 1) for gaps, each rigid mode by its largest displacement.
 struct Programme<'o, 'a> {
     opt: &'o Optimisation<'a>,
     n: usize,
@@ -200,7 +222,6 @@ struct Programme<'o, 'a> {
     unit_p: f64,
     unit_g: f64,
     rigid_scale: Vec<f64>,
-    i_max: usize,
     /// The interior point's tolerance.
     tolerance: f64,
 }
@@ -211,7 +232,7 @@ impl<'o, 'a> Programme<'o, 'a> {
         let n = problem.len();
         let (w, a, rigid, q) = (
             problem.weights(),
-            problem.dense_influence(LP_COPIES)?,
+            problem.dense_influence(LinearProgrammeSettings::DENSE_COPIES)?,
             problem.rigid(),
             problem.load(),
         );
@@ -245,32 +266,23 @@ impl<'o, 'a> Programme<'o, 'a> {
             unit_p,
             unit_g: unit_p * compliance,
             rigid_scale,
-            i_max: n,
             tolerance,
         })
-    }
-
-    /// The number of rigid modes.
-    fn modes(&self) -> usize {
-        self.rigid_scale.len()
     }
 
     /// The variables of a programme with the design node `pin` held at Δh = 0.
     fn layout(&self, pin: usize, signed: bool) -> Layout {
         let used = self.opt.used_nodes();
         let free: Vec<usize> = (0..used.len()).filter(|&k| used[k] && k != pin).collect();
-        let ih = self.n + 1;
-        let mut column_of = vec![usize::MAX; used.len()];
+        let mut slot = vec![usize::MAX; used.len()];
         for (c, &k) in free.iter().enumerate() {
-            column_of[k] = ih + c;
+            slot[k] = c;
         }
         Layout {
             pin,
             signed,
-            il: ih + free.len(),
             free,
-            column_of,
-            ih,
+            slot,
         }
     }
 
@@ -300,19 +312,19 @@ impl<'o, 'a> Programme<'o, 'a> {
         let mut layout = self.first_layout();
         let uniform = self.opt.uniform_mode();
         for _ in 0..PIN_MOVES {
-            let (mut optimum, violated) = match self.solve(restricted, &layout)? {
-                PassEnd::Solved(optimum, violated) => (optimum, violated),
+            let mut optimum = match self.solve(restricted, &layout)? {
+                PassEnd::Solved(optimum) => optimum,
                 ended => return Ok(ended),
             };
             let least = self.opt.reference_node(&optimum.dh);
             let top = optimum.dh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             if layout.signed || optimum.dh[least] >= -SOLVER_ACCURACY * top {
-                return Ok(PassEnd::Solved(optimum, violated));
+                return Ok(PassEnd::Solved(optimum));
             }
             if let Some((m, r)) = uniform {
                 let least = optimum.dh[least];
                 shift(&mut optimum, &self.opt.used_nodes(), least, m, r);
-                return Ok(PassEnd::Solved(optimum, violated));
+                return Ok(PassEnd::Solved(optimum));
             }
             layout = self.layout(least, false);
         }
@@ -323,140 +335,260 @@ impl<'o, 'a> Programme<'o, 'a> {
         }))
     }
 
-    /// The rows of a pass: equalities (a·x = b) and inequalities (written b − a·x ≥ 0).
-    fn rows(&self, restricted: &[Restriction], layout: &Layout) -> (Vec<Row>, Vec<Row>) {
-        let (opt, n) = (self.opt, self.n);
-        let (w, q) = (opt.problem.weights(), opt.problem.load());
-        let (mut zero, mut nonneg): (Vec<Row>, Vec<Row>) = (vec![], vec![]);
-        // Equilibrium, Rᵀ W p = −q.
-        for (m, q) in q.iter().enumerate() {
-            let scale = self.area * self.rigid_scale[m];
-            let row = (0..n)
-                .map(|i| (i, self.rigid[(i, m)] * w[i] / scale))
-                .collect();
-            zero.push((row, -q / (self.unit_p * scale)));
-        }
-        for (i, &restriction) in restricted.iter().enumerate() {
-            let (row, c) = self.gap_row(i, layout);
-            match restriction {
-                Restriction::Closed => zero.push((row, -c)),
-                _ => {
-                    let negated = row.into_iter().map(|(j, v)| (j, -v)).collect();
-                    nonneg.push((negated, c));
-                    if restriction == Restriction::Open {
-                        zero.push((vec![(i, 1.0)], 0.0));
-                    }
+    /// Solves the programme under `restricted` with `layout`: its optimum in physical units,
+    /// or how it ended.
+    fn solve(&self, restricted: &[Restriction], layout: &Layout) -> Result<PassEnd> {
+        let programme = Restricted::new(self, restricted, layout);
+        let rows = programme.rows();
+        Ok(match programme::solve(&programme, &rows, self.tolerance)? {
+            Solved::Optimal(x, iterations) => {
+                PassEnd::Solved(Box::new(programme.optimum(&x, iterations)))
+            }
+            Solved::Infeasible(conflict) => {
+                let named: Vec<String> = conflict
+                    .iter()
+                    .take(NAMED_ROWS)
+                    .map(|&k| self.describe(k))
+                    .collect();
+                let more = match conflict.len().saturating_sub(NAMED_ROWS) {
+                    0 => String::new(),
+                    more => format!(" and {more} more"),
+                };
+                let reason = format!(
+                    "no gap change meets these together: {}{more}",
+                    named.join("; ")
+                );
+                let end = Termination::Infeasible { reason };
+                let blamed = self.blamed(restricted, &conflict);
+                match blamed.is_empty() {
+                    true => PassEnd::Ended(end),
+                    false => PassEnd::Flip(blamed, end),
                 }
             }
-            // χ = v·p_max − p: zero on Ω_v, non-negative on Ω_nv.
-            let chi = vec![(i, 1.0), (self.i_max, -opt.v[i])];
-            match opt.regions[i] {
-                Region::OmegaV => zero.push((chi, 0.0)),
-                Region::OmegaNv => nonneg.push((chi, 0.0)),
-                Region::Contact => {}
-            }
-            // p ≥ 0 where p is not fixed already: a bound that holds with equality leaves
-            // the programme no interior, and the interior point stalls.
-            if opt.regions[i] != Region::OmegaV && restriction != Restriction::Open {
-                nonneg.push((vec![(i, -1.0)], 0.0));
-            }
-        }
-        // Δh ≥ 0, where the reference node is given.
-        if layout.signed {
-            for c in 0..layout.free.len() {
-                nonneg.push((vec![(layout.ih + c, -1.0)], 0.0));
-            }
-        }
-        (zero, nonneg)
-    }
-
-    /// The gap at point `i` in gap units, d_i / G = g_i/G + Σ A_ij w_j P/G p̃_j + Σ R_im λ̃_m
-    /// + Σ Q_ik Δh̃_k, as its coefficients and its constant g_i/G.
-    fn gap_row(&self, i: usize, layout: &Layout) -> Row {
-        let (opt, n) = (self.opt, self.n);
-        let w = opt.problem.weights();
-        let mut row: Vec<(usize, f64)> = (0..n)
-            .map(|j| (j, self.a[(i, j)] * w[j] * self.unit_p / self.unit_g))
-            .collect();
-        for m in 0..self.modes() {
-            row.push((layout.il + m, self.rigid[(i, m)] / self.rigid_scale[m]));
-        }
-        for &(k, wt) in opt.shape.row(i) {
-            if layout.column_of[k] != usize::MAX {
-                row.push((layout.column_of[k], wt));
-            }
-        }
-        (row, self.g[i] / self.unit_g)
-    }
-
-    /// Solves the programme under `restricted` with `layout`: its optimum in physical units
-    /// and the number of points that carry pressure across an open gap, or how it ended.
-    fn solve(&self, restricted: &[Restriction], layout: &Layout) -> Result<PassEnd> {
-        let (zero, nonneg) = self.rows(restricted, layout);
-        let nvar = layout.il + self.modes();
-        let nz = zero.len();
-        let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
-        for (row_index, (row, rhs)) in zero.into_iter().chain(nonneg).enumerate() {
-            for (j, v) in row {
-                ii.push(row_index);
-                jj.push(j);
-                vv.push(v);
-            }
-            b.push(rhs);
-        }
-        let constraints = CscMatrix::new_from_triplets(b.len(), nvar, ii, jj, vv);
-        let mut objective = vec![0.0; nvar];
-        objective[self.i_max] = 1.0;
-        let sol = conic::solve(
-            &CscMatrix::zeros((nvar, nvar)),
-            &objective,
-            &constraints,
-            &b,
-            nz,
-            self.tolerance,
-            "linear programme (3.5)",
-        )?;
-        Ok(match sol.outcome {
-            Outcome::Solved => {
-                let (optimum, violated) = self.optimum(&sol.x, sol.iterations, layout);
-                PassEnd::Solved(Box::new(optimum), violated)
-            }
-            Outcome::Infeasible => PassEnd::Ended(Termination::Infeasible {
-                reason: "no gap change closes Ω_v under v·p_max with these loads".into(),
+            Solved::Unbounded => PassEnd::Ended(Termination::Unbounded {
+                reason: "p_max falls without bound along a gap change that nothing in the \
+                         programme limits"
+                    .into(),
             }),
-            Outcome::Unbounded => PassEnd::Ended(Termination::Unbounded {
-                reason: "p_max is not bounded below: nothing presses the bodies together".into(),
-            }),
-            Outcome::Stopped(end) => PassEnd::Ended(end),
+            Solved::Stopped(end) => PassEnd::Ended(end),
         })
     }
 
-    /// A programme's solution `x` in physical units, as an optimum whose one row counts the
-    /// interior point's iterations, with the number of points that carry pressure across an
-    /// open gap.
-    fn optimum(&self, x: &[f64], iterations: usize, layout: &Layout) -> (Optimum, usize) {
-        let (opt, n) = (self.opt, self.n);
-        let pressure: Vec<f64> = x[..n].iter().map(|p| p.max(0.0) * self.unit_p).collect();
-        let p_max = x[self.i_max] * self.unit_p;
+    /// The points of `conflict` whose restriction is to blame: a closed point whose pressure
+    /// would have to pull, an open point whose gap would have to close past zero.
+    fn blamed(&self, restricted: &[Restriction], conflict: &[Kind]) -> Vec<usize> {
+        conflict
+            .iter()
+            .filter_map(|&k| match k {
+                Kind::Pressure(i) if restricted[i] == Restriction::Closed => Some(i),
+                Kind::Gap(i) if restricted[i] == Restriction::Open => Some(i),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// A row in words, with its point or node.
+    fn describe(&self, kind: Kind) -> String {
+        let opt = self.opt;
+        let at = |i: usize| format!("point {i} {:?}", opt.problem.interface().points()[i]);
+        match kind {
+            Kind::Equilibrium(m) => format!(
+                "the equilibrium of {} under its load",
+                opt.problem.mode_names()[m]
+            ),
+            Kind::Gap(i) => format!("d ≥ 0 at {}", at(i)),
+            Kind::Chi(i) => format!("p ≤ v·p_max (χ ≥ 0) at {} of Ω_nv", at(i)),
+            Kind::Pressure(i) => format!("p ≥ 0 at {}", at(i)),
+            Kind::Level => "p_max ≥ 0".into(),
+            Kind::Change(k) => format!("Δh ≥ 0 at design node {k} {:?}", opt.shape.nodes()[k]),
+        }
+    }
+
+    /// The restrictions of the first pass: Ω_v closed, the other points as the contact set
+    /// of the seeding optimum ([`Optimisation::seeding_optimum`]), or of the contact without
+    /// a gap change when that method does not apply; how the seeding ended when an observer
+    /// stopped it.
+    fn seed(
+        &self,
+        contact_solver: &dyn ContactSolver,
+    ) -> Result<std::result::Result<Vec<Restriction>, Termination>> {
+        if self.opt.regions.iter().all(|&r| r == Region::OmegaV) {
+            return Ok(Ok(vec![Restriction::Closed; self.n]));
+        }
+        match self.opt.seeding_optimum(contact_solver)? {
+            Some(o) if o.termination.is_stopped() => Ok(Err(o.termination.inside(o.method))),
+            Some(o) if o.pressure.iter().chain(&o.gap).all(|v| v.is_finite()) => {
+                Ok(Ok(self.classify(&o.pressure, &o.gap)))
+            }
+            _ => {
+                let zero = vec![0.0; self.n];
+                let opt = self.opt;
+                let contact =
+                    opt.solve_with_gap_change(contact_solver, opt.problem, &zero, None)?;
+                if !contact.is_converged() {
+                    return Ok(Err(contact.termination.inside(contact.method)));
+                }
+                Ok(Ok(self.classify(&contact.pressure, &contact.gap)))
+            }
+        }
+    }
+
+    /// The contact set of a contact solution: Ω_v and the points that carry pressure, or whose
+    /// gap is closed (within [`SOLVER_ACCURACY`] of the gap unit: the edge of contact, where p
+    /// may fall to 0), closed; the others open.
+    fn classify(&self, pressure: &[f64], gap: &[f64]) -> Vec<Restriction> {
+        let p_max = pressure.iter().fold(0.0, |m: f64, p| m.max(*p));
+        (0..self.n)
+            .map(|i| {
+                let open = gap[i] > SOLVER_ACCURACY * self.unit_g;
+                let closed = self.opt.regions[i] == Region::OmegaV
+                    || pressure[i] > SOLVER_ACCURACY * p_max
+                    || !open;
+                match closed {
+                    true => Restriction::Closed,
+                    false => Restriction::Open,
+                }
+            })
+            .collect()
+    }
+}
+
+impl Restriction {
+    /// The other restriction: a closed point that would pull opens, an open point that would
+    /// penetrate closes.
+    fn flipped(self) -> Self {
+        match self {
+            Restriction::Closed => Restriction::Open,
+            Restriction::Open => Restriction::Closed,
+        }
+    }
+}
+
+/// One restricted programme in the units of its [`Programme`]. Its variables: the pressure p
+/// of the points neither open nor of Ω_v (on Ω_v p = v·p_max, on open points p = 0) | p_max
+/// | Δh on the free design nodes | λ.
+struct Restricted<'r, 'o, 'a> {
+    lp: &'r Programme<'o, 'a>,
+    restricted: &'r [Restriction],
+    layout: &'r Layout,
+    /// The variable of each point's pressure (`usize::MAX` where p is not one).
+    pressure: Vec<usize>,
+    i_max: usize,
+    ih: usize,
+    il: usize,
+}
+
+impl<'r, 'o, 'a> Restricted<'r, 'o, 'a> {
+    fn new(lp: &'r Programme<'o, 'a>, restricted: &'r [Restriction], layout: &'r Layout) -> Self {
+        let regions = &lp.opt.regions;
+        let mut pressure = vec![usize::MAX; lp.n];
+        let mut count = 0;
+        for i in 0..lp.n {
+            if regions[i] != Region::OmegaV && restricted[i] != Restriction::Open {
+                pressure[i] = count;
+                count += 1;
+            }
+        }
+        let ih = count + 1;
+        Self {
+            lp,
+            restricted,
+            layout,
+            pressure,
+            i_max: count,
+            ih,
+            il: ih + layout.free.len(),
+        }
+    }
+
+    /// Equilibrium and the closed gaps as equalities; the other gaps, χ on Ω_nv, p ≥ 0, p_max
+    /// ≥ 0 and, under a given reference node, Δh ≥ 0 as inequalities. χ = 0 on Ω_v is no row:
+    /// its pressure is v·p_max.
+    fn rows(&self) -> Rows {
+        let opt = self.lp.opt;
+        let mut equal: Vec<Kind> = (0..self.lp.rigid_scale.len())
+            .map(Kind::Equilibrium)
+            .collect();
+        let mut at_least = vec![Kind::Level];
+        for i in 0..self.lp.n {
+            match self.restricted[i] {
+                Restriction::Closed => equal.push(Kind::Gap(i)),
+                Restriction::Open => at_least.push(Kind::Gap(i)),
+            }
+            if self.pressure[i] == usize::MAX {
+                continue;
+            }
+            at_least.push(Kind::Pressure(i));
+            if opt.regions[i] == Region::OmegaNv {
+                at_least.push(Kind::Chi(i));
+            }
+        }
+        if self.layout.signed {
+            at_least.extend(self.layout.free.iter().map(|&k| Kind::Change(k)));
+        }
+        Rows { equal, at_least }
+    }
+
+    /// The pressures p̃ at the points weighted by `factor(j)` as entries: their variables,
+    /// and v·p_max on Ω_v summed into one entry (open points carry nothing).
+    fn add_pressures(&self, factor: impl Fn(usize) -> f64, entries: &mut Vec<(usize, f64)>) {
+        let opt = self.lp.opt;
+        let mut on_omega_v = 0.0;
+        for j in 0..self.lp.n {
+            if self.pressure[j] != usize::MAX {
+                entries.push((self.pressure[j], factor(j)));
+            } else if opt.regions[j] == Region::OmegaV {
+                on_omega_v += factor(j) * opt.v[j];
+            }
+        }
+        entries.push((self.i_max, on_omega_v));
+    }
+
+    /// The gap at point `i` in gap units, d_i / G = g_i/G + Σ A_ij w_j P/G p̃_j + Σ R_im λ̃_m
+    /// + Σ Q_ik Δh̃_k.
+    fn gap_row(&self, i: usize, entries: &mut Vec<(usize, f64)>) -> f64 {
+        let lp = self.lp;
+        let w = lp.opt.problem.weights();
+        let ratio = lp.unit_p / lp.unit_g;
+        self.add_pressures(|j| lp.a[(i, j)] * w[j] * ratio, entries);
+        for (m, scale) in lp.rigid_scale.iter().enumerate() {
+            entries.push((self.il + m, lp.rigid[(i, m)] / scale));
+        }
+        for &(k, wt) in lp.opt.shape.row(i) {
+            if self.layout.slot[k] != usize::MAX {
+                entries.push((self.ih + self.layout.slot[k], wt));
+            }
+        }
+        lp.g[i] / lp.unit_g
+    }
+
+    /// The solution `x` in physical units, as an optimum whose one row counts the interior
+    /// point's `iterations`.
+    fn optimum(&self, x: &[f64], iterations: usize) -> Optimum {
+        let (lp, layout) = (self.lp, self.layout);
+        let opt = lp.opt;
+        let p_max = x[self.i_max] * lp.unit_p;
+        let pressure: Vec<f64> = (0..lp.n)
+            .map(|i| match (self.pressure[i], opt.regions[i]) {
+                (usize::MAX, Region::OmegaV) => opt.v[i] * p_max,
+                (usize::MAX, _) => 0.0,
+                (c, _) => x[c].max(0.0) * lp.unit_p,
+            })
+            .collect();
         let mut dh = vec![0.0; opt.shape.nodes().len()];
         for (c, &k) in layout.free.iter().enumerate() {
-            let value = x[layout.ih + c] * self.unit_g;
+            let value = x[self.ih + c] * lp.unit_g;
             dh[k] = if layout.signed { value.max(0.0) } else { value };
         }
         debug_assert_eq!(dh[layout.pin], 0.0);
-        let lambda: Vec<f64> = (0..self.modes())
-            .map(|m| x[layout.il + m] * self.unit_g / self.rigid_scale[m])
+        let lambda: Vec<f64> = (0..lp.rigid_scale.len())
+            .map(|m| x[self.il + m] * lp.unit_g / lp.rigid_scale[m])
             .collect();
         let gap_change = opt.shape.apply(&dh);
         let mut gap = opt.problem.gap(&pressure, &lambda);
         for (d, c) in gap.iter_mut().zip(&gap_change) {
             *d += c;
         }
-        let violated = (0..n)
-            .filter(|&i| {
-                pressure[i] > COMPLEMENTARITY * p_max && gap[i] > COMPLEMENTARITY * self.unit_g
-            })
-            .count();
         let row = Pass {
             k: 1,
             p_max,
@@ -465,7 +597,7 @@ impl<'o, 'a> Programme<'o, 'a> {
             iterp: iterations,
             iterd: 0,
         };
-        let optimum = Optimum {
+        Optimum {
             p_max,
             dh,
             gap_change,
@@ -475,67 +607,52 @@ impl<'o, 'a> Programme<'o, 'a> {
             passes: vec![row],
             method: Method::LinearProgramme,
             termination: Termination::Converged,
-        };
-        (optimum, violated)
+            omega_nv_excess: None,
+        }
+    }
+}
+
+impl RowSource for Restricted<'_, '_, '_> {
+    fn variables(&self) -> usize {
+        self.il + self.lp.rigid_scale.len()
     }
 
-    /// The restrictions of the first pass: Ω_v closed, Ω_nv free (χ ≥ 0 bounds its
-    /// pressure), and the points outside Ω_opt as the contact problem without a gap change
-    /// has them: left free, they could carry the whole load across open gaps and leave
-    /// p_max = 0, a degenerate programme the interior point stalls on.
-    fn first_restrictions(
-        &self,
-        contact_solver: &dyn ContactSolver,
-    ) -> Result<std::result::Result<Vec<Restriction>, Termination>> {
-        let regions = &self.opt.regions;
-        let mut restricted: Vec<Restriction> = regions
-            .iter()
-            .map(|r| match r {
-                Region::OmegaV => Restriction::Closed,
-                _ => Restriction::Free,
-            })
-            .collect();
-        if regions.contains(&Region::Contact) {
-            let zero = vec![0.0; self.n];
-            let contact = match self.restrict(contact_solver, &zero)? {
-                Ok(contact) => contact,
-                Err(end) => return Ok(Err(end)),
-            };
-            for i in (0..self.n).filter(|&i| regions[i] == Region::Contact) {
-                restricted[i] = contact[i];
+    fn objective(&self) -> usize {
+        self.i_max
+    }
+
+    fn row(&self, kind: Kind, entries: &mut Vec<(usize, f64)>) -> f64 {
+        entries.clear();
+        let lp = self.lp;
+        let opt = lp.opt;
+        match kind {
+            // Rᵀ W p + q = 0, per unit of the mode's largest load.
+            Kind::Equilibrium(m) => {
+                let w = opt.problem.weights();
+                let scale = lp.area * lp.rigid_scale[m];
+                self.add_pressures(|i| lp.rigid[(i, m)] * w[i] / scale, entries);
+                opt.problem.load()[m] / (lp.unit_p * scale)
+            }
+            Kind::Gap(i) => self.gap_row(i, entries),
+            // χ = v·p_max − p.
+            Kind::Chi(i) => {
+                entries.push((self.i_max, opt.v[i]));
+                entries.push((self.pressure[i], -1.0));
+                0.0
+            }
+            Kind::Pressure(i) => {
+                entries.push((self.pressure[i], 1.0));
+                0.0
+            }
+            Kind::Level => {
+                entries.push((self.i_max, 1.0));
+                0.0
+            }
+            Kind::Change(k) => {
+                entries.push((self.ih + self.layout.slot[k], 1.0));
+                0.0
             }
         }
-        Ok(Ok(restricted))
-    }
-
-    /// The restrictions of the next pass: the contact set of the contact problem on the gap
-    /// changed by `gap_change`, or how that solve ended when it did not converge. Points at
-    /// the edge of contact, with both p and d within [`SOLVER_ACCURACY`] of p_max and the gap
-    /// unit, stay free: forcing them closed or open leaves the programme no interior, and the
-    /// interior point stalls (a 40 × 21 roller did).
-    fn restrict(
-        &self,
-        contact_solver: &dyn ContactSolver,
-        gap_change: &[f64],
-    ) -> Result<std::result::Result<Vec<Restriction>, Termination>> {
-        let opt = self.opt;
-        let contact = opt.solve_with_gap_change(contact_solver, opt.problem, gap_change, None)?;
-        if !contact.is_converged() {
-            return Ok(Err(contact.termination.inside(contact.method)));
-        }
-        let p_max = contact.p_max();
-        Ok(Ok((0..self.n)
-            .map(|i| {
-                if opt.regions[i] == Region::OmegaV || contact.pressure[i] > SOLVER_ACCURACY * p_max
-                {
-                    Restriction::Closed
-                } else if contact.gap[i] > SOLVER_ACCURACY * self.unit_g {
-                    Restriction::Open
-                } else {
-                    Restriction::Free
-                }
-            })
-            .collect()))
     }
 }
 
@@ -549,4 +666,106 @@ fn shift(optimum: &mut Optimum, used: &[bool], least: f64, m: usize, r: f64) {
     optimum.gap_change.iter_mut().for_each(|v| *v -= least);
     optimum.rigid[m] += least / r;
     optimum.passes[0].dh_max -= least;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tests::{active_set, with_sphere, CONSTANT};
+    use crate::Profile;
+    use contopt_contact::InterfaceProblem;
+    use contopt_core::{ElasticBody, GapShape, Material, RigidBody};
+    use contopt_greens::HalfSpace;
+
+    /// A seed that closes a point which must stay open (the first ring outside the sphere's
+    /// Ω_opt, which keeps its gap): the first pass's programme is infeasible at that point's
+    /// pressure, which would have to pull, and names it; the point opens, and the next pass
+    /// ends at the optimum of the right contact set, p_max within 1e-9 of the programme's own.
+    #[test]
+    fn a_pass_opens_a_point_its_restriction_wrongs() {
+        with_sphere(Reference::Least, |opt, _| {
+            let points = opt.problem.interface().points();
+            let inner: Vec<bool> = points.iter().map(|x| x[0] < 6.0).collect();
+            let masked = Optimisation::new(opt.problem, opt.shape.as_ref(), &CONSTANT)
+                .unwrap()
+                .with_omega(&inner, &inner)
+                .unwrap();
+            let solver = active_set();
+            let settings = LinearProgrammeSettings::default();
+            let right = masked.linear_programme(&solver, &settings).unwrap();
+            assert!(right.is_converged(), "{}", right.termination);
+            let lp = Programme::new(&masked, settings.tolerance).unwrap();
+            let mut restricted = lp.seed(&solver).unwrap().unwrap();
+            let ring = (0..points.len()).find(|&i| !inner[i]).unwrap();
+            assert_eq!(restricted[ring], Restriction::Open);
+            restricted[ring] = Restriction::Closed;
+            match lp.solve_pass(&restricted).unwrap() {
+                PassEnd::Flip(flipped, end) => {
+                    assert_eq!(flipped, vec![ring], "{end}");
+                    assert!(end.to_string().contains("p ≥ 0 at point"), "{end}");
+                }
+                _ => panic!("the first pass did not name the ring"),
+            }
+            restricted[ring] = Restriction::Open;
+            let PassEnd::Solved(optimum) = lp.solve_pass(&restricted).unwrap() else {
+                panic!("the second pass did not solve");
+            };
+            assert_eq!(optimum.pressure[ring], 0.0);
+            assert!((optimum.p_max / right.p_max - 1.0).abs() < 1e-9);
+        });
+    }
+
+    /// From a poor contact set, the uncrowned roller's (R = 10 mm, 12 kN, 20 × 21 cells,
+    /// the C¹ controller from L1 = 3 mm, Ω_v the centre row), the passes flip every point whose
+    /// restriction their programme cannot meet, as Kalker's active set does, and reach the
+    /// load split's optimum (p_max within 1e-9) in a few passes (measured 4) without repeating
+    /// a contact set.
+    #[test]
+    fn passes_reach_the_optimum_from_the_uncrowned_contact() {
+        let (dx, dy) = (0.5, 0.04);
+        let material = Material::new(2e5, 0.3).unwrap();
+        let body = HalfSpace::grid("hs", material, 20, 21, dx, dy, [-4.75, -0.4]).unwrap();
+        let iface = body.interface();
+        let gap: Vec<f64> = iface.points().iter().map(|x| x[1] * x[1] / 20.0).collect();
+        let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 12_000.0).unwrap();
+        let problem = InterfaceProblem::new(&body, &roller, &gap).unwrap();
+        let regions = iface
+            .points()
+            .iter()
+            .map(|x| match x[1].abs() < 0.5 * dy {
+                true => Region::OmegaV,
+                false => Region::OmegaNv,
+            })
+            .collect();
+        let shape = GapShape::extruded(iface, 0).unwrap();
+        let v = Profile::cubic(3.0, 5.0).unwrap();
+        let opt = Optimisation::new(&problem, &shape, &v)
+            .unwrap()
+            .with_regions(regions)
+            .unwrap();
+        let solver = active_set();
+        let split = opt.load_split(&solver, &Default::default()).unwrap();
+        let lp = Programme::new(&opt, LinearProgrammeSettings::TOLERANCE).unwrap();
+        let uncrowned = solver.solve(&problem).unwrap();
+        let mut restricted = lp.classify(&uncrowned.pressure, &uncrowned.gap);
+        let mut tried = vec![];
+        for _ in 0..LinearProgrammeSettings::MAX_PASSES {
+            tried.push(restricted.clone());
+            match lp.solve_pass(&restricted).unwrap() {
+                PassEnd::Solved(optimum) => {
+                    eprintln!("solved after {} passes", tried.len());
+                    assert!((optimum.p_max / split.p_max - 1.0).abs() < 1e-9);
+                    return;
+                }
+                PassEnd::Flip(points, _) => {
+                    points
+                        .iter()
+                        .for_each(|&i| restricted[i] = restricted[i].flipped());
+                    assert!(!tried.contains(&restricted), "a contact set came back");
+                }
+                PassEnd::Ended(end) => panic!("{end}"),
+            }
+        }
+        panic!("no optimum in {} passes", tried.len());
+    }
 }

@@ -84,16 +84,21 @@ pub struct LinearProgrammeSettings {
     /// The largest number of passes, each a programme restricted by the contact set of the
     /// last (the complementarity pᵀd = 0 of 3.5).
     pub max_passes: usize,
-    /// The interior point's feasibility and duality-gap tolerance ([`conic::settings`]).
+    /// The interior point's feasibility and duality-gap tolerance ([`conic::settings`]), on
+    /// the directions a pass leaves free once its equalities are eliminated.
     pub tolerance: f64,
 }
 
 impl LinearProgrammeSettings {
-    /// Passes before the programme stops short: a one-dimensional region needs one, a roller
-    /// two or three.
+    /// Passes before the programme stops short: one when the seed's contact set is the
+    /// optimum's (a roller seeded by the load split, a region that is all Ω_v), a few when a
+    /// pass moves the edge of contact.
     pub const MAX_PASSES: usize = 10;
     /// The interior point's default tolerance.
     pub const TOLERANCE: f64 = conic::TOLERANCE;
+    /// The n × n matrices a pass holds at once on n interface points: the influence matrix,
+    /// its equalities Eᵀ and their QR.
+    pub const DENSE_COPIES: u64 = 3;
 
     /// The settings, checked: at least one pass, the tolerance positive and finite.
     pub fn check(&self) -> Result<()> {

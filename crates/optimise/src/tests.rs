@@ -19,7 +19,7 @@ use crate::{
 };
 
 /// The constant-pressure controller, v = 1.
-const CONSTANT: fn([f64; 3]) -> f64 = |_| 1.0;
+pub(crate) const CONSTANT: fn([f64; 3]) -> f64 = |_| 1.0;
 
 /// Half-width a \[mm\], pressure p \[MPa\] and thickness b \[mm\] of the strip.
 const A: f64 = 5.0;
@@ -30,7 +30,7 @@ const B: f64 = 10.0;
 const E: f64 = 2e5;
 const NU: f64 = 0.3;
 
-fn active_set() -> ActiveSet {
+pub(crate) fn active_set() -> ActiveSet {
     ActiveSet::new(ActiveSetSettings::default()).unwrap()
 }
 
@@ -355,7 +355,10 @@ fn centre_minus_rim(p: f64, a: f64) -> f64 {
 
 /// A rigid sphere pressed by p·πa² into 120 rings to radius a = 10 mm, pointwise gap shape,
 /// v = 1: `run` on its optimisation with `reference`.
-fn with_sphere<T>(reference: Reference, run: impl FnOnce(&Optimisation, &[f64]) -> T) -> T {
+pub(crate) fn with_sphere<T>(
+    reference: Reference,
+    run: impl FnOnce(&Optimisation, &[f64]) -> T,
+) -> T {
     let (a, n) = (10.0, 120);
     let body = rings(a, n);
     let force = P * PI * a * a;

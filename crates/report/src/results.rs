@@ -139,7 +139,7 @@ fn put(sink: &mut dyn Sink, stem: &str, figure: &Figure) -> io::Result<()> {
 
 /// The header of `interface.csv`: the fields of `result.json`'s interface points, the
 /// coordinates `x_mm` spread over three columns.
-const INTERFACE_HEADER: &str = "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um\n";
+const INTERFACE_HEADER: &str = "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um,h_um\n";
 
 /// The fields at every interface point of every case.
 fn interface_csv(report: &Report) -> String {
@@ -150,8 +150,8 @@ fn interface_csv(report: &Report) -> String {
             let [x, y, z] = q.x_mm;
             let _ = writeln!(
                 csv,
-                "{label},{x},{y},{z},{},{},{}",
-                q.p_mpa, q.d_um, q.dh_um
+                "{label},{x},{y},{z},{},{},{},{}",
+                q.p_mpa, q.d_um, q.dh_um, q.h_um
             );
         }
     }
@@ -500,6 +500,7 @@ mod tests {
                     p_mpa: scale * (1.0 - x * x).max(0.0),
                     d_um: 0.0,
                     dh_um: 2.0 * x,
+                    h_um: 0.0,
                 }
             })
             .collect();
@@ -606,11 +607,11 @@ mod tests {
         write(&r, &mut files).unwrap();
         let csv = text(&files, "interface.csv");
         let lines: Vec<&str> = csv.lines().collect();
-        assert_eq!(lines[0], "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um");
+        assert_eq!(lines[0], "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um,h_um");
         assert_eq!(lines.len(), 1 + 2 * 11);
-        assert_eq!(lines[1], "L1 = 0 mm,0,0,0,100,0,0");
-        assert_eq!(lines[12], "\"F = 1000 N, ν = 0.3\",0,0,0,80,3.5,0");
-        assert_eq!(lines[13], "\"F = 1000 N, ν = 0.3\",0.1,0,0,79.2,0,0.2");
+        assert_eq!(lines[1], "L1 = 0 mm,0,0,0,100,0,0,0");
+        assert_eq!(lines[12], "\"F = 1000 N, ν = 0.3\",0,0,0,80,3.5,0,0");
+        assert_eq!(lines[13], "\"F = 1000 N, ν = 0.3\",0.1,0,0,79.2,0,0.2,0");
     }
 
     /// A grid of points becomes a map per case; a case that did not converge draws nothing.
@@ -623,6 +624,7 @@ mod tests {
                 p_mpa: if k == 12 { 10.0 } else { 0.0 },
                 d_um: 0.0,
                 dh_um: 0.0,
+                h_um: 0.0,
             })
             .collect();
         r.cases[1].status = CaseStatus::NotConverged;

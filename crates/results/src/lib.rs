@@ -113,6 +113,12 @@ pub struct CaseReport {
     /// the points (`interface[].dh_um`), which is the one the reported pressure was solved
     /// with.
     pub dh_max_um: Option<f64>,
+    /// The largest p − v·p̂ over Ω_nv, the points of Ω_opt outside Ω_v where only p ≤ v·p̂ is
+    /// asked (−min χ there, eq. 3.1) \[MPa\]: at most round-off when the design keeps its
+    /// bound, negative where Ω_nv carries less than it; a design that passes it beyond its
+    /// solver's accuracy does not count as solved (`termination` is `infeasible`, naming the
+    /// point). Null without optimisation or without Ω_nv.
+    pub omega_nv_excess_mpa: Option<f64>,
     /// The floating body's approach δ, positive when the bodies are pressed together \[µm\];
     /// null when nothing floats.
     pub approach_um: Option<f64>,
@@ -238,6 +244,10 @@ pub struct Point {
     /// Gap change Δh, or a roller's crown drop \[µm\]: the one the pressure `p_mpa` was
     /// solved with.
     pub dh_um: f64,
+    /// The initial gap h the contact was solved from \[µm\] (eq. 2.1): the scene's gap less
+    /// an approach, or the distance measured between two imported meshes (read as the first
+    /// body's field); 4 sizes of the interface where the gap is open for good.
+    pub h_um: f64,
 }
 
 /// A point of a pressure curve.
@@ -558,6 +568,7 @@ impl CaseReport {
             p_max_mpa: None,
             bound_p_max_mpa: None,
             dh_max_um: None,
+            omega_nv_excess_mpa: None,
             approach_um: None,
             penetration_um: None,
             hertz: None,

@@ -36,6 +36,7 @@ impl CaseReport {
             ("p_max", self.p_max_mpa),
             ("bound_p_max", self.bound_p_max_mpa),
             ("dh_max", self.dh_max_um),
+            ("omega_nv_excess", self.omega_nv_excess_mpa),
             ("approach", self.approach_um),
             ("penetration", self.penetration_um),
         ];
@@ -51,6 +52,7 @@ impl CaseReport {
                 ("pressure", q.p_mpa),
                 ("gap", q.d_um),
                 ("gap change", q.dh_um),
+                ("initial gap", q.h_um),
             ]
         });
         let passes = self.passes.iter().flat_map(|r| {
@@ -162,6 +164,7 @@ mod tests {
             p_mpa: 5.0,
             d_um: 0.0,
             dh_um: 0.0,
+            h_um: 0.0,
         }];
         let mut good = case.clone();
         good.settle();

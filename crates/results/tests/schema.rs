@@ -41,6 +41,7 @@ fn sample() -> serde_json::Value {
         p_mpa: 2.0,
         d_um: 0.0,
         dh_um: 1.0,
+        h_um: 0.0,
     });
     let report = Report {
         schema_version: SCHEMA_VERSION,

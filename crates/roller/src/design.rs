@@ -253,6 +253,9 @@ pub struct RobustCrown {
     pub cases: Vec<Contact>,
     /// How the envelope load split ended.
     pub termination: Termination,
+    /// The largest p − v·p_max over the Ω_nv of every case \[MPa\]
+    /// ([`contopt_optimise::Optimum::omega_nv_excess`]).
+    pub omega_nv_excess: Option<f64>,
 }
 
 /// The robust crown for `cases` ([`load_cases`]): the envelope load split
@@ -318,6 +321,7 @@ pub fn robust_crown(
         p_max: optimum.p_max,
         cases: contacts,
         termination: optimum.termination,
+        omega_nv_excess: optimum.omega_nv_excess,
     })
 }
 

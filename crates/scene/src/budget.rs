@@ -6,6 +6,7 @@ use contopt_contact::ContactSolver;
 use contopt_core::{check, memory, Result};
 
 use crate::error::Locator;
+use crate::meshes::MeshFiles;
 use crate::spec::CaseSpec;
 use crate::zone::Layout;
 use crate::SceneError;
@@ -35,6 +36,7 @@ pub(crate) fn check(
     layout: &Layout,
     solver: &dyn ContactSolver,
     at: &Locator,
+    meshes: &MeshFiles,
 ) -> std::result::Result<u64, SceneError> {
     let limit = match spec.memory_limit_mb {
         None => DEFAULT_MEMORY_LIMIT_BYTES,
@@ -42,13 +44,13 @@ pub(crate) fn check(
             (check::positive("memory_limit_mb", mb).map_err(|e| at.library("", e))? * MB) as u64
         }
     };
-    let points = spec.contact.zone.points();
+    let points = layout.points();
     let bodies: Vec<Option<u64>> = (0..spec.body.len())
         .map(|k| {
-            let place = crate::prepare::placement(spec, layout, k, at)?;
-            Ok(spec.body[k].kind().memory(&place))
+            let place = crate::prepare::placement(spec, layout, k, at, meshes);
+            spec.body[k].kind().memory(&place)
         })
-        .collect::<std::result::Result<_, SceneError>>()?;
+        .collect();
     let design = crate::methods::design(spec);
     let copies = points.map(|n| solver.dense_copies(n).max(design.dense_copies(n, solver)));
     let dense = points

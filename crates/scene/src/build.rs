@@ -1,9 +1,11 @@
 //! A case's bodies, built on its zone: the kinds that mesh or grid their own surface first,
-//! then those that stand on a surface they are given (the zone's, or their partner's).
+//! then those that stand on a surface they are given (the zone's, or their partner's); two
+//! imported bodies are paired and built together by their zone ([`crate::mesh_zone`]).
 
 use std::time::{Duration, Instant};
 
 use contopt_core::{ElasticBody, Interface};
+use contopt_fem::ContactPairing;
 
 use crate::bodies::Side;
 use crate::{Case, SceneError};
@@ -13,9 +15,29 @@ pub struct Built {
     bodies: [Box<dyn ElasticBody>; 2],
     /// The time their build took.
     took: Duration,
+    /// The pairing of two imported bodies, which measured the gap between them.
+    pairing: Option<ContactPairing>,
 }
 
 impl Built {
+    /// Two bodies paired by `pairing` (imported meshes), built in `took`.
+    pub(crate) fn paired(
+        bodies: [Box<dyn ElasticBody>; 2],
+        pairing: ContactPairing,
+        took: Duration,
+    ) -> Self {
+        Self {
+            bodies,
+            took,
+            pairing: Some(pairing),
+        }
+    }
+
+    /// The pairing of two imported bodies meshed apart, which measured the gap between them.
+    pub fn pairing(&self) -> Option<&ContactPairing> {
+        self.pairing.as_ref()
+    }
+
     /// The body below the zone (its outward normal is n¹).
     pub fn first(&self) -> &dyn ElasticBody {
         self.bodies[0].as_ref()
@@ -48,6 +70,9 @@ impl Built {
 impl Case {
     /// Builds the case's bodies: assembled, factorised and condensed, as its check planned.
     pub fn build(&self) -> Result<Built, SceneError> {
+        if let Some(paired) = self.build_pair()? {
+            return Ok(paired);
+        }
         let start = Instant::now();
         let spec = &self.spec;
         let at = &self.locator;
@@ -57,7 +82,7 @@ impl Case {
         let mut order = order.to_vec();
         order.sort();
         for (_, k) in order {
-            let place = crate::prepare::placement(spec, &self.plan.layout, k, at)?;
+            let place = crate::prepare::placement(spec, &self.plan.layout, k, at, &self.meshes);
             let surface = self.surface(&built, k)?;
             let body = spec.body[k]
                 .kind()
@@ -71,6 +96,7 @@ impl Case {
         Ok(Built {
             bodies: [first, second],
             took: start.elapsed(),
+            pairing: None,
         })
     }
 

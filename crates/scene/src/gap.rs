@@ -36,6 +36,9 @@ pub enum GapSpec {
     /// A bearing roller on its raceway (both half-spaces on a grid, the raceway first): across
     /// the contact the gap of the two curvatures, along the axis the crown's drop and the tilt.
     Roller(RollerGap),
+    /// The distance between two imported meshes along the first body's normal n¹ (eq. 2.1),
+    /// read as the first body's field: the default of two `fe_mesh` bodies.
+    Measured,
 }
 
 /// A radius.
@@ -178,10 +181,27 @@ fn surface(zone: &ZoneSpec) -> Surface {
             Surface::Axisymmetric
         }
         ZoneSpec::Faces(_) => Surface::Plane,
+        ZoneSpec::Mesh(m) if m.analysis == contopt_fem::Analysis::Axisymmetric => {
+            Surface::Axisymmetric
+        }
+        ZoneSpec::Mesh(_) => Surface::Plane,
     }
 }
 
 impl GapSpec {
+    /// The gap of a scene that gives none: the distance measured between two imported meshes
+    /// on a zone of meshes, else flat.
+    pub fn default_for(zone: &ZoneSpec, bodies: &[crate::BodySpec]) -> Self {
+        let imported = bodies
+            .iter()
+            .filter(|b| matches!(b, crate::BodySpec::FeMesh(_)))
+            .count();
+        match zone {
+            ZoneSpec::Mesh(_) if imported == 2 => GapSpec::Measured,
+            _ => GapSpec::Flat,
+        }
+    }
+
     /// Its name in messages.
     pub fn kind(&self) -> &'static str {
         match self {
@@ -190,6 +210,7 @@ impl GapSpec {
             GapSpec::Cylinder(_) => "cylinder",
             GapSpec::FlatPunch(_) => "flat_punch",
             GapSpec::Roller(_) => "roller",
+            GapSpec::Measured => "measured",
         }
     }
 
@@ -198,6 +219,12 @@ impl GapSpec {
         let on = surface(zone);
         match (self, on) {
             (GapSpec::Flat, _) => Ok(()),
+            (GapSpec::Measured, _) if matches!(zone, ZoneSpec::Mesh(_)) => Ok(()),
+            (GapSpec::Measured, _) => Err(Error::invalid(
+                "kind",
+                "measured",
+                "is the distance between two imported meshes: a zone of kind \"mesh\"",
+            )),
             (GapSpec::Sphere(r) | GapSpec::FlatPunch(r), Surface::Grid | Surface::Axisymmetric) => {
                 check::positive("radius_mm", r.radius_mm).map(|_| ())
             }
@@ -309,6 +336,13 @@ impl GapSpec {
             }
             GapSpec::FlatPunch(p) if r <= p.radius_mm * (1.0 + RIM_ROUND_OFF) => 0.0,
             GapSpec::FlatPunch(_) => f64::INFINITY,
+            GapSpec::Measured => {
+                return Err(Error::invalid(
+                    "kind",
+                    "measured",
+                    "has no formula: the pairing of the two meshes measures it",
+                ))
+            }
             GapSpec::Roller(g) => match roller {
                 Some(roller) if x[0].abs() <= 0.5 * g.length_mm => {
                     x[1] * x[1] / (2.0 * roller.radius()?)
@@ -346,6 +380,16 @@ impl GapSpec {
                 r <= p.radius_mm * (1.0 + RIM_ROUND_OFF)
             }
             _ => true,
+        }
+    }
+
+    /// Whether the gap is finite at `x`, a point past the end of an imported body's contact
+    /// faces: then contact could go on beyond them. The measured gap goes on wherever the
+    /// meshes do.
+    pub fn finite_at(&self, zone: &ZoneSpec, x: [f64; 3]) -> bool {
+        match self {
+            GapSpec::Measured => true,
+            gap => gap.at(zone, x, None).map_or(true, f64::is_finite),
         }
     }
 

@@ -23,6 +23,8 @@ mod error;
 mod fields;
 mod gap;
 mod limits;
+mod mesh_zone;
+mod meshes;
 mod methods;
 mod prepare;
 mod reference;
@@ -40,20 +42,22 @@ use contopt_input::{Limits, Node};
 
 pub use bearing::{BearingLoadSpec, BearingObjective, BearingSpec, RacewaySpec, FREE_END_WEIGHT};
 pub use bodies::{
-    BodyKind, BodySpec, FeBase, FeBlock, FePunch, FreeEndsSpec, HalfSpaceBody, PunchLoad, Rigid,
-    Support, WinklerBed,
+    BodyKind, BodySpec, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec, GroupLoad,
+    GroupSupport, HalfSpaceBody, PunchLoad, Rigid, Support, WinklerBed,
 };
 pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};
 pub use error::{Located, SceneError};
 pub use gap::{GapSpec, Hertz, Radius, RollerGap};
+pub use mesh_zone::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
+pub use meshes::{Imported, MeshFiles};
 pub use methods::MethodSpec;
 pub use region::OmegaVSpec;
 pub use report::PENETRATION_WARNING;
 pub use run::Run;
 pub use spec::{CaseSpec, ContactSpec, LoadSpec, OptimisationSpec, OutputSpec};
 pub use subsurface::{SectionSpec, SubsurfaceSpec};
-pub use zone::{FacesZone, GridZone, Layout, RingsZone, StripsZone, ZoneSpec};
+pub use zone::{FacesZone, GridZone, Layout, MeshZone, RingsZone, StripsZone, ZoneSpec};
 
 pub use contopt_results::{CaseReport, Report};
 
@@ -103,6 +107,8 @@ pub struct Case {
     pub spec: CaseSpec,
     locator: Locator,
     plan: Plan,
+    /// The mesh files of the scene, read once for all its cases.
+    meshes: Arc<MeshFiles>,
 }
 
 impl Scene {
@@ -132,7 +138,10 @@ impl Scene {
     pub fn bundled(name: &str) -> Result<Self, SceneError> {
         let file = Path::new("scenes").join(format!("{name}.toml"));
         match bundled::find(name) {
-            Some(scene) => Self::parse(scene.text, Format::Toml, &file),
+            Some(scene) => {
+                let (text, tree) = Self::read(scene.text, Format::Toml, &file)?;
+                Self::from_tree(text, tree, &file, bundled::meshes(scene, &file))
+            }
             None => {
                 let names: Vec<&str> = BUNDLED.iter().map(|b| b.name).collect();
                 let locator =
@@ -157,7 +166,13 @@ impl Scene {
             let locator = Locator::new(&file, "".into(), Arc::new(Node::table::<&str>([])), None);
             locator.at("", format!("no bundled scene {name:?}"))
         })?;
-        Self::parse_with(scene.text, Format::Toml, &file, edits)
+        Self::edited(
+            scene.text,
+            Format::Toml,
+            &file,
+            edits,
+            bundled::meshes(scene, &file),
+        )
     }
 
     /// [`Scene::parse`] with `edits` made to the text's keys first (see
@@ -167,6 +182,23 @@ impl Scene {
         format: Format,
         file: &Path,
         edits: &[(&str, Option<&str>)],
+    ) -> Result<Self, SceneError> {
+        Self::edited(
+            text,
+            format,
+            file,
+            edits,
+            MeshFiles::in_folder(&folder(file)),
+        )
+    }
+
+    /// [`Scene::parse_with`] reading its meshes from `meshes`.
+    fn edited(
+        text: &str,
+        format: Format,
+        file: &Path,
+        edits: &[(&str, Option<&str>)],
+        meshes: MeshFiles,
     ) -> Result<Self, SceneError> {
         let (text, tree) = Self::read(text, format, file)?;
         let mut tree = tree;
@@ -190,7 +222,7 @@ impl Scene {
                 }
             }
         }
-        Self::from_tree(text, tree, file)
+        Self::from_tree(text, tree, file, meshes)
     }
 
     /// The text read into a tree within the scene's limits.
@@ -214,17 +246,23 @@ impl Scene {
     /// names it in messages and its folder is where the files a scene names are read.
     pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
         let (text, tree) = Self::read(text, format, file)?;
-        Self::from_tree(text, tree, file)
+        Self::from_tree(text, tree, file, MeshFiles::in_folder(&folder(file)))
     }
 
-    /// The scene of a tree read from `text`.
-    fn from_tree(text: Arc<str>, tree: Node, file: &Path) -> Result<Self, SceneError> {
+    /// The scene of a tree read from `text`, its bodies' meshes read from `meshes`.
+    fn from_tree(
+        text: Arc<str>,
+        tree: Node,
+        file: &Path,
+        meshes: MeshFiles,
+    ) -> Result<Self, SceneError> {
         let whole = Locator::new(file, text.clone(), Arc::new(tree.clone()), None);
         let inputs = cases::expand(tree, &whole)?;
         let single = inputs.len() == 1 && inputs[0].named.is_none();
+        let meshes = Arc::new(meshes);
         let cases = inputs
             .into_iter()
-            .map(|input| Case::prepare(input, file, &text, single))
+            .map(|input| Case::prepare(input, file, &text, single, &meshes))
             .collect::<Result<Vec<_>, _>>()?;
         let first = &cases[0].spec;
         check_name(&first.name).map_err(|reason| {
@@ -253,6 +291,7 @@ impl Case {
         file: &Path,
         text: &Arc<str>,
         single: bool,
+        meshes: &Arc<MeshFiles>,
     ) -> Result<Self, SceneError> {
         let case_name = (!single).then(|| input.label.clone());
         let mut tree = input.tree;
@@ -264,19 +303,23 @@ impl Case {
         );
         bearing::compose(&mut tree, &whole)?;
         let locator = Locator::new(file, text.clone(), Arc::new(tree), case_name);
-        let spec: CaseSpec = locator.tree.deserialize().map_err(|e| locator.input(e))?;
+        let mut spec: CaseSpec = locator.tree.deserialize().map_err(|e| locator.input(e))?;
+        if locator.tree.get("contact.gap").is_none() {
+            spec.contact.gap = GapSpec::default_for(&spec.contact.zone, &spec.body);
+        }
         let label = if single {
             spec.name.clone()
         } else {
             input.label
         };
-        let plan = prepare::plan(&spec, &locator)?;
+        let plan = prepare::plan(&spec, &locator, meshes)?;
         Ok(Self {
             label,
             params: input.params,
             spec,
             locator,
             plan,
+            meshes: meshes.clone(),
         })
     }
 
@@ -295,6 +338,14 @@ impl Case {
             table.remove("body");
         }
         value
+    }
+}
+
+/// The folder of the scene file `file`, where the files it names are read.
+fn folder(file: &Path) -> PathBuf {
+    match file.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
     }
 }
 

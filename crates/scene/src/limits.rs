@@ -8,6 +8,7 @@ use contopt_contact::InterfaceProblem;
 use contopt_core::stress::peak_index;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
+use crate::mesh_zone::MeshSurface;
 use crate::zone::Layout;
 use crate::Case;
 
@@ -51,7 +52,11 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
         return;
     }
     let carrying: Vec<bool> = pressure.iter().map(|&p| p > CARRIES * p_max).collect();
-    if let Some(limit) = edge_reached(case, points, &pressure, &carrying, p_max) {
+    let reached = match &case.plan.layout {
+        Layout::Mesh(surface) => end_reached(case, surface, points, &pressure, &carrying),
+        _ => edge_reached(case, points, &pressure, &carrying, p_max),
+    };
+    if let Some(limit) = reached {
         report.status = CaseStatus::OutsideModel;
         report.limit = Some(limit);
         return;
@@ -119,6 +124,60 @@ fn edge_reached(
         if let Some(i) = reached {
             return Some(limit(case, &edge, pressure[i], p_max));
         }
+    }
+    None
+}
+
+/// The first end of an imported body's contact faces that the contact reaches where the
+/// body's boundary goes on beyond it (and the gap with it), as a limit: the group was drawn
+/// too short. The end of a chain at a corner of its body, or at one of its partner's, is a
+/// body's own edge.
+fn end_reached(
+    case: &Case,
+    surface: &MeshSurface,
+    points: &[[f64; 3]],
+    pressure: &[f64],
+    carrying: &[bool],
+) -> Option<ModelLimit> {
+    let contact = &case.spec.contact;
+    let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+    for end in surface.open_ends() {
+        let beyond = [0, 1].map(|c| end.at[c] + end.face * end.outward[c]);
+        if !contact
+            .gap
+            .finite_at(&contact.zone, [beyond[0], beyond[1], 0.0])
+        {
+            continue;
+        }
+        let Some(i) = (0..points.len()).find(|&i| carrying[i] && end.holds(points[i])) else {
+            continue;
+        };
+        // The contact's span along the group up to this end: to its farthest carrying point.
+        let span = (0..points.len())
+            .filter(|&k| carrying[k])
+            .map(|k| (end.at[0] - points[k][0]).hypot(end.at[1] - points[k][1]))
+            .fold(0.0f64, f64::max);
+        let needed = GROWTH * span;
+        let edge = format!(
+            "the end of \"{}\" at ({:.4}, {:.4}) mm",
+            end.group, end.at[0], end.at[1]
+        );
+        let message = format!(
+            "the contact reaches {edge}, the contact group of `{}` (p = {:.4e} MPa there, {:.0} \
+             % of p_max), where the body's boundary goes on: the contact faces end inside the \
+             contact, so the pressure and all that follows from it are wrong; name more of the \
+             boundary in the group: the contact spans {span:.4} mm up to this end, so let the \
+             group reach at least {needed:.4} mm from the contact's far side",
+            end.body,
+            pressure[i],
+            100.0 * pressure[i] / p_max
+        );
+        return Some(ModelLimit {
+            edge,
+            extent_mm: span,
+            needed_mm: needed,
+            message,
+        });
     }
     None
 }
@@ -197,6 +256,8 @@ fn edges(layout: &Layout, points: &[[f64; 3]]) -> Vec<Edge> {
             vec![named(0, true, "r")]
         }
         Layout::Faces(_) => vec![named(0, true, "x")],
+        // The ends of imported contact faces are judged by `end_reached`.
+        Layout::Mesh(_) => vec![],
     }
 }
 
@@ -210,6 +271,9 @@ fn resolution(
     pressure: &[f64],
 ) -> Option<Resolution> {
     let peak = peak_index(pressure)?;
+    if let Layout::Mesh(surface) = layout {
+        return Some(surface.resolution(points, carrying));
+    }
     // The carrying points on the line through the peak along the other axis.
     let count = |other: usize| {
         carrying

@@ -8,6 +8,8 @@ use contopt_roller::Roller;
 use crate::bodies::{check_load, check_pair, BodySpec, Placement, PunchLoad, Side};
 use crate::error::Locator;
 use crate::gap::{GapSpec, Hertz};
+use crate::mesh_zone::MeshSurface;
+use crate::meshes::MeshFiles;
 use crate::methods::Check;
 use crate::spec::{CaseSpec, LoadSpec};
 use crate::zone::{Layout, ZoneSpec};
@@ -33,8 +35,9 @@ pub(crate) struct Plan {
     pub bearing: Option<crate::bearing::BearingPlan>,
 }
 
-/// Checks `spec` and plans its run; `at` places the errors.
-pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
+/// Checks `spec` and plans its run, reading the meshes its bodies name from `meshes`; `at`
+/// places the errors.
+pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<Plan, SceneError> {
     let bearing = crate::bearing::plan(spec, at)?;
     let contact = &spec.contact;
     check_pair(&spec.body, &contact.zone).map_err(|e| at.library("", e))?;
@@ -42,24 +45,30 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
         .gap
         .check(&contact.zone)
         .map_err(|e| at.library("contact.gap", e))?;
+    let surveyed = crate::mesh_zone::survey(&spec.body, &contact.zone, meshes, at)?;
+    check_measured(spec, surveyed.as_ref(), at)?;
     let e_star = pair_modulus(&spec.body, &contact.zone);
     let (force, approach) = load_figures(contact.load);
     let rough = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, None));
     let roller = roller(spec, force, at)?;
     let layout = contact
         .zone
-        .layout(|cells| contact.gap.natural_cell(cells, rough, roller.as_ref()))
+        .layout(
+            |cells| contact.gap.natural_cell(cells, rough, roller.as_ref()),
+            surveyed,
+        )
         .map_err(|e| at.library("contact.zone", e))?;
-    let length = line_length(&layout);
+    let length = layout.line_length();
     let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
     for (k, body) in spec.body.iter().enumerate() {
-        let place = placement(spec, &layout, k, at)?;
+        let place = placement(spec, &layout, k, at, meshes);
         body.kind()
             .check(&place)
             .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
-    check_load(spec.body[1].kind(), &contact.zone, contact.load).map_err(|e| at.library("", e))?;
-    let floating = floats(spec);
+    let kinds = [spec.body[0].kind(), spec.body[1].kind()];
+    check_load(kinds, &contact.zone, contact.load).map_err(|e| at.library("", e))?;
+    let floating = floats(spec, &layout);
     let check = Check {
         spec,
         layout: &layout,
@@ -87,7 +96,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Plan, SceneError> {
     }
     let solver = spec.solver.build().map_err(|e| at.library("solver", e))?;
     let dense_limit = crate::budget::dense_limit(spec).map_err(|e| at.library("", e))?;
-    crate::budget::check(spec, &layout, solver.as_ref(), at)?;
+    crate::budget::check(spec, &layout, solver.as_ref(), at, meshes)?;
     Ok(Plan {
         layout,
         e_star,
@@ -105,14 +114,33 @@ pub(crate) fn placement<'a>(
     layout: &'a Layout,
     k: usize,
     at: &'a Locator,
-) -> Result<Placement<'a>, SceneError> {
-    Ok(Placement {
+    meshes: &'a MeshFiles,
+) -> Placement<'a> {
+    Placement {
         zone: &spec.contact.zone,
         layout,
         side: if k == 0 { Side::Below } else { Side::Above },
         load: spec.contact.load,
         dir: at.dir(),
-    })
+        meshes,
+    }
+}
+
+/// The measured gap is the distance between two imported meshes: it needs both.
+fn check_measured(
+    spec: &CaseSpec,
+    surveyed: Option<&MeshSurface>,
+    at: &Locator,
+) -> Result<(), SceneError> {
+    let paired = surveyed.is_some_and(|s| s.paired);
+    match (&spec.contact.gap, paired) {
+        (GapSpec::Measured, false) => Err(at.at(
+            "contact.gap",
+            "the measured gap is the distance between two imported meshes: both bodies of \
+             kind \"fe_mesh\" on a zone of kind \"mesh\" (give another gap's shape)",
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.
@@ -133,23 +161,11 @@ fn load_figures(load: LoadSpec) -> (Option<f64>, Option<f64>) {
     }
 }
 
-/// The length a line load spreads over: a grid's length along x, a plane body's thickness.
-fn line_length(layout: &Layout) -> Option<f64> {
-    match layout {
-        Layout::Grid { nx, dx, .. } => Some(*nx as f64 * dx),
-        Layout::Strips { thickness, .. } => Some(*thickness),
-        Layout::Faces(f) => match f.analysis {
-            contopt_fem::Analysis::PlaneStress { thickness }
-            | contopt_fem::Analysis::PlaneStrain { thickness } => Some(thickness),
-            contopt_fem::Analysis::Axisymmetric => None,
-        },
-        Layout::Rings(_) => None,
-    }
-}
-
-/// Whether a body floats: pressed by a contact force, or a punch under a pressure.
-fn floats(spec: &CaseSpec) -> bool {
+/// Whether a body floats: pressed by a contact force, a punch under a pressure, or an
+/// imported body whose supports leave a motion free that its contact faces hold.
+fn floats(spec: &CaseSpec, layout: &Layout) -> bool {
     matches!(spec.contact.load, LoadSpec::ForceN(_))
+        || matches!(layout, Layout::Mesh(m) if m.floating)
         || spec.body.iter().any(|b| {
             matches!(
                 b,

@@ -41,7 +41,8 @@ pub(crate) fn curve(case: &Case, report: &CaseReport) -> Option<ReferenceCurve> 
         Layout::Rings(_) => Body::Axisymmetric,
         Layout::Strips { .. } => Body::Plane,
         Layout::Faces(f) if f.analysis == contopt_fem::Analysis::Axisymmetric => Body::Axisymmetric,
-        Layout::Faces(_) => Body::Plane,
+        Layout::Mesh(m) if m.analysis == contopt_fem::Analysis::Axisymmetric => Body::Axisymmetric,
+        Layout::Faces(_) | Layout::Mesh(_) => Body::Plane,
     };
     let form = ClosedForm::new(case, body)?;
     let row = Row::of(report)?;
@@ -83,7 +84,7 @@ impl ClosedForm {
                 }
             }
             (GapSpec::FlatPunch(p), Body::Plane, LoadSpec::ForceN(f)) => Self::Punch {
-                p_centre: f / plane_thickness(case)? / (PI * p.radius_mm),
+                p_centre: f / case.plan.layout.line_length()? / (PI * p.radius_mm),
                 a: p.radius_mm,
                 plane: true,
             },
@@ -201,19 +202,6 @@ impl Row {
         let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         (lo < hi).then_some(Self { y, xs, lo, hi })
-    }
-}
-
-/// A plane zone's thickness.
-fn plane_thickness(case: &Case) -> Option<f64> {
-    match &case.plan.layout {
-        Layout::Strips { thickness, .. } => Some(*thickness),
-        Layout::Faces(f) => match f.analysis {
-            contopt_fem::Analysis::PlaneStress { thickness }
-            | contopt_fem::Analysis::PlaneStrain { thickness } => Some(thickness),
-            contopt_fem::Analysis::Axisymmetric => None,
-        },
-        _ => None,
     }
 }
 

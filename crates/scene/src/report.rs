@@ -27,6 +27,7 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
     report.termination = d.termination;
     report.bound_p_max_mpa = d.bound_p_max;
     report.dh_max_um = d.dh_max.map(|v| UM * v);
+    report.omega_nv_excess_mpa = d.omega_nv_excess;
     report.approach_um = d.rigid.first().map(|lambda| -UM * lambda);
     report.passes = d
         .passes
@@ -49,12 +50,14 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
             .copied()
             .unwrap_or(change(i))
     };
+    let initial = c.problem.initial_gap();
     report.interface = (0..points.len().min(d.pressure.len()))
         .map(|i| Point {
             x_mm: points[i],
             p_mpa: d.pressure[i],
             d_um: UM * d.gap[i],
             dh_um: UM * shown(i),
+            h_um: UM * initial.get(i).copied().unwrap_or(0.0),
         })
         .collect();
     let elastic_gap: Vec<f64> = (0..d.gap.len()).map(|i| d.gap[i] - change(i)).collect();

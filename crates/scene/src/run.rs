@@ -207,12 +207,43 @@ impl Case {
     }
 
     /// The initial gap at the first body's points \[mm\]: the gap's shape less the approach;
-    /// where the gap is open for good (beyond a flat punch's rim), out of reach.
+    /// where the gap is open for good (beyond a flat punch's rim), out of reach. Between two
+    /// imported meshes the measured gap, or the gap's shape read as the first body's field
+    /// (the pairing's projection: a gap outside it leaves pressures that jump from point to
+    /// point).
     pub fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
         let at = &self.locator;
         let contact = &self.spec.contact;
+        let approach = match contact.load {
+            crate::spec::LoadSpec::ApproachMm(a) => a,
+            _ => 0.0,
+        };
+        let open = OPEN_SIZES * built.first().interface().extent();
+        let reach = |h: f64| if h.is_finite() { h } else { open };
+        Ok(match (built.pairing(), &contact.gap) {
+            (Some(pairing), crate::GapSpec::Measured) => {
+                pairing.initial_gap().iter().map(|h| h - approach).collect()
+            }
+            (Some(pairing), _) => {
+                let shape: Vec<f64> = self.gap_shape(built)?.into_iter().map(reach).collect();
+                let projected = pairing
+                    .project(&shape)
+                    .map_err(|e| at.library("contact.gap", e))?;
+                projected.into_iter().map(|h| h - approach).collect()
+            }
+            (None, _) => (self.gap_shape(built)?.into_iter())
+                .map(|h| reach(h - approach))
+                .collect(),
+        })
+    }
+
+    /// The gap's shape h(x) at the first body's points \[mm\], infinite where it is open for
+    /// good.
+    fn gap_shape(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
+        let at = &self.locator;
+        let contact = &self.spec.contact;
         let interface = built.first().interface();
-        let mut gap = interface
+        let gap = interface
             .points()
             .iter()
             .map(|&x| contact.gap.at(&contact.zone, x, self.plan.roller.as_ref()))
@@ -222,14 +253,6 @@ impl Case {
             .gap
             .covers(interface.points(), &gap, &self.plan.layout)
             .map_err(|e| at.library("contact.gap", e))?;
-        let open = OPEN_SIZES * interface.extent();
-        let approach = match contact.load {
-            crate::spec::LoadSpec::ApproachMm(a) => a,
-            _ => 0.0,
-        };
-        for h in &mut gap {
-            *h = if h.is_finite() { *h - approach } else { open };
-        }
         Ok(gap)
     }
 }

@@ -1,13 +1,16 @@
 //! The contact zone Ω (`contact.zone`): where the bodies may touch and how finely, shared by
 //! both bodies, so that their points pair one to one. A grid of cells on a half-space
-//! surface, rings of an axisymmetric surface, strips of a plane one, or the element faces of
-//! finite-element bodies along r (or x).
+//! surface, rings of an axisymmetric surface, strips of a plane one, the element faces of
+//! finite-element bodies along r (or x), or the contact faces of imported meshes
+//! ([`MeshSurface`]).
 
 use std::f64::consts::PI;
 
 use contopt_core::{check, Error, Geometry, Interface, Result};
 use contopt_fem::{Analysis, ElementKind, Spacing, MAX_AXIS_ELEMENTS};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace};
+
+use crate::mesh_zone::MeshSurface;
 use serde::{Deserialize, Serialize};
 
 /// The most rings or strips of a zone: their dense surface matrix grows with the square.
@@ -27,6 +30,24 @@ pub enum ZoneSpec {
     /// The element faces of finite-element bodies along r (or x) from the axis (or the plane
     /// of symmetry): the punch's face, which both bodies mesh alike.
     Faces(FacesZone),
+    /// The contact faces of bodies meshed apart (`fe_mesh`): the first body's contact faces
+    /// paired with the second's, or sampled at their Gauss points for a partner that stands
+    /// on them.
+    Mesh(MeshZone),
+}
+
+/// A zone of imported meshes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshZone {
+    /// `"axisymmetric"` (x = r, y = z), `{ plane_stress = { thickness_mm } }` or
+    /// `{ plane_strain = { thickness_mm } }`: the analysis of both bodies.
+    pub analysis: Analysis,
+    /// How far along its normal a point of the first body's contact faces looks for the
+    /// second body's \[mm\] (default: half the smaller of the two contact groups' extents);
+    /// a point that finds none cannot touch.
+    #[serde(default)]
+    pub search_mm: Option<f64>,
 }
 
 /// A grid zone.
@@ -138,14 +159,18 @@ pub enum Layout {
     Strips { edges: Vec<f64>, thickness: f64 },
     /// Finite-element faces.
     Faces(FacesZone),
+    /// The contact faces of imported meshes, surveyed.
+    Mesh(MeshSurface),
 }
 
 impl ZoneSpec {
     /// The zone with its sizes resolved; `natural` gives the cell size of a grid of so many
-    /// cells that the gap spans by itself (for a grid without `cell_mm`).
+    /// cells that the gap spans by itself (for a grid without `cell_mm`); `surveyed` is a mesh
+    /// zone's survey of its bodies' meshes ([`MeshSurface`]), which the caller makes first.
     pub fn layout(
         &self,
         natural: impl FnOnce([usize; 2]) -> Result<Option<[f64; 2]>>,
+        surveyed: Option<MeshSurface>,
     ) -> Result<Layout> {
         Ok(match self {
             ZoneSpec::Grid(g) => grid_layout(g, natural)?,
@@ -168,18 +193,18 @@ impl ZoneSpec {
                 check_analysis(&f.analysis)?;
                 Layout::Faces(f.clone())
             }
+            ZoneSpec::Mesh(m) => {
+                check_analysis(&m.analysis)?;
+                Layout::Mesh(surveyed.ok_or_else(|| {
+                    Error::invalid(
+                        "kind",
+                        "mesh",
+                        "a zone of imported meshes is laid out from its bodies' meshes: give \
+                         an fe_mesh body",
+                    )
+                })?)
+            }
         })
-    }
-
-    /// The number of interface points, `None` when it overflows (a finite-element face
-    /// holds three Gauss points).
-    pub fn points(&self) -> Option<usize> {
-        match self {
-            ZoneSpec::Grid(g) => g.cells[0].checked_mul(g.cells[1]),
-            ZoneSpec::Rings(r) => Some(r.rings),
-            ZoneSpec::Strips(s) => Some(s.strips),
-            ZoneSpec::Faces(f) => f.elements.checked_mul(3),
-        }
     }
 
     /// How the surface measure is formed.
@@ -189,6 +214,7 @@ impl ZoneSpec {
             ZoneSpec::Rings(_) => Geometry::Axisymmetric,
             ZoneSpec::Strips(s) => analysis_geometry(&s.analysis),
             ZoneSpec::Faces(f) => analysis_geometry(&f.analysis),
+            ZoneSpec::Mesh(m) => analysis_geometry(&m.analysis),
         }
     }
 
@@ -199,6 +225,7 @@ impl ZoneSpec {
             ZoneSpec::Rings(_) => "rings",
             ZoneSpec::Strips(_) => "strips",
             ZoneSpec::Faces(_) => "faces",
+            ZoneSpec::Mesh(_) => "mesh",
         }
     }
 }
@@ -217,8 +244,21 @@ impl Layout {
             } => HalfSpace::cells_interface(*nx, *ny, *dx, *dy, *origin),
             Layout::Rings(edges) => AxisymmetricHalfSpace::rings_interface(edges),
             Layout::Strips { edges, thickness } => HalfPlane::strips_interface(edges, *thickness),
-            Layout::Faces(_) => return None,
+            Layout::Faces(_) | Layout::Mesh(_) => return None,
         })
+    }
+
+    /// The number of interface points, `None` when it overflows (a finite-element face
+    /// holds three Gauss points; imported meshes, as surveyed).
+    pub fn points(&self) -> Option<usize> {
+        match self {
+            Layout::Grid { nx, ny, .. } => nx.checked_mul(*ny),
+            Layout::Rings(edges) | Layout::Strips { edges, .. } => {
+                Some(edges.len().saturating_sub(1))
+            }
+            Layout::Faces(f) => f.elements.checked_mul(3),
+            Layout::Mesh(m) => Some(m.points.len()),
+        }
     }
 
     /// How far the zone reaches from its centre along each surface axis \[mm\] (x or r, y).
@@ -228,6 +268,7 @@ impl Layout {
             Layout::Rings(edges) => [edges.last().copied().unwrap_or(0.0), 0.0],
             Layout::Strips { edges, .. } => [edges.last().copied().unwrap_or(0.0), 0.0],
             Layout::Faces(f) => [f.radius_mm, 0.0],
+            Layout::Mesh(m) => m.half_extent,
         }
     }
 
@@ -239,6 +280,37 @@ impl Layout {
             Layout::Grid { dx, dy, .. } => [*dx, *dy],
             Layout::Rings(edges) | Layout::Strips { edges, .. } => [last(edges), 0.0],
             Layout::Faces(f) => [f.edge_size().unwrap_or(f.radius_mm), 0.0],
+            Layout::Mesh(m) => [m.cell, m.cell],
+        }
+    }
+
+    /// The length a line load spreads over \[mm\]: a grid's length along x, a strips zone's
+    /// thickness, and half the thickness of a plane faces zone, whose bodies are the half x ≥ 0
+    /// of bodies symmetric about x = 0: a force on the half is half the whole contact's, so the
+    /// whole line load is 2F/t. `None` elsewhere, and on a mesh zone, whose meshes may be whole
+    /// or halves (nothing says which).
+    pub fn line_length(&self) -> Option<f64> {
+        match self {
+            Layout::Grid { nx, dx, .. } => Some(*nx as f64 * dx),
+            Layout::Strips { thickness, .. } => Some(*thickness),
+            Layout::Faces(_) => self.thickness().map(|t| 0.5 * t),
+            Layout::Mesh(_) | Layout::Rings(_) => None,
+        }
+    }
+
+    /// The thickness of a plane zone (strips, plane faces or meshes) \[mm\].
+    pub fn thickness(&self) -> Option<f64> {
+        let of = |a: Analysis| match a {
+            Analysis::PlaneStress { thickness } | Analysis::PlaneStrain { thickness } => {
+                Some(thickness)
+            }
+            Analysis::Axisymmetric => None,
+        };
+        match self {
+            Layout::Strips { thickness, .. } => Some(*thickness),
+            Layout::Faces(f) => of(f.analysis),
+            Layout::Mesh(m) => of(m.analysis),
+            Layout::Grid { .. } | Layout::Rings(_) => None,
         }
     }
 

@@ -17,10 +17,12 @@
 //!    every gap kind, every load, solver, design method, controller and Ω_v, each enum spelled
 //!    the three ways a scene may — three in four plausible throughout, the others with each
 //!    value hostile one time in eight; most pairs of bodies valid for their zone and some not
-//!    (parts of two setups mixed, sides swapped, a body too few or too many). A scene whose
-//!    pairing breaks a rule of the schema (two rigid bodies, a finite-element body off a zone
-//!    of faces, a half-space on faces, a roller off a grid, a force on a held body, …) must be
-//!    refused. The tiny ones (a few hundred points at most, few steps, no profile search or
+//!    (parts of two setups mixed, sides swapped, a body too few or too many). Imported bodies
+//!    read small meshes of the repository's `meshes/` (copied beside the scenes): the paper's
+//!    punch and base, the coarsest cylinder on a block. A scene whose pairing breaks a rule of
+//!    the schema (two rigid bodies, a finite-element body off a zone of faces, an imported one
+//!    off a zone of meshes, a half-space on faces, a roller off a grid, the measured gap
+//!    without two meshes, a force on a held body, …) must be refused. The tiny ones (a few hundred points at most, few steps, no profile search or
 //!    envelope split) are run, every case, by [`Scene::run`], and every [`CaseReport`] that
 //!    comes out is finite: it meets the results schema (serde_json writes a NaN or an
 //!    infinity as `null`, which the schema refuses where it requires a number) and every
@@ -386,8 +388,15 @@ const HOSTILE_STRINGS: &[&str] = &[
     NULL,
 ];
 
-const ZONE_KINDS: &[&str] = &["grid", "rings", "strips", "faces"];
-const GAP_KINDS: &[&str] = &["flat", "sphere", "cylinder", "flat_punch", "roller"];
+const ZONE_KINDS: &[&str] = &["grid", "rings", "strips", "faces", "mesh"];
+const GAP_KINDS: &[&str] = &[
+    "flat",
+    "sphere",
+    "cylinder",
+    "flat_punch",
+    "roller",
+    "measured",
+];
 const BODY_KINDS: &[&str] = &[
     "rigid",
     "half_space",
@@ -395,6 +404,39 @@ const BODY_KINDS: &[&str] = &[
     "fe_punch",
     "fe_block",
     "winkler",
+    "fe_mesh",
+];
+/// The meshes a generated `fe_mesh` reads (`../meshes/<name>` from the scene's folder, where
+/// [`scene_file`] puts them): small ones, so that a scene of them runs in a tenth of a second.
+const MESHES: &[&str] = &[
+    "paper-base.msh",
+    "paper-punch.msh",
+    "cylinder-on-block-b4.msh",
+    "rectangle-metres.msh",
+    "block-inner-curve.msh",
+];
+/// The physical groups of the meshes above, and some that are not.
+const GROUPS: &[&str] = &[
+    "base",
+    "base_face",
+    "base_top",
+    "base_bottom",
+    "base_axis",
+    "punch",
+    "punch_face",
+    "punch_top",
+    "punch_axis",
+    "block",
+    "block_face",
+    "block_short",
+    "block_bottom",
+    "block_axis",
+    "cylinder",
+    "cylinder_face",
+    "cylinder_top",
+    "cylinder_axis",
+    "inner",
+    "nowhere",
 ];
 const CROWNS: &[&str] = &[
     "straight",
@@ -429,17 +471,20 @@ const VARIANTS: &[&str] = &[
     "rings",
     "strips",
     "faces",
+    "mesh",
     "flat",
     "sphere",
     "cylinder",
     "flat_punch",
     "roller",
+    "measured",
     "rigid",
     "half_space",
     "fe_base",
     "fe_punch",
     "fe_block",
     "winkler",
+    "fe_mesh",
     "force_n",
     "approach_mm",
     "none",
@@ -498,6 +543,7 @@ const DOTTED: &[&str] = &[
     "contact.zone.analysis",
     "contact.zone.analysis.plane_stress.thickness_mm",
     "contact.zone.kind",
+    "contact.zone.search_mm",
     "contact.zone",
     "contact.gap.radius_mm",
     "contact.gap.diameter_mm",
@@ -524,6 +570,12 @@ const DOTTED: &[&str] = &[
     "body.0.modulus_mpa_per_mm",
     "body.0.supports",
     "body.0.datum_mm",
+    "body.0.extent_mm.0",
+    "body.1.extent_mm",
+    "body.0.mesh",
+    "body.1.contact",
+    "body.1.loads.0.pressure_mpa",
+    "body.0.supports.0.fix",
     "body.1.kind",
     "body.2",
     "body.-1",
@@ -826,6 +878,17 @@ fn zone() -> BoxedStrategy<Value> {
                     ("element", e),
                 ]
             )),
+        (
+            any::<u8>(),
+            kind_name(&["mesh"]),
+            opt(analysis()),
+            opt(number())
+        )
+            .prop_map(|(s, k, an, d)| tagged(
+                s,
+                k,
+                vec![("analysis", an), ("search_mm", d)]
+            )),
     ]
     .boxed()
 }
@@ -896,6 +959,11 @@ fn supports() -> BoxedStrategy<Value> {
 
 /// A body of any kind.
 fn body() -> BoxedStrategy<Value> {
+    prop_oneof![6 => built_body(), 1 => mesh_body()].boxed()
+}
+
+/// A body of the kinds built on a zone, or of any name.
+fn built_body() -> BoxedStrategy<Value> {
     let dims = (opt(number()), opt(number()), opt(number()), opt(count()));
     (
         (any::<u8>(), kind_name(BODY_KINDS), opt(string())),
@@ -927,6 +995,63 @@ fn body() -> BoxedStrategy<Value> {
                 let mut fields = fields;
                 fields.push(("name", name));
                 tagged(style, kind, fields)
+            },
+        )
+        .boxed()
+}
+
+/// An `fe_mesh` body with hostile fields: a mesh of the folder or junk, groups or junk, an
+/// extent of hostile numbers, supports and loads of any shape.
+fn mesh_body() -> BoxedStrategy<Value> {
+    let name = || prop_oneof![3 => select(GROUPS).prop_map(text), 1 => string()].boxed();
+    let mesh = prop_oneof![
+        3 => select(MESHES).prop_map(|m| text(&format!("../meshes/{m}"))),
+        1 => string(),
+    ]
+    .boxed();
+    let fix = proptest::collection::vec(kind_name(&["x", "y", "z"]), 0..3)
+        .prop_map(Value::Array)
+        .boxed();
+    let support = (opt(name()), opt(fix))
+        .prop_map(|(group, fix)| table(vec![("group", group), ("fix", fix)]))
+        .boxed();
+    let load = (
+        opt(name()),
+        select(&["pressure_mpa", "traction_mpa", "displacement_mm", "along"][..]),
+        prop_oneof![number(), numbers(3), kind_name(&["x", "y"])],
+        opt(number()),
+    )
+        .prop_map(|(group, key, v, p)| {
+            table(vec![("group", group), (key, Some(v)), ("pressure_mpa", p)])
+        })
+        .boxed();
+    (
+        (any::<u8>(), opt(mesh), opt(name()), opt(name())),
+        (opt(numbers(3)), opt(material())),
+        (
+            opt(proptest::collection::vec(support, 0..3)
+                .prop_map(Value::Array)
+                .boxed()),
+            opt(proptest::collection::vec(load, 0..3)
+                .prop_map(Value::Array)
+                .boxed()),
+        ),
+    )
+        .prop_map(
+            |((style, mesh, surface, contact), (extent, m), (supports, loads))| {
+                tagged(
+                    style,
+                    text("fe_mesh"),
+                    vec![
+                        ("mesh", mesh),
+                        ("surface", surface),
+                        ("contact", contact),
+                        ("extent_mm", extent),
+                        ("material", m),
+                        ("supports", supports),
+                        ("loads", loads),
+                    ],
+                )
             },
         )
         .boxed()
@@ -1494,14 +1619,25 @@ const SCENE_CASES: u32 = 768;
 const OTHER_CASES: u32 = 512;
 
 /// The file a scene is read as: in a folder of its own that holds `crown.csv`, the crown table
-/// a generated roller may name.
+/// a generated roller may name, beside a folder `meshes` of the meshes generated imported
+/// bodies and the bundled scenes read (`../meshes/…`).
 fn scene_file() -> PathBuf {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     let dir = DIR.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fuzz-scenes");
+        let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fuzz");
+        let dir = root.join("scenes");
         std::fs::create_dir_all(&dir).expect("a folder for the fuzz scenes");
         let table = "x_mm, drop_mm\n0, 0\n2, 0.0005\n4.5, 0.01\n";
         std::fs::write(dir.join("crown.csv"), table).expect("a crown table");
+        let meshes = root.join("meshes");
+        std::fs::create_dir_all(&meshes).expect("a folder for the meshes");
+        let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+        for name in MESHES {
+            std::fs::copy(repository.join(name), meshes.join(name)).expect("a mesh");
+        }
+        for (path, bytes) in SCENES.iter().flat_map(|s| s.meshes) {
+            std::fs::write(dir.join(path), bytes).expect("a bundled scene's mesh");
+        }
         dir
     });
     dir.join("fuzz.toml")
@@ -1605,6 +1741,7 @@ impl GapDraw {
         match self.kind {
             "flat" if self.style.is_multiple_of(2) => None,
             "flat" => Some(tagged(self.style, text("flat"), vec![])),
+            "measured" => Some(tagged(self.style, text("measured"), vec![])),
             kind => Some(tagged(self.style, text(kind), vec![("radius_mm", Some(r))])),
         }
     }
@@ -2093,6 +2230,235 @@ fn roller_setup(h: f64) -> BoxedStrategy<Setup> {
         .boxed()
 }
 
+/// An imported body (`fe_mesh`) of the paper's geometry (`paper-base.msh`, `paper-punch.msh`)
+/// or of the cylinder on a block (`cylinder-on-block-b4.msh`, plane only), as `role` names
+/// it: its mesh, surface, contact group (or, with probability `h`, a hostile one), extent,
+/// supports for `axisymmetric` and loads (a pressure `p` \[MPa\] on a punch or a cylinder
+/// when `pressed`, else a punch pushed down by `push` \[mm\]).
+#[derive(Clone, Debug)]
+struct MeshDraw {
+    h: f64,
+    material: Value,
+    pressed: bool,
+    p: Value,
+    push: f64,
+    group: Option<Value>,
+    extent: Option<Value>,
+    style: u8,
+}
+
+impl MeshDraw {
+    fn body(&self, role: &str, axisymmetric: bool) -> Value {
+        let held = |group: &str, fix: &[&str]| {
+            let fix = Value::Array(fix.iter().map(|d| text(d)).collect());
+            table(vec![("group", Some(text(group))), ("fix", Some(fix))])
+        };
+        let (mesh, surface, contact, extent, supports, loads) = match role {
+            "base" if axisymmetric => (
+                "paper-base.msh",
+                None,
+                "base_face",
+                [100.0, 50.0],
+                vec![held("base_bottom", &["x", "y"])],
+                vec![],
+            ),
+            "base" => (
+                "paper-base.msh",
+                None,
+                "base_face",
+                [100.0, 50.0],
+                vec![held("base_bottom", &["y"]), held("base_axis", &["x"])],
+                vec![],
+            ),
+            "punch" => {
+                let load = match self.pressed {
+                    true => ("pressure_mpa", self.p.clone()),
+                    false => ("displacement_mm", Value::Float(-self.push)),
+                };
+                let supports = match axisymmetric {
+                    true => vec![],
+                    false => vec![held("punch_axis", &["x"])],
+                };
+                let load = table(vec![
+                    ("group", Some(text("punch_top"))),
+                    (load.0, Some(load.1)),
+                ]);
+                (
+                    "paper-punch.msh",
+                    None,
+                    "punch_face",
+                    [50.0, 50.0],
+                    supports,
+                    vec![load],
+                )
+            }
+            "block" => (
+                "cylinder-on-block-b4.msh",
+                Some("block"),
+                "block_face",
+                [40.0, 40.0],
+                vec![
+                    held("block_bottom", &["x", "y"]),
+                    held("block_axis", &["x"]),
+                ],
+                vec![],
+            ),
+            _ => {
+                let load = table(vec![
+                    ("group", Some(text("cylinder_top"))),
+                    ("pressure_mpa", Some(self.p.clone())),
+                ]);
+                (
+                    "cylinder-on-block-b4.msh",
+                    Some("cylinder"),
+                    "cylinder_face",
+                    [10.0, 10.0],
+                    vec![held("cylinder_axis", &["x"])],
+                    vec![load],
+                )
+            }
+        };
+        let extent = self
+            .extent
+            .clone()
+            .unwrap_or(Value::Array(extent.map(Value::Float).to_vec()));
+        let contact = match &self.group {
+            Some(g) if self.h > 0.0 => g.clone(),
+            _ => text(contact),
+        };
+        tagged(
+            self.style,
+            text("fe_mesh"),
+            vec![
+                ("mesh", Some(text(&format!("../meshes/{mesh}")))),
+                ("surface", surface.map(text)),
+                ("contact", Some(contact)),
+                ("extent_mm", Some(extent)),
+                ("material", Some(self.material.clone())),
+                ("supports", Some(Value::Array(supports))),
+                ("loads", Some(Value::Array(loads))),
+            ],
+        )
+    }
+}
+
+fn mesh_draw(h: f64) -> BoxedStrategy<MeshDraw> {
+    (
+        (plausible_material(h), any::<bool>(), real_in(h, 1.0, 200.0)),
+        (1e-4..1e-2f64, maybe(0.3, one_of(h, GROUPS)), any::<u8>()),
+        chance(h, numbers(3)),
+    )
+        .prop_map(
+            move |((material, pressed, p), (push, group, style), extent)| MeshDraw {
+                h,
+                material,
+                pressed,
+                p,
+                push,
+                group,
+                extent,
+                style,
+            },
+        )
+        .boxed()
+}
+
+/// Pairs on imported meshes: the paper's base under its punch (either analysis), the block
+/// under the cylinder (plane), a rigid body or a bed on the base, the punch on a rigid floor;
+/// the gap measured between two meshes (left to its default, or named), or given.
+fn mesh_setup(h: f64) -> BoxedStrategy<Setup> {
+    (
+        (any::<bool>(), plane_analysis(h), 0usize..5, any::<u8>()),
+        (mesh_draw(h), mesh_draw(h)),
+        gap_draw(h, &["flat", "curved", "flat_punch", "measured"]),
+        load_draw(h),
+        maybe(0.2, real_in(h, 0.1, 20.0)),
+    )
+        .prop_map(|((axi, plane, pair, style), (d0, d1), gap, load, search)| {
+            let axi = axi && pair != 1;
+            let analysis = if axi {
+                tagged(style, text("axisymmetric"), vec![])
+            } else {
+                plane
+            };
+            let zone = tagged(
+                style,
+                text("mesh"),
+                vec![("analysis", Some(analysis)), ("search_mm", search)],
+            );
+            let r = if pair == 1 { 2.0 } else { 50.0 };
+            let kind = match gap.kind {
+                "curved" if axi => "sphere",
+                "curved" => "cylinder",
+                k => k,
+            };
+            let given = GapDraw { kind, ..gap };
+            let (bodies, contact_gap, contact_load, floating) = match pair {
+                0 | 1 => {
+                    let (a, b) = if pair == 0 {
+                        ("base", "punch")
+                    } else {
+                        ("block", "cylinder")
+                    };
+                    let measured = match given.kind {
+                        "measured" => Some(tagged(style, text("measured"), vec![])),
+                        _ if style % 3 == 0 => given.value(r),
+                        _ => None,
+                    };
+                    let floats = pair == 1 || d1.pressed;
+                    (
+                        vec![d0.body(a, axi), d1.body(b, axi)],
+                        measured,
+                        None,
+                        floats,
+                    )
+                }
+                2 => {
+                    let force = load.force;
+                    let rigid = tagged(style, text("rigid"), vec![]);
+                    (
+                        vec![d0.body("base", axi), rigid],
+                        given.value(r),
+                        Some(load.value(force, r)),
+                        force,
+                    )
+                }
+                3 => {
+                    let bed = tagged(
+                        style,
+                        text("winkler"),
+                        vec![("modulus_mpa_per_mm", Some(Value::Float(100.0)))],
+                    );
+                    (
+                        vec![d0.body("base", axi), bed],
+                        given.value(r),
+                        Some(load.value(false, r)),
+                        false,
+                    )
+                }
+                _ => {
+                    let floor = tagged(style, text("rigid"), vec![]);
+                    (
+                        vec![floor, d1.body("punch", axi)],
+                        given.value(r),
+                        None,
+                        d1.pressed,
+                    )
+                }
+            };
+            Setup {
+                zone,
+                gap: contact_gap,
+                load: contact_load,
+                bodies,
+                extent: [r, 0.0],
+                floating,
+                roller: false,
+            }
+        })
+        .boxed()
+}
+
 fn valid_setup(h: f64) -> BoxedStrategy<Setup> {
     prop_oneof![
         3 => grid_setup(h),
@@ -2100,6 +2466,7 @@ fn valid_setup(h: f64) -> BoxedStrategy<Setup> {
         2 => line_setup(h, true),
         3 => faces_setup(h),
         2 => roller_setup(h),
+        2 => mesh_setup(h),
     ]
     .boxed()
 }
@@ -2565,6 +2932,18 @@ impl SceneTree {
             Some(Value::Array(a)) => a.len(),
             _ => 1,
         };
+        // An imported body is tiny on the meshes generated scenes name (the bundled ones have
+        // thousands of nodes).
+        let meshes = match self.get(&["body"]) {
+            Some(Value::Array(a)) => {
+                a.iter()
+                    .all(|b| match fields(b).and_then(|f| f.get("mesh")) {
+                        Some(Value::String(m)) => MESHES.iter().any(|small| m.ends_with(small)),
+                        _ => true,
+                    })
+            }
+            _ => true,
+        };
         let depths = match self.get(&["output", "subsurface"]) {
             None => true,
             Some(sub) => sub.get("depths").is_some() && at_most(sub.get("depths"), 20),
@@ -2574,6 +2953,7 @@ impl SceneTree {
             && at_most(field("strips"), 60)
             && at_most(field("elements"), 8)
             && layers
+            && meshes
             && at_most(solver.and_then(|s| s.get("max_steps")), 2000)
             && self.design_tiny()
             && depths
@@ -2686,13 +3066,17 @@ impl SceneTree {
         let &[below, above] = p.bodies.as_slice() else {
             return Some("a contact has two bodies");
         };
-        let fe = |k: &str| k.starts_with("fe_");
+        let fe = |k: &str| matches!(k, "fe_base" | "fe_punch" | "fe_block");
         let faces = p.zone == "faces";
+        let meshes = p.zone == "mesh";
+        let imported = p.bodies.iter().filter(|k| **k == "fe_mesh").count();
         let lines = matches!(p.zone, "rings" | "strips");
-        let plane = p.zone == "strips" || (faces && p.axisymmetric == Some(false));
-        let round = p.zone == "rings" || (faces && p.axisymmetric == Some(true));
-        let held_above = matches!(above, "winkler" | "fe_base" | "fe_block" | "fe_punch")
-            || (above == "half_space" && p.zone != "grid");
+        let plane = p.zone == "strips" || ((faces || meshes) && p.axisymmetric == Some(false));
+        let round = p.zone == "rings" || ((faces || meshes) && p.axisymmetric == Some(true));
+        let held_above = matches!(
+            above,
+            "winkler" | "fe_base" | "fe_block" | "fe_punch" | "fe_mesh"
+        ) || (above == "half_space" && p.zone != "grid");
         let rules = [
             (below == "rigid" && above == "rigid", "two rigid bodies"),
             (
@@ -2709,8 +3093,20 @@ impl SceneTree {
                 "a base or a block above the zone",
             ),
             (
-                faces && (below == "half_space" || above == "half_space"),
+                (faces || meshes) && (below == "half_space" || above == "half_space"),
                 "a half-space on faces",
+            ),
+            (
+                !meshes && imported > 0,
+                "an imported body off a zone of meshes",
+            ),
+            (
+                meshes && imported == 0,
+                "a zone of meshes without an imported body",
+            ),
+            (
+                p.gap == "measured" && !(meshes && imported == 2),
+                "the measured gap without two imported bodies",
             ),
             (
                 lines && above == "half_space",
@@ -2732,7 +3128,7 @@ impl SceneTree {
             ),
             (p.load == "force_n" && held_above, "a force on a held body"),
             (
-                p.load == "none" && above != "fe_punch",
+                p.load == "none" && above != "fe_punch" && imported == 0,
                 "nothing presses the bodies",
             ),
             (p.datum && p.zone != "strips", "a datum off strips"),
@@ -2856,6 +3252,7 @@ fn report_numbers(r: &CaseReport) -> Vec<(String, f64)> {
         ("p_max_mpa", r.p_max_mpa),
         ("bound_p_max_mpa", r.bound_p_max_mpa),
         ("dh_max_um", r.dh_max_um),
+        ("omega_nv_excess_mpa", r.omega_nv_excess_mpa),
         ("approach_um", r.approach_um),
         ("penetration_um", r.penetration_um),
     ] {
@@ -2890,6 +3287,7 @@ fn report_numbers(r: &CaseReport) -> Vec<(String, f64)> {
         put("interface.p_mpa", q.p_mpa);
         put("interface.d_um", q.d_um);
         put("interface.dh_um", q.dh_um);
+        put("interface.h_um", q.h_um);
     }
     for c in r.reference.iter().flat_map(|c| &c.points) {
         put("reference.x_mm", c.x_mm);
@@ -4460,9 +4858,9 @@ fn fixed_roller_cell_reach() {
 /// leaves out) the miss was 0/0, and a split stopped at its limit reported
 /// `Termination::StepLimit { measure: NaN }`: a NaN in the report (`CaseReport::settle`
 /// checked the figures, not the termination), written as `null` where the schema wants a
-/// number. The miss is 0 there now (its target v·0 met), so the split stops at once and its
-/// check of Ω_nv says why it cannot go on: Ω_v holds none of the pressure. (`settle` checks a
-/// termination's numbers too now.)
+/// number. The miss is 0 there now (its target v·0 met), so the split stops at once and ends as
+/// infeasible, its pressure above v·p_max on Ω_nv: Ω_v holds none of the pressure. (`settle`
+/// checks a termination's numbers too now.)
 #[test]
 fn fixed_load_split_nan_miss() {
     let text = r#"
@@ -4490,15 +4888,12 @@ fn fixed_load_split_nan_miss() {
     "#;
     let scene = Scene::parse(text, Format::Toml, Path::new("fuzz.toml")).expect("a scene");
     for report in scene.run() {
-        match report {
-            Ok(report) => panic!("a report, ended {:?}", report.termination),
-            Err(e) => {
-                let e = e.to_string();
-                assert!(
-                    e.contains("omega_v") && e.contains("Ω_v does not hold"),
-                    "{e}"
-                );
-            }
+        let report = report.expect("a report");
+        match &report.termination {
+            Termination::Infeasible { reason } => assert!(reason.contains("Ω_nv"), "{reason}"),
+            other => panic!("ended {other:?}"),
         }
+        assert!(report.omega_nv_excess_mpa.is_some_and(|e| e > 0.0));
+        assert_eq!(non_finite(&report), None);
     }
 }

@@ -319,3 +319,41 @@ fn a_controller_beyond_the_zone_is_refused() {
         "{message}"
     );
 }
+
+/// A rigid cylinder (R = 20 mm) on a plane-strain block of a faces zone, whose bodies are the
+/// half x ≥ 0 of symmetric ones: 400 N on the half is 800 N on the whole contact. Hertz's
+/// nominal p₀ used to take the half's force for the whole (q = F/t: 1183 MPa beside a solved
+/// p_max of 1673, √2 apart); the line load is 2F/t.
+#[test]
+fn a_half_models_hertz_is_the_whole_contacts() {
+    let text = r#"name = "cylinder on a half block"
+[contact]
+zone = { kind = "faces", analysis = { plane_strain = { thickness_mm = 1.0 } }, radius_mm = 1.0, elements = 40 }
+gap = { kind = "cylinder", radius_mm = 20.0 }
+load = { force_n = 400.0 }
+
+[[body]]
+kind = "fe_block"
+material = { e_mpa = 2.0e5, nu = 0.3 }
+size_mm = 40.0
+
+[[body]]
+kind = "rigid"
+
+[solver]
+kind = "active_set"
+"#;
+    let report = parse(text).unwrap().cases()[0].run().unwrap();
+    let hertz = report.hertz.as_ref().expect("Hertz's nominal contact");
+    // Johnson eq. 4.45: p₀ = √(q E*/(π R)), q = 2F/t on the whole contact.
+    let e_star = 2.0e5 / (1.0 - 0.09);
+    let p0 = (2.0 * 400.0 * e_star / (std::f64::consts::PI * 20.0)).sqrt();
+    assert!(
+        (hertz.p0_mpa - p0).abs() < 1e-9 * p0,
+        "{} against {p0}",
+        hertz.p0_mpa
+    );
+    // The block stands in for the half-space: its p_max within 1 % of Hertz's.
+    let p_max = report.p_max_mpa.expect("a solved pressure");
+    assert!((p_max - p0).abs() < 0.01 * p0, "{p_max}");
+}

@@ -51,6 +51,24 @@ pub fn without_sweep(text: &str) -> &str {
     &text[..text.find("[sweep]").expect("a [sweep]")]
 }
 
+/// Writes the meshes of the bundled scene `scene` where a copy of it in `dir` reads them
+/// (`../meshes/…` from `dir`), as a user copies a scene with its meshes.
+pub fn write_meshes(dir: &Path, scene: &str) {
+    let bundled = contopt_scene::BUNDLED
+        .iter()
+        .find(|b| b.name == scene)
+        .unwrap();
+    for (path, bytes) in bundled.meshes {
+        // Written beside and renamed over: tests running at once share `../meshes`.
+        let file = dir.join(path);
+        std::fs::create_dir_all(file.parent().unwrap()).unwrap();
+        let unique = format!("{}.{:?}", std::process::id(), std::thread::current().id());
+        let part = file.with_extension(format!("part-{}", unique.replace(['(', ')'], "")));
+        std::fs::write(&part, bytes).unwrap();
+        std::fs::rename(&part, &file).unwrap();
+    }
+}
+
 /// Writes `text` as `<dir>/<name>.toml`.
 pub fn write_scene(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(format!("{name}.toml"));

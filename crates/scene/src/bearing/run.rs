@@ -195,6 +195,8 @@ struct Crowned {
     cases: Vec<Vec<f64>>,
     /// The controller's L1 and L2 the life chose \[mm\].
     controller: Option<[f64; 2]>,
+    /// The robust crown's largest p − v·p̂ over Ω_nv \[MPa\].
+    omega_nv_excess: Option<f64>,
 }
 
 /// The life as a search's objective: −1000·ln L, so that the search's tolerance (absolute, in
@@ -318,6 +320,7 @@ fn design(
                     tuned: None,
                     cases: crown.cases.into_iter().map(|c| c.pressure).collect(),
                     controller: None,
+                    omega_nv_excess: crown.omega_nv_excess,
                 })
             };
             return match plan.objective {
@@ -378,6 +381,7 @@ fn design(
         bound_p_max: None,
         cases: vec![],
         controller: None,
+        omega_nv_excess: None,
     }))
 }
 
@@ -522,6 +526,7 @@ pub(crate) fn run<'a>(
         dh_max: designed
             .as_ref()
             .map(|d| d.change.iter().fold(0.0, |m: f64, v| m.max(*v))),
+        omega_nv_excess: designed.as_ref().and_then(|d| d.omega_nv_excess),
         passes: vec![],
         roller: roller_report(&figures, true, tuned),
     };
@@ -541,6 +546,7 @@ fn unsolved(why: Termination, solver: &dyn ContactSolver) -> Designed {
         crown: None,
         bound_p_max: None,
         dh_max: None,
+        omega_nv_excess: None,
         passes: vec![],
         roller: None,
     }

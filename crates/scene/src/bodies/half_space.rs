@@ -84,7 +84,7 @@ impl BodyKind for HalfSpaceBody {
     fn check(&self, at: &Placement) -> Result<()> {
         match (at.zone, at.side) {
             (ZoneSpec::Grid(_), _) | (ZoneSpec::Rings(_) | ZoneSpec::Strips(_), Side::Below) => {}
-            (ZoneSpec::Faces(_), _) => {
+            (ZoneSpec::Faces(_) | ZoneSpec::Mesh(_), _) => {
                 return Err(misplaced(
                     self.kind(),
                     at,
@@ -147,7 +147,7 @@ impl BodyKind for HalfSpaceBody {
                 FreeEnds::grid_bytes(g.cells[0], g.cells[1])
             }
             ZoneSpec::Grid(g) => HalfSpace::grid_bytes(g.cells[0], g.cells[1]),
-            zone => zone.points().and_then(dense_surface_bytes),
+            _ => at.layout.points().and_then(dense_surface_bytes),
         }
     }
 
@@ -215,7 +215,9 @@ impl BodyKind for HalfSpaceBody {
                     name, material, state, *thickness, edges, datum,
                 )?)
             }
-            Layout::Faces(_) => return Err(misplaced(self.kind(), at, "not on faces")),
+            Layout::Faces(_) | Layout::Mesh(_) => {
+                return Err(misplaced(self.kind(), at, "not on faces"))
+            }
         })
     }
 

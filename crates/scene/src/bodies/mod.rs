@@ -5,9 +5,12 @@
 //! A body is built on the scene's contact zone, on one side of it: the first body below (its
 //! outward normal is n¹ of eq. 2.1), the second above. Kinds that mesh or grid their own
 //! surface (finite elements, half-spaces) build it from the zone; the others (a rigid body, a
-//! Winkler bed) take the zone's surface, or their partner's on finite-element faces.
+//! Winkler bed) take the zone's surface, or their partner's on finite-element faces. An
+//! imported body (`fe_mesh`) brings its own mesh and offers its model to a zone of imported
+//! meshes, which pairs two of them before either is condensed ([`BodyKind::part`]).
 
 mod fe;
+mod fe_mesh;
 mod half_space;
 mod rigid;
 mod winkler;
@@ -15,12 +18,16 @@ mod winkler;
 use std::path::Path;
 
 use contopt_core::{ElasticBody, Error, Interface, Material, Result};
+use contopt_fem::Analysis;
 use serde::{Deserialize, Serialize};
 
+use crate::mesh_zone::MeshPart;
+use crate::meshes::MeshFiles;
 use crate::spec::LoadSpec;
 use crate::zone::{Layout, ZoneSpec};
 
 pub use fe::{FeBase, FeBlock, FePunch, PunchLoad, Support};
+pub use fe_mesh::{Direction, FeMesh, GroupLoad, GroupSupport};
 pub use half_space::{FreeEndsSpec, HalfSpaceBody};
 pub use rigid::Rigid;
 pub use winkler::WinklerBed;
@@ -44,6 +51,8 @@ pub enum BodySpec {
     FeBlock(FeBlock),
     /// A Winkler bed of independent springs under any zone.
     Winkler(WinklerBed),
+    /// A finite-element body read from a Gmsh mesh, on a zone of imported meshes.
+    FeMesh(FeMesh),
 }
 
 impl BodySpec {
@@ -56,6 +65,7 @@ impl BodySpec {
             BodySpec::FePunch(b) => b,
             BodySpec::FeBlock(b) => b,
             BodySpec::Winkler(b) => b,
+            BodySpec::FeMesh(b) => b,
         }
     }
 }
@@ -93,6 +103,8 @@ pub struct Placement<'a> {
     pub load: LoadSpec,
     /// The scene file's folder.
     pub dir: &'a Path,
+    /// The mesh files the scene's bodies read.
+    pub meshes: &'a MeshFiles,
 }
 
 /// What a body kind does: check itself on a zone without building anything, estimate its
@@ -135,6 +147,14 @@ pub trait BodyKind {
     fn ends_at_rim(&self) -> bool {
         false
     }
+
+    /// For a zone of imported meshes, the body's model (supported and loaded) and its contact
+    /// faces, from the scene's `meshes` under `analysis`, nothing assembled: the zone pairs
+    /// two such bodies before either is condensed, since the second is sampled where the
+    /// first body's normals meet it. `None` for the kinds that mesh a zone or stand on one.
+    fn part(&self, _meshes: &MeshFiles, _analysis: Analysis) -> Option<Result<MeshPart>> {
+        None
+    }
 }
 
 /// The pair's checks: two bodies, not both rigid, and the finite-element faces meshed by a
@@ -163,11 +183,24 @@ pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec) -> Result<()> {
              fe_punch); give one, or a grid, rings or strips",
         ));
     }
+    let imported = bodies.iter().any(|b| matches!(b, BodySpec::FeMesh(_)));
+    if matches!(zone, ZoneSpec::Mesh(_)) && !imported {
+        return Err(Error::invalid(
+            "contact.zone.kind",
+            "mesh",
+            "a zone of imported meshes is the contact faces of a body of kind \"fe_mesh\": \
+             give one (or two)",
+        ));
+    }
     Ok(())
 }
 
-/// The contact's load fits the body above.
-pub fn check_load(above: &dyn BodyKind, zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+/// The contact's load fits the body above; without one, a body carries its own load.
+pub fn check_load(bodies: [&dyn BodyKind; 2], zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+    let [below, above] = bodies;
+    if load == LoadSpec::None && below.takes(zone) == Takes::OwnLoad {
+        return Ok(());
+    }
     match (load, above.takes(zone)) {
         (LoadSpec::ForceN(f), Takes::Force) => {
             contopt_core::check::positive("contact.load.force_n", f).map(|_| ())
@@ -175,7 +208,8 @@ pub fn check_load(above: &dyn BodyKind, zone: &ZoneSpec, load: LoadSpec) -> Resu
         (LoadSpec::ForceN(_), Takes::OwnLoad) => Err(Error::invalid(
             "contact.load.force_n",
             above.kind(),
-            "carries its own load (the punch's `load`): the contact takes no force",
+            "carries its own load (a punch's `load`, an imported body's `loads`): the contact \
+             takes no force",
         )),
         (LoadSpec::ForceN(_), Takes::Nothing) => Err(Error::invalid(
             "contact.load.force_n",
@@ -189,7 +223,8 @@ pub fn check_load(above: &dyn BodyKind, zone: &ZoneSpec, load: LoadSpec) -> Resu
         (LoadSpec::None, _) => Err(Error::invalid(
             "contact.load",
             "none",
-            "nothing presses the bodies together: give { force_n } or { approach_mm }",
+            "nothing presses the bodies together: give { force_n } or { approach_mm }, or a \
+             load of a finite-element body",
         )),
     }
 }

@@ -33,7 +33,7 @@ impl BodyKind for Rigid {
     }
 
     fn memory(&self, at: &Placement) -> Option<u64> {
-        at.zone
+        at.layout
             .points()
             .and_then(|n| contopt_core::memory::bytes(&[n], POINT_BYTES))
     }

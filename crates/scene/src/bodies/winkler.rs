@@ -38,7 +38,7 @@ impl BodyKind for WinklerBed {
     }
 
     fn memory(&self, at: &Placement) -> Option<u64> {
-        at.zone
+        at.layout
             .points()
             .and_then(|n| contopt_core::memory::bytes(&[n], POINT_BYTES))
     }

@@ -74,6 +74,7 @@ impl Design for EnvelopeSplit {
             rigid: own.map(|s| vec![-s.approach_mm]).unwrap_or_default(),
             bound_p_max: Some(crown.p_max),
             dh_max: Some(crown.drop.iter().fold(0.0, |m: f64, v| m.max(*v))),
+            omega_nv_excess: crown.omega_nv_excess,
             gap_change: crown.drop,
             crown: None,
             passes: vec![],

@@ -4,17 +4,13 @@
 
 use contopt_core::observe::Method;
 use contopt_core::{Error, Result};
-use contopt_optimise::OptimisationMethod;
+use contopt_optimise::{LinearProgrammeSettings, OptimisationMethod};
 use contopt_results::CaseReport;
 
 use super::{
     check_controller, contacts, envelope_contacts, optimisation_of, roller_figures, setup,
     straight_roller, Check, Context, Design, Designed,
 };
-
-/// The n × n matrices the linear programme holds at once (its rows, the triplets, the CSC
-/// matrix and the interior point's factor).
-const LP_COPIES: u64 = 10;
 
 /// One of the library's optimisation methods.
 pub(crate) struct Gap(pub OptimisationMethod);
@@ -57,7 +53,9 @@ impl Design for Gap {
 
     fn dense_copies(&self, points: usize, solver: &dyn contopt_contact::ContactSolver) -> u64 {
         match self.0 {
-            OptimisationMethod::LinearProgramme(_) => LP_COPIES.max(solver.dense_copies(points)),
+            OptimisationMethod::LinearProgramme(_) => {
+                LinearProgrammeSettings::DENSE_COPIES.max(solver.dense_copies(points))
+            }
             _ => solver.dense_copies(points),
         }
     }
@@ -77,6 +75,7 @@ impl Design for Gap {
             // The paper's Δh_max is the last pass's (Table 2): the change that pass computed,
             // within √TOLH of the one the returned contact was solved with.
             dh_max: Some(optimum.passes.last().map_or(optimum.dh_max(), |p| p.dh_max)),
+            omega_nv_excess: optimum.omega_nv_excess,
             passes: optimum.passes.clone(),
             pressure: optimum.pressure.clone(),
             gap: optimum.gap.clone(),

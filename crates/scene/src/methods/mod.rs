@@ -128,6 +128,8 @@ pub(crate) struct Designed {
     pub crown: Option<Vec<f64>>,
     pub bound_p_max: Option<f64>,
     pub dh_max: Option<f64>,
+    /// The largest p − v·p̂ over Ω_nv \[MPa\]; `None` without Ω_nv.
+    pub omega_nv_excess: Option<f64>,
     pub passes: Vec<Pass>,
     pub roller: Option<RollerReport>,
 }
@@ -146,6 +148,7 @@ impl Designed {
             crown: None,
             bound_p_max: None,
             dh_max: None,
+            omega_nv_excess: None,
             passes: vec![],
             roller: None,
         }

@@ -94,6 +94,7 @@ impl Design for ProfileSearch {
             rigid: own.map(|s| s.rigid.clone()).unwrap_or_default(),
             bound_p_max: None,
             dh_max: None,
+            omega_nv_excess: None,
             gap_change: tuned.drop,
             crown: None,
             passes: vec![],
