@@ -110,14 +110,14 @@ impl BodyKind for HalfSpaceBody {
             let [lo, hi] = ends.faces_mm;
             let (first, last) = (origin[0] - 0.5 * dx, origin[0] + (*nx as f64 - 0.5) * dx);
             // A face within a quarter cell of the edge is on it (round-off of the lattice).
-            if !(lo <= first + 0.25 * dx) {
+            if lo.is_nan() || lo > first + 0.25 * dx {
                 return Err(Error::invalid(
                     "free_ends.faces_mm[0]",
                     lo,
                     format!("must lie at or below the grid's first edge, x = {first} mm"),
                 ));
             }
-            if !(hi >= last - 0.25 * dx) {
+            if hi.is_nan() || hi < last - 0.25 * dx {
                 return Err(Error::invalid(
                     "free_ends.faces_mm[1]",
                     hi,
