@@ -184,6 +184,9 @@ pub const SOURCES: &[Source] = &[
             ("p.svg", "bearing_p.svg"),
         ],
     ),
+    // The roller's free ends (bearing.md): Hetényi's superposition and the crowns designed
+    // again with them, about 5 minutes in the release profile.
+    example(&["--example", "free_ends"], "free_ends", true),
     example(
         &["--example", "subsurface_stresses"],
         "subsurface_stresses",
