@@ -87,8 +87,8 @@ pub enum BearingObjective {
     PMax,
     /// The duty cycle's life: ISO/TS 16281's L10r from the half-space contacts' slice loads,
     /// by Palmgren–Miner over the load cases, the band's worst. A profile search maximises it
-    /// over its family; the robust crown (`envelope_split`) over its controller's L1 (a
-    /// golden-section search of robust crowns between 0 and L2).
+    /// over its family; the robust crown (`envelope_split`) over its controller's L1 and L2 (a
+    /// Nelder–Mead search of robust crowns from the scene's controller).
     Life,
 }
 
