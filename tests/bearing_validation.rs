@@ -156,8 +156,15 @@ fn a_half_space_contacts_slice_loads_give_the_life() {
         (by_pressure / by_slices - 1.0).abs() < 0.1,
         "{by_pressure} vs {by_slices}"
     );
-    // The roller's own case first, then the bearing's rollers: the heaviest is the roller's.
-    let cases = bearing_cases(&problem, &roller, &d.roller_cases(Raceway::Inner)).unwrap();
-    assert_eq!(cases.len(), d.roller_cases(Raceway::Inner).len());
+    // The bearing's rollers as cases of the roller's problem, heaviest first: each the nominal
+    // problem with its load and tilt.
+    let rollers = d.roller_cases(Raceway::Inner);
+    let cases = bearing_cases(&problem, &roller, &rollers).unwrap();
+    assert_eq!(cases.len(), rollers.len());
+    for (c, r) in cases.iter().zip(&rollers) {
+        assert_eq!((c.load_n, c.tilt_arcmin), (r.load_n, r.tilt_arcmin));
+        let want = problem.modes()[0].load * r.load_n / roller.load;
+        assert!((c.problem.modes()[0].load - want).abs() < 1e-12 * want.abs());
+    }
     assert!(cases.iter().skip(1).all(|c| c.load_n < heaviest.load_n));
 }

@@ -184,6 +184,21 @@ pub const SOURCES: &[Source] = &[
         "bearing_validation",
         false,
     ),
+    // From the bearing to the crown (bearing.md): the bundled bearing study, minutes in the
+    // dev profile and timings in its table, so regenerated only by `cargo xtask book`.
+    scene(
+        &["run", "bearing", "--out", "{out}"],
+        "bearing",
+        true,
+        &[
+            ("lives.svg", "bearing_lives.svg"),
+            ("bearing_loads_1.svg", "bearing_loads.svg"),
+            ("p.svg", "bearing_p.svg"),
+        ],
+    ),
+    // The roller's free ends (bearing.md): Hetényi's superposition and the crowns designed
+    // again with them, about 5 minutes in the release profile.
+    example(&["--example", "free_ends"], "free_ends", true),
     example(
         &["--example", "subsurface_stresses"],
         "subsurface_stresses",

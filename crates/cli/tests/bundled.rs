@@ -2,7 +2,8 @@
 //! JSON Schema (`crates/results/result.schema.json`), says the schema's version, names its
 //! cases' parameters by dotted paths into their inputs, and each case's `input` reads back as a
 //! scene (`contopt check`) that resolves to the same input. The roller scenes run on 40 × 21
-//! cells (the bundled grids take seconds to minutes); nothing else changes.
+//! cells, the bearing on 24 × 11 (the bundled grids take seconds to minutes); nothing else
+//! changes.
 
 mod common;
 
@@ -18,7 +19,7 @@ use serde_json::Value;
 const BIN: &str = "bundled";
 
 /// The scenes whose grids are shrunk, and how: the same area in fewer cells.
-const SHRUNK: [(&str, &str, &str); 3] = [
+const SHRUNK: [(&str, &str, &str); 4] = [
     (
         "roller",
         "cells = [200, 105], cell_mm = [0.05, 0.0086672]",
@@ -27,6 +28,8 @@ const SHRUNK: [(&str, &str, &str); 3] = [
     ("roller-study", "cells = [200, 105]", "cells = [40, 21]"),
     // Its profile search solves each crown under nine load cases: 30 × 15 cells.
     ("roller-envelope", "cells = [200, 105]", "cells = [30, 15]"),
+    // Its searches solve each crown under every loaded roller of three load cases, thrice.
+    ("bearing", "cells = [80, 49]", "cells = [24, 11]"),
 ];
 
 /// The bundled scene `name` as a file in a scratch folder, shrunk when it is in [`SHRUNK`],
@@ -141,6 +144,7 @@ every_bundled_scene!(
     roller: "roller",
     roller_study: "roller-study",
     roller_envelope: "roller-envelope",
+    bearing: "bearing",
     hertz: "hertz",
     flat_punch: "flat-punch",
     punch_on_block: "punch-on-block",

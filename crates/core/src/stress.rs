@@ -201,6 +201,14 @@ pub struct StressPeaks {
     pub max_principal: Peak,
     /// Smallest principal stress σ₃ (the largest compression), its value negative.
     pub min_principal: Peak,
+    /// Largest orthogonal shear |τ_xz|: the shear on the planes across x and along the
+    /// surface, which reverses as a contact rolls along x past a point (Lundberg and
+    /// Palmgren's τ₀, 0.25·p₀ at 0.5·b below a line contact; Johnson, *Contact Mechanics*,
+    /// §4.2). A plane or axisymmetric body's in-plane shear.
+    pub shear_xz: Peak,
+    /// Largest orthogonal shear |τ_yz|: the same for rolling along y (a roller on a grid
+    /// along x rolls across it, along y).
+    pub shear_yz: Peak,
 }
 
 impl Default for StressPeaks {
@@ -217,6 +225,8 @@ impl Default for StressPeaks {
                 value: f64::INFINITY,
                 ..Peak::default()
             },
+            shear_xz: low,
+            shear_yz: low,
         }
     }
 }
@@ -236,6 +246,8 @@ impl StressPeaks {
         raise(&mut self.von_mises, s.von_mises());
         raise(&mut self.tresca, 0.5 * (s1 - s3));
         raise(&mut self.max_principal, s1);
+        raise(&mut self.shear_xz, s.xz.abs());
+        raise(&mut self.shear_yz, s.yz.abs());
         if !self.min_principal.value.is_nan()
             && (s3.is_nan() || raises(-s3, -self.min_principal.value))
         {
@@ -249,6 +261,8 @@ impl StressPeaks {
             (&mut self.von_mises, other.von_mises),
             (&mut self.tresca, other.tresca),
             (&mut self.max_principal, other.max_principal),
+            (&mut self.shear_xz, other.shear_xz),
+            (&mut self.shear_yz, other.shear_yz),
         ] {
             if raises(theirs.value, mine.value) {
                 *mine = theirs;
@@ -266,6 +280,8 @@ impl StressPeaks {
             self.tresca,
             self.max_principal,
             self.min_principal,
+            self.shear_xz,
+            self.shear_yz,
         ];
         match all.iter().find(|p| !p.value.is_finite()) {
             None => Ok(self),

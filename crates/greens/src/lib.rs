@@ -17,17 +17,21 @@
 mod axisymmetric;
 pub mod elliptic;
 mod fft;
+mod free_ends;
 mod half_plane;
 mod half_space;
 mod pasternak;
+mod quarter_space;
 mod subsurface;
 mod subsurface_2d;
 mod winkler;
 
 pub use axisymmetric::AxisymmetricHalfSpace;
+pub use free_ends::FreeEnds;
 pub use half_plane::{HalfPlane, PlaneState};
 pub use half_space::HalfSpace;
 pub use pasternak::Pasternak;
+pub use quarter_space::{hetenyi_load, FacedGrid, HetenyiLoad, HetenyiSettings};
 pub use winkler::Winkler;
 
 use contopt_core::{check, Error, Result};

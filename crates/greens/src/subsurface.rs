@@ -73,6 +73,31 @@ fn corner(x: f64, y: f64, z: f64, nu: f64) -> [f64; COMPONENTS] {
     ]
 }
 
+/// The stress \[xx, yy, zz, xy, xz, yz\] at (`x`, `y`, `z`), z > 0, under unit pressure on the
+/// rectangle `xs` × `ys` of the surface: the corner sum G(X₁, Y₁) − G(X₁, Y₂) − G(X₂, Y₁) +
+/// G(X₂, Y₂) of [`corner`], each corner at |X|, |Y| with its parity (a Green's body's single
+/// evaluation, where the grids take a whole lattice: [`Corners`]).
+pub(crate) fn rectangle_stress(
+    x: f64,
+    y: f64,
+    z: f64,
+    xs: [f64; 2],
+    ys: [f64; 2],
+    nu: f64,
+) -> [f64; COMPONENTS] {
+    let signed = |cx: f64, cy: f64| -> [f64; COMPONENTS] {
+        let g = corner(cx.abs(), cy.abs(), z, nu);
+        std::array::from_fn(|c| {
+            let sx = if cx < 0.0 { -PARITY[c][0] } else { 1.0 };
+            let sy = if cy < 0.0 { -PARITY[c][1] } else { 1.0 };
+            sx * sy * g[c]
+        })
+    };
+    let (a, b) = (signed(x - xs[0], y - ys[0]), signed(x - xs[0], y - ys[1]));
+    let (c, d) = (signed(x - xs[1], y - ys[0]), signed(x - xs[1], y - ys[1]));
+    std::array::from_fn(|k| a[k] - b[k] - c[k] + d[k])
+}
+
 /// The corner functions of one depth on the lattice of cell edges X = (k + ½)dx,
 /// Y = (l + ½)dy, k < nx, l < ny, one table per component: [c][l·nx + k].
 struct Corners {
@@ -431,7 +456,11 @@ impl HalfSpace {
 
     /// The cells of the row (or column) nearest a section, the section moved onto it, and
     /// the positions along it.
-    fn section_cells(&self, section: Section, origin: [f64; 3]) -> (Section, Vec<usize>, Vec<f64>) {
+    pub(crate) fn section_cells(
+        &self,
+        section: Section,
+        origin: [f64; 3],
+    ) -> (Section, Vec<usize>, Vec<f64>) {
         let (nx, ny) = (self.nx, self.ny);
         let nearest = |at: f64, start: f64, step: f64, n: usize| {
             (((at - start) / step).round().max(0.0) as usize).min(n - 1)
@@ -643,6 +672,27 @@ mod tests {
             }
             assert!(s.xz.abs() < 1e-12 && s.xy.abs() < 1e-12 && s.yz.abs() < 1e-9);
         }
+    }
+
+    /// The orthogonal shear of a line contact rolling across it: the largest |τ_xz| is
+    /// 0.25·p₀ at z = 0.5·b, x = ±0.87·b (Johnson, *Contact Mechanics*, §4.2), and the peaks
+    /// say so (to 2e-3 of p₀, a depth step, a cell and a half); |τ_yz| vanishes along the
+    /// contact (below 1e-3 of p₀ at the cells' centres, 50 b from the strip's ends).
+    #[test]
+    fn orthogonal_shear_of_a_line_contact() {
+        let b = 1.0;
+        let hertz = |x: f64, _: f64| (1.0 - (x / b).powi(2)).max(0.0).sqrt();
+        let (body, p, _) = centred(161, 201, [b / 64.0, 100.0 * b], hertz, false);
+        let request = SubsurfaceRequest {
+            depths: depths(0.40, 0.60, 0.01),
+            sections: vec![],
+        };
+        let peaks = body.stresses_below(&p, &request).unwrap().peaks;
+        let s = peaks.shear_xz;
+        assert!((s.value - 0.25).abs() < 2e-3, "{s:?}");
+        assert!((s.depth - 0.5).abs() < 0.011, "{s:?}");
+        assert!((s.x.abs() - 0.866).abs() < 1.5 / 64.0, "{s:?}");
+        assert!(peaks.shear_yz.value < 1e-3, "{:?}", peaks.shear_yz);
     }
 
     /// Hertz contact of a sphere, ν = 0.3: below the centre the largest shear is 0.310 p₀ at

@@ -11,7 +11,7 @@
 //!
 //! Charts — [`LineChart`] (with dashed reference curves: the closed form beside a computed
 //! pressure), [`heat_map`] and [`section_map`] (a value over a grid of cells, with a colour
-//! bar) and [`log_log`] (benchmark panels) — are drawn once, as SVG, by `plotters`, and the
+//! bar), [`log_log`] (benchmark panels) and [`BarChart`] (a bearing's lives per profile) — are drawn once, as SVG, by `plotters`, and the
 //! PNG is that SVG rasterised by `resvg` ([`Figure::png`]). Both use one embedded font, so a
 //! machine with no fonts installed draws the same picture. Ticks sit at round values
 //! (1, 2, 5 × 10ᵏ), the axis descriptions carry units and are laid out from the measured
@@ -48,6 +48,7 @@
 //! the SVG (plotters' bitmap text misplaces glyphs: `L1 =  20 mm`), it renders at twice the
 //! SVG's size ([`PNG_SCALE`]) for sharp figures, and the PNG cannot disagree with the SVG.
 
+mod bars;
 mod figure;
 mod font;
 mod line;
@@ -60,6 +61,7 @@ mod table;
 mod ticks;
 pub mod vtu;
 
+pub use bars::BarChart;
 pub use figure::{Figure, PNG_SCALE};
 pub use line::LineChart;
 pub use loglog::{log_log, Panel};

@@ -16,7 +16,7 @@ use contopt_core::{SectionAxis, SectionField};
 use contopt_results::words::number;
 use contopt_results::{BodyStresses, CaseReport, CaseStatus, CurvePoint, Point, Report};
 
-use crate::{heat_map, section_map, Figure, LineChart};
+use crate::{heat_map, section_map, BarChart, Figure, LineChart};
 
 /// Where a report's files go: a results folder, or memory.
 pub trait Sink {
@@ -37,8 +37,10 @@ impl Sink for BTreeMap<String, Vec<u8>> {
 const SAME_ROW: f64 = 1e-9;
 
 /// Writes every file of `report` to `sink`, in order: `result.json`, `interface.csv`,
-/// `p.{svg,png}` and, when some case changes the gap, `dh.{svg,png}`; per case `p_map_<case>`
-/// (a two-dimensional region), `envelope_<case>` (a roller's envelope), `subsurface_<case>.csv`
+/// `p.{svg,png}`, when some case changes the gap `dh.{svg,png}`, and for bearing cases
+/// `lives.{svg,png}` (the duty cycle's lives per case); per case `p_map_<case>` (a
+/// two-dimensional region), `envelope_<case>` (a roller's envelope), `bearing_loads_<case>`
+/// (a bearing's roller loads per load case), `subsurface_<case>.csv`
 /// and `mises_<case>_<section>` (stresses below the surface), `fields_<case>.vtu` and
 /// `contact_<case>.vtu` (a finite-element case's fields for ParaView: [`crate::vtu`]); cases
 /// and sections numbered from 1.
@@ -51,7 +53,8 @@ pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
 }
 
 /// Writes the files of `report` drawn from all its cases together: `result.json`,
-/// `interface.csv`, `p.{svg,png}` and `dh.{svg,png}` — the first part of [`write()`], which a
+/// `interface.csv`, `p.{svg,png}`, `dh.{svg,png}` and a bearing's `lives.{svg,png}` — the first
+/// part of [`write()`], which a
 /// merge of job-array shards writes from their joined report.
 pub fn write_scene(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(io::Error::other)?;
@@ -62,6 +65,9 @@ pub fn write_scene(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
     }
     if let Some(chart) = gap_change_chart(report) {
         put(sink, "dh", &chart.draw()?)?;
+    }
+    if let Some(chart) = lives_chart(report) {
+        put(sink, "lives", &chart.draw()?)?;
     }
     Ok(())
 }
@@ -78,6 +84,9 @@ pub fn write_cases(report: &Report, first: usize, sink: &mut dyn Sink) -> io::Re
         if let Some(chart) = envelope_chart(report, case) {
             put(sink, &format!("envelope_{number}"), &chart.draw()?)?;
         }
+        if let Some(chart) = bearing_loads_chart(case) {
+            put(sink, &format!("bearing_loads_{number}"), &chart.draw()?)?;
+        }
         sections(report, case, number, sink)?;
         if let Some(vtu) = crate::vtu::fields_vtu(case)? {
             sink.put(&format!("fields_{number}.vtu"), &vtu)?;
@@ -87,6 +96,53 @@ pub fn write_cases(report: &Report, first: usize, sink: &mut dyn Sink) -> io::Re
         }
     }
     Ok(())
+}
+
+/// A bearing case's roller loads over their angle from the load, one line per load case.
+fn bearing_loads_chart(case: &CaseReport) -> Option<LineChart> {
+    let b = case.bearing.as_ref()?;
+    let title = format!("{}: roller loads", case.label);
+    let mut chart = LineChart::new(&title, "ψ [°] from the load", "Q [N]");
+    for c in &b.load_cases {
+        let mut points: Vec<(f64, f64)> = c
+            .rollers
+            .iter()
+            .map(|r| {
+                let psi = (r.angle_deg + 180.0).rem_euclid(360.0) - 180.0;
+                (psi, r.load_n)
+            })
+            .collect();
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        chart = chart.line(&c.label, &points);
+    }
+    (!chart.is_empty()).then_some(chart)
+}
+
+/// The duty cycle's lives of every bearing case, one group of bars per case: ISO/TS 16281's
+/// from the half-space contacts (their peak pressures' Hertzian slice loads, and their slice
+/// loads) and from the slice model, and ISO 281's.
+fn lives_chart(report: &Report) -> Option<BarChart> {
+    let title = format!("{}: rating lives over the duty cycle", report.scene);
+    let series = [
+        "L10r, peak pressures",
+        "L10r, half-space slice loads",
+        "L10r, slice model",
+        "L10, ISO 281",
+    ];
+    let mut chart = BarChart::new(&title, "life [10⁶ revolutions]", &series);
+    for c in report.cases.iter().filter(|c| converged(c)) {
+        if let Some(b) = &c.bearing {
+            let l = &b.duty_cycle;
+            let lives = [
+                l.peak_pressure_mrev,
+                l.half_space_mrev,
+                l.slice_model_mrev,
+                l.iso_281_mrev,
+            ];
+            chart = chart.group(&legend(c), &lives);
+        }
+    }
+    (!chart.is_empty()).then_some(chart)
 }
 
 /// Writes `figure` as `<stem>.svg` and `<stem>.png`.
@@ -639,6 +695,8 @@ mod tests {
                     tresca: peak,
                     max_principal: peak,
                     min_principal: peak,
+                    shear_xz: peak,
+                    shear_yz: peak,
                 },
                 sections: vec![SectionField {
                     section,

@@ -12,12 +12,114 @@ use contopt_results::{CaseReport, CaseStatus, Report};
 /// The table of a report: the cases (a roller study's own columns when it has rollers), then
 /// the stresses below the surface when some case computed them.
 pub fn table(report: &Report) -> String {
-    let cases = if report.cases.iter().any(|c| c.roller.is_some()) {
+    let cases = if report.cases.iter().any(|c| c.bearing.is_some()) {
+        bearing_table(report)
+    } else if report.cases.iter().any(|c| c.roller.is_some()) {
         roller_table(report)
     } else {
         case_table(report)
     };
     cases + &subsurface_table(report)
+}
+
+/// The table of a bearing study: per case the worst contact's p_max and the duty cycle's
+/// lives, with the worst contact, each load case's distribution, pressure and lives, and the
+/// tuned crown's parameters under it; then the [`notes`].
+fn bearing_table(report: &Report) -> String {
+    let width = label_width(report);
+    let mut s = format!(
+        "{:<width$} {:>10} {:>11} {:>11} {:>11} {:>11} {:>9}\n",
+        "case", "p_max MPa", "L10", "L10r", "L10r", "L10r", "time ms"
+    );
+    let _ = writeln!(
+        s,
+        "{:<width$} {:>10} {:>11} {:>11} {:>11} {:>11}",
+        "", "(worst)", "ISO 281", "slices", "half-space", "peaks"
+    );
+    for c in &report.cases {
+        let Some(b) = &c.bearing else {
+            let _ = writeln!(s, "{:<width$} {:>10}", c.label, figure(c.p_max_mpa));
+            s += &notes(c);
+            continue;
+        };
+        let l = &b.duty_cycle;
+        let _ = writeln!(
+            s,
+            "{:<width$} {:>10.1} {:>11.2} {:>11.2} {:>11.2} {:>11.2} {:>9.0}",
+            c.label,
+            b.worst.p_max_mpa,
+            l.iso_281_mrev,
+            l.slice_model_mrev,
+            l.half_space_mrev,
+            l.peak_pressure_mrev,
+            total_ms(c)
+        );
+        s += &bearing_lines(b);
+        if let Some([l1, l2]) = b.controller_mm {
+            let _ = writeln!(
+                s,
+                "  the controller chosen for the life: L1 = {l1:.3} mm, L2 = {l2:.3} mm"
+            );
+        }
+        if let Some(t) = c.roller.as_ref().and_then(|r| r.tuned.as_ref()) {
+            s += &format!("  {}", tuned_line("tuned", t));
+        }
+        s += &notes(c);
+    }
+    s + "(lives over the duty cycle by Palmgren–Miner, 10⁶ revolutions: ISO 281's L10, ISO/TS \
+         16281's L10r from the slice model, from the half-space contacts' slice loads, and \
+         with those raised to their peak pressures' Hertzian loads)\n"
+}
+
+/// A bearing case's worst contact and its load cases, indented under its row.
+fn bearing_lines(b: &contopt_results::BearingReport) -> String {
+    let w = &b.worst;
+    let case = &b.load_cases[w.load_case.min(b.load_cases.len().saturating_sub(1))];
+    let mut s = format!(
+        "  worst contact: {}, roller {}: Q = {:.1} N, γ = {:+.3}′, band {:+.1} µm, at x = {:.3} mm{}\n",
+        case.label,
+        w.roller,
+        w.load_n,
+        w.tilt_arcmin,
+        w.deviation_um,
+        w.p_max_at_mm[0],
+        if w.edge_loading { ", edge loaded" } else { "" }
+    );
+    let _ = writeln!(
+        s,
+        "  {:<18} {:>8} {:>7} {:>6} {:>8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "load case",
+        "fraction",
+        "F_r N",
+        "γ ′",
+        "Q_max N",
+        "zone °",
+        "p_max MPa",
+        "L10",
+        "L10r sl.",
+        "h.-s.",
+        "peaks"
+    );
+    for c in &b.load_cases {
+        let q_max = c.rollers.iter().map(|r| r.load_n).fold(0.0, f64::max);
+        let l = &c.lives;
+        let _ = writeln!(
+            s,
+            "  {:<18} {:>8.3} {:>7.0} {:>6.2} {:>8.1} {:>6.1} {:>9.1} {:>9.2} {:>9.2} {:>9.2} {:>9.2}",
+            c.label,
+            c.fraction,
+            c.radial_n,
+            c.misalignment_arcmin,
+            q_max,
+            c.loaded_zone_deg,
+            c.p_max_mpa,
+            l.iso_281_mrev,
+            l.slice_model_mrev,
+            l.half_space_mrev,
+            l.peak_pressure_mrev
+        );
+    }
+    s
 }
 
 /// p_max (the largest pressure), the optimisation's bound p̂ and Δh_max, its passes and the
@@ -190,34 +292,49 @@ fn envelope_table(report: &Report, width: usize) -> String {
         let worst = r.worst_p_max_mpa.map_or("-".into(), |p| format!("{p:.1}"));
         let _ = writeln!(s, " {worst:>10}");
         if let Some(t) = &r.tuned {
-            let _ = writeln!(
-                tuned,
-                "{}: K1 = {:.4}, K2 = {:.4}, z_m = {:.4} µm ({} crowns searched)",
-                c.label, t.k1, t.k2, t.z_m_um, t.evaluations
-            );
+            tuned += &tuned_line(&c.label, t);
         }
     }
     s + &tuned
 }
 
+/// A tuned crown's parameters: Fujiwara–Kawase's K1, K2 and z_m, or a circular crown's
+/// crowned fraction, end drop and radius.
+fn tuned_line(label: &str, t: &contopt_results::TunedProfile) -> String {
+    match (t.k1, t.radius_mm) {
+        (Some(k1), _) => format!(
+            "{label}: K1 = {k1:.4}, K2 = {:.4}, z_m = {:.4} µm ({} crowns searched)\n",
+            t.k2, t.z_m_um, t.evaluations
+        ),
+        (None, radius) => format!(
+            "{label}: circular, crowned fraction {:.4}, z_m = {:.4} µm, R = {} mm ({} crowns searched)\n",
+            t.k2,
+            t.z_m_um,
+            radius.map_or("-".into(), |r| format!("{r:.1}")),
+            t.evaluations
+        ),
+    }
+}
+
 /// The largest stresses below the surface of each case's bodies: von Mises and the largest
-/// shear (Tresca) with their depth and position, the largest tension and compression. Empty
-/// when no case asked for them.
+/// shear (Tresca) with their depth and position, the largest tension and compression, and the
+/// largest orthogonal shears |τ_xz| and |τ_yz| (the latter with its depth: a roller rolls
+/// along y). Empty when no case asked for them.
 fn subsurface_table(report: &Report) -> String {
     if report.cases.iter().all(|c| c.subsurface.is_none()) {
         return String::new();
     }
     let width = label_width(report);
     let mut s = format!(
-        "\nbelow the surface (MPa; depth and position x, y in mm)\n{:<width$} {:<22} {:>10} {:>8} {:>16} {:>10} {:>8} {:>10} {:>10}\n",
-        "case", "body", "von Mises", "depth", "at x, y", "Tresca", "depth", "σ1 max", "σ3 min"
+        "\nbelow the surface (MPa; depth and position x, y in mm)\n{:<width$} {:<22} {:>10} {:>8} {:>16} {:>10} {:>8} {:>10} {:>10} {:>8} {:>8} {:>8}\n",
+        "case", "body", "von Mises", "depth", "at x, y", "Tresca", "depth", "σ1 max", "σ3 min", "|τxz|", "|τyz|", "depth"
     );
     for c in &report.cases {
         for b in c.subsurface.iter().flat_map(|r| &r.bodies) {
             let p = &b.peaks;
             let _ = writeln!(
                 s,
-                "{:<width$} {:<22} {:>10.1} {:>8.4} {:>16} {:>10.1} {:>8.4} {:>10.1} {:>10.1}",
+                "{:<width$} {:<22} {:>10.1} {:>8.4} {:>16} {:>10.1} {:>8.4} {:>10.1} {:>10.1} {:>8.1} {:>8.1} {:>8.4}",
                 c.label,
                 b.body,
                 p.von_mises.value_mpa,
@@ -226,7 +343,10 @@ fn subsurface_table(report: &Report) -> String {
                 p.tresca.value_mpa,
                 p.tresca.depth_mm,
                 p.max_principal.value_mpa,
-                p.min_principal.value_mpa
+                p.min_principal.value_mpa,
+                p.shear_xz.value_mpa,
+                p.shear_yz.value_mpa,
+                p.shear_yz.depth_mm
             );
         }
     }
@@ -402,9 +522,11 @@ mod tests {
             envelope: vec![envelope(1500.0, true), envelope(1600.5, false)],
             worst_p_max_mpa: Some(1600.5),
             tuned: Some(TunedProfile {
-                k1: 1.1,
+                family: "fujiwara_kawase".into(),
+                k1: Some(1.1),
                 k2: 0.5,
                 z_m_um: 7.25,
+                radius_mm: None,
                 evaluations: 40,
             }),
         });
@@ -461,6 +583,8 @@ mod tests {
                     tresca: peak(1407.0, 0.1561),
                     max_principal: peak(120.0, 0.0),
                     min_principal: peak(-4538.0, 0.0),
+                    shear_xz: peak(10.0, 0.2),
+                    shear_yz: peak(1134.5, 0.0867),
                 },
                 sections: vec![],
             }],
@@ -476,6 +600,8 @@ mod tests {
             "0.1561",
             "120.0",
             "-4538.0",
+            "1134.5",
+            "0.0867",
         ] {
             assert!(row.contains(figure), "{figure} in {text}");
         }

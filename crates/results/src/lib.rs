@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 3;
+pub const SCHEMA_VERSION: u32 = 4;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -139,6 +139,9 @@ pub struct CaseReport {
     pub timings_ms: BTreeMap<String, f64>,
     /// What a bearing engineer reads off a roller case; null for other gaps.
     pub roller: Option<RollerReport>,
+    /// A bearing case's load distributions, rating lives and heaviest contact (`[bearing]`);
+    /// null for other scenes.
+    pub bearing: Option<BearingReport>,
     /// Stresses below the surface (`[output.subsurface]`); null when not asked for or when
     /// nothing is in contact.
     pub subsurface: Option<SubsurfaceReport>,
@@ -317,19 +320,148 @@ pub struct EnvelopeCase {
     pub centre_line: Vec<CurvePoint>,
 }
 
-/// A Fujiwara–Kawase profile tuned by the profile search.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+/// A crown tuned by a profile search: Fujiwara–Kawase's or a circular one.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 #[schemars(transform = every_field_required)]
 pub struct TunedProfile {
-    /// Load coefficient K1.
-    pub k1: f64,
-    /// Crowned fraction K2 of each half-length.
+    /// The family: `fujiwara_kawase` or `circular`.
+    pub family: String,
+    /// Fujiwara–Kawase's load coefficient K1; null for a circular crown.
+    pub k1: Option<f64>,
+    /// The crowned fraction of each half-length (Fujiwara–Kawase's K2).
     pub k2: f64,
     /// End drop z_m \[µm\].
     pub z_m_um: f64,
+    /// A circular crown's radius \[mm\]; null for Fujiwara–Kawase's.
+    pub radius_mm: Option<f64>,
     /// How many crowns the search solved (each under every case).
     pub evaluations: usize,
+}
+
+/// A bearing case's figures (`[bearing]`): each load case's distribution over the rollers and
+/// rating lives, the lives over the duty cycle, and the heaviest contact of the roller on the
+/// solved raceway.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct BearingReport {
+    /// ISO 281's basic dynamic radial load rating C_r \[N\].
+    pub dynamic_load_rating_n: f64,
+    /// ISO/TS 16281's slice ratings on the inner and the outer raceway, q_ci and q_ce \[N\].
+    pub slice_ratings_n: [f64; 2],
+    /// The raceway whose contacts are solved on the half-space grid: `inner` or `outer`.
+    pub raceway: String,
+    /// The ring that rotates against the load: `inner` or `outer`.
+    pub rotating: String,
+    /// The roller load the grid and the load-dependent profiles are built for \[N\].
+    pub design_load_n: f64,
+    /// The weight of the image pressure at the roller's free ends; null: a half-space roller.
+    pub free_ends_weight: Option<f64>,
+    /// The crown's tolerance band ±t on its end drop \[µm\] (0: none); lives and pressures are
+    /// the worst over the band.
+    pub tolerance_um: f64,
+    /// The robust crown's controller L1 and L2 the life chose (`objective = "life"`) \[mm\];
+    /// null otherwise.
+    pub controller_mm: Option<[f64; 2]>,
+    /// The solved contacts: loaded rollers of every load case, duplicates (a roller and its
+    /// mirror across the load line) solved once, times the band's three crowns.
+    pub contacts_solved: usize,
+    /// The load cases, in the scene's order.
+    pub load_cases: Vec<BearingLoadCase>,
+    /// Palmgren–Miner's lives over the load cases' time fractions.
+    pub duty_cycle: Lives,
+    /// The contact with the largest pressure over every load case and the band.
+    pub worst: WorstContact,
+}
+
+/// One load case of a bearing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct BearingLoadCase {
+    /// Its label (`F_r = 8900 N`, or the scene's).
+    pub label: String,
+    /// Its time fraction of the duty cycle.
+    pub fraction: f64,
+    /// The radial load F_r \[N\].
+    pub radial_n: f64,
+    /// The rings' relative tilt in the load's plane \[arc-minutes\]: held, or solved under
+    /// the moment.
+    pub misalignment_arcmin: f64,
+    /// The moment the rollers carry in the load's plane \[N·mm\].
+    pub moment_nmm: f64,
+    /// The inner ring's displacement against the outer, along the load and across it \[µm\].
+    pub displacement_um: [f64; 2],
+    /// The loaded zone's half-angle \[°\] (180 when the clearance closes all round).
+    pub loaded_zone_deg: f64,
+    /// Harris's load distribution factor ε.
+    pub load_factor: f64,
+    /// The rings' Newton steps.
+    pub iterations: usize,
+    /// Every roller, roller 0 first.
+    pub rollers: Vec<BearingRoller>,
+    /// The largest contact pressure over its loaded rollers on the solved raceway \[MPa\].
+    pub p_max_mpa: f64,
+    /// Its rating lives.
+    pub lives: Lives,
+}
+
+/// One roller of a load case.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct BearingRoller {
+    /// Its angle from the load's direction \[°\].
+    pub angle_deg: f64,
+    /// Its load Q_j \[N\].
+    pub load_n: f64,
+    /// Its tilt against the inner and the outer raceway \[arc-minutes\].
+    pub tilt_arcmin: [f64; 2],
+    /// Its largest contact pressure on the solved raceway \[MPa\] (the band's worst); null
+    /// when unloaded.
+    pub p_max_mpa: Option<f64>,
+}
+
+/// Rating lives \[10⁶ revolutions\].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct Lives {
+    /// ISO 281's basic rating life L10 = (C_r/P_r)^(10/3), P_r = F_r.
+    pub iso_281_mrev: f64,
+    /// ISO/TS 16281's basic reference rating life L10r from the slice model's slice loads.
+    pub slice_model_mrev: f64,
+    /// L10r with the solved raceway's slice loads from the half-space contacts (the band's
+    /// worst).
+    pub half_space_mrev: f64,
+    /// L10r with each of those slices' loads raised to the Hertzian line load of its peak
+    /// pressure, π·R·w·p²/E* (the edge stresses of the contact, which a slice load alone
+    /// does not see; the band's worst).
+    pub peak_pressure_mrev: f64,
+}
+
+/// The contact with the largest pressure of a bearing case.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct WorstContact {
+    /// Its load case (from 0).
+    pub load_case: usize,
+    /// Its roller (from 0).
+    pub roller: usize,
+    /// The roller's load \[N\].
+    pub load_n: f64,
+    /// Its tilt against the solved raceway \[arc-minutes\].
+    pub tilt_arcmin: f64,
+    /// The crown's deviation within the tolerance band \[µm\] (−t, 0 or +t at the ends).
+    pub deviation_um: f64,
+    /// The largest pressure \[MPa\].
+    pub p_max_mpa: f64,
+    /// Where it sits: x along the axis, y across \[mm\].
+    pub p_max_at_mm: [f64; 2],
+    /// Whether an end carries more than 10 % above the pressure at mid-length.
+    pub edge_loading: bool,
 }
 
 /// Stresses below the surface under a case's contact pressure.
@@ -375,6 +507,11 @@ pub struct Peaks {
     pub max_principal: Peak,
     /// Smallest principal stress σ₃ (the largest compression), its value negative.
     pub min_principal: Peak,
+    /// Largest orthogonal shear |τ_xz| (it reverses as a contact rolls along x; a plane or
+    /// axisymmetric body's in-plane shear).
+    pub shear_xz: Peak,
+    /// Largest orthogonal shear |τ_yz| (rolling along y: a roller on a grid along x).
+    pub shear_yz: Peak,
 }
 
 /// Where a criterion is largest, and its value.
@@ -410,6 +547,8 @@ impl From<contopt_core::StressPeaks> for Peaks {
             tresca: p.tresca.into(),
             max_principal: p.max_principal.into(),
             min_principal: p.min_principal.into(),
+            shear_xz: p.shear_xz.into(),
+            shear_yz: p.shear_yz.into(),
         }
     }
 }
@@ -439,6 +578,7 @@ impl CaseReport {
             interface: vec![],
             timings_ms: BTreeMap::new(),
             roller: None,
+            bearing: None,
             subsurface: None,
             reference: None,
             fields: vec![],

@@ -67,8 +67,39 @@ impl CaseReport {
             .chain(points)
             .chain(passes)
             .chain(self.roller_values())
+            .chain(self.bearing_values())
             .find(|(_, v)| !v.is_finite())
             .map(|(name, _)| name)
+    }
+
+    /// The numbers of a bearing's figures: its ratings, lives, loads and pressures.
+    fn bearing_values(&self) -> Vec<(&'static str, f64)> {
+        let Some(b) = &self.bearing else {
+            return vec![];
+        };
+        let lives = |l: &crate::Lives| {
+            [
+                ("ISO 281 life", l.iso_281_mrev),
+                ("slice model life", l.slice_model_mrev),
+                ("half-space life", l.half_space_mrev),
+                ("peak-pressure life", l.peak_pressure_mrev),
+            ]
+        };
+        let mut values = vec![
+            ("load rating", b.dynamic_load_rating_n),
+            ("worst p_max", b.worst.p_max_mpa),
+        ];
+        values.extend(lives(&b.duty_cycle));
+        for c in &b.load_cases {
+            values.extend(lives(&c.lives));
+            values.push(("load case p_max", c.p_max_mpa));
+            values.extend(c.displacement_um.map(|d| ("ring displacement", d)));
+            for r in &c.rollers {
+                values.push(("roller load", r.load_n));
+                values.extend(r.tilt_arcmin.map(|t| ("roller tilt", t)));
+            }
+        }
+        values
     }
 
     /// The numbers of the roller's figures.

@@ -96,6 +96,19 @@ pub enum Crown {
         /// The drop z_m at the ends \[mm\].
         z_m: f64,
     },
+    /// A circular crown, the profile of a ground roller: straight over the centre |x| ≤ `flat`,
+    /// then a circular arc of radius R tangent to it, z = R − √(R² − (|x| − flat)²) (the
+    /// "partially crowned" roller of Harris & Kotzalas, *Essential Concepts of Bearing
+    /// Technology*, 5th ed., §6; `flat` = 0 is the fully crowned roller). Finite at the ends,
+    /// where it drops R − √(R² − s²) ≈ s²/(2R), s = l/2 − flat the crowned width.
+    Circular {
+        /// The arc's radius R \[mm\].
+        radius: f64,
+        /// Half the straight centre's length \[mm\].
+        flat: f64,
+    },
+    /// Two crowns whose drops add: a roller's and its raceway's, both opening one gap.
+    Sum(Box<Crown>, Box<Crown>),
     /// A measured or designed profile: the drop at |x| interpolated linearly in a table of
     /// (|x|, drop) rows with increasing |x|, held constant beyond its ends.
     Table {
@@ -204,6 +217,33 @@ impl Crown {
         Ok(Crown::FujiwaraKawase { a, k2, z_m })
     }
 
+    /// A circular crown of radius `radius` over |x| > `flat` \[mm\] ([`Crown::Circular`]).
+    pub fn circular(radius: f64, flat: f64) -> Result<Self> {
+        check::positive("profile.radius_mm", radius)?;
+        check::non_negative("profile.flat_mm", flat)?;
+        Ok(Crown::Circular { radius, flat })
+    }
+
+    /// The circular crown straight over |x| ≤ `flat` that drops `end` at |x| = `half` \[mm\]
+    /// (the arc through that point: R = (s² + end²)/(2·end), s = half − flat).
+    pub fn circular_with_drop(end: f64, flat: f64, half: f64) -> Result<Self> {
+        check::positive("profile.drop_mm", end)?;
+        check::non_negative("profile.flat_mm", flat)?;
+        let s = check::positive("profile.flat_mm (below the half-length)", half - flat)?;
+        let radius = (s * s + end * end) / (2.0 * end);
+        check::derived("profile.drop_mm", end, "the arc's radius", radius)?;
+        Crown::circular(radius, flat)
+    }
+
+    /// The drop of `self` plus that of `other` (a raceway's crown on a roller's); a straight
+    /// crown adds nothing.
+    pub fn plus(self, other: Crown) -> Crown {
+        match (self, other) {
+            (Crown::Straight, c) | (c, Crown::Straight) => c,
+            (a, b) => Crown::Sum(Box::new(a), Box::new(b)),
+        }
+    }
+
     /// A table of (|x|, drop) rows \[mm\].
     pub fn table(x: Vec<f64>, drop: Vec<f64>) -> Result<Self> {
         if x.len() != drop.len() || x.is_empty() {
@@ -275,6 +315,19 @@ impl Crown {
                 let s = ((u - (1.0 - k2)) / k2).max(0.0);
                 -a * (1.0 - (1.0 - (-z_m / a).exp()) * s * s).ln()
             }
+            Crown::Circular { radius, flat } => {
+                let s = (x.abs() - flat).max(0.0);
+                if s >= *radius {
+                    return Err(Error::invalid(
+                        "x",
+                        x,
+                        format!("lies beyond the crown's arc of radius {radius} mm"),
+                    ));
+                }
+                // R − √(R² − s²) without cancellation.
+                s * s / (radius + (radius * radius - s * s).sqrt())
+            }
+            Crown::Sum(a, b) => a.drop_inside(x, length)? + b.drop_inside(x, length)?,
             Crown::Table { x: xs, drop } => {
                 let ax = x.abs();
                 let k = xs.partition_point(|&t| t <= ax);
@@ -323,6 +376,15 @@ pub enum CrownSettings {
         /// The drop at the ends z_m \[mm\].
         z_m_mm: f64,
     },
+    /// A circular crown: straight over |x| ≤ `flat_mm`, an arc of radius `radius_mm` beyond
+    /// ([`Crown::Circular`]).
+    Circular {
+        /// The arc's radius \[mm\].
+        radius_mm: f64,
+        /// Half the straight centre's length \[mm\] (default 0: fully crowned).
+        #[serde(default)]
+        flat_mm: f64,
+    },
     /// A measured or designed profile from a CSV file of `x_mm, drop_mm` rows (|x|
     /// increasing; one header line allowed), relative to `dir` of [`CrownSettings::build`]
     /// (a scene's folder) ([`Crown::read_table`]).
@@ -346,6 +408,7 @@ impl CrownSettings {
             CrownSettings::FujiwaraKawase { k1, k2, z_m_mm } => {
                 Crown::fujiwara_kawase(k1, k2, z_m_mm, q, l, e_star)
             }
+            CrownSettings::Circular { radius_mm, flat_mm } => Crown::circular(radius_mm, flat_mm),
         }
     }
 }
@@ -487,6 +550,35 @@ mod tests {
                 "x = {x}: {drop} + {at_mid} vs {want}"
             );
         }
+    }
+
+    /// The circular crown is the arc through its end drop: straight inside the flat, R − √(R²
+    /// − s²) beyond (checked at the end against the drop it was built for), and its sum with
+    /// another crown adds the drops.
+    #[test]
+    fn circular_crowns_and_sums() {
+        let c = Crown::circular_with_drop(0.01, 2.0, 5.0).unwrap();
+        assert_eq!(c.drop(1.9, 10.0).unwrap(), 0.0);
+        assert!((c.drop(-4.999_999_9, 10.0).unwrap() - 0.01).abs() < 1e-9);
+        let Crown::Circular { radius, .. } = c else {
+            panic!("{c:?}")
+        };
+        let s: f64 = 1.5;
+        // R − √(R² − s²) by its series s²/(2R) + s⁴/(8R³), R ≫ s (the next term s⁶/(16R⁵)).
+        let want = s * s / (2.0 * radius) + s.powi(4) / (8.0 * radius.powi(3));
+        assert!((c.drop(3.5, 10.0).unwrap() - want).abs() < 1e-9 * want);
+        let iso = Crown::iso(10.0).unwrap();
+        let sum = iso.clone().plus(c.clone());
+        let x = 4.2;
+        let both = iso.drop(x, 10.0).unwrap() + c.drop(x, 10.0).unwrap();
+        assert!((sum.drop(x, 10.0).unwrap() - both).abs() < 1e-18);
+        assert_eq!(Crown::Straight.plus(iso.clone()), iso);
+        let e = Crown::circular(0.5, 0.0)
+            .unwrap()
+            .drop(0.7, 10.0)
+            .unwrap_err();
+        assert!(e.to_string().contains("arc"), "{e}");
+        assert!(Crown::circular_with_drop(0.01, 6.0, 5.0).is_err());
     }
 
     #[test]

@@ -89,19 +89,23 @@ pub fn load_cases<'a>(
 }
 
 /// The cases of a bearing's rollers on one raceway ([`crate::LoadDistribution::roller_cases`]):
-/// the roller's own (`nominal`) first, then each roller's load and tilt, each the nominal
-/// problem with its load scaled and its gap tilted by the difference of tilts.
+/// each roller's load and tilt, in their order, the nominal problem (under `roller`'s load and
+/// tilt) with its load scaled and its gap tilted by the difference of tilts. The nominal
+/// problem is not a case of its own.
 pub fn bearing_cases<'a>(
     nominal: &InterfaceProblem<'a>,
     roller: &Roller,
     rollers: &[RollerCase],
 ) -> Result<Vec<LoadCase<'a>>> {
-    for (j, r) in rollers.iter().enumerate() {
-        check::positive(&format!("rollers[{j}].load_n"), r.load_n)?;
-        check::finite(&format!("rollers[{j}].tilt_arcmin"), r.tilt_arcmin)?;
-    }
-    let pairs: Vec<(f64, f64)> = rollers.iter().map(|r| (r.load_n, r.tilt_arcmin)).collect();
-    cases_of(nominal, roller, &pairs)
+    rollers
+        .iter()
+        .enumerate()
+        .map(|(j, r)| {
+            check::positive(&format!("rollers[{j}].load_n"), r.load_n)?;
+            check::finite(&format!("rollers[{j}].tilt_arcmin"), r.tilt_arcmin)?;
+            scaled_case(nominal, roller, r.load_n, r.tilt_arcmin)
+        })
+        .collect()
 }
 
 /// The nominal case, then one per (load \[N\], tilt \[arc-minutes\]) of `pairs` other than it.
@@ -121,22 +125,68 @@ fn cases_of<'a>(
         if (factor - 1.0).abs() < SAME_CASE && (t - tilt).abs() < SAME_CASE {
             continue;
         }
-        let mut modes = nominal.modes().to_vec();
-        modes.iter_mut().for_each(|m| m.load *= factor);
-        let slope = ((t - tilt) / 60.0).to_radians();
-        let gap: Vec<f64> = nominal
-            .initial_gap()
-            .iter()
-            .zip(nominal.interface().points())
-            .map(|(h, x)| h + slope * x[0])
-            .collect();
-        cases.push(LoadCase {
-            load_n: case_load,
-            tilt_arcmin: t,
-            problem: nominal.with_modes(modes)?.with_initial_gap(&gap)?,
-        });
+        cases.push(scaled_case(nominal, roller, case_load, t)?);
     }
     Ok(cases)
+}
+
+/// The nominal problem (under `roller`'s load and tilt) under `load` \[N\] and `tilt`
+/// \[arc-minutes\]: its modes' loads scaled, its gap tilted by the difference.
+fn scaled_case<'a>(
+    nominal: &InterfaceProblem<'a>,
+    roller: &Roller,
+    load: f64,
+    tilt: f64,
+) -> Result<LoadCase<'a>> {
+    let factor = load / roller.load;
+    let mut modes = nominal.modes().to_vec();
+    modes.iter_mut().for_each(|m| m.load *= factor);
+    let slope = ((tilt - roller.tilt_arcmin()) / 60.0).to_radians();
+    let gap: Vec<f64> = nominal
+        .initial_gap()
+        .iter()
+        .zip(nominal.interface().points())
+        .map(|(h, x)| h + slope * x[0])
+        .collect();
+    Ok(LoadCase {
+        load_n: load,
+        tilt_arcmin: tilt,
+        problem: nominal.with_modes(modes)?.with_initial_gap(&gap)?,
+    })
+}
+
+/// The crown's tolerance band: every case of `cases` with the crown's drop off by +t·(2x/l)²
+/// and by −t·(2x/l)² (`tolerance` = t \[mm\], `length` = l): the ends' drop off by ±t, the
+/// centre true: the drop a crown's drawing tolerances, varying smoothly. (H. Fujiwara and
+/// K. Yamauchi design logarithmic profiles for a tolerance band, *Tolerance design of
+/// logarithmic roller profiles in cylindrical roller bearings*, J. Adv. Mech. Des. Syst.
+/// Manuf. 4 (2010); their paper could not be read here, and this band is this crate's.)
+/// Returned in three blocks of `cases.len()`: the cases as they are, the band's top, its
+/// bottom.
+pub fn tolerance_band<'a>(
+    cases: &[LoadCase<'a>],
+    length: f64,
+    tolerance: f64,
+) -> Result<Vec<LoadCase<'a>>> {
+    check::positive("length", length)?;
+    check::non_negative("tolerance", tolerance)?;
+    let mut band = cases.to_vec();
+    for sign in [1.0, -1.0] {
+        for case in cases {
+            let gap: Vec<f64> = case
+                .problem
+                .initial_gap()
+                .iter()
+                .zip(case.problem.interface().points())
+                .map(|(h, x)| h + sign * tolerance * (2.0 * x[0] / length).powi(2))
+                .collect();
+            band.push(LoadCase {
+                problem: case.problem.with_initial_gap(&gap)?,
+                ..case.clone()
+            });
+        }
+    }
+    Ok(band)
 }
 
 /// The index of the robust crown's design case, whose column loads carry the crown: the
@@ -284,18 +334,33 @@ pub fn penalised_worst(points: &[[f64; 3]], states: &[ContactState]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The Fujiwara–Kawase profile tuned by [`tune_fujiwara_kawase`].
+/// A family of crowns that [`tune_profile`] searches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProfileFamily {
+    /// Fujiwara and Kawase's K1, K2 and z_m ([`Crown::FujiwaraKawase`]).
+    FujiwaraKawase,
+    /// A circular crown's crowned fraction K of each half-length and its end drop z_m
+    /// ([`Crown::circular_with_drop`]).
+    Circular,
+}
+
+/// A crown tuned by [`tune_profile`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct TunedCrown {
-    /// The load coefficient K1.
-    pub k1: f64,
-    /// The crowned fraction K2 of each half-length.
+    /// Its family.
+    pub family: ProfileFamily,
+    /// The crown.
+    pub crown: Crown,
+    /// Fujiwara–Kawase's load coefficient K1 (`None` for a circular crown).
+    pub k1: Option<f64>,
+    /// The crowned fraction of each half-length: Fujiwara–Kawase's K2, a circular crown's K.
     pub k2: f64,
     /// The drop z_m at the ends \[mm\].
     pub z_m_mm: f64,
     /// The crown's drop at each point \[mm\].
     pub drop: Vec<f64>,
-    /// The objective there, [`penalised_worst`] \[MPa\].
+    /// The objective there \[MPa for [`penalised_worst`]\].
     pub worst: f64,
     /// Each case's contact under it (empty when no crown was solved).
     pub states: Vec<ContactState>,
@@ -307,45 +372,78 @@ pub struct TunedCrown {
     pub termination: Termination,
 }
 
-/// The search's start: K1 = 1, K2 = ½ and z_m = 5·Q/(π l E*), in the unconstrained
-/// parameters of [`FkParameters`].
-const START: [f64; 3] = [0.0, 0.0, 1.609_437_912_434_100_3];
-/// The first simplex's steps in those parameters.
-const STEP: [f64; 3] = [0.5, 1.0, 0.5];
+/// Fujiwara–Kawase's start: K1 = 1, K2 = ½ and z_m = 5·Q/(π l E*), in the unconstrained
+/// parameters of [`Parameters`].
+const FK_START: [f64; 3] = [0.0, 0.0, 1.609_437_912_434_100_3];
+/// Its first simplex's steps in those parameters.
+const FK_STEP: [f64; 3] = [0.5, 1.0, 0.5];
+/// A circular crown's start: K = ½, z_m = 5·Q/(π l E*).
+const CIRCULAR_START: [f64; 2] = [0.0, 1.609_437_912_434_100_3];
+/// Its first simplex's steps.
+const CIRCULAR_STEP: [f64; 2] = [1.0, 0.5];
 
-/// K1 = e^u₀ > 0, K2 = 1/(1 + e^−u₁) in (0, 1), z_m = scale·e^u₂ > 0: an unconstrained search.
-struct FkParameters<'r> {
+/// A family's parameters, unconstrained for the search: K1 = e^u, a fraction K = 1/(1 +
+/// e^−u) in (0, 1), z_m = scale·e^u > 0.
+struct Parameters<'r> {
+    family: ProfileFamily,
     roller: &'r Roller,
     scale: f64,
 }
 
-impl FkParameters<'_> {
-    fn values(&self, u: &[f64]) -> (f64, f64, f64) {
-        (
-            u[0].exp(),
-            1.0 / (1.0 + (-u[1]).exp()),
-            self.scale * u[2].exp(),
-        )
+/// The crown of a search: its K1 (Fujiwara–Kawase), fraction K and end drop z_m \[mm\].
+type Values = (Option<f64>, f64, f64);
+
+impl Parameters<'_> {
+    fn start_and_step(&self) -> (&'static [f64], &'static [f64]) {
+        match self.family {
+            ProfileFamily::FujiwaraKawase => (&FK_START, &FK_STEP),
+            ProfileFamily::Circular => (&CIRCULAR_START, &CIRCULAR_STEP),
+        }
+    }
+
+    fn values(&self, u: &[f64]) -> Values {
+        let fraction = |v: f64| 1.0 / (1.0 + (-v).exp());
+        match self.family {
+            ProfileFamily::FujiwaraKawase => {
+                (Some(u[0].exp()), fraction(u[1]), self.scale * u[2].exp())
+            }
+            ProfileFamily::Circular => (None, fraction(u[0]), self.scale * u[1].exp()),
+        }
+    }
+
+    fn crown(&self, u: &[f64]) -> Result<Crown> {
+        let r = self.roller;
+        let (k1, k, z_m) = self.values(u);
+        match k1 {
+            Some(k1) => Crown::fujiwara_kawase(k1, k, z_m, r.load, r.length, r.e_star()),
+            None => {
+                let half = 0.5 * r.length;
+                Crown::circular_with_drop(z_m, (1.0 - k) * half, half)
+            }
+        }
     }
 
     /// The crown's drop at `points` for the parameters `u`.
     fn drops(&self, u: &[f64], points: &[[f64; 3]]) -> Result<Vec<f64>> {
-        let (k1, k2, z_m) = self.values(u);
-        let r = self.roller;
-        let crown = Crown::fujiwara_kawase(k1, k2, z_m, r.load, r.length, r.e_star())?;
-        points.iter().map(|x| crown.drop(x[0], r.length)).collect()
+        let crown = self.crown(u)?;
+        points
+            .iter()
+            .map(|x| crown.drop(x[0], self.roller.length))
+            .collect()
     }
 }
 
 /// The best crown a search has seen: parameters, objective and the cases' states.
 type Best = (Vec<f64>, f64, Vec<ContactState>);
 
+/// What a search minimises over the cases' contacts under a crown: [`penalised_worst`], or a
+/// caller's (the negative of a bearing's life, say).
+pub type Objective<'o> = dyn FnMut(&[ContactState]) -> Result<f64> + 'o;
+
 /// Tunes the Fujiwara–Kawase profile (NTN Technical Review 75, 2007: K1, K2, z_m) of
 /// `roller` for every case of `cases` by a Nelder–Mead search ([`nelder_mead`]) of the least
-/// [`penalised_worst`], from K1 = 1, K2 = ½, z_m = 5·Q/(π l E*). Each crown is reported to
-/// `observer` as an event of [`Method::ProfileSearch`] at level 0 (its objective against the
-/// search's tolerance), the contact solves one level deeper; a stop, a contact solve that does
-/// not converge and the budget end the search with the best crown so far.
+/// [`penalised_worst`], from K1 = 1, K2 = ½, z_m = 5·Q/(π l E*): [`tune_profile`] of
+/// [`ProfileFamily::FujiwaraKawase`].
 pub fn tune_fujiwara_kawase(
     cases: &[LoadCase],
     roller: &Roller,
@@ -353,14 +451,48 @@ pub fn tune_fujiwara_kawase(
     settings: &SearchSettings,
     observer: &dyn Observer,
 ) -> Result<TunedCrown> {
-    let points = cases
+    let points = first_points(cases)?;
+    let mut worst = |states: &[ContactState]| Ok(penalised_worst(points, states));
+    let family = ProfileFamily::FujiwaraKawase;
+    tune_profile(
+        cases, roller, family, solver, settings, &mut worst, observer,
+    )
+}
+
+/// The grid's points of the first case.
+fn first_points<'c>(cases: &'c [LoadCase]) -> Result<&'c [[f64; 3]]> {
+    Ok(cases
         .first()
         .ok_or_else(|| Error::invalid("cases", "none", "at least one load case"))?
         .problem
         .interface()
-        .points();
+        .points())
+}
+
+/// Tunes a crown of `family` for `roller` over every case of `cases` by a Nelder–Mead search
+/// ([`nelder_mead`], as Fujiwara and Kawase tuned theirs by Rosenbrock's method) of the least
+/// `objective`, from a crowned fraction of ½ and an end drop of 5·Q/(π l E*) (Fujiwara–Kawase
+/// also K1 = 1). Each crown is reported to `observer` as an event of
+/// [`Method::ProfileSearch`] at level 0 (its objective against the search's tolerance), the
+/// contact solves one level deeper; a stop, a contact solve that does not converge and the
+/// budget end the search with the best crown so far.
+pub fn tune_profile(
+    cases: &[LoadCase],
+    roller: &Roller,
+    family: ProfileFamily,
+    solver: &dyn ContactSolver,
+    settings: &SearchSettings,
+    objective: &mut Objective,
+    observer: &dyn Observer,
+) -> Result<TunedCrown> {
+    let points = first_points(cases)?;
     let scale = roller.load / (std::f64::consts::PI * roller.length * roller.e_star());
-    let parameters = FkParameters { roller, scale };
+    let parameters = Parameters {
+        family,
+        roller,
+        scale,
+    };
+    let (start, step) = parameters.start_and_step();
     let mut best: Option<Best> = None;
     let mut warm: Option<Vec<ContactState>> = None;
     let mut crowns = 0;
@@ -376,7 +508,7 @@ pub fn tune_fujiwara_kawase(
             if let Some(s) = states.iter().find(|s| !s.is_converged()) {
                 return Ok(ControlFlow::Break(s.termination.clone().inside(s.method)));
             }
-            let value = penalised_worst(points, &states);
+            let value = objective(&states)?;
             crowns += 1;
             if best.as_ref().is_none_or(|b| value < b.1) {
                 best = Some((u.to_vec(), value, states.clone()));
@@ -388,16 +520,18 @@ pub fn tune_fujiwara_kawase(
                 Flow::Stop => ControlFlow::Break(Termination::Stopped { after: crowns }),
             })
         },
-        &START,
-        &STEP,
+        start,
+        step,
         settings,
     )?;
-    let (u, worst, states) = best.unwrap_or((START.to_vec(), f64::INFINITY, vec![]));
+    let (u, worst, states) = best.unwrap_or((start.to_vec(), f64::INFINITY, vec![]));
     let end = Event::step(Method::ProfileSearch, crowns, worst, settings.tolerance)
         .ending(&minimum.termination);
     let _ = observer.observe(&end);
     let (k1, k2, z_m_mm) = parameters.values(&u);
     Ok(TunedCrown {
+        family,
+        crown: parameters.crown(&u)?,
         k1,
         k2,
         z_m_mm,

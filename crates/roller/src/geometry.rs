@@ -3,7 +3,7 @@
 use std::f64::consts::PI;
 
 use contopt_core::{check, ElasticBody, Error, Material, Result};
-use contopt_greens::HalfSpace;
+use contopt_greens::{FreeEnds, HalfSpace};
 
 use crate::Crown;
 
@@ -110,17 +110,61 @@ impl Roller {
         ny: usize,
         reach: f64,
     ) -> Result<(HalfSpace, HalfSpace, Vec<f64>)> {
+        let (raceway, [dx, dy], origin) = self.raceway(nx, ny, reach)?;
+        let roller = HalfSpace::grid("roller", self.roller, nx, ny, dx, dy, origin)?
+            .upper()
+            .pressed(self.load)?;
+        let gap = self.gap(&raceway)?;
+        Ok((raceway, roller, gap))
+    }
+
+    /// [`Roller::bodies`] with the roller's free ends: its surface ends at end faces
+    /// `ends.chamfer_mm` beyond the effective length's ends, each loaded by the image pressure
+    /// of weight `ends.weight` ([`FreeEnds`]); the raceway goes on past them.
+    pub fn free_end_bodies(
+        &self,
+        nx: usize,
+        ny: usize,
+        reach: f64,
+        ends: &RollerEnds,
+    ) -> Result<(HalfSpace, FreeEnds, Vec<f64>)> {
+        check::non_negative("free_ends.chamfer_mm", ends.chamfer_mm)?;
+        let (raceway, [dx, dy], origin) = self.raceway(nx, ny, reach)?;
+        let face = 0.5 * self.length + ends.chamfer_mm;
+        let faces = [Some(-face), Some(face)];
+        let roller = FreeEnds::grid(
+            "roller",
+            self.roller,
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+            faces,
+            ends.weight,
+        )?
+        .upper()
+        .pressed(self.load)?;
+        let gap = self.gap(&raceway)?;
+        Ok((raceway, roller, gap))
+    }
+
+    /// The raceway's grid of `nx` × `ny` cells over the length and ±`reach`·b, its cell size
+    /// and first centre.
+    fn raceway(&self, nx: usize, ny: usize, reach: f64) -> Result<(HalfSpace, [f64; 2], [f64; 2])> {
         check::positive("reach_b", reach)?;
         check::finite("tilt", self.tilt)?;
-        let radius = self.radius()?;
         // After `cell`, which refuses an even `ny` or one below 3 (`ny - 1` would underflow).
         let [dx, dy] = self.cell(nx, ny, reach)?;
         let half = (ny - 1) / 2;
         let origin = [-0.5 * self.length + 0.5 * dx, -(half as f64) * dy];
         let raceway = HalfSpace::grid("raceway", self.raceway, nx, ny, dx, dy, origin)?;
-        let roller = HalfSpace::grid("roller", self.roller, nx, ny, dx, dy, origin)?
-            .upper()
-            .pressed(self.load)?;
+        Ok((raceway, [dx, dy], origin))
+    }
+
+    /// The initial gap at the raceway's points: y²/(2R) + z(x) + γ·x.
+    fn gap(&self, raceway: &HalfSpace) -> Result<Vec<f64>> {
+        let radius = self.radius()?;
         let gap = raceway
             .interface()
             .points()
@@ -133,8 +177,20 @@ impl Roller {
             .collect::<Result<Vec<f64>>>()?;
         let what = "the initial gap y²/(2R) + z(x) + γ·x";
         check::all_derived("tilt", self.tilt, what, &gap)?;
-        Ok((raceway, roller, gap))
+        Ok(gap)
     }
+}
+
+/// A roller's free ends ([`Roller::free_end_bodies`]): its end faces beyond the effective
+/// length, and the weight of the image pressure that models them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RollerEnds {
+    /// The axial width from each end of the effective length to the end face \[mm\] (the
+    /// chamfer; 0: the contact reaches the face).
+    pub chamfer_mm: f64,
+    /// The image pressure's weight ([`FreeEnds`]): 1 for the end face that slides on a wall
+    /// (the image alone), more for the free face.
+    pub weight: f64,
 }
 
 #[cfg(test)]

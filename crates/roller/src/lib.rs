@@ -26,12 +26,13 @@ pub use bearing::{
 pub use crown::{Crown, CrownSettings, JOHNS_GOHAR_END};
 pub use design::{
     bearing_cases, design_case, load_cases, penalised_worst, robust_crown, solve_cases,
-    tune_fujiwara_kawase, Contact, Envelope, LoadCase, RobustCrown, TunedCrown,
+    tolerance_band, tune_fujiwara_kawase, tune_profile, Contact, Envelope, LoadCase, Objective,
+    ProfileFamily, RobustCrown, TunedCrown,
 };
 pub use figures::{end_ratio, CaseContact, CaseFigures, RollerFigures, EDGE_LOADING};
-pub use geometry::Roller;
+pub use geometry::{Roller, RollerEnds};
 pub use life::{
-    basic_rating_life, dynamic_load_rating, f_c, miner, reference_rating_life,
-    slice_loads_from_pressure, slice_ratings, ReferenceLife, SliceLoads, SliceRatings, B_M,
-    REDUCTION, ROLLER_LIFE_EXPONENT,
+    basic_rating_life, dynamic_load_rating, f_c, hertz_slice_load, miner, reference_rating_life,
+    slice_loads_from_pressure, slice_peaks_from_pressure, slice_ratings, ReferenceLife, SliceLoads,
+    SliceRatings, B_M, REDUCTION, ROLLER_LIFE_EXPONENT,
 };

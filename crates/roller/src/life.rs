@@ -289,6 +289,49 @@ pub fn slice_loads_from_pressure(
     length: f64,
     slices: usize,
 ) -> Result<Vec<f64>> {
+    let mut loads = vec![0.0; slices];
+    each_overlap(points, pressure, cell, length, slices, |k, inside, p| {
+        loads[k] += p * cell[1] * inside;
+    })?;
+    Ok(loads)
+}
+
+/// The largest pressure \[MPa\] in each of `slices` equal slices of a roller's grid (the
+/// cells that reach into the slice), as [`slice_loads_from_pressure`] takes the grid.
+pub fn slice_peaks_from_pressure(
+    points: &[[f64; 3]],
+    pressure: &[f64],
+    cell: [f64; 2],
+    length: f64,
+    slices: usize,
+) -> Result<Vec<f64>> {
+    let mut peaks = vec![0.0f64; slices];
+    each_overlap(points, pressure, cell, length, slices, |k, _, p| {
+        peaks[k] = peaks[k].max(p);
+    })?;
+    Ok(peaks)
+}
+
+/// The load \[N\] of a slice `width` \[mm\] wide under Hertz's line contact of peak `p0`
+/// \[MPa\] between surfaces of effective radius `radius` \[mm\] and modulus `e_star` \[MPa\]:
+/// π·R·w·p₀²/E* (Johnson, *Contact Mechanics*, eq. 4.45, p₀ = (q·E*/(πR))^½, solved for the
+/// line load q). A slice whose pressure is Hertz's carries it; at an edge peak it is the load
+/// a Hertzian slice would need to reach that peak.
+pub fn hertz_slice_load(p0: f64, width: f64, radius: f64, e_star: f64) -> f64 {
+    std::f64::consts::PI * radius * width * p0 * p0 / e_star
+}
+
+/// Calls `f(k, inside, p)` for every loaded cell and every slice k its x-range reaches into
+/// (`inside` \[mm\] of it, p its pressure), after the checks of
+/// [`slice_loads_from_pressure`].
+fn each_overlap(
+    points: &[[f64; 3]],
+    pressure: &[f64],
+    cell: [f64; 2],
+    length: f64,
+    slices: usize,
+    mut f: impl FnMut(usize, f64, f64),
+) -> Result<()> {
     check::count(
         "pressure (its length)",
         pressure.len(),
@@ -307,7 +350,6 @@ pub fn slice_loads_from_pressure(
         ));
     }
     let width = length / slices as f64;
-    let mut loads = vec![0.0; slices];
     for (x, p) in points.iter().zip(pressure).filter(|(_, p)| **p > 0.0) {
         let (from, to) = (x[0] - 0.5 * cell[0], x[0] + 0.5 * cell[0]);
         if to.max(-from) > 0.5 * length * (1.0 + OUTSIDE) {
@@ -318,7 +360,7 @@ pub fn slice_loads_from_pressure(
             ));
         }
         let first = (((from + 0.5 * length) / width).floor().max(0.0)) as usize;
-        for (k, load) in loads.iter_mut().enumerate().skip(first) {
+        for k in first..slices {
             let (lo, hi) = (
                 -0.5 * length + k as f64 * width,
                 -0.5 * length + (k + 1) as f64 * width,
@@ -327,10 +369,12 @@ pub fn slice_loads_from_pressure(
                 break;
             }
             let inside = (to.min(hi) - from.max(lo)).max(0.0);
-            *load += p * cell[1] * inside;
+            if inside > 0.0 {
+                f(k, inside, *p);
+            }
         }
     }
-    Ok(loads)
+    Ok(())
 }
 
 /// Palmgren–Miner's life of a duty cycle: L = 1/Σ_i (t_i/L_i) over `cases` of (time fraction
@@ -491,6 +535,25 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("outside the roller"), "{e}");
+    }
+
+    /// A slice's peak is the largest pressure of the cells reaching into it; Hertz's slice load
+    /// of a Hertzian strip's peak is the strip's own load: a line load q over width w between
+    /// radii R gives p₀ = (q·E*/(πR))^½ and back π·R·w·p₀²/E* = q·w.
+    #[test]
+    fn slice_peaks_and_their_hertzian_loads() {
+        let points: Vec<[f64; 3]> = (0..14)
+            .map(|i| [-1.5 + 0.5 * (i % 7) as f64, 0.1 * (i / 7) as f64, 0.0])
+            .collect();
+        let pressure: Vec<f64> = (0..14)
+            .map(|i| 100.0 * (1 + i % 7) as f64 + (i / 7) as f64)
+            .collect();
+        let peaks = slice_peaks_from_pressure(&points, &pressure, [0.5, 0.1], 3.5, 3).unwrap();
+        // Slices of 7/6 mm from −1.75: the first reaches columns 0–2, the second 2–4, the last 4–6.
+        assert_eq!(peaks, vec![301.0, 501.0, 701.0]);
+        let (q, w, r, e) = (544.6, 0.32, 4.3, 1.1538e5);
+        let p0 = (q * e / (std::f64::consts::PI * r)).sqrt();
+        assert!((hertz_slice_load(p0, w, r, e) - q * w).abs() < 1e-9 * q * w);
     }
 
     /// Palmgren–Miner by hand; fractions that do not sum to 1 are named.

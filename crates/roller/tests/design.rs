@@ -184,7 +184,7 @@ fn tuned_search_improves_and_stops_when_asked() {
         eprintln!(
             "tuned: K1 {:.3}, K2 {:.3}, z_m {:.2} µm, worst {:.1} MPa from {first:.1} in {} \
              crowns ({})",
-            tuned.k1,
+            tuned.k1.unwrap_or(f64::NAN),
             tuned.k2,
             1e3 * tuned.z_m_mm,
             tuned.worst,
@@ -208,5 +208,81 @@ fn tuned_search_improves_and_stops_when_asked() {
         assert_eq!(stopped.termination, Termination::Stopped { after: 3 });
         assert_eq!(stopped.evaluations, 3);
         assert!(stopped.worst.is_finite() && stopped.states.len() == cases.len());
+    });
+}
+
+/// The tolerance band's three blocks: the cases as they are, then each with the crown's drop
+/// off by +t·(2x/l)² and by −t·(2x/l)² (t at the ends, nothing at mid-length), written out
+/// here; loads and tilts kept. A negative tolerance is named.
+#[test]
+fn the_tolerance_band_moves_the_ends_by_t() {
+    with_cases(|r, cases, _| {
+        let t = 1e-3;
+        let band = contopt_roller::tolerance_band(cases, r.length, t).unwrap();
+        assert_eq!(band.len(), 3 * cases.len());
+        let points = cases[0].problem.interface().points();
+        for (k, case) in cases.iter().enumerate() {
+            for (block, sign) in [(1, 1.0), (2, -1.0)] {
+                let moved = &band[block * cases.len() + k];
+                assert_eq!(
+                    (moved.load_n, moved.tilt_arcmin),
+                    (case.load_n, case.tilt_arcmin)
+                );
+                for (i, x) in points.iter().enumerate() {
+                    let want =
+                        case.problem.initial_gap()[i] + sign * t * (2.0 * x[0] / r.length).powi(2);
+                    assert!((moved.problem.initial_gap()[i] - want).abs() < 1e-15);
+                }
+            }
+        }
+        let e = contopt_roller::tolerance_band(cases, r.length, -t)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("tolerance"), "{e}");
+    });
+}
+
+/// A circular crown tuned for the envelope: no worse than its start (crowned over half of
+/// each half-length, 5·Q/(π l E*) at the ends), far below the straight roller's worst, and
+/// reported as a circular crown (no K1, its radius the arc through its end drop).
+#[test]
+fn a_tuned_circular_crown() {
+    with_cases(|r, cases, _| {
+        let points = cases[0].problem.interface().points();
+        let mut seen = vec![];
+        let mut worst = |states: &[contopt_core::ContactState]| {
+            let w = contopt_roller::penalised_worst(points, states);
+            seen.push(w);
+            Ok(w)
+        };
+        let settings = SearchSettings {
+            tolerance: 0.5,
+            max_evaluations: 40,
+        };
+        let tuned = contopt_roller::tune_profile(
+            cases,
+            r,
+            contopt_roller::ProfileFamily::Circular,
+            &solver(),
+            &settings,
+            &mut worst,
+            &Silent,
+        )
+        .unwrap();
+        assert!(tuned.k1.is_none() && tuned.worst <= seen[0], "{tuned:?}");
+        let Crown::Circular { radius, flat } = tuned.crown else {
+            panic!("{:?}", tuned.crown)
+        };
+        let s = 0.5 * r.length - flat;
+        let end = radius - (radius * radius - s * s).sqrt();
+        assert!(
+            (end - tuned.z_m_mm).abs() < 1e-12,
+            "{end} vs {}",
+            tuned.z_m_mm
+        );
+        let straight =
+            solve_cases(cases, &vec![0.0; points.len()], &solver(), None, &Silent).unwrap();
+        let edge = contopt_roller::penalised_worst(points, &straight);
+        assert!(tuned.worst < 0.6 * edge, "{} vs {edge}", tuned.worst);
     });
 }

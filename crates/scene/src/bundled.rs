@@ -36,6 +36,7 @@ bundled!(
     "roller",
     "roller-study",
     "roller-envelope",
+    "bearing",
     "hertz",
     "flat-punch",
     "punch-on-block",

@@ -21,7 +21,12 @@ pub(crate) fn compute(
     problem: &InterfaceProblem,
     rigid: &[f64],
 ) {
-    if !case.spec.output.fields || report.status == CaseStatus::NotConverged {
+    // A bearing's composed bodies are half-spaces, without meshes (and its report shows a
+    // contact whose loads are not its bodies' own).
+    if !case.spec.output.fields
+        || report.status == CaseStatus::NotConverged
+        || case.plan.bearing.is_some()
+    {
         return;
     }
     match of_bodies(report, built, problem, rigid) {

@@ -71,6 +71,15 @@ pub struct RollerGap {
     /// The crown (default straight).
     #[serde(default)]
     pub profile: CrownSettings,
+    /// The raceway's crown along the roller, its drop added to the roller's (default
+    /// straight).
+    #[serde(default, skip_serializing_if = "is_straight")]
+    pub raceway_profile: CrownSettings,
+}
+
+/// Whether a crown is the default straight one (left out of a case's resolved input).
+fn is_straight(c: &CrownSettings) -> bool {
+    *c == CrownSettings::Straight
 }
 
 impl RollerGap {
@@ -97,7 +106,8 @@ impl RollerGap {
             crown: Crown::Straight,
         };
         roller.hertz()?;
-        roller.crown = self.profile.build(&roller, dir)?;
+        let raceway = self.raceway_profile.build(&roller, dir)?;
+        roller.crown = self.profile.build(&roller, dir)?.plus(raceway);
         Ok(roller)
     }
 }

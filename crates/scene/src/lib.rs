@@ -13,6 +13,7 @@
 //! one file in `methods/` and one line of [`MethodSpec`]; the solvers and their settings are the
 //! contact crate's ([`contopt_contact::SolverSettings`]).
 
+mod bearing;
 mod bodies;
 mod budget;
 mod build;
@@ -40,9 +41,10 @@ use std::sync::Arc;
 
 use contopt_input::{Limits, Node};
 
+pub use bearing::{BearingLoadSpec, BearingObjective, BearingSpec, RacewaySpec, FREE_END_WEIGHT};
 pub use bodies::{
-    BodyKind, BodySpec, Direction, FeBase, FeBlock, FeMesh, FePunch, GroupLoad, GroupSupport,
-    HalfSpaceBody, PunchLoad, Rigid, Support, WinklerBed,
+    BodyKind, BodySpec, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec, GroupLoad,
+    GroupSupport, HalfSpaceBody, PunchLoad, Rigid, Support, WinklerBed,
 };
 pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 pub use build::Built;
@@ -315,7 +317,15 @@ impl Case {
         meshes: &Arc<MeshFiles>,
     ) -> Result<Self, SceneError> {
         let case_name = (!single).then(|| input.label.clone());
-        let locator = Locator::new(file, text.clone(), Arc::new(input.tree), case_name);
+        let mut tree = input.tree;
+        let whole = Locator::new(
+            file,
+            text.clone(),
+            Arc::new(tree.clone()),
+            case_name.clone(),
+        );
+        bearing::compose(&mut tree, &whole)?;
+        let locator = Locator::new(file, text.clone(), Arc::new(tree), case_name);
         let mut spec: CaseSpec = locator.tree.deserialize().map_err(|e| locator.input(e))?;
         if locator.tree.get("contact.gap").is_none() {
             spec.contact.gap = GapSpec::default_for(&spec.contact.zone, &spec.body);
@@ -353,9 +363,16 @@ impl Case {
         self.locator.dir()
     }
 
-    /// The case's inputs as resolved: its settings with every default written out.
+    /// The case's inputs as resolved: its settings with every default written out (a
+    /// bearing's without the contact and bodies it composes, so that they read back as a
+    /// scene).
     pub fn input(&self) -> serde_json::Value {
-        serde_json::to_value(&self.spec).unwrap_or(serde_json::Value::Null)
+        let mut value = serde_json::to_value(&self.spec).unwrap_or(serde_json::Value::Null);
+        if let (Some(_), Some(table)) = (&self.spec.bearing, value.as_object_mut()) {
+            table.remove("contact");
+            table.remove("body");
+        }
+        value
     }
 }
 

@@ -33,11 +33,14 @@ pub(crate) struct Plan {
     pub memory: crate::budget::Memory,
     /// The key of the case's bodies: cases with one key share one build.
     pub key: String,
+    /// A bearing's plan (`[bearing]`).
+    pub bearing: Option<crate::bearing::BearingPlan>,
 }
 
 /// Checks `spec` and plans its run, reading the meshes its bodies name from `meshes`; `at`
 /// places the errors.
 pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<Plan, SceneError> {
+    let bearing = crate::bearing::plan(spec, at)?;
     let contact = &spec.contact;
     check_pair(&spec.body, &contact.zone).map_err(|e| at.library("", e))?;
     contact
@@ -74,9 +77,12 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         floating,
         roller: roller.is_some(),
     };
-    crate::methods::design(spec)
-        .check(&check)
-        .map_err(|e| at.library("optimisation", e))?;
+    // A bearing checks its own design over its own envelope.
+    if bearing.is_none() {
+        crate::methods::design(spec)
+            .check(&check)
+            .map_err(|e| at.library("optimisation", e))?;
+    }
     if let Some(envelope) = &spec.envelope {
         if roller.is_none() {
             return Err(at.at(
@@ -101,6 +107,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         roller,
         dense_limit,
         key: format!("{:?}", (&contact.zone, &spec.body, contact.load)),
+        bearing,
     })
 }
 

@@ -114,11 +114,18 @@ pub(crate) fn below_surface(
     let started = std::time::Instant::now();
     let pressure: Vec<f64> = report.interface.iter().map(|q| q.p_mpa).collect();
     let roller = case.plan.roller.is_some();
-    let shared = case
-        .plan
-        .roller
-        .as_ref()
-        .is_some_and(|r| r.roller.nu() == r.raceway.nu());
+    // A roller with free ends has its own field, not the raceway's.
+    let free_ends = case
+        .spec
+        .body
+        .iter()
+        .any(|b| matches!(b, crate::bodies::BodySpec::HalfSpace(h) if h.free_ends.is_some()));
+    let shared = !free_ends
+        && case
+            .plan
+            .roller
+            .as_ref()
+            .is_some_and(|r| r.roller.nu() == r.raceway.nu());
     report.subsurface = crate::subsurface::compute(
         spec,
         [built.first(), built.second()],

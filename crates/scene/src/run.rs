@@ -161,6 +161,33 @@ impl Case {
             .map_err(|e| at.library("solver", e))?;
         let cases =
             crate::methods::load_cases(self, &problem).map_err(|e| at.library("envelope", e))?;
+        let (designed, shown) = match &self.plan.bearing {
+            // A bearing reports its worst contact, whose problem the report's checks take.
+            Some(bearing) => crate::bearing::run(
+                self,
+                bearing,
+                &problem,
+                solver.as_ref(),
+                observer,
+                &mut report,
+            )
+            .map_err(|e| at.library("bearing", e))?,
+            None => {
+                let context = Context {
+                    spec: &self.spec,
+                    plan: &self.plan,
+                    problem: &problem,
+                    solver: solver.as_ref(),
+                    observer,
+                    cases: &cases,
+                };
+                let designed = crate::methods::design(&self.spec)
+                    .run(&context, &mut report)
+                    .map_err(|e| at.library("optimisation", e))?;
+                (designed, problem.clone())
+            }
+        };
+        let problem = shown;
         let context = Context {
             spec: &self.spec,
             plan: &self.plan,
@@ -169,9 +196,6 @@ impl Case {
             observer,
             cases: &cases,
         };
-        let designed = crate::methods::design(&self.spec)
-            .run(&context, &mut report)
-            .map_err(|e| at.library("optimisation", e))?;
         let rigid = designed.rigid.clone();
         crate::report::fill(&mut report, &context, designed);
         crate::limits::judge(&mut report, self, &problem);

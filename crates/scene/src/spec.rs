@@ -28,6 +28,10 @@ pub struct CaseSpec {
     /// What the scene shows.
     #[serde(default)]
     pub description: String,
+    /// A cylindrical roller bearing around the contact (`[bearing]`): it composes the
+    /// contact and the bodies (its roller on the solved raceway) and runs its load cases.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bearing: Option<crate::bearing::BearingSpec>,
     /// How the bodies meet: the contact zone, the initial gap and the load that presses them.
     pub contact: ContactSpec,
     /// The two bodies: the first below the zone (its outward normal is n¹ of eq. 2.1), the
@@ -90,8 +94,9 @@ pub enum LoadSpec {
 #[serde(deny_unknown_fields)]
 pub struct OptimisationSpec {
     /// The method and its settings: `given_load`, `given_displacement`, `linear_programme`,
-    /// `load_split`, `envelope_split` (a roller's crown for its whole envelope) or
-    /// `profile_search` (Fujiwara–Kawase's parameters tuned for the envelope).
+    /// `load_split`, `envelope_split` (a roller's crown for its whole envelope),
+    /// `profile_search` (Fujiwara–Kawase's parameters tuned for the envelope) or
+    /// `circular_search` (a circular crown's).
     pub method: MethodSpec,
     /// The controller v(x) of p ≤ v·p_max (§3.1); every method but the profile search needs
     /// one.

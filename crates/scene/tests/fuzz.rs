@@ -2912,7 +2912,9 @@ impl SceneTree {
         let field = |name: &str| zone.and_then(|z| z.get(name));
         // The dense methods (the QP, the linear programme) take seconds past a few hundred
         // points (14 s for the linear programme on 26 × 31 cells).
-        let cells = match field("cells") {
+        // A bearing composes its roller's grid from `bearing.cells`.
+        let bearing = self.get(&["bearing"]).and_then(fields);
+        let cells = match field("cells").or_else(|| bearing.and_then(|b| b.get("cells"))) {
             Some(Value::Array(a)) => a
                 .iter()
                 .map(|v| v.as_integer().unwrap_or(1))
@@ -3333,7 +3335,12 @@ fn roller_numbers(r: &CaseReport, out: &mut Vec<(String, f64)>) {
         put("worst_p_max_mpa", w);
     }
     if let Some(t) = &roller.tuned {
-        put("tuned.k1", t.k1);
+        if let Some(k1) = t.k1 {
+            put("tuned.k1", k1);
+        }
+        if let Some(r) = t.radius_mm {
+            put("tuned.radius_mm", r);
+        }
         put("tuned.k2", t.k2);
         put("tuned.z_m_um", t.z_m_um);
     }
@@ -3368,6 +3375,8 @@ fn subsurface_numbers(r: &CaseReport, out: &mut Vec<(String, f64)>) {
             ("tresca", p.tresca),
             ("max_principal", p.max_principal),
             ("min_principal", p.min_principal),
+            ("shear_xz", p.shear_xz),
+            ("shear_yz", p.shear_yz),
         ] {
             for v in [peak.value_mpa, peak.x_mm, peak.y_mm, peak.depth_mm] {
                 out.push((format!("subsurface.peaks.{name}"), v));

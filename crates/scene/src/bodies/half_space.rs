@@ -4,7 +4,7 @@
 use contopt_core::{ElasticBody, Error, Interface, Material, Result};
 use contopt_fem::Analysis;
 use contopt_greens::{
-    dense_surface_bytes, AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState,
+    dense_surface_bytes, AxisymmetricHalfSpace, FreeEnds, HalfPlane, HalfSpace, PlaneState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -29,6 +29,30 @@ pub struct HalfSpaceBody {
     /// a half-plane's deflection is defined up to a constant).
     #[serde(default)]
     pub datum_mm: Option<f64>,
+    /// On a grid: the surface ends at free faces across x (a roller's end faces), each
+    /// loaded by the image pressure ([`contopt_greens::FreeEnds`]); default none, the surface
+    /// goes on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_ends: Option<FreeEndsSpec>,
+}
+
+/// A grid's free faces across x (`free_ends`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FreeEndsSpec {
+    /// The faces' x \[mm\]: at or below the grid's first edge, at or beyond its last (a
+    /// roller's ends: ±(l/2 + chamfer)).
+    pub faces_mm: [f64; 2],
+    /// The image pressure's weight: 1 for faces that slide on a wall, more for free faces
+    /// (default [`crate::FREE_END_WEIGHT`], Hetényi's free face matched).
+    #[serde(default = "FreeEndsSpec::default_weight")]
+    pub weight: f64,
+}
+
+impl FreeEndsSpec {
+    fn default_weight() -> f64 {
+        crate::FREE_END_WEIGHT
+    }
 }
 
 impl HalfSpaceBody {
@@ -75,6 +99,38 @@ impl BodyKind for HalfSpaceBody {
                 ))
             }
         }
+        if let (Some(_), false) = (self.free_ends, matches!(at.zone, ZoneSpec::Grid(_))) {
+            return Err(Error::invalid(
+                "free_ends",
+                "given",
+                "free faces end a grid's surface across x: a grid zone only",
+            ));
+        }
+        if let (Some(ends), Layout::Grid { nx, dx, origin, .. }) = (self.free_ends, at.layout) {
+            let [lo, hi] = ends.faces_mm;
+            let (first, last) = (origin[0] - 0.5 * dx, origin[0] + (*nx as f64 - 0.5) * dx);
+            // A face within a quarter cell of the edge is on it (round-off of the lattice).
+            if lo.is_nan() || lo > first + 0.25 * dx {
+                return Err(Error::invalid(
+                    "free_ends.faces_mm[0]",
+                    lo,
+                    format!("must lie at or below the grid's first edge, x = {first} mm"),
+                ));
+            }
+            if hi.is_nan() || hi < last - 0.25 * dx {
+                return Err(Error::invalid(
+                    "free_ends.faces_mm[1]",
+                    hi,
+                    format!("must lie at or beyond the grid's last edge, x = {last} mm"),
+                ));
+            }
+            contopt_core::check::between(
+                "free_ends.weight",
+                ends.weight,
+                -f64::EPSILON,
+                2.0 + f64::EPSILON,
+            )?;
+        }
         if let (Some(d), false) = (self.datum_mm, matches!(at.zone, ZoneSpec::Strips(_))) {
             return Err(Error::invalid(
                 "datum_mm",
@@ -87,6 +143,9 @@ impl BodyKind for HalfSpaceBody {
 
     fn memory(&self, at: &Placement) -> Option<u64> {
         match at.zone {
+            ZoneSpec::Grid(g) if self.free_ends.is_some() => {
+                FreeEnds::grid_bytes(g.cells[0], g.cells[1])
+            }
             ZoneSpec::Grid(g) => HalfSpace::grid_bytes(g.cells[0], g.cells[1]),
             _ => at.layout.points().and_then(dense_surface_bytes),
         }
@@ -112,16 +171,39 @@ impl BodyKind for HalfSpaceBody {
                 dx,
                 dy,
                 origin,
-            } => {
-                let grid = HalfSpace::grid(name, material, *nx, *ny, *dx, *dy, *origin)?;
-                match (at.side, at.load) {
-                    (Side::Below, _) => Box::new(grid),
-                    (Side::Above, LoadSpec::ForceN(force)) => {
-                        Box::new(grid.upper().pressed(force)?)
+            } => match self.free_ends {
+                None => {
+                    let grid = HalfSpace::grid(name, material, *nx, *ny, *dx, *dy, *origin)?;
+                    match (at.side, at.load) {
+                        (Side::Below, _) => Box::new(grid),
+                        (Side::Above, LoadSpec::ForceN(force)) => {
+                            Box::new(grid.upper().pressed(force)?)
+                        }
+                        (Side::Above, _) => Box::new(grid.upper()),
                     }
-                    (Side::Above, _) => Box::new(grid.upper()),
                 }
-            }
+                Some(ends) => {
+                    let faces = ends.faces_mm.map(Some);
+                    let grid = FreeEnds::grid(
+                        name,
+                        material,
+                        *nx,
+                        *ny,
+                        *dx,
+                        *dy,
+                        *origin,
+                        faces,
+                        ends.weight,
+                    )?;
+                    match (at.side, at.load) {
+                        (Side::Below, _) => Box::new(grid),
+                        (Side::Above, LoadSpec::ForceN(force)) => {
+                            Box::new(grid.upper().pressed(force)?)
+                        }
+                        (Side::Above, _) => Box::new(grid.upper()),
+                    }
+                }
+            },
             Layout::Rings(edges) => Box::new(AxisymmetricHalfSpace::new(name, material, edges)?),
             Layout::Strips { edges, thickness } => {
                 let ZoneSpec::Strips(strips) = at.zone else {

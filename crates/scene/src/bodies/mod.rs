@@ -28,7 +28,7 @@ use crate::zone::{Layout, ZoneSpec};
 
 pub use fe::{FeBase, FeBlock, FePunch, PunchLoad, Support};
 pub use fe_mesh::{Direction, FeMesh, GroupLoad, GroupSupport};
-pub use half_space::HalfSpaceBody;
+pub use half_space::{FreeEndsSpec, HalfSpaceBody};
 pub use rigid::Rigid;
 pub use winkler::WinklerBed;
 

@@ -7,7 +7,7 @@
 mod analysis;
 mod envelope;
 mod gap;
-mod search;
+pub(crate) mod search;
 
 use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
@@ -17,7 +17,7 @@ use contopt_optimise::{
     OptimisationMethod, Pass, Region, SearchSettings,
 };
 use contopt_results::{CaseReport, CurvePoint, EnvelopeCase, RollerReport, TunedProfile};
-use contopt_roller::{CaseContact, CrownSettings, LoadCase, RollerFigures};
+use contopt_roller::{CaseContact, CrownSettings, LoadCase, ProfileFamily, RollerFigures};
 use serde::{Deserialize, Serialize};
 
 use crate::prepare::Plan;
@@ -48,6 +48,9 @@ pub enum MethodSpec {
     /// the least worst-case p_max over its `[envelope]` (or its own load), edge-loaded crowns
     /// penalised.
     ProfileSearch(SearchSettings),
+    /// A roller's circular crown, its crowned fraction and end drop tuned as the profile
+    /// search tunes Fujiwara–Kawase's.
+    CircularSearch(SearchSettings),
 }
 
 /// The design of a case: the registration of every method.
@@ -65,7 +68,12 @@ pub(crate) fn design(spec: &CaseSpec) -> Box<dyn Design> {
         }
         MethodSpec::LoadSplit(s) => Box::new(gap::Gap(OptimisationMethod::LoadSplit(*s))),
         MethodSpec::EnvelopeSplit(s) => Box::new(envelope::EnvelopeSplit(*s)),
-        MethodSpec::ProfileSearch(s) => Box::new(search::ProfileSearch(*s)),
+        MethodSpec::ProfileSearch(s) => {
+            Box::new(search::ProfileSearch(*s, ProfileFamily::FujiwaraKawase))
+        }
+        MethodSpec::CircularSearch(s) => {
+            Box::new(search::ProfileSearch(*s, ProfileFamily::Circular))
+        }
     }
 }
 
@@ -370,9 +378,19 @@ fn roller_figures(
     c.plan.roller.as_ref()?;
     let points = c.problem.interface().points();
     let figures = RollerFigures::new(contacts, points, drop, cell_across(c.plan));
+    roller_report(&figures, c.spec.envelope.is_some(), tuned)
+}
+
+/// The report of a roller's figures: its first case's, and every case's as an envelope when
+/// `envelope` (with the worst p_max over them); `None` without cases.
+pub(crate) fn roller_report(
+    figures: &RollerFigures,
+    envelope: bool,
+    tuned: Option<TunedProfile>,
+) -> Option<RollerReport> {
     let own = figures.cases.first()?;
-    let envelope: Vec<EnvelopeCase> = match c.spec.envelope {
-        Some(_) => figures
+    let cases: Vec<EnvelopeCase> = match envelope {
+        true => figures
             .cases
             .iter()
             .map(|f| EnvelopeCase {
@@ -389,15 +407,15 @@ fn roller_figures(
                     .collect(),
             })
             .collect(),
-        None => vec![],
+        false => vec![],
     };
     Some(RollerReport {
         p_max_at_mm: own.p_max_at_mm,
         edge_loading: own.edge_loading,
         half_width_mm: own.half_width_mm,
         crown_drop_end_um: own.crown_drop_end_um,
-        worst_p_max_mpa: c.spec.envelope.as_ref().map(|_| figures.worst_p_max),
-        envelope,
+        worst_p_max_mpa: envelope.then_some(figures.worst_p_max),
+        envelope: cases,
         tuned,
     })
 }

@@ -1,0 +1,460 @@
+//! A half-space grid whose surface ends at free faces across its x axis: a roller's ends, by
+//! the image (mirror) pressure.
+//!
+//! Near a free face the half-space misjudges the surface: the material beyond the face that
+//! the half-space assumes is not there to carry the load, and the surface sinks further. The
+//! classical correction superposes half-spaces (M. Hetényi, *A general solution for the
+//! elastic quarter space*, J. Appl. Mech. 37 (1970) 70–76): the pressure p on x < x_f and its
+//! image p(2x_f − x, y) beyond the face load one half-space; by symmetry the plane x = x_f
+//! then carries no shear and does not move along x. That is the exact quarter-space whose end
+//! face slides without friction against a rigid wall; the free face also carries the image's
+//! normal stress σ_xx, which Hetényi removes by further superposed half-spaces
+//! ([`crate::hetenyi_load`]). J. B. de Mul, J. J. Kalker and B. Fredriksson (*The contact
+//! between arbitrarily curved bodies of finite dimensions*, J. Tribol. 108 (1986) 140–148) use
+//! the image alone for finite bodies in contact; R. Guilbault (*A fast correction for elastic
+//! quarter-space applied to 3D modeling of edge contact problems*, J. Tribol. 133 (2011)
+//! 031402) weights the image by a correction factor. Here the image carries a weight w:
+//! u = C·(p + w·M p), C Love's half-space operator, M the reflection about each face (the two
+//! faces' images are taken apart: the reflection of one image in the other face, a roller's
+//! length away, is left out). With w = 1 it is the sliding end; the weight that matches
+//! Hetényi's free face is measured in [`crate::hetenyi_load`]'s tests.
+//!
+//! The images lie on the grid's own lattice when each face is a whole number of half-cells
+//! beyond the grid's edge: a face is moved to the nearest such place (at most a quarter of a
+//! cell; [`FreeEnds::faces`] says where it is). The product is one FFT convolution on a grid
+//! about three times as long (the roller, its two images and the gaps between them), so it
+//! costs about three half-space products.
+
+use std::sync::Mutex;
+
+use contopt_core::{
+    check, ElasticBody, Error, Interface, Material, Result, RigidMode, SectionField, StressPeaks,
+    Subsurface, SubsurfaceRequest,
+};
+
+use crate::HalfSpace;
+
+/// A half-space grid ending at free faces x = x₋ below its first column and x = x₊ beyond its
+/// last, each loaded by the image pressure with a weight (see the module's account).
+#[derive(Debug)]
+pub struct FreeEnds {
+    /// The grid itself: its points, modes and name.
+    own: HalfSpace,
+    /// The grid with its images: `extended.nx` columns, the own grid's first at `offset`.
+    extended: HalfSpace,
+    offset: usize,
+    /// The image column (on the extended grid) of own column 0 about each face, and the
+    /// direction in which the images run: own column i's image is `start − i`.
+    images: Vec<usize>,
+    /// The faces as placed \[mm\]: below, beyond.
+    faces: [Option<f64>; 2],
+    weight: f64,
+    /// Work: the extended pressure and displacement.
+    work: Mutex<(Vec<f64>, Vec<f64>)>,
+}
+
+/// The whole number of half-cells `dx/2` from a grid's edge to a face `distance` \[mm\] away
+/// (≥ 0).
+fn half_cells(distance: f64, dx: f64, field: &str) -> Result<usize> {
+    let m = (2.0 * distance / dx).round();
+    if !(m >= 0.0 && m.is_finite() && m < 1e9) {
+        return Err(Error::invalid(
+            field,
+            distance,
+            "a free face lies at or beyond the grid's edge, within a billion cells",
+        ));
+    }
+    Ok(m as usize)
+}
+
+impl FreeEnds {
+    /// The grid of [`HalfSpace::grid`] (`nx` × `ny` cells of `dx` × `dy`, first centre at
+    /// `origin`) ending at free faces x = `faces`\[0\] (at or below the grid's first edge)
+    /// and x = `faces`\[1\] (at or beyond its last), either left out (`None`: the surface goes
+    /// on), whose images carry `weight` ∈ \[0, 2\] (1: the sliding end; 0: the half-space).
+    #[allow(clippy::too_many_arguments)]
+    pub fn grid(
+        name: impl Into<String>,
+        material: Material,
+        nx: usize,
+        ny: usize,
+        dx: f64,
+        dy: f64,
+        origin: [f64; 2],
+        faces: [Option<f64>; 2],
+        weight: f64,
+    ) -> Result<Self> {
+        let name = name.into();
+        check::between(
+            "free_ends.weight",
+            weight,
+            -f64::EPSILON,
+            2.0 + f64::EPSILON,
+        )?;
+        let own = HalfSpace::grid(name.clone(), material, nx, ny, dx, dy, origin)?;
+        let (lo, hi) = (origin[0] - 0.5 * dx, origin[0] + (nx as f64 - 0.5) * dx);
+        let below = faces[0]
+            .map(|f| {
+                half_cells(
+                    lo - check::finite("free_ends.faces[0]", f)?,
+                    dx,
+                    "free_ends.faces[0]",
+                )
+            })
+            .transpose()?;
+        let beyond = faces[1]
+            .map(|f| {
+                half_cells(
+                    check::finite("free_ends.faces[1]", f)? - hi,
+                    dx,
+                    "free_ends.faces[1]",
+                )
+            })
+            .transpose()?;
+        // Own column i lies at lattice index i; its image about the lower face at
+        // −m₋ − 1 − i, about the upper at 2nx + m₊ − 1 − i.
+        let first = below.map_or(0, |m| m + nx);
+        let last = beyond.map_or(nx, |m| 2 * nx + m);
+        let width = first + last;
+        let images: Vec<usize> = [
+            below.map(|m| first - m - 1),
+            beyond.map(|m| first + 2 * nx + m - 1),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        let ext_origin = [origin[0] - first as f64 * dx, origin[1]];
+        let extended = HalfSpace::grid(name, material, width, ny, dx, dy, ext_origin)?;
+        let placed = [
+            below.map(|m| lo - m as f64 * 0.5 * dx),
+            beyond.map(|m| hi + m as f64 * 0.5 * dx),
+        ];
+        Ok(Self {
+            own,
+            extended,
+            offset: first,
+            images,
+            faces: placed,
+            weight,
+            work: Mutex::new((vec![0.0; width * ny], vec![0.0; width * ny])),
+        })
+    }
+
+    /// The memory of an `nx` × `ny` grid with its images \[bytes\]: its own grid's and an
+    /// extended one five times as long at most; `None` when the count overflows.
+    pub fn grid_bytes(nx: usize, ny: usize) -> Option<u64> {
+        let own = HalfSpace::grid_bytes(nx, ny)?;
+        let extended = HalfSpace::grid_bytes(nx.checked_mul(5)?, ny)?;
+        own.checked_add(extended)
+    }
+
+    /// The faces as placed on the lattice \[mm\]: below the first column, beyond the last.
+    pub fn faces(&self) -> [Option<f64>; 2] {
+        self.faces
+    }
+
+    /// The images' weight.
+    pub fn weight(&self) -> f64 {
+        self.weight
+    }
+
+    /// The same grid as the surface of the body above the plane ([`HalfSpace::upper`]).
+    pub fn upper(mut self) -> Self {
+        self.own = self.own.upper();
+        self
+    }
+
+    /// The body pressed by `force` \[N\] ([`HalfSpace::pressed`]).
+    pub fn pressed(mut self, force: f64) -> Result<Self> {
+        self.own = self.own.pressed(force)?;
+        Ok(self)
+    }
+
+    /// Writes `force` on the own grid and its weighted images into the extended grid's
+    /// buffer `ext`.
+    fn extend(&self, force: &[f64], ext: &mut [f64]) {
+        let (nx, ny) = self.own.cells();
+        let width = self.extended.cells().0;
+        ext.fill(0.0);
+        for j in 0..ny {
+            let row = &force[j * nx..(j + 1) * nx];
+            let out = &mut ext[j * width..(j + 1) * width];
+            out[self.offset..self.offset + nx].copy_from_slice(row);
+            for &start in &self.images {
+                for (i, f) in row.iter().enumerate() {
+                    out[start - i] += self.weight * f;
+                }
+            }
+        }
+    }
+
+    /// The own grid's index of each extended cell it holds: own cell k at extended cell
+    /// `self.extended_index(k)`.
+    fn extended_index(&self, k: usize) -> usize {
+        let nx = self.own.cells().0;
+        (k / nx) * self.extended.cells().0 + self.offset + k % nx
+    }
+
+    /// The pressure on the extended grid, images weighted.
+    fn extended_pressure(&self, pressure: &[f64]) -> Vec<f64> {
+        let mut ext = vec![0.0; self.extended.interface().len()];
+        self.extend(pressure, &mut ext);
+        ext
+    }
+}
+
+impl ElasticBody for FreeEnds {
+    fn name(&self) -> &str {
+        self.own.name()
+    }
+
+    fn interface(&self) -> &Interface {
+        self.own.interface()
+    }
+
+    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+        let mut work = self
+            .work
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let (ext, out) = &mut *work;
+        self.extend(force, ext);
+        self.extended.apply_influence(ext, out);
+        for (k, d) in displacement.iter_mut().enumerate() {
+            *d = out[self.extended_index(k)];
+        }
+    }
+
+    /// The half-space's circulant inverse: the images change the operator near the faces
+    /// only, which a preconditioner may ignore.
+    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        self.own.precondition(displacement, force)
+    }
+
+    fn load_displacement(&self) -> Result<Vec<f64>> {
+        self.own.load_displacement()
+    }
+
+    fn rigid_modes(&self) -> &[RigidMode] {
+        self.own.rigid_modes()
+    }
+
+    /// The stresses of the image model: the extended grid's under the pressure and its
+    /// weighted images, at the own grid's cells only.
+    fn subsurface(
+        &self,
+        pressure: &[f64],
+        request: &SubsurfaceRequest,
+    ) -> Result<Option<Subsurface>> {
+        crate::subsurface_2d::check_pressure(self.name(), pressure, self.own.interface().len())?;
+        request.check()?;
+        let ext = self.extended_pressure(pressure);
+        let origin = self.own.interface().points()[0];
+        let lines: Vec<_> = request
+            .sections
+            .iter()
+            .map(|s| self.own.section_cells(*s, origin))
+            .collect();
+        let mut sections: Vec<SectionField> = lines
+            .iter()
+            .map(|(section, _, positions)| SectionField {
+                section: *section,
+                positions: positions.clone(),
+                depths: request.depths.clone(),
+                tensors: Vec::with_capacity(positions.len() * request.depths.len()),
+            })
+            .collect();
+        let mut peaks = StressPeaks::default();
+        let points = self.own.interface().points();
+        for &z in &request.depths {
+            let field = self.extended.stress_field(&ext, z)?;
+            for (k, p) in points.iter().enumerate() {
+                peaks.record(&field[self.extended_index(k)], p[0], p[1], z);
+            }
+            for (out, (_, cells, _)) in sections.iter_mut().zip(&lines) {
+                out.tensors
+                    .extend(cells.iter().map(|&k| field[self.extended_index(k)]));
+            }
+        }
+        Ok(Some(Subsurface {
+            peaks: peaks.finite(self.name())?,
+            sections,
+        }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn steel() -> Material {
+        Material::new(2.1e5, 0.3).unwrap()
+    }
+
+    fn pressure(n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|k| 1.0 + ((k * 37 % 101) as f64).sin())
+            .collect()
+    }
+
+    /// Weight 0 is the half-space; the operator is symmetric (reciprocity) for any weight;
+    /// with weight 1 and a face at the grid's edge, each image column is the reflected one:
+    /// the product equals the half-space's product of the reflected extension, written out
+    /// here on a grid three times as long.
+    #[test]
+    fn images_are_reflections() {
+        let (nx, ny, dx, dy) = (9, 5, 0.1, 0.07);
+        let origin = [-0.4, -0.14];
+        let (lo, hi) = (-0.45, 0.45);
+        let p = pressure(nx * ny);
+        let plain = HalfSpace::grid("h", steel(), nx, ny, dx, dy, origin).unwrap();
+        let mut want = vec![0.0; nx * ny];
+        plain.apply_influence(&p, &mut want);
+        let none = FreeEnds::grid(
+            "f",
+            steel(),
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+            [Some(lo), Some(hi)],
+            0.0,
+        )
+        .unwrap();
+        let mut got = vec![0.0; nx * ny];
+        none.apply_influence(&p, &mut got);
+        for (a, b) in got.iter().zip(&want) {
+            assert!((a - b).abs() < 1e-12 * want[0].abs(), "{a} vs {b}");
+        }
+        let ends = FreeEnds::grid(
+            "f",
+            steel(),
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+            [Some(lo), Some(hi)],
+            1.0,
+        )
+        .unwrap();
+        for (got, want) in ends.faces().into_iter().zip([lo, hi]) {
+            assert!((got.unwrap() - want).abs() < 1e-12 * want.abs());
+        }
+        let long = HalfSpace::grid(
+            "l",
+            steel(),
+            3 * nx,
+            ny,
+            dx,
+            dy,
+            [origin[0] - 0.9, origin[1]],
+        )
+        .unwrap();
+        let mut ext = vec![0.0; 3 * nx * ny];
+        for j in 0..ny {
+            for i in 0..nx {
+                let v = p[j * nx + i];
+                ext[j * 3 * nx + nx + i] = v;
+                ext[j * 3 * nx + nx - 1 - i] = v;
+                ext[j * 3 * nx + 3 * nx - 1 - i] = v;
+            }
+        }
+        let mut out = vec![0.0; 3 * nx * ny];
+        long.apply_influence(&ext, &mut out);
+        ends.apply_influence(&p, &mut got);
+        for j in 0..ny {
+            for i in 0..nx {
+                let (a, b) = (got[j * nx + i], out[j * 3 * nx + nx + i]);
+                assert!((a - b).abs() < 1e-12 * b.abs(), "{i} {j}: {a} vs {b}");
+            }
+        }
+        let half = FreeEnds::grid(
+            "f",
+            steel(),
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+            [None, Some(0.53)],
+            0.7,
+        )
+        .unwrap();
+        assert!(
+            (half.faces()[1].unwrap() - 0.55).abs() < 1e-12,
+            "{:?}",
+            half.faces()
+        );
+        let a = half.influence_matrix();
+        for i in 0..nx * ny {
+            for j in 0..i {
+                assert!((a[(i, j)] - a[(j, i)]).abs() < 1e-12 * a[(0, 0)], "{i} {j}");
+            }
+        }
+    }
+
+    /// The free ends make the surface softer near them and nowhere stiffer, most at the face:
+    /// a uniform strip along the whole grid sinks its end cells deeper than the half-space's,
+    /// by less than the image's full column (the image never exceeds its own load).
+    #[test]
+    fn the_ends_sink_deeper() {
+        let (nx, ny, dx, dy) = (40, 9, 0.1, 0.02);
+        let origin = [-1.95, -0.08];
+        let p = vec![1.0; nx * ny];
+        let plain = HalfSpace::grid("h", steel(), nx, ny, dx, dy, origin).unwrap();
+        let ends = FreeEnds::grid(
+            "f",
+            steel(),
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+            [Some(-2.0), Some(2.0)],
+            1.0,
+        )
+        .unwrap();
+        let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+        plain.apply_influence(&p, &mut a);
+        ends.apply_influence(&p, &mut b);
+        let centre = (ny / 2) * nx;
+        let (end, mid) = (centre, centre + nx / 2);
+        assert!(b.iter().zip(&a).all(|(b, a)| b >= a));
+        assert!(
+            b[end] - a[end] > 2.0 * (b[mid] - a[mid]),
+            "{} {}",
+            b[end] - a[end],
+            b[mid] - a[mid]
+        );
+        // The end of a uniform strip on the half-space sinks about half as far as its middle
+        // relative to far away; with the images it sinks as far as the middle (a uniform load
+        // everywhere) up to the far image's share.
+        assert!(
+            a[end] < 0.8 * a[mid] && (b[end] / b[mid] - 1.0).abs() < 0.1,
+            "{} {} {} {}",
+            a[end],
+            a[mid],
+            b[end],
+            b[mid]
+        );
+    }
+
+    /// A face inside the grid, a weight outside [0, 2] and a face beyond f64's reach are
+    /// named.
+    #[test]
+    fn bad_faces_are_named() {
+        let make = |faces, w| FreeEnds::grid("f", steel(), 4, 3, 0.1, 0.1, [0.0, 0.0], faces, w);
+        let e = make([Some(0.0), None], 1.0).unwrap_err().to_string();
+        assert!(e.contains("free_ends.faces[0]"), "{e}");
+        let e = make([None, Some(0.2)], 1.0).unwrap_err().to_string();
+        assert!(e.contains("free_ends.faces[1]"), "{e}");
+        let e = make([None, Some(1.0)], 2.5).unwrap_err().to_string();
+        assert!(e.contains("free_ends.weight"), "{e}");
+        let e = make([None, Some(f64::INFINITY)], 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("free_ends.faces[1]"), "{e}");
+    }
+}

@@ -1,0 +1,649 @@
+//! The run of a bearing case: the load distribution of every load case, the design of the
+//! crown over the bearing's envelope (when the scene asks for one), every loaded roller's
+//! contact on the solved raceway under the final crown, and the lives.
+//!
+//! A design is made for the rollers' loads and tilts under the scene's (straight) roller; the
+//! designed crown then changes the rollers' stiffness and so the loads a little. The final
+//! figures are all of one state: the distributions solved again with the designed crown, and
+//! every contact solved at those loads under it.
+
+use std::time::Instant;
+
+use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_core::observe::{Method, Nested, Observer};
+use contopt_core::stress::peak_index;
+use contopt_core::{ContactState, Error, Result, Termination};
+use std::ops::ControlFlow;
+
+use contopt_optimise::{nelder_mead, ControllerSettings, SearchSettings};
+use contopt_results::{
+    BearingLoadCase, BearingReport, BearingRoller, CaseReport, Lives, TunedProfile, WorstContact,
+};
+use contopt_roller::{
+    basic_rating_life, bearing_cases, end_ratio, hertz_slice_load, miner, penalised_worst,
+    reference_rating_life, robust_crown, slice_loads_from_pressure, slice_peaks_from_pressure,
+    solve_cases, tolerance_band, tune_profile, BearingSettings, CaseContact, Crown,
+    CylindricalRollerBearing, LoadCase, LoadDistribution, ProfileFamily, Raceway, Roller,
+    RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
+};
+
+use super::{BearingObjective, BearingPlan};
+use crate::methods::{roller_report, Designed, MethodSpec};
+use crate::Case;
+
+/// Two rollers whose loads agree to this fraction and whose tilts agree to this many
+/// arc-minutes are one contact (a roller and its mirror across the load line: round-off).
+const SAME_CONTACT: f64 = 1e-9;
+
+/// The distinct contacts of a bearing's loaded rollers on the solved raceway over every load
+/// case, and where each roller's is.
+struct Envelope {
+    /// The distinct contacts, in the order met (load case by load case, heaviest first).
+    contacts: Vec<RollerCase>,
+    /// Each contact's first load case and roller.
+    origin: Vec<(usize, usize)>,
+    /// Per load case, per roller: its contact, or `None` when unloaded.
+    index: Vec<Vec<Option<usize>>>,
+}
+
+impl Envelope {
+    fn new(distributions: &[LoadDistribution], raceway: Raceway) -> Self {
+        let mut env = Envelope {
+            contacts: vec![],
+            origin: vec![],
+            index: vec![],
+        };
+        for (i, d) in distributions.iter().enumerate() {
+            let mut index = vec![None; d.rollers.len()];
+            for case in d.roller_cases(raceway) {
+                let same = env.contacts.iter().position(|c| {
+                    (c.load_n - case.load_n).abs() <= SAME_CONTACT * case.load_n
+                        && (c.tilt_arcmin - case.tilt_arcmin).abs() <= SAME_CONTACT
+                });
+                index[case.roller] = Some(same.unwrap_or_else(|| {
+                    env.contacts.push(case);
+                    env.origin.push((i, case.roller));
+                    env.contacts.len() - 1
+                }));
+            }
+            env.index.push(index);
+        }
+        env
+    }
+
+    /// The contacts as load cases of `nominal` (under `roller`), with the tolerance band's
+    /// two further crowns when `tolerance` > 0: [`tolerance_band`]'s blocks.
+    fn cases<'a>(
+        &self,
+        nominal: &InterfaceProblem<'a>,
+        roller: &Roller,
+        tolerance: f64,
+    ) -> Result<Vec<LoadCase<'a>>> {
+        let cases = bearing_cases(nominal, roller, &self.contacts)?;
+        match tolerance > 0.0 {
+            true => tolerance_band(&cases, roller.length, tolerance),
+            false => Ok(cases),
+        }
+    }
+
+    /// The band's crowns: 1, or 3 with a tolerance band.
+    fn bands(&self, states: usize) -> usize {
+        states / self.contacts.len().max(1)
+    }
+}
+
+/// The solved raceway's figures of one state of the run.
+struct Geometry<'p> {
+    points: &'p [[f64; 3]],
+    /// The grid's cell \[mm\].
+    cell: [f64; 2],
+    /// The effective length \[mm\].
+    length: f64,
+    /// The pair's radius across the contact and its modulus \[mm, MPa\] (Hertz's line load of
+    /// a slice's peak).
+    radius: f64,
+    e_star: f64,
+}
+
+/// Each load case's distribution for `bearing`; an unmet equilibrium is its termination.
+fn distributions(
+    bearing: &CylindricalRollerBearing,
+    plan: &BearingPlan,
+) -> Result<std::result::Result<Vec<LoadDistribution>, Termination>> {
+    let settings = BearingSettings::default();
+    let mut all = Vec::with_capacity(plan.loads.len());
+    for (_, load, _) in &plan.loads {
+        let d = bearing.solve(load, &settings)?;
+        if !d.termination.is_converged() {
+            return Ok(Err(d.termination));
+        }
+        all.push(d);
+    }
+    Ok(Ok(all))
+}
+
+/// The lives of every load case and over the duty cycle, the half-space's from `states` (the
+/// envelope's contacts, band after band: the worst band per load case).
+fn lives(
+    plan: &BearingPlan,
+    distributions: &[LoadDistribution],
+    env: &Envelope,
+    pressures: &[&[f64]],
+    at: &Geometry,
+) -> Result<(Vec<Lives>, Lives)> {
+    let n = env.contacts.len();
+    let slices = plan.bearing.slices;
+    let width = at.length / slices as f64;
+    let mut per_case = Vec::with_capacity(distributions.len());
+    for (i, d) in distributions.iter().enumerate() {
+        let base = SliceLoads::from_distribution(d)?;
+        let life = |loads: &SliceLoads| -> Result<f64> {
+            Ok(reference_rating_life(&plan.ratings, loads, plan.rotating)?.bearing)
+        };
+        let (mut half_space, mut peak) = (f64::INFINITY, f64::INFINITY);
+        for band in 0..env.bands(pressures.len()) {
+            let (mut loads, mut raised) = (base.clone(), base.clone());
+            for (j, contact) in env.index[i].iter().enumerate() {
+                let Some(k) = contact else { continue };
+                let p = pressures[band * n + k];
+                let q = slice_loads_from_pressure(at.points, p, at.cell, at.length, slices)?;
+                let peaks = slice_peaks_from_pressure(at.points, p, at.cell, at.length, slices)?;
+                let hertz: Vec<f64> = q
+                    .iter()
+                    .zip(&peaks)
+                    .map(|(q, p)| q.max(hertz_slice_load(*p, width, at.radius, at.e_star)))
+                    .collect();
+                loads.set(plan.raceway, j, &q)?;
+                raised.set(plan.raceway, j, &hertz)?;
+            }
+            half_space = half_space.min(life(&loads)?);
+            peak = peak.min(life(&raised)?);
+        }
+        per_case.push(Lives {
+            iso_281_mrev: basic_rating_life(plan.rating, plan.loads[i].1.radial_n)?,
+            slice_model_mrev: life(&base)?,
+            half_space_mrev: half_space,
+            peak_pressure_mrev: peak,
+        });
+    }
+    let cycle = |f: fn(&Lives) -> f64| -> Result<f64> {
+        let cases: Vec<(f64, f64)> = plan
+            .loads
+            .iter()
+            .zip(&per_case)
+            .map(|((_, _, t), l)| (*t, f(l)))
+            .collect();
+        miner(&cases)
+    };
+    let duty = Lives {
+        iso_281_mrev: cycle(|l| l.iso_281_mrev)?,
+        slice_model_mrev: cycle(|l| l.slice_model_mrev)?,
+        half_space_mrev: cycle(|l| l.half_space_mrev)?,
+        peak_pressure_mrev: cycle(|l| l.peak_pressure_mrev)?,
+    };
+    Ok((per_case, duty))
+}
+
+/// What a design of the crown found: the gap change per point \[mm\] and its account.
+struct Crowned {
+    change: Vec<f64>,
+    method: Method,
+    termination: Termination,
+    bound_p_max: Option<f64>,
+    tuned: Option<TunedProfile>,
+    /// The cases' pressures under the crown, as the design found them (a robust crown's).
+    cases: Vec<Vec<f64>>,
+    /// The controller's L1 and L2 the life chose \[mm\].
+    controller: Option<[f64; 2]>,
+    /// The robust crown's largest p − v·p̂ over Ω_nv \[MPa\].
+    omega_nv_excess: Option<f64>,
+}
+
+/// The life as a search's objective: −1000·ln L, so that the search's tolerance (absolute, in
+/// the objective's units) is in thousandths of the life's logarithm, whatever its size.
+const LOG_SCALE: f64 = 1000.0;
+
+/// The life's search over the robust crown's controller: at most this many robust crowns, the
+/// simplex's spread then 0.05 thousandths of the life's logarithm.
+const LIFE_SEARCH: SearchSettings = SearchSettings {
+    tolerance: 0.05,
+    max_evaluations: 30,
+};
+
+/// The robust crown whose controller's L1 and L2 give the longest life: a Nelder–Mead search
+/// ([`nelder_mead`]) of robust crowns from the scene's controller, L1 = h·σ(u₀) within the
+/// half-length h, L2 = L1 + h·e^u₁ (beyond h when the ends may carry load). `robust` designs a
+/// crown, `life` rates it; the longest-lived is kept.
+fn life_over_controller(
+    controller: &ControllerSettings,
+    half: f64,
+    robust: &dyn Fn(&ControllerSettings) -> Result<Crowned>,
+    life: &dyn Fn(&Crowned) -> Result<f64>,
+) -> Result<Crowned> {
+    let (l1, l2, axis, cubic) = match *controller {
+        ControllerSettings::Cubic { l1_mm, l2_mm, axis } => (l1_mm, l2_mm, axis, true),
+        ControllerSettings::Trapezoid { l1_mm, l2_mm, axis } => (l1_mm, l2_mm, axis, false),
+        ref other => {
+            return Err(Error::invalid(
+                "controller",
+                format!("{other:?}"),
+                "the life's search varies L1 and L2 of a cubic or trapezoid controller",
+            ))
+        }
+    };
+    let lengths = |u: &[f64]| {
+        let l1_mm = half / (1.0 + (-u[0]).exp());
+        [l1_mm, l1_mm + half * u[1].exp()]
+    };
+    // The scene's controller as the start, its L1 kept inside (0, h) and L2 past it.
+    let fraction = (l1 / half).clamp(LIFE_START_MARGIN, 1.0 - LIFE_START_MARGIN);
+    let start = [
+        (fraction / (1.0 - fraction)).ln(),
+        ((l2 - l1).max(LIFE_START_MARGIN * half) / half).ln(),
+    ];
+    let mut best: Option<(f64, Crowned)> = None;
+    nelder_mead(
+        |u| {
+            let [l1_mm, l2_mm] = lengths(u);
+            let settings = match cubic {
+                true => ControllerSettings::Cubic { l1_mm, l2_mm, axis },
+                false => ControllerSettings::Trapezoid { l1_mm, l2_mm, axis },
+            };
+            let mut crowned = robust(&settings)?;
+            crowned.controller = Some([l1_mm, l2_mm]);
+            let value = life(&crowned)?;
+            let objective = match value > 0.0 {
+                true => -LOG_SCALE * value.ln(),
+                false => f64::INFINITY,
+            };
+            if best.as_ref().is_none_or(|b| value > b.0) {
+                best = Some((value, crowned));
+            }
+            Ok(ControlFlow::Continue(objective))
+        },
+        &start,
+        &LIFE_START_STEP,
+        &LIFE_SEARCH,
+    )?;
+    best.map(|b| b.1)
+        .ok_or_else(|| Error::invalid("controller", "l1_mm", "no robust crown was designed"))
+}
+
+/// The life's search starts L1 at least this fraction of the half-length inside it, and L2 at
+/// least this far beyond L1.
+const LIFE_START_MARGIN: f64 = 0.02;
+
+/// The life's search's first steps in (u₀, u₁).
+const LIFE_START_STEP: [f64; 2] = [1.0, 0.7];
+
+/// The design of the crown over the envelope `cases` of `first` (the distributions under the
+/// scene's roller), by the scene's method; `None` without `[optimisation]`.
+#[allow(clippy::too_many_arguments)]
+fn design(
+    case: &Case,
+    plan: &BearingPlan,
+    first: &[LoadDistribution],
+    env: &Envelope,
+    cases: &[LoadCase],
+    at: &Geometry,
+    solver: &dyn ContactSolver,
+    observer: &dyn Observer,
+) -> Result<Option<Crowned>> {
+    let Some(opt) = &case.spec.optimisation else {
+        return Ok(None);
+    };
+    let roller = case
+        .plan
+        .roller
+        .as_ref()
+        .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
+    let family = match &opt.method {
+        MethodSpec::EnvelopeSplit(settings) => {
+            let controller = opt
+                .controller
+                .as_ref()
+                .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?;
+            let robust = |c: &ControllerSettings| -> Result<Crowned> {
+                let crown = robust_crown(
+                    cases,
+                    c.build()?.as_ref(),
+                    at.cell[1],
+                    solver,
+                    settings,
+                    observer,
+                )?;
+                Ok(Crowned {
+                    change: crown.drop,
+                    method: Method::EnvelopeSplit,
+                    termination: crown.termination,
+                    bound_p_max: Some(crown.p_max),
+                    tuned: None,
+                    cases: crown.cases.into_iter().map(|c| c.pressure).collect(),
+                    controller: None,
+                    omega_nv_excess: crown.omega_nv_excess,
+                })
+            };
+            return match plan.objective {
+                BearingObjective::PMax => robust(controller).map(Some),
+                BearingObjective::Life => {
+                    let life = |crowned: &Crowned| -> Result<f64> {
+                        let pressures: Vec<&[f64]> =
+                            crowned.cases.iter().map(Vec::as_slice).collect();
+                        let complete =
+                            pressures.len() == cases.len() && crowned.termination.is_converged();
+                        match complete {
+                            true => Ok(lives(plan, first, env, &pressures, at)?
+                                .1
+                                .peak_pressure_mrev),
+                            false => Ok(0.0),
+                        }
+                    };
+                    let half = 0.5 * at.length;
+                    life_over_controller(controller, half, &robust, &life).map(Some)
+                }
+            };
+        }
+        MethodSpec::ProfileSearch(s) => (ProfileFamily::FujiwaraKawase, s),
+        MethodSpec::CircularSearch(s) => (ProfileFamily::Circular, s),
+        other => {
+            return Err(Error::invalid(
+                "method",
+                format!("{other:?}"),
+                "a bearing's crown is designed by envelope_split, profile_search or \
+                 circular_search",
+            ))
+        }
+    };
+    let mut objective = |states: &[ContactState]| -> Result<f64> {
+        match plan.objective {
+            BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
+            BearingObjective::Life => {
+                let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
+                let (_, duty) = lives(plan, first, env, &pressures, at)?;
+                Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
+            }
+        }
+    };
+    let tuned = tune_profile(
+        cases,
+        roller,
+        family.0,
+        solver,
+        family.1,
+        &mut objective,
+        observer,
+    )?;
+    Ok(Some(Crowned {
+        tuned: Some(crate::methods::search::tuned_profile(&tuned)),
+        change: tuned.drop,
+        method: Method::ProfileSearch,
+        termination: tuned.termination,
+        bound_p_max: None,
+        cases: vec![],
+        controller: None,
+        omega_nv_excess: None,
+    }))
+}
+
+/// The designed drop along the centre row as the roller's crown for the slice model: a table
+/// of (|x|, drop) over the row's cells at x ≥ 0 (a design's crown is symmetric).
+fn crown_table(points: &[[f64; 3]], drop: &[f64], dy: f64) -> Result<Crown> {
+    let mut rows: Vec<(f64, f64)> = points
+        .iter()
+        .zip(drop)
+        .filter(|(x, _)| x[1].abs() < 0.5 * dy && x[0] >= 0.0)
+        .map(|(x, d)| (x[0], *d))
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Crown::table(
+        rows.iter().map(|r| r.0).collect(),
+        rows.iter().map(|r| r.1).collect(),
+    )
+}
+
+/// Runs a bearing case on its composed contact `problem` (the roller under the design load):
+/// the distributions, the design, the final contacts and the lives into `report`. Returns the
+/// design's account for the report, with the worst contact's pressure, and that contact's
+/// problem (the one the report's checks take).
+pub(crate) fn run<'a>(
+    case: &Case,
+    plan: &BearingPlan,
+    problem: &InterfaceProblem<'a>,
+    solver: &dyn ContactSolver,
+    observer: &dyn Observer,
+    report: &mut CaseReport,
+) -> Result<(Designed, InterfaceProblem<'a>)> {
+    let roller = case
+        .plan
+        .roller
+        .as_ref()
+        .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
+    let [dx, dy] = case.plan.layout.edge_cell();
+    let at = Geometry {
+        points: problem.interface().points(),
+        cell: [dx, dy],
+        length: roller.length,
+        radius: roller.radius()?,
+        e_star: roller.e_star(),
+    };
+    let started = Instant::now();
+    let first = match distributions(&plan.bearing, plan)? {
+        Ok(d) => d,
+        Err(why) => return Ok((unsolved(why, solver), problem.clone())),
+    };
+    report.time("distribution", started);
+    let env = Envelope::new(&first, plan.raceway);
+    let started = Instant::now();
+    let designed = match case.spec.optimisation {
+        Some(_) => {
+            let cases = env.cases(problem, roller, plan.tolerance)?;
+            design(case, plan, &first, &env, &cases, &at, solver, observer)?
+        }
+        None => None,
+    };
+    if let Some(d) = &designed {
+        report.time("optimise", started);
+        if !d.termination.is_converged() && !matches!(d.termination, Termination::StepLimit { .. })
+        {
+            let mut out = unsolved(d.termination.clone(), solver);
+            out.method = Some(d.method);
+            return Ok((out, problem.clone()));
+        }
+    }
+    // The final state: the distributions under the final crown, every contact at its loads.
+    let dists = match &designed {
+        Some(d) => {
+            let mut bearing = plan.bearing.clone();
+            bearing.roller_crown = bearing
+                .roller_crown
+                .clone()
+                .plus(crown_table(at.points, &d.change, dy)?);
+            match distributions(&bearing, plan)? {
+                Ok(dists) => dists,
+                Err(why) => return Ok((unsolved(why, solver), problem.clone())),
+            }
+        }
+        None => first,
+    };
+    let env = Envelope::new(&dists, plan.raceway);
+    let cases = env.cases(problem, roller, plan.tolerance)?;
+    let started = Instant::now();
+    let change = designed
+        .as_ref()
+        .map_or_else(|| vec![0.0; problem.len()], |d| d.change.clone());
+    let states = solve_cases(&cases, &change, solver, None, &Nested(observer))?;
+    report.time("solve", started);
+    if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+        let why = s.termination.clone().inside(s.method);
+        return Ok((unsolved(why, solver), problem.clone()));
+    }
+    let started = Instant::now();
+    let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
+    let (per_case, duty) = lives(plan, &dists, &env, &pressures, &at)?;
+    report.time("lives", started);
+    let worst = (0..states.len())
+        .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
+        .unwrap_or(0);
+    let l1 = designed.as_ref().and_then(|d| d.controller);
+    report.bearing = Some(bearing_report(
+        plan, &dists, &env, &states, worst, &at, per_case, duty, l1,
+    ));
+    let drop: Vec<f64> = match &designed {
+        Some(d) => d.change.clone(),
+        None => at
+            .points
+            .iter()
+            .map(|x| roller.crown.drop(x[0], roller.length))
+            .collect::<Result<Vec<f64>>>()?,
+    };
+    let n = env.contacts.len();
+    let contacts: Vec<CaseContact> = std::iter::once(worst)
+        .chain((0..n).filter(|&k| k != worst))
+        .map(|k| CaseContact {
+            load_n: cases[k].load_n,
+            tilt_arcmin: cases[k].tilt_arcmin,
+            pressure: &states[k].pressure,
+            approach_mm: states[k].approach().unwrap_or(0.0),
+        })
+        .collect();
+    let figures = RollerFigures::new(&contacts, at.points, &drop, dy);
+    let state = &states[worst];
+    let tuned = designed.as_ref().and_then(|d| d.tuned.clone());
+    let out = Designed {
+        method: designed.as_ref().map(|d| d.method),
+        solver: Some(solver.method()),
+        termination: designed
+            .as_ref()
+            .map_or(Termination::Converged, |d| d.termination.clone()),
+        pressure: state.pressure.clone(),
+        gap: state.gap.clone(),
+        rigid: state.rigid.clone(),
+        gap_change: designed
+            .as_ref()
+            .map_or_else(Vec::new, |d| d.change.clone()),
+        crown: designed.is_none().then_some(drop),
+        bound_p_max: designed.as_ref().and_then(|d| d.bound_p_max),
+        dh_max: designed
+            .as_ref()
+            .map(|d| d.change.iter().fold(0.0, |m: f64, v| m.max(*v))),
+        omega_nv_excess: designed.as_ref().and_then(|d| d.omega_nv_excess),
+        passes: vec![],
+        roller: roller_report(&figures, true, tuned),
+    };
+    Ok((out, cases[worst].problem.clone()))
+}
+
+/// A design's account when the run stopped short: `why`, nothing solved.
+fn unsolved(why: Termination, solver: &dyn ContactSolver) -> Designed {
+    Designed {
+        method: None,
+        solver: Some(solver.method()),
+        termination: why,
+        pressure: vec![],
+        gap: vec![],
+        rigid: vec![],
+        gap_change: vec![],
+        crown: None,
+        bound_p_max: None,
+        dh_max: None,
+        omega_nv_excess: None,
+        passes: vec![],
+        roller: None,
+    }
+}
+
+/// The bearing's report from the final state.
+#[allow(clippy::too_many_arguments)]
+fn bearing_report(
+    plan: &BearingPlan,
+    dists: &[LoadDistribution],
+    env: &Envelope,
+    states: &[ContactState],
+    worst: usize,
+    at: &Geometry,
+    per_case: Vec<Lives>,
+    duty: Lives,
+    l1: Option<[f64; 2]>,
+) -> BearingReport {
+    let n = env.contacts.len();
+    let bands = env.bands(states.len());
+    // A contact's p_max: the worst over the band.
+    let p_max = |k: usize| {
+        (0..bands)
+            .map(|b| states[b * n + k].p_max())
+            .fold(0.0, f64::max)
+    };
+    let arcmin = |rad: f64| 60.0 * rad.to_degrees();
+    let load_cases = dists
+        .iter()
+        .zip(per_case)
+        .enumerate()
+        .map(|(i, (d, lives))| {
+            let rollers: Vec<BearingRoller> = d
+                .rollers
+                .iter()
+                .zip(&env.index[i])
+                .map(|(r, k)| BearingRoller {
+                    angle_deg: r.angle.to_degrees(),
+                    load_n: r.load_n,
+                    tilt_arcmin: [arcmin(r.tilt_inner), arcmin(r.tilt_outer)],
+                    p_max_mpa: k.map(p_max),
+                })
+                .collect();
+            let (label, load, fraction) = &plan.loads[i];
+            BearingLoadCase {
+                label: label.clone(),
+                fraction: *fraction,
+                radial_n: load.radial_n,
+                misalignment_arcmin: arcmin(d.tilt[0]),
+                moment_nmm: d.moment_nmm[0],
+                displacement_um: [1e3 * d.displacement_mm[0], 1e3 * d.displacement_mm[1]],
+                loaded_zone_deg: d.load_zone().to_degrees(),
+                load_factor: d.load_factor(),
+                iterations: d.iterations,
+                p_max_mpa: rollers
+                    .iter()
+                    .filter_map(|r| r.p_max_mpa)
+                    .fold(0.0, f64::max),
+                rollers,
+                lives,
+            }
+        })
+        .collect();
+    let (k, band) = (worst % n, worst / n);
+    let (i, j) = env.origin[k];
+    let pressure = &states[worst].pressure;
+    let top = peak_index(pressure).unwrap_or(0);
+    let deviation = [0.0, 1.0, -1.0][band.min(2)] * 1e3 * plan.tolerance;
+    BearingReport {
+        dynamic_load_rating_n: plan.rating,
+        slice_ratings_n: [plan.ratings.inner, plan.ratings.outer],
+        raceway: raceway_name(plan.raceway).into(),
+        rotating: raceway_name(plan.rotating).into(),
+        design_load_n: plan.design_load,
+        free_ends_weight: plan.free_ends,
+        tolerance_um: 1e3 * plan.tolerance,
+        controller_mm: l1,
+        contacts_solved: states.len(),
+        load_cases,
+        duty_cycle: duty,
+        worst: WorstContact {
+            load_case: i,
+            roller: j,
+            load_n: env.contacts[k].load_n,
+            tilt_arcmin: env.contacts[k].tilt_arcmin,
+            deviation_um: deviation,
+            p_max_mpa: states[worst].p_max(),
+            p_max_at_mm: [at.points[top][0], at.points[top][1]],
+            edge_loading: end_ratio(at.points, pressure) > EDGE_LOADING,
+        },
+    }
+}
+
+/// A raceway's name in the report.
+fn raceway_name(r: Raceway) -> &'static str {
+    match r {
+        Raceway::Inner => "inner",
+        Raceway::Outer => "outer",
+    }
+}

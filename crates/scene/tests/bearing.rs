@@ -1,0 +1,190 @@
+//! The bearing scene (`[bearing]`): what it composes and checks, and a run of the bundled
+//! bearing on a coarse grid against the library's own load distribution, Palmgren–Miner and
+//! the orthogonal shear of a line contact.
+
+use std::path::Path;
+
+use contopt_roller::{
+    BearingLoad, BearingSettings, Crown, CylindricalRollerBearing, Raceway, Tilt,
+};
+use contopt_scene::{Format, Scene, BUNDLED};
+
+fn bundled_text() -> &'static str {
+    BUNDLED.iter().find(|b| b.name == "bearing").unwrap().text
+}
+
+/// The bundled bearing's first case alone (ISO's crown, no design) on `cells`, with `edits`.
+fn coarse(cells: &str, edits: &[(&str, Option<&str>)]) -> Scene {
+    let mut all = vec![("case", None), ("bearing.cells", Some(cells))];
+    all.extend_from_slice(edits);
+    Scene::bundled_with("bearing", &all).unwrap()
+}
+
+/// The message of a bearing scene that must not parse: `from` replaced by `to` in the bundled
+/// text.
+fn refused(from: &str, to: &str) -> String {
+    let text = bundled_text().replace(from, to);
+    assert_ne!(text, bundled_text(), "{from} is not in the scene");
+    Scene::parse(&text, Format::Toml, Path::new("bearing.toml"))
+        .expect_err("the scene must be refused")
+        .to_string()
+}
+
+/// The line of `key = ` in the bundled text, counted from 1.
+fn line_of(key: &str) -> usize {
+    bundled_text()
+        .lines()
+        .position(|l| l.starts_with(key))
+        .unwrap()
+        + 1
+}
+
+/// A bearing is checked before anything is solved, each error at its key's line: the time
+/// fractions must sum to 1, a load case holds a misalignment or a moment, the grid across is
+/// odd, a design starts from the straight roller, and a scene that writes its own contact
+/// besides a bearing is refused.
+#[test]
+fn a_bearing_is_checked_at_its_keys() {
+    let e = refused("fraction = 0.2", "fraction = 0.25");
+    assert!(
+        e.contains("bearing.load") && e.contains("sum to 1.05"),
+        "{e}"
+    );
+    let e = refused(
+        "misalignment_arcmin = 4.0",
+        "misalignment_arcmin = 4.0\nmoment_nmm = 1000.0",
+    );
+    assert!(e.contains("bearing.load[2].moment_nmm"), "{e}");
+    let e = refused("cells = [80, 49]", "cells = [80, 48]");
+    assert!(
+        e.contains(&format!("bearing.toml:{}:", line_of("cells = [80, 49]")))
+            && e.contains("cells[1]"),
+        "{e}"
+    );
+    let e = refused(
+        "\"bearing.roller_profile\" = \"straight\", optimisation = { method = \"profile_search\" }",
+        "\"bearing.roller_profile\" = \"iso\", optimisation = { method = \"profile_search\" }",
+    );
+    assert!(e.contains("straight roller"), "{e}");
+    let e = refused(
+        "[solver]",
+        "[contact]\nzone = { kind = \"grid\", cells = [4, 3] }\n[solver]",
+    );
+    assert!(e.contains("contact") && e.contains("composes"), "{e}");
+    let e = refused("rollers = 14", "rollers = 24");
+    assert!(
+        e.contains("bearing.roller_diameter_mm") && e.contains("fit"),
+        "{e}"
+    );
+    let e = refused("clearance_mm = 0.0406", "clearance_mm = nan");
+    assert!(e.contains("bearing.clearance_mm"), "{e}");
+    let e = refused(
+        "controller = { kind = \"cubic\", l1_mm = 4.3, l2_mm = 4.8 }",
+        "controller = { kind = \"constant\", level = 1.0 }",
+    );
+    assert!(e.contains("cubic or trapezoid"), "{e}");
+}
+
+/// The bundled bearing's ISO case on 32 × 15 cells: its rollers' loads are the library's
+/// slice model's for the same bearing (to 1e-9 of the heaviest), the duty cycle's lives are
+/// Palmgren–Miner's of the load cases' (to 1e-12), the worst contact is the largest pressure
+/// shown and of every load case, the half-space's life is the slice model's within 25 % (two
+/// models of the same slice loads; an error in the slices' bookkeeping is a factor), raising
+/// slices to their peak's Hertzian load never lengthens it, and below the worst contact the
+/// largest orthogonal shear |τ_yz| is 0.25 of its peak pressure within 8 % (a line contact's
+/// τ₀ = 0.25·p₀, Johnson §4.2; the grid's 2.5 cells across the half-width are coarse).
+#[test]
+fn the_bundled_bearing_on_a_coarse_grid() {
+    let scene = coarse("[32, 15]", &[]);
+    let report = scene.cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    let b = report.bearing.as_ref().unwrap();
+    let bearing = CylindricalRollerBearing {
+        rollers: 14,
+        roller_diameter: 10.0,
+        roller_length: 10.0,
+        chamfer: 0.2,
+        pitch_diameter: 65.0,
+        clearance: 0.0406,
+        roller_crown: Crown::iso(10.0).unwrap(),
+        inner_crown: Crown::Straight,
+        outer_crown: Crown::Straight,
+        slices: 30,
+        first_roller: 0.0,
+    };
+    for (case, (radial_n, arcmin)) in
+        b.load_cases
+            .iter()
+            .zip([(8900.0, 0.0), (4450.0, 2.0), (13350.0, 4.0)])
+    {
+        let load = BearingLoad {
+            radial_n,
+            tilt: Tilt::Held((arcmin / 60.0f64).to_radians()),
+        };
+        let d = bearing.solve(&load, &BearingSettings::default()).unwrap();
+        let top = d.max_load();
+        for (r, want) in case.rollers.iter().zip(&d.rollers) {
+            assert!(
+                (r.load_n - want.load_n).abs() < 1e-9 * top,
+                "{}",
+                case.label
+            );
+        }
+        assert_eq!(
+            case.rollers
+                .iter()
+                .filter(|r| r.p_max_mpa.is_some())
+                .count(),
+            d.roller_cases(Raceway::Inner).len()
+        );
+        let l = &case.lives;
+        let ratio = l.half_space_mrev / l.slice_model_mrev;
+        assert!((0.75..1.25).contains(&ratio), "{}: {ratio}", case.label);
+        assert!(l.peak_pressure_mrev <= l.half_space_mrev * (1.0 + 1e-12));
+    }
+    let miner = |f: fn(&contopt_results::Lives) -> f64| {
+        1.0 / b
+            .load_cases
+            .iter()
+            .map(|c| c.fraction / f(&c.lives))
+            .sum::<f64>()
+    };
+    let duty = &b.duty_cycle;
+    assert!((duty.slice_model_mrev / miner(|l| l.slice_model_mrev) - 1.0).abs() < 1e-12);
+    assert!((duty.peak_pressure_mrev / miner(|l| l.peak_pressure_mrev) - 1.0).abs() < 1e-12);
+    let worst = b.load_cases.iter().map(|c| c.p_max_mpa).fold(0.0, f64::max);
+    assert!((b.worst.p_max_mpa - worst).abs() < 1e-9 * worst);
+    assert!((report.p_max_mpa.unwrap() - worst).abs() < 1e-9 * worst);
+    assert_eq!(b.contacts_solved % 3, 0, "the band's three crowns");
+    let sub = report.subsurface.as_ref().unwrap();
+    let shear = sub.bodies[0].peaks.shear_yz.value_mpa;
+    assert!(
+        (shear / (0.25 * worst) - 1.0).abs() < 0.08,
+        "{shear} vs {worst}"
+    );
+    // The input reads back as the same scene (without the contact the bearing composes).
+    let input = scene.cases()[0].input();
+    assert!(input.get("contact").is_none() && input.get("bearing").is_some());
+}
+
+/// The roller's free ends soften its ends: a straight roller's edge peak over the aligned
+/// case is lower with them than on a half-space roller (Hetényi's free face and its image;
+/// `examples/free_ends.rs` measures it). On 32 × 15 cells it falls by 9.5 %; the test asks
+/// for 5 % (the image switched off or of the wrong sign leaves it or raises it).
+#[test]
+fn free_ends_lower_a_straight_rollers_edge() {
+    let edge = |free: &str| {
+        let scene = coarse(
+            "[32, 15]",
+            &[
+                ("bearing.roller_profile", Some("\"straight\"")),
+                ("bearing.free_ends", Some(free)),
+                ("bearing.tolerance_um", Some("0.0")),
+            ],
+        );
+        let report = scene.cases()[0].run().unwrap();
+        report.bearing.unwrap().load_cases[0].p_max_mpa
+    };
+    let (half_space, free) = (edge("false"), edge("true"));
+    assert!(free < 0.95 * half_space, "{free} vs {half_space}");
+}
