@@ -54,8 +54,7 @@ pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
 
 /// Writes the files of `report` drawn from all its cases together: `result.json`,
 /// `interface.csv`, `p.{svg,png}`, `dh.{svg,png}` and a bearing's `lives.{svg,png}` — the first
-/// part of [`write()`], which a
-/// merge of job-array shards writes from their joined report.
+/// part of [`write()`], which a merge of job-array shards writes from their joined report.
 pub fn write_scene(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(io::Error::other)?;
     sink.put("result.json", json.as_bytes())?;
