@@ -43,7 +43,11 @@ impl Scene {
         let all = self.cases();
         let cases = &all[range.start.min(all.len())..range.end.min(all.len())];
         let groups = split(groups(cases), jobs);
-        let limit = cases.iter().map(|c| c.plan.memory.limit_bytes).min().unwrap_or(0);
+        let limit = cases
+            .iter()
+            .map(|c| c.plan.memory.limit_bytes)
+            .min()
+            .unwrap_or(0);
         let gate = Gate::new(limit);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(jobs.max(1))
@@ -57,7 +61,10 @@ impl Scene {
             groups
                 .par_iter()
                 .map(|group| {
-                    let need = group.iter().map(|&k| cases[k].plan.memory.estimate_bytes).max();
+                    let need = group
+                        .iter()
+                        .map(|&k| cases[k].plan.memory.estimate_bytes)
+                        .max();
                     let _held = gate.hold(need.unwrap_or(0));
                     run_group(cases, group, done)
                 })

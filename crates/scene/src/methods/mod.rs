@@ -292,19 +292,28 @@ fn setup(c: &Context) -> Result<Setup> {
     })
 }
 
-/// The finite-element faces' gap shape `basis` with every design node that no point of Ω_v
-/// (`mask`) reaches tied to the nearest node that one does: the faces beyond Ω_v (a punch's
-/// fillet kept as drawn) move with the designed face's edge, as one piece, rather than being
-/// left undetermined. Nodes that Ω_v reaches keep their rows, so a shape whose nodes are all
-/// tied is returned as it is.
+/// The finite-element faces' gap shape `basis` with every design node that Ω_v (`mask`) does
+/// not hold tied to the nearest node that it does: the faces beyond Ω_v (a punch's fillet kept
+/// as drawn) move with the designed face's edge, as one piece, rather than being left
+/// undetermined. Ω_v holds a node when its points carry at least half of the node's column
+/// Σᵢ |wᵢₖ|: a node reached only by points beyond Ω_v, and a node beyond Ω_v's edge that the
+/// weighted gap of the edge's node reaches through their common face (the mortar rows of a
+/// [`contopt_fem::ContactPairing`], ∫ N¹ₖ N¹ⱼ dS / w̃ₖ, couple a node to its faces' neighbours),
+/// are not Ω_v's: the least-squares fit of step 6 then has as many Ω_v points as design nodes,
+/// at least. Nodes that Ω_v holds keep their rows, so a shape whose nodes it all holds is
+/// returned as it is.
 fn follow_edge(basis: &GapShape, mask: &[bool]) -> Result<GapShape> {
     let nodes = basis.nodes();
-    let mut tied = vec![false; nodes.len()];
-    for i in (0..basis.len()).filter(|&i| mask[i]) {
+    let (mut inside, mut outside) = (vec![0.0; nodes.len()], vec![0.0; nodes.len()]);
+    for i in 0..basis.len() {
+        let column = if mask[i] { &mut inside } else { &mut outside };
         for &(k, w) in basis.row(i) {
-            tied[k] |= w != 0.0;
+            column[k] += w.abs();
         }
     }
+    let tied: Vec<bool> = (0..nodes.len())
+        .map(|k| inside[k] > 0.0 && inside[k] >= outside[k])
+        .collect();
     let tied_nodes: Vec<usize> = (0..nodes.len()).filter(|&k| tied[k]).collect();
     if tied_nodes.is_empty() || tied.iter().all(|&t| t) {
         return Ok(basis.clone());
