@@ -305,8 +305,8 @@ fn setup(c: &Context) -> Result<Setup> {
 fn follow_edge(basis: &GapShape, mask: &[bool]) -> Result<GapShape> {
     let nodes = basis.nodes();
     let (mut inside, mut outside) = (vec![0.0; nodes.len()], vec![0.0; nodes.len()]);
-    for i in 0..basis.len() {
-        let column = if mask[i] { &mut inside } else { &mut outside };
+    for (i, &held) in mask.iter().enumerate().take(basis.len()) {
+        let column = if held { &mut inside } else { &mut outside };
         for &(k, w) in basis.row(i) {
             column[k] += w.abs();
         }
