@@ -11,7 +11,7 @@ pub(crate) mod search;
 
 use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
-use contopt_core::{ContactState, Error, GapShape, Result, Termination};
+use contopt_core::{ContactState, Error, GapShape, Result, Termination, GEOMETRY_TOLERANCE};
 use contopt_optimise::{
     Controller, IterationSettings, LinearProgrammeSettings, LoadSplitSettings, Optimisation,
     OptimisationMethod, Pass, Region, SearchSettings,
@@ -289,7 +289,7 @@ fn setup(c: &Context) -> Result<Setup> {
     };
     let shape = match (axis, c.problem.pressure_basis(), &omega_v) {
         (Some(axis), _, _) => GapShape::extruded(iface, axis)?,
-        (None, Some(basis), Some(mask)) => follow_edge(basis, mask)?,
+        (None, Some(basis), Some(mask)) => follow_edge(basis, mask, iface.points())?,
         (None, Some(basis), None) => basis.clone(),
         (None, None, _) => GapShape::pointwise(iface),
     };
@@ -300,25 +300,44 @@ fn setup(c: &Context) -> Result<Setup> {
     })
 }
 
-/// The finite-element faces' gap shape `basis` with every design node that no point of Ω_v
-/// (`mask`) reaches tied to the nearest node that one does: the faces beyond Ω_v (a punch's
-/// fillet kept as drawn) move with the designed face's edge, as one piece, rather than being
-/// left undetermined. Nodes that Ω_v reaches keep their rows, so a shape whose nodes are all
-/// tied is returned as it is.
-fn follow_edge(basis: &GapShape, mask: &[bool]) -> Result<GapShape> {
+/// The finite-element faces' gap shape `basis` with every design node that Ω_v (`mask`) does
+/// not hold tied to the nearest node that it does: the faces beyond Ω_v (a punch's fillet kept
+/// as drawn) move with the designed face's edge, as one piece, rather than being left
+/// undetermined. Ω_v holds a node that one of its points reaches, unless the node is itself
+/// a point outside Ω_v (one of `points`): where contact is checked at the face nodes (the
+/// mortar pairing of [`contopt_fem::ContactPairing`]), the weighted gap of Ω_v's edge node
+/// ∫ N¹ₖ h dS / ∫ N¹ₖ dS reaches the nodes of its faces beyond the edge, which check contact
+/// of their own outside Ω_v; at Gauss points no node is a point and every node reached is
+/// held. Step 6's least-squares fit then has as many Ω_v points as design nodes, at least.
+/// Nodes that Ω_v holds keep their rows, so a shape whose nodes it all holds is returned as
+/// it is.
+fn follow_edge(basis: &GapShape, mask: &[bool], points: &[[f64; 3]]) -> Result<GapShape> {
     let nodes = basis.nodes();
+    let distance =
+        |a: [f64; 3], b: [f64; 3]| -> f64 { a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum() };
+    let size = points
+        .iter()
+        .flatten()
+        .fold(0.0, |m: f64, x| m.max(x.abs()))
+        .max(1.0);
+    let same = (GEOMETRY_TOLERANCE * size).powi(2);
+    let outside: Vec<[f64; 3]> = (0..basis.len())
+        .filter(|&i| !mask[i])
+        .map(|i| points[i])
+        .collect();
     let mut tied = vec![false; nodes.len()];
     for i in (0..basis.len()).filter(|&i| mask[i]) {
         for &(k, w) in basis.row(i) {
             tied[k] |= w != 0.0;
         }
     }
+    for (held, node) in tied.iter_mut().zip(nodes) {
+        *held = *held && !outside.iter().any(|&x| distance(x, *node) <= same);
+    }
     let tied_nodes: Vec<usize> = (0..nodes.len()).filter(|&k| tied[k]).collect();
     if tied_nodes.is_empty() || tied.iter().all(|&t| t) {
         return Ok(basis.clone());
     }
-    let distance =
-        |a: [f64; 3], b: [f64; 3]| -> f64 { a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum() };
     let nearest = |k: usize| -> usize {
         tied_nodes
             .iter()
