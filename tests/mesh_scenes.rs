@@ -453,3 +453,30 @@ fn filleted_punch_peak_is_bounded() {
     eprintln!("fillet 2, 5, 10 mm: {small:.1}, {fine:.1}, {large:.1} MPa");
     assert!(small > fine && fine > large, "{small}, {fine}, {large}");
 }
+
+/// The design on elements of 0.1 mm where the fillet begins: the node there, in Ω_v where
+/// v = 0, would carry 211 MPa (51 % of p̂), which no gap change fitted to Ω_v's points can
+/// remove (the fillet keeps its drawn tangent while the designed face leaves its edge
+/// sloped). The design ends infeasible, naming that point of Ω_v; it was once reported as
+/// solved.
+#[test]
+fn filleted_punch_design_too_fine_at_the_fillet_says_so() {
+    let file = scene_file("filleted-punch");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let mesh = "\"../meshes/filleted-punch-r5-h0.1.msh\"";
+    let edits = [
+        ("body.0.mesh", Some(mesh)),
+        ("body.1.mesh", Some(mesh)),
+        ("sweep", None),
+        ("optimisation.controller.l1_mm", Some("0.0")),
+    ];
+    let scene = Scene::parse_with(&text, Format::Toml, &file, &edits).unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert!(!report.is_solved());
+    let message = report.termination.to_string();
+    assert!(message.contains("infeasible"), "{message}");
+    assert!(
+        message.contains("of Ω_v") && message.contains("[45.0,"),
+        "{message}"
+    );
+}

@@ -26,8 +26,10 @@
 //! Every method ends with a [`Termination`] in its [`Optimum`], which always holds the last
 //! iterate: a step limit, an observer's stop, an infeasible programme or a contact solve that
 //! did not converge are outcomes, not errors. Every optimum states the largest p − v·p_max over
-//! Ω_nv ([`Optimum::omega_nv_excess`]); one that breaks χ ≥ 0 there ends as
-//! [`Termination::Infeasible`], never as converged. Errors are for bad input and for work refused
+//! Ω_nv ([`Optimum::omega_nv_excess`]); one that breaks χ ≥ 0 there, or passes v·p_max on Ω_v
+//! by more than a quarter of p_max (a point the design does not hold, beyond what fitting
+//! nodal gap changes to Gauss points leaves), ends as [`Termination::Infeasible`], never as
+//! converged. Errors are for bad input and for work refused
 //! before it starts. Settings carry the library's defaults ([`IterationSettings`],
 //! [`LoadSplitSettings`], [`LinearProgrammeSettings`], [`OptimisationMethod`]); controllers
 //! are built from [`ControllerSettings`] too.
