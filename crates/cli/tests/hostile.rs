@@ -312,12 +312,7 @@ fn hostile_values_give_answers_or_clear_errors() {
         "paper-table1",
         &[("c_mpa_per_mm = 2.0e9", "c_mpa_per_mm = 200.0")],
     );
-    not_converged(
-        "soft-penalty",
-        &without_sweep(&text),
-        "infeasible",
-        "of Ω_v",
-    );
+    not_converged("soft-penalty", without_sweep(&text), "infeasible", "of Ω_v");
     let (output, _) = run("soft-penalty-warning", without_sweep(&text));
     let case = &report(&output)["cases"][0];
     let penetration = number(&case["penetration_um"]);
