@@ -68,6 +68,12 @@ fn book(check: bool, only: Option<&str>) -> Result<usize, String> {
             );
             continue;
         }
+        if let Some((folder, command)) = source.needs {
+            if !root.join(folder).is_dir() {
+                eprintln!("skip {} (needs {folder}: run `{command}`)", source.name);
+                continue;
+            }
+        }
         eprintln!("run  {}", source.name);
         // Relative to the workspace, so that what the command prints does not depend on it.
         let out = Path::new(SCRATCH);
