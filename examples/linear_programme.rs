@@ -9,58 +9,9 @@
 
 use std::time::Instant;
 
-use contopt::greens::HalfSpace;
 use contopt::prelude::*;
 use contopt::scene::Scene;
-
-const NU: f64 = 0.3;
-
-/// The bearing roller of the optimisation chapter: D = 10 mm, l = 10 mm, Q = 5446 N as a
-/// rigid cylinder (R = 5 mm) on the steel pair's half-space (E = 1.05·10⁵ MPa), the C¹
-/// controller along the axis from L1 = 3 mm to l/2, Ω_v the centre row, on `nx` × `ny` cells
-/// over the length and ±2.6 b across.
-struct Roller {
-    body: HalfSpace,
-    gap: Vec<f64>,
-}
-
-impl Roller {
-    const E: f64 = 1.05e5;
-    const RADIUS: f64 = 5.0;
-    const LENGTH: f64 = 10.0;
-    const LOAD: f64 = 5446.0;
-
-    fn new(nx: usize, ny: usize) -> Self {
-        let estar = Self::E / (1.0 - NU * NU);
-        let b = (4.0 * Self::LOAD / Self::LENGTH * Self::RADIUS / (std::f64::consts::PI * estar))
-            .sqrt();
-        let half = ((ny - 1) / 2) as f64;
-        let (dx, dy) = (Self::LENGTH / nx as f64, 2.6 * b / half);
-        let origin = [-0.5 * Self::LENGTH + 0.5 * dx, -half * dy];
-        let material = Material::new(Self::E, NU).unwrap();
-        let body = HalfSpace::grid("raceway", material, nx, ny, dx, dy, origin).unwrap();
-        let gap = body
-            .interface()
-            .points()
-            .iter()
-            .map(|x| x[1] * x[1] / (2.0 * Self::RADIUS))
-            .collect();
-        Self { body, gap }
-    }
-
-    /// Ω_v the centre row, the rest `outside` (Ω_nv, or only in contact).
-    fn regions(&self, outside: Region) -> Vec<Region> {
-        let points = self.body.interface().points();
-        let dy = points[self.body.cells().0][1] - points[0][1];
-        points
-            .iter()
-            .map(|x| match x[1].abs() < 0.5 * dy {
-                true => Region::OmegaV,
-                false => outside,
-            })
-            .collect()
-    }
-}
+use contopt_validation::roller::{CylinderGrid, Roller};
 
 /// Polonsky–Keer with its default settings.
 fn polonsky_keer() -> PolonskyKeer {
@@ -96,14 +47,14 @@ fn roller(grids: &[(usize, usize)]) {
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let v = Profile::cubic(3.0, 0.5 * Roller::LENGTH).unwrap();
     for &(nx, ny) in grids {
-        let roller = Roller::new(nx, ny);
-        let iface = roller.body.interface();
+        let grid = Roller::grid(nx, ny).unwrap();
+        let iface = grid.body.interface();
         let body = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
-        let problem = InterfaceProblem::new(&roller.body, &body, &roller.gap).unwrap();
+        let problem = InterfaceProblem::new(&grid.body, &body, &grid.gap).unwrap();
         let shape = GapShape::extruded(iface, 0).unwrap();
         let opt = Optimisation::new(&problem, &shape, &v)
             .unwrap()
-            .with_regions(roller.regions(Region::OmegaNv))
+            .with_regions(grid.centre_row(Region::OmegaNv))
             .unwrap();
         let (split, split_s) = timed(|| opt.load_split(&polonsky_keer(), &Default::default()));
         let settings = LinearProgrammeSettings::default();
@@ -168,22 +119,11 @@ fn strip() {
     println!("\n## A strip of points only in contact (Region::Contact), 1000 points\n");
     println!("| method | p_max MPa | Δh_max µm | p_max / LP − 1 | largest Δh difference / Δh_max | passes | time s |");
     println!("| --- | --- | --- | --- | --- | --- | --- |");
-    let (nx, ny, dx, dy) = (40, 25, 0.25, 0.04);
-    let origin = [-5.0 + 0.5 * dx, -12.0 * dy];
-    let material = Material::new(2.0e5, NU).unwrap();
-    let body = HalfSpace::grid("half-space", material, nx, ny, dx, dy, origin).unwrap();
-    let iface = body.interface();
-    let gap: Vec<f64> = iface.points().iter().map(|x| x[1] * x[1] / 20.0).collect();
+    let strip = CylinderGrid::steel(40, 25, 0.25, 0.04, 10.0).unwrap();
+    let iface = strip.body.interface();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 12_000.0).unwrap();
-    let problem = InterfaceProblem::new(&body, &roller, &gap).unwrap();
-    let regions = iface
-        .points()
-        .iter()
-        .map(|x| match x[1].abs() < 0.5 * dy {
-            true => Region::OmegaV,
-            false => Region::Contact,
-        })
-        .collect();
+    let problem = InterfaceProblem::new(&strip.body, &roller, &strip.gap).unwrap();
+    let regions = strip.centre_row(Region::Contact);
     let shape = GapShape::extruded(iface, 0).unwrap();
     let opt = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap())
         .unwrap()

@@ -12,77 +12,24 @@
 //! `cargo run --release --example roller_scaling` (add `large` for an 800 × 417 grid too, or
 //! name the sections to run: `production`, `dense`, `straight`, `scaling`).
 
-use std::f64::consts::PI;
 use std::process::Command;
 use std::time::Instant;
 
-use contopt::greens::HalfSpace;
 use contopt::prelude::*;
 use contopt::report::{log_log, Panel};
+use contopt_validation::roller::{CylinderGrid, Roller};
 
-const E: f64 = 1.05e5;
-const NU: f64 = 0.3;
-const RADIUS: f64 = 5.0;
-const LENGTH: f64 = 10.0;
-const LOAD: f64 = 5446.0;
 /// The load split's tolerance: Ω_v pressure within 1e-8·p_max of v·p_max.
 const TOLERANCE: f64 = 1e-8;
-/// The grid reaches ±2.6 b across the roller.
-const REACH: f64 = 2.6;
 
-fn estar() -> f64 {
-    E / (1.0 - NU * NU)
-}
-
-/// Hertz's half-width b and peak p₀ for the line load `q` [N/mm].
-fn hertz(q: f64) -> (f64, f64) {
-    let b = (4.0 * q * RADIUS / (PI * estar())).sqrt();
-    (b, 2.0 * q / (PI * b))
+/// Hertz's peak p₀ for the roller's line load `q` [N/mm].
+fn hertz_p0(q: f64) -> f64 {
+    Roller::line().peak_pressure(q)
 }
 
 /// Peak resident memory of this process [MB] (Linux), or NaN.
 fn peak_mb() -> f64 {
     contopt_validation::fixtures::peak_resident_mib() * 1.048_576
-}
-
-/// The roller's grid: `nx` cells along the axis over l, `ny` (odd) across ±2.6 b.
-fn roller_grid(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>) {
-    let (b, _) = hertz(LOAD / LENGTH);
-    let (dx, dy) = (LENGTH / nx as f64, REACH * b / ((ny - 1) / 2) as f64);
-    let origin = [-0.5 * LENGTH + 0.5 * dx, -(((ny - 1) / 2) as f64) * dy];
-    let body = HalfSpace::grid(
-        "raceway",
-        Material::new(E, NU).unwrap(),
-        nx,
-        ny,
-        dx,
-        dy,
-        origin,
-    )
-    .unwrap();
-    let h = body
-        .interface()
-        .points()
-        .iter()
-        .map(|x| x[1] * x[1] / (2.0 * RADIUS))
-        .collect();
-    (body, h)
-}
-
-/// Ω_v the row nearest y = 0, Ω_nv the rest.
-fn centre_row(body: &HalfSpace) -> Vec<Region> {
-    let points = body.interface().points();
-    let dy = points[body.cells().0][1] - points[0][1];
-    points
-        .iter()
-        .map(|x| {
-            if x[1].abs() < 0.5 * dy {
-                Region::OmegaV
-            } else {
-                Region::OmegaNv
-            }
-        })
-        .collect()
 }
 
 /// How an optimum is found.
@@ -99,18 +46,18 @@ enum Route {
 /// The optimum of `body` under the rigid cylinder of gap `h` and `load`, controller `v`, and
 /// its time \[s\]; the optimum says how its method ended.
 fn optimum(
-    body: &HalfSpace,
-    h: &[f64],
+    grid: &CylinderGrid,
     load: f64,
     v: &dyn Controller,
     route: Route,
 ) -> Result<(Optimum, f64)> {
-    let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], load).unwrap();
-    let problem = InterfaceProblem::new(body, &roller, h).unwrap();
-    let shape = GapShape::extruded(body.interface(), 0).unwrap();
+    let iface = grid.body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], load).unwrap();
+    let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
+    let shape = GapShape::extruded(iface, 0).unwrap();
     let opt = Optimisation::new(&problem, &shape, v)
         .unwrap()
-        .with_regions(centre_row(body))
+        .with_regions(grid.centre_row(Region::OmegaNv))
         .unwrap();
     let t = Instant::now();
     let split = LoadSplitSettings {
@@ -134,12 +81,12 @@ fn optimum(
 /// solves steps` on one line (steps: the contact solver's conjugate-gradient steps, summed over
 /// the solves).
 fn case(nx: usize, ny: usize, l1: f64) {
-    let (body, h) = roller_grid(nx, ny);
-    let v = Profile::cubic(l1, 0.5 * LENGTH).unwrap();
-    let (opt, seconds) = optimum(&body, &h, LOAD, &v, Route::Split).unwrap();
+    let grid = Roller::grid(nx, ny).unwrap();
+    let v = Profile::cubic(l1, 0.5 * Roller::LENGTH).unwrap();
+    let (opt, seconds) = optimum(&grid, Roller::LOAD, &v, Route::Split).unwrap();
     assert!(opt.is_converged(), "the load split {}", opt.termination);
-    let regions = centre_row(&body);
-    let iface = body.interface();
+    let regions = grid.centre_row(Region::OmegaNv);
+    let iface = grid.body.interface();
     // The largest miss of p = v·p_max on Ω_v, relative to v·p_max, where v > 1 %.
     let miss = (0..iface.len())
         .filter(|&i| regions[i] == Region::OmegaV)
@@ -256,31 +203,15 @@ fn dense_agreement() {
     println!("| --- | --- | --- | --- | --- | --- | --- |");
     for nx in [20, 40] {
         let (ny, dx, dy) = (21, 10.0 / nx as f64, 0.04);
-        let origin = [-5.0 + 0.5 * dx, -10.0 * dy];
-        let body = HalfSpace::grid(
-            "hs",
-            Material::new(2e5, NU).unwrap(),
-            nx,
-            ny,
-            dx,
-            dy,
-            origin,
-        )
-        .unwrap();
-        let h: Vec<f64> = body
-            .interface()
-            .points()
-            .iter()
-            .map(|x| x[1] * x[1] / 20.0)
-            .collect();
+        let grid = CylinderGrid::steel(nx, ny, dx, dy, 10.0).unwrap();
         let v = Constant::new(1.0).unwrap();
-        let (split, split_s) = optimum(&body, &h, 12_000.0, &v, Route::Split).unwrap();
+        let (split, split_s) = optimum(&grid, 12_000.0, &v, Route::Split).unwrap();
         assert!(split.is_converged(), "the load split {}", split.termination);
         for (name, route) in [
             ("LP (3.5)", Route::DenseLp),
             ("split, active set", Route::DenseSplit),
         ] {
-            match optimum(&body, &h, 12_000.0, &v, route) {
+            match optimum(&grid, 12_000.0, &v, route) {
                 Ok((dense, _)) if !dense.is_converged() => {
                     println!("| {nx} × {ny} | {name} | {} | | | | |", dense.termination)
                 }
@@ -310,9 +241,10 @@ fn straight(grids: &[(usize, usize)]) {
     println!("| grid | cell mm | centre line load N/mm | p at the centre MPa | Hertz local p₀ | error | / nominal p₀ 2000.1 | end pressure MPa (cell-dependent) | CG steps | time s |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for &(nx, ny) in grids {
-        let (body, h) = roller_grid(nx, ny);
-        let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], LOAD).unwrap();
-        let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
+        let CylinderGrid { body, gap, .. } = Roller::grid(nx, ny).unwrap();
+        let load = Roller::LOAD;
+        let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], load).unwrap();
+        let problem = InterfaceProblem::new(&body, &roller, &gap).unwrap();
         let t = Instant::now();
         let st = PolonskyKeer::new(PolonskyKeerSettings::default())
             .and_then(|solver| solver.solve(&problem))
@@ -320,7 +252,7 @@ fn straight(grids: &[(usize, usize)]) {
         assert!(st.is_converged(), "Polonsky–Keer {}", st.termination);
         let seconds = t.elapsed().as_secs_f64();
         let iface = body.interface();
-        let dx = LENGTH / nx as f64;
+        let dx = Roller::LENGTH / nx as f64;
         // The two columns either side of x = 0.
         let centre: Vec<usize> = (0..iface.len())
             .filter(|&i| iface.points()[i][0].abs() < dx)
@@ -331,11 +263,11 @@ fn straight(grids: &[(usize, usize)]) {
             .sum::<f64>()
             / (2.0 * dx);
         let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);
-        let (_, p0) = hertz(q);
+        let p0 = hertz_p0(q);
         println!(
             "| {nx} × {ny} | {dx} | {q:.2} | {p:.1} | {p0:.1} | {:+.3} % | {:.4} | {:.0} | {} | {seconds:.2} |",
             100.0 * (p / p0 - 1.0),
-            p / hertz(LOAD / LENGTH).1,
+            p / hertz_p0(Roller::LOAD / Roller::LENGTH),
             st.p_max(),
             st.iterations
         );

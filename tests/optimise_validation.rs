@@ -5,11 +5,12 @@
 
 use std::f64::consts::PI;
 
-use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, PlaneState};
+use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
 use contopt::prelude::*;
 use contopt::scene::{CaseReport, Scene};
 use contopt_validation::closed_form::{contact_modulus, FlamantStrip, HertzLine, UniformCircle};
 use contopt_validation::paper;
+use contopt_validation::roller::{CylinderGrid, Roller};
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
@@ -361,27 +362,10 @@ fn optimisation_errors_are_named() {
     assert!(e.contains("no body floats"), "{e}");
 }
 
-/// The length of the crowned roller \[mm\].
-const CROWNED_LENGTH: f64 = 10.0;
-
 /// The crowned roller's half-space: 20 × 21 cells of 0.5 × 0.04 mm over the roller's length
-/// and ±0.4 mm across it, centred on the roller, the centre row on y = 0.
-fn crowned_roller_grid() -> HalfSpace {
-    let (nx, ny, dx, dy) = (20, 21, 0.5, 0.04);
-    let origin = [
-        -0.5 * CROWNED_LENGTH + 0.5 * dx,
-        -0.5 * (ny - 1) as f64 * dy,
-    ];
-    HalfSpace::grid(
-        "half-space",
-        Material::new(E, NU).unwrap(),
-        nx,
-        ny,
-        dx,
-        dy,
-        origin,
-    )
-    .unwrap()
+/// (10 mm) and ±0.4 mm across it, centred on the roller, the centre row on y = 0.
+fn crowned_roller_grid() -> CylinderGrid {
+    CylinderGrid::steel(20, 21, 0.5, 0.04, 10.0).unwrap()
 }
 
 /// A crown of the roller against Hertz's line contact: p_max is Hertz's p₀ within 2 %, and
@@ -448,23 +432,22 @@ fn assert_load_split_reaches(optimisation: &Optimisation, lp: &Optimum) {
 /// iteration and the LP agree on p_max and the crown within 0.5 %, and p ≤ p_max on Ω_nv.
 #[test]
 fn crowned_roller_on_a_half_space() {
-    let (radius, load) = (10.0, 12_000.0);
-    let body = crowned_roller_grid();
-    let iface = body.interface();
+    let (radius, load, length) = (10.0, 12_000.0, 10.0);
+    let grid = crowned_roller_grid();
+    let iface = grid.body.interface();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], load).unwrap();
     let line = HertzLine {
         radius,
         modulus: contact_modulus(&[Material::new(E, NU).unwrap()]),
     };
-    let h: Vec<f64> = iface.points().iter().map(|x| line.gap(x[1])).collect();
-    let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let regions = centre_row(iface);
+    let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
+    let regions = grid.centre_row(Region::OmegaNv);
     let shape = GapShape::extruded(iface, 0).unwrap();
     let optimisation = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap())
         .unwrap()
         .with_regions(regions.clone())
         .unwrap();
-    let hertz = line.peak_pressure(load / CROWNED_LENGTH);
+    let hertz = line.peak_pressure(load / length);
     let solver = active_set();
     let uncrowned = solve(&solver, &problem).p_max();
     let iterated = optimisation
@@ -484,57 +467,15 @@ fn crowned_roller_on_a_half_space() {
     assert_load_split_reaches(&optimisation, &lp);
 }
 
-/// The roller (D = 10 mm, l = 10 mm, Q = 5446 N, a rigid cylinder R = 5 mm on the
-/// pair's half-space, E = 1.05·10⁵ MPa) on an `nx` × `ny` grid over the length and ±2.6 b.
-fn bearing_roller(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>, f64) {
-    let (e, radius, length, load) = (1.05e5, 5.0, 10.0, 5446.0);
-    let estar = e / (1.0 - NU * NU);
-    let line = HertzLine {
-        radius,
-        modulus: estar,
-    };
-    let b = line.half_width(load / length);
-    let (dx, dy) = (length / nx as f64, 2.6 * b / ((ny - 1) / 2) as f64);
-    let origin = [-0.5 * length + 0.5 * dx, -(((ny - 1) / 2) as f64) * dy];
-    let body = HalfSpace::grid(
-        "raceway",
-        Material::new(e, NU).unwrap(),
-        nx,
-        ny,
-        dx,
-        dy,
-        origin,
-    )
-    .unwrap();
-    let h = body
-        .interface()
-        .points()
-        .iter()
-        .map(|x| line.gap(x[1]))
-        .collect();
-    (body, h, estar)
-}
-
-/// Ω_v the centre row y = 0 of a roller grid, the rest Ω_nv.
-fn centre_row(iface: &Interface) -> Vec<Region> {
-    let tag = |x: &[f64; 3]| {
-        if x[1].abs() < 1e-9 {
-            Region::OmegaV
-        } else {
-            Region::OmegaNv
-        }
-    };
-    iface.points().iter().map(tag).collect()
-}
-
 /// The straight roller on 100 × 53 cells (10 across Hertz's half-width), matrix-free: the
 /// centre carries less than the nominal 544.6 N/mm (the ends take more on a half-space), and
 /// its peak is Hertz's p₀ for the local centre line load within 0.2 % (measured −0.009 %; the
 /// nominal p₀ = 2000.1 MPa is 5 % off, the wrong test).
 #[test]
 fn straight_roller_against_local_line_contact() {
-    let (body, h, estar) = bearing_roller(100, 53);
-    let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], 5446.0).unwrap();
+    let CylinderGrid { body, gap: h, .. } = Roller::grid(100, 53).unwrap();
+    let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], Roller::LOAD);
+    let roller = roller.unwrap();
     let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
     let st = solve(&polonsky_keer(), &problem);
     let iface = body.interface();
@@ -548,11 +489,7 @@ fn straight_roller_against_local_line_contact() {
         .sum::<f64>()
         / (2.0 * dx);
     let p = centre.iter().map(|&i| st.pressure[i]).fold(0.0, f64::max);
-    let p0 = HertzLine {
-        radius: 5.0,
-        modulus: estar,
-    }
-    .peak_pressure(q);
+    let p0 = Roller::line().peak_pressure(q);
     eprintln!(
         "straight roller: centre {q:.2} N/mm, p {p:.1} MPa against local Hertz {p0:.1} ({:+.3} %)",
         100.0 * (p / p0 - 1.0)
@@ -566,11 +503,11 @@ fn straight_roller_against_local_line_contact() {
 /// p_max is the 400 × 209 grid's 2316.94 MPa (examples/roller_scaling) within 0.05 %.
 #[test]
 fn optimised_roller_crown_by_the_load_split() {
-    let (body, h, _) = bearing_roller(100, 53);
-    let iface = body.interface();
-    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
-    let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let regions = centre_row(iface);
+    let grid = Roller::grid(100, 53).unwrap();
+    let iface = grid.body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+    let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
+    let regions = grid.centre_row(Region::OmegaNv);
     let v = Profile::cubic(3.0, 5.0).unwrap();
     let shape = GapShape::extruded(iface, 0).unwrap();
     let opt = Optimisation::new(&problem, &shape, &v)
@@ -699,18 +636,18 @@ fn assert_bumps_raise_the_worst_case(
 /// crown at Q, the comparison, has a worst case 7.5 % higher (2861.5 against 2661.4 MPa).
 #[test]
 fn robust_roller_crown_over_an_envelope() {
-    let (body, h, _) = bearing_roller(80, 41);
-    let iface = body.interface();
+    let grid = Roller::grid(80, 41).unwrap();
+    let (iface, h) = (grid.body.interface(), &grid.gap);
     let gamma = (2.0f64 / 60.0).to_radians();
-    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
-    let nominal = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let design = roller_case(&nominal, &h, 1.5, gamma);
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+    let nominal = InterfaceProblem::new(&grid.body, &roller, h).unwrap();
+    let design = roller_case(&nominal, h, 1.5, gamma);
     let others = [
-        roller_case(&nominal, &h, 1.5, -gamma),
-        roller_case(&nominal, &h, 1.0, 0.0),
-        roller_case(&nominal, &h, 0.5, 0.0),
+        roller_case(&nominal, h, 1.5, -gamma),
+        roller_case(&nominal, h, 1.0, 0.0),
+        roller_case(&nominal, h, 0.5, 0.0),
     ];
-    let regions = centre_row(iface);
+    let regions = grid.centre_row(Region::OmegaNv);
     let v = Profile::cubic(4.5, 5.0).unwrap();
     let shape = GapShape::symmetric(iface, 0).unwrap();
     let pk = polonsky_keer();
@@ -762,15 +699,14 @@ fn with_bearing_roller<T>(
     omega_v: impl Fn(&[f64; 3], f64) -> bool,
     run: impl FnOnce(&Optimisation, &Interface) -> T,
 ) -> T {
-    let (body, h, _) = bearing_roller(nx, ny);
-    let iface = body.interface();
-    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
-    let problem = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let dy = iface.points()[nx][1] - iface.points()[0][1];
+    let grid = Roller::grid(nx, ny).unwrap();
+    let iface = grid.body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+    let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
     let regions = iface
         .points()
         .iter()
-        .map(|x| match omega_v(x, dy) {
+        .map(|x| match omega_v(x, grid.dy) {
             true => Region::OmegaV,
             false => Region::OmegaNv,
         })
@@ -933,22 +869,11 @@ fn rim_in_omega_nv_iteration_and_programme_agree() {
 /// and the iteration of §3.2 (within 1e-5: the iteration contracts slowly, TOLH 1e-16 mm²).
 #[test]
 fn points_only_in_contact_on_a_strip() {
-    let (nx, ny, dx, dy) = (40, 25, 0.25, 0.04);
-    let origin = [-5.0 + 0.5 * dx, -12.0 * dy];
-    let material = Material::new(E, NU).unwrap();
-    let body = HalfSpace::grid("half-space", material, nx, ny, dx, dy, origin).unwrap();
-    let iface = body.interface();
-    let gap: Vec<f64> = iface.points().iter().map(|x| x[1] * x[1] / 20.0).collect();
+    let strip = CylinderGrid::steel(40, 25, 0.25, 0.04, 10.0).unwrap();
+    let iface = strip.body.interface();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 12_000.0).unwrap();
-    let problem = InterfaceProblem::new(&body, &roller, &gap).unwrap();
-    let regions = iface
-        .points()
-        .iter()
-        .map(|x| match x[1].abs() < 0.5 * dy {
-            true => Region::OmegaV,
-            false => Region::Contact,
-        })
-        .collect();
+    let problem = InterfaceProblem::new(&strip.body, &roller, &strip.gap).unwrap();
+    let regions = strip.centre_row(Region::Contact);
     let shape = GapShape::extruded(iface, 0).unwrap();
     let opt = Optimisation::new(&problem, &shape, &Constant::new(1.0).unwrap())
         .unwrap()

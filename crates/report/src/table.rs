@@ -162,9 +162,13 @@ fn notes(case: &CaseReport) -> String {
     }
     if let Some(h) = &case.hertz {
         let half_width = if h.contact == "line" { "b" } else { "a" };
+        // A bearing's rollers carry many loads: its Hertz is the design load's, not the worst's.
+        let at = case.bearing.as_ref().map_or(String::new(), |b| {
+            format!(" at the design load {} N", significant(b.design_load_n, 5))
+        });
         let _ = writeln!(
             s,
-            "  Hertz: p₀ = {} MPa, {half_width} = {} mm",
+            "  Hertz{at}: p₀ = {} MPa, {half_width} = {} mm",
             significant(h.p0_mpa, 4),
             significant(h.half_width_mm, 4)
         );
