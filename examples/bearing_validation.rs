@@ -11,30 +11,10 @@ use contopt::roller::{
     slice_loads_from_pressure, slice_ratings, BearingLoad, BearingSettings, Crown,
     CylindricalRollerBearing, LoadDistribution, Raceway, Roller, SliceLoads, Tilt, REDUCTION,
 };
-use contopt_validation::bearing::{continuous, discrete, radial_integral, stribeck_constant, LINE};
-
-/// The 209 bearing's radial load \[N\].
-const LOAD: f64 = 8900.0;
-/// Its diametral clearance \[mm\].
-const CLEARANCE: f64 = 0.0406;
-
-/// A 209-size cylindrical roller bearing: 14 rollers of D = 10 mm, 10 mm long with 0.2 mm
-/// chamfers (L_we = 9.6 mm), pitch diameter 65 mm, 30 slices; `crown` on the rollers.
-fn bearing(rollers: usize, clearance: f64, crown: Crown) -> CylindricalRollerBearing {
-    CylindricalRollerBearing {
-        rollers,
-        roller_diameter: 10.0,
-        roller_length: 10.0,
-        chamfer: 0.2,
-        pitch_diameter: 65.0,
-        clearance,
-        roller_crown: crown,
-        inner_crown: Crown::Straight,
-        outer_crown: Crown::Straight,
-        slices: 30,
-        first_roller: 0.0,
-    }
-}
+use contopt_validation::bearing::{
+    axial_integral, bearing_209 as bearing, continuous, discrete, radial_integral,
+    stribeck_constant, CLEARANCE_209 as CLEARANCE, LINE, LOAD_209 as LOAD, PRINTED,
+};
 
 fn solve(b: &CylindricalRollerBearing, radial_n: f64, tilt: Tilt) -> Result<LoadDistribution> {
     let d = b.solve(&BearingLoad { radial_n, tilt }, &BearingSettings::default())?;
@@ -52,8 +32,29 @@ fn stribeck() -> Result<()> {
     let constant = stribeck_constant();
     println!("## Stribeck: straight rollers, no clearance, aligned\n");
     println!(
-        "J_r(ε = 0.5) for q ∝ δ^(10/9): {:.5}, so Q_max = F_r/(Z·J_r) = {constant:.4}·F_r/Z (Harris & Kotzalas: 4.08)\n",
+        "J_r(ε = 0.5) for q ∝ δ^(10/9): {:.5}, so Q_max = F_r/(Z·J_r) = {constant:.4}·F_r/Z\n",
         radial_integral(0.5, LINE)
+    );
+    println!("The constants NSK prints for zero clearance (CAT. No. E728g, §5.1, eqs. (4), (5)) against the integrals:\n");
+    println!(" contact | n | 1/J_r(½) | printed | J_a(½)/J_r(½) | printed");
+    for p in PRINTED {
+        let (jr, ja) = (
+            radial_integral(0.5, p.exponent),
+            axial_integral(0.5, p.exponent),
+        );
+        println!(
+            " {} | {} | {:.4} | {} | {:.4} | {:.3}",
+            p.contact,
+            p.exponent,
+            1.0 / jr,
+            p.stribeck,
+            ja / jr,
+            p.axial
+        );
+    }
+    println!(
+        " line, ISO/TS 16281 | 10/9 | {constant:.4} | | {:.4} |\n",
+        axial_integral(0.5, LINE) / radial_integral(0.5, LINE)
     );
     println!("Q_max is the peak of the distribution, c_L·δ_r^(10/9) at ψ = 0: the heaviest roller's load when a roller");
     println!(
@@ -117,7 +118,7 @@ fn harris_209() -> Result<()> {
         many.epsilon,
         many.zone.to_degrees()
     );
-    println!("  The rollers' loads and loaded zone as printed by Harris & Kotzalas: not found (see the report).");
+    println!("  Harris & Kotzalas's printed roller loads and loaded zone of their 209 bearing: not found to compare.");
     Ok(())
 }
 

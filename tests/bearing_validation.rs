@@ -8,23 +8,10 @@ use contopt::roller::{
     slice_ratings, BearingLoad, BearingSettings, Crown, CylindricalRollerBearing, LoadDistribution,
     Raceway, Roller, SliceLoads, Tilt,
 };
-use contopt_validation::bearing::{continuous, discrete, stribeck_constant};
-
-fn bearing(rollers: usize, clearance: f64, crown: Crown) -> CylindricalRollerBearing {
-    CylindricalRollerBearing {
-        rollers,
-        roller_diameter: 10.0,
-        roller_length: 10.0,
-        chamfer: 0.2,
-        pitch_diameter: 65.0,
-        clearance,
-        roller_crown: crown,
-        inner_crown: Crown::Straight,
-        outer_crown: Crown::Straight,
-        slices: 30,
-        first_roller: 0.0,
-    }
-}
+use contopt_validation::bearing::{
+    bearing_209 as bearing, continuous, discrete, stribeck_constant, CLEARANCE_209, LOAD_209,
+    PRINTED,
+};
 
 fn solve(b: &CylindricalRollerBearing, radial_n: f64, tilt: Tilt) -> LoadDistribution {
     let d = b
@@ -34,21 +21,24 @@ fn solve(b: &CylindricalRollerBearing, radial_n: f64, tilt: Tilt) -> LoadDistrib
     d
 }
 
-/// Stribeck: straight rollers without clearance carry Q_max = F_r/(Z·J_r(½)) = 4.085·F_r/Z
-/// (Harris & Kotzalas §7: 4.08), Q_max the distribution's peak c_L·δ_r^(10/9) at ψ = 0. For
+/// Stribeck: straight rollers without clearance carry Q_max = F_r/(Z·J_r(½)) = 4.085·F_r/Z,
+/// within 0.01 of the 4.08 NSK prints for line contact (`PRINTED`; its exponent 1.1 against
+/// ISO/TS 16281's 10/9 moves the constant by 0.008, its printing by up to 0.005; point
+/// contact's 4.37 fails it), Q_max the distribution's peak c_L·δ_r^(10/9) at ψ = 0. For
 /// Z = 10…20, a roller on the load line or two astride it, the slice model's rollers are the
 /// discrete sum's to 1e-8 and its Q_max Stribeck's within 2 % (within 0.7 %: the discrete
 /// rollers); point contact's 4.37 would fail it. On the load line the heaviest roller is Q_max.
 #[test]
 fn stribeck_constant_of_line_contact() {
     let constant = stribeck_constant();
-    assert!((constant / 4.08 - 1.0).abs() < 0.005, "{constant}");
+    let printed = PRINTED[1];
+    assert!((constant - printed.stribeck).abs() < 0.01, "{constant}");
     for z in 10..=20 {
         for first in [0.0, std::f64::consts::PI / z as f64] {
             let mut b = bearing(z, 0.0, Crown::Straight);
             b.first_roller = first;
-            let d = solve(&b, 8900.0, Tilt::Held(0.0));
-            let closed = discrete(z, first, b.line_constant(), 0.0, 8900.0);
+            let d = solve(&b, LOAD_209, Tilt::Held(0.0));
+            let closed = discrete(z, first, b.line_constant(), 0.0, LOAD_209);
             for (r, q) in d.rollers.iter().zip(&closed.loads) {
                 assert!(
                     (r.load_n - q).abs() < 1e-8 * d.max_load(),
@@ -57,7 +47,7 @@ fn stribeck_constant_of_line_contact() {
                 );
             }
             let peak = b.line_constant() * d.displacement_mm[0].powf(10.0 / 9.0);
-            let ratio = peak * z as f64 / 8900.0;
+            let ratio = peak * z as f64 / LOAD_209;
             assert!(
                 (ratio / constant - 1.0).abs() < 0.02,
                 "{z}, {first}: {ratio}"
@@ -69,17 +59,18 @@ fn stribeck_constant_of_line_contact() {
     }
 }
 
-/// A 209-size bearing with 40.6 µm diametral clearance under 8900 N: the slice model is the
+/// The bundled 209-size bearing (`bearing_209`: dimensions recalled, not a published table)
+/// with 40.6 µm diametral clearance under 8900 N: the slice model is the
 /// discrete closed form to 1e-8 (roller loads and the rings' approach), Harris's iteration
 /// over a smeared ring within 1 % (Q_max, ε, the loaded zone); the loaded zone ψ_l lies
 /// between the last loaded roller and the first unloaded one. Half the clearance taken for the
 /// whole would put ε near 0.
 #[test]
 fn a_209_bearing_with_clearance() {
-    let clearance = 0.0406;
+    let clearance = CLEARANCE_209;
     let b = bearing(14, clearance, Crown::Straight);
-    let d = solve(&b, 8900.0, Tilt::Held(0.0));
-    let closed = discrete(14, 0.0, b.line_constant(), clearance, 8900.0);
+    let d = solve(&b, LOAD_209, Tilt::Held(0.0));
+    let closed = discrete(14, 0.0, b.line_constant(), clearance, LOAD_209);
     assert!((d.displacement_mm[0] / closed.approach - 1.0).abs() < 1e-8);
     for (r, q) in d.rollers.iter().zip(&closed.loads) {
         assert!(
@@ -88,7 +79,7 @@ fn a_209_bearing_with_clearance() {
             r.load_n
         );
     }
-    let many = continuous(14, b.line_constant(), clearance, 8900.0);
+    let many = continuous(14, b.line_constant(), clearance, LOAD_209);
     assert!((d.max_load() / many.max_load - 1.0).abs() < 0.01);
     assert!((d.load_factor() / many.epsilon - 1.0).abs() < 0.01);
     assert!((d.load_zone() / many.zone - 1.0).abs() < 0.01);
@@ -108,8 +99,8 @@ fn a_209_bearing_with_clearance() {
 /// fails it). Its load and tilt make a load case of the roller on that raceway.
 #[test]
 fn a_half_space_contacts_slice_loads_give_the_life() {
-    let b = bearing(14, 0.0406, Crown::iso(10.0).unwrap());
-    let d = solve(&b, 8900.0, Tilt::Held((4.0f64 / 60.0).to_radians()));
+    let b = bearing(14, CLEARANCE_209, Crown::iso(10.0).unwrap());
+    let d = solve(&b, LOAD_209, Tilt::Held((4.0f64 / 60.0).to_radians()));
     let heaviest = d.roller_cases(Raceway::Inner)[0];
     let steel = Material::new(2.1e5, 0.3).unwrap();
     let roller = Roller {
