@@ -9,9 +9,10 @@
 //!   task of a job array, into `DIR/<name>/shard_K_of_N/` (`partial.json` and the files of its
 //!   cases); `contopt merge DIR/<name>` joins the shards into exactly the files one run writes
 //!   ([`contopt_results::shard`], the book's "Many cases").
-//! - `contopt run <scene> --jobs N`: N cases at once, one per thread (default: one per core
-//!   this process may use), within the scene's memory limit, every file the same as on one
-//!   thread ([`Scene::run_parallel`]).
+//! - `contopt run <scene> --jobs N`: N threads (default: one per core this process may use)
+//!   for N cases at once, and inside a case for its independent contact solves (an envelope's
+//!   cases under one crown), within the scene's memory limit, every file the same as on one
+//!   thread ([`Scene::run_parallel`], `contopt_contact::parallel`).
 //! - `contopt check <scene>`: reads and checks the scene exactly as `run` does, without
 //!   solving;
 //! - `contopt list`: the bundled scenes; `contopt show <name>`: one as a template to copy;
@@ -356,6 +357,11 @@ fn solve(
             .into_iter()
             .collect();
     }
+    // One thread for the contact solves inside a case too: they run on the global pool. It
+    // is built here first; were it built before, its threads would change no result.
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build_global();
     let mut run = scene.run_cases(range, &progress);
     progress.cases(run.len());
     let mut reports = Vec::with_capacity(run.len());

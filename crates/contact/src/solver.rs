@@ -13,7 +13,7 @@ use crate::InterfaceProblem;
 ///
 /// Build a solver from its settings ([`SolverSettings`](crate::SolverSettings), or each type's
 /// own `new(settings)`): every setting has its default in the library.
-pub trait ContactSolver {
+pub trait ContactSolver: Send + Sync {
     /// The method, in events and reports.
     fn method(&self) -> Method;
 

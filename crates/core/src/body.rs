@@ -31,7 +31,7 @@ pub struct RigidMode {
 ///
 /// Finite-element bodies, Green's-function bodies (half-space, half-plane), rigid bodies and
 /// user types implement it.
-pub trait ElasticBody {
+pub trait ElasticBody: Send + Sync {
     /// Name used in messages and reports.
     fn name(&self) -> &str;
 
