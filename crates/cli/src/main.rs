@@ -89,8 +89,9 @@ enum Command {
         /// `<out>/<name>/shard_K_of_N/`; `contopt merge` joins the shards.
         #[arg(long, value_name = "K/N", value_parser = parse_shard)]
         shard: Option<Shard>,
-        /// Solve this many cases at once, each on its own thread (default: one per core),
-        /// within the scene's memory limit; the results are the same for any N.
+        /// Threads (default: one per core): this many cases at once, and a case's independent
+        /// contacts (an envelope's loads under one crown) at once, within the scene's memory
+        /// limit; the results are the same for any N.
         #[arg(long, short, value_name = "N", value_parser = parse_jobs)]
         jobs: Option<usize>,
     },
@@ -339,8 +340,9 @@ fn warn(report: &Report) {
 
 /// Runs the cases `range` under a progress bar, cleared when they end (or one fails); cases
 /// that share their bodies share one build of them. On one thread in turn, the bar showing
-/// each case's methods ([`Scene::run_cases`]); on several, the cases done
-/// ([`Scene::run_parallel`]), and the first error in the scene's order.
+/// each case's methods ([`Scene::run_cases`]), every contact solved in turn; on several, the
+/// cases done ([`Scene::run_parallel`], the same threads solving a case's independent
+/// contacts), and the first error in the scene's order.
 fn solve(
     scene: &Scene,
     range: std::ops::Range<usize>,
