@@ -9,9 +9,10 @@
 //!   task of a job array, into `DIR/<name>/shard_K_of_N/` (`partial.json` and the files of its
 //!   cases); `contopt merge DIR/<name>` joins the shards into exactly the files one run writes
 //!   ([`contopt_results::shard`], the book's "Many cases").
-//! - `contopt run <scene> --jobs N`: N cases at once, one per thread (default: one per core
-//!   this process may use), within the scene's memory limit, every file the same as on one
-//!   thread ([`Scene::run_parallel`]).
+//! - `contopt run <scene> --jobs N`: N threads (default: one per core this process may use)
+//!   for N cases at once, and inside a case for its independent contact solves (an envelope's
+//!   cases under one crown), within the scene's memory limit, every file the same as on one
+//!   thread ([`Scene::run_parallel`], `contopt_contact::parallel`).
 //! - `contopt check <scene>`: reads and checks the scene exactly as `run` does, without
 //!   solving;
 //! - `contopt list`: the bundled scenes; `contopt show <name>`: one as a template to copy;
@@ -88,8 +89,9 @@ enum Command {
         /// `<out>/<name>/shard_K_of_N/`; `contopt merge` joins the shards.
         #[arg(long, value_name = "K/N", value_parser = parse_shard)]
         shard: Option<Shard>,
-        /// Solve this many cases at once, each on its own thread (default: one per core),
-        /// within the scene's memory limit; the results are the same for any N.
+        /// Threads (default: one per core): this many cases at once, and a case's independent
+        /// contacts (an envelope's loads under one crown) at once, within the scene's memory
+        /// limit; the results are the same for any N.
         #[arg(long, short, value_name = "N", value_parser = parse_jobs)]
         jobs: Option<usize>,
     },
@@ -338,8 +340,9 @@ fn warn(report: &Report) {
 
 /// Runs the cases `range` under a progress bar, cleared when they end (or one fails); cases
 /// that share their bodies share one build of them. On one thread in turn, the bar showing
-/// each case's methods ([`Scene::run_cases`]); on several, the cases done
-/// ([`Scene::run_parallel`]), and the first error in the scene's order.
+/// each case's methods ([`Scene::run_cases`]), every contact solved in turn; on several, the
+/// cases done ([`Scene::run_parallel`], the same threads solving a case's independent
+/// contacts), and the first error in the scene's order.
 fn solve(
     scene: &Scene,
     range: std::ops::Range<usize>,
@@ -356,6 +359,11 @@ fn solve(
             .into_iter()
             .collect();
     }
+    // One thread for the contact solves inside a case too: they run on the global pool. It
+    // is built here first; were it built before, its threads would change no result.
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build_global();
     let mut run = scene.run_cases(range, &progress);
     progress.cases(run.len());
     let mut reports = Vec::with_capacity(run.len());

@@ -96,6 +96,54 @@ fn two_threads_write_what_one_writes() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The roller envelope on a coarse grid (40 × 21 cells), its nine load cases under each crown
+/// solved at once: the ISO crown's envelope, the Fujiwara–Kawase search (the nine under every
+/// crown it tries) and the robust crown's envelope split; `labels` chooses the cases.
+fn envelope(name: &str, labels: &[&str]) -> String {
+    let text = bundled(
+        "roller-envelope",
+        &[
+            ("name = \"roller-envelope\"", &format!("name = \"{name}\"")),
+            ("cells = [200, 105]", "cells = [40, 21]"),
+        ],
+    );
+    let (head, cases) = text.split_at(text.find("[[case]]").unwrap());
+    let chosen: Vec<&str> = cases
+        .split_inclusive("\n\n")
+        .filter(|case| {
+            labels
+                .iter()
+                .any(|l| case.contains(&format!("label = \"{l}")))
+        })
+        .collect();
+    assert_eq!(chosen.len(), labels.len(), "{labels:?}");
+    head.to_string() + &chosen.concat()
+}
+
+/// Two threads solve a case's independent contacts (an envelope's nine cases under a crown)
+/// as one does, to the bit: one case alone has both threads for its envelope split, and three
+/// cases on one pair of bodies share them with the search.
+#[test]
+fn two_threads_solve_an_envelope_as_one() {
+    let dir = scratch(BIN, "envelope");
+    let robust = envelope("robust", &["robust, L1 = 5"]);
+    let three = envelope("three", &["ISO", "Fujiwara", "robust, L1 = 5"]);
+    let scenes = [
+        write_scene(&dir, "robust", &robust),
+        write_scene(&dir, "three", &three),
+    ];
+    let (one, two) = (dir.join("one"), dir.join("two"));
+    for scene in &scenes {
+        run(scene, &one, &["--jobs", "1"]);
+        run(scene, &two, &["--jobs", "2"]);
+    }
+    let names = assert_same_files(&one.join("robust"), &two.join("robust"));
+    assert!(names.iter().any(|n| n == "envelope_1.svg"), "{names:?}");
+    let names = assert_same_files(&one.join("three"), &two.join("three"));
+    assert!(names.iter().any(|n| n == "p_map_3.svg"), "{names:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Runs shard `k` of `n` of `scene` into `out`.
 fn shard(scene: &Path, k: usize, n: usize, out: &Path) {
     run(scene, out, &["--shard", &format!("{k}/{n}")]);

@@ -17,6 +17,7 @@ mod augmented;
 pub mod conic;
 mod full;
 mod kalker;
+pub mod parallel;
 mod penalty;
 mod polonsky_keer;
 mod problem;

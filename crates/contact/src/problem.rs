@@ -1,12 +1,11 @@
 //! The contact interface problem that two bodies define (§2.1), held as operators.
 
-use std::rc::Rc;
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 use contopt_core::observe::Method;
 use contopt_core::{
     check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, RigidBody,
-    Termination,
+    Spares, Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -83,6 +82,17 @@ struct Scratch {
     contact: Vec<bool>,
 }
 
+impl Scratch {
+    /// The vectors of `n` points.
+    fn new(n: usize) -> Self {
+        Self {
+            input: vec![0.0; n],
+            output: vec![0.0; n],
+            contact: vec![false; n],
+        }
+    }
+}
+
 /// The summed influence operator A = A¹ + P A² Pᵀ of the two bodies through their point
 /// pairing P, with the buffers its products reuse and the dense matrix once it is asked for.
 struct Operator<'a> {
@@ -90,8 +100,8 @@ struct Operator<'a> {
     /// `pair[i]`: the index of point i among the second body's points; `None` for the identity.
     pair: Option<Vec<usize>>,
     /// The second body's input and output, and the contact set, in its own numbering (only
-    /// with a pairing).
-    scratch: Option<Mutex<Scratch>>,
+    /// with a pairing), a set per product running at once.
+    scratch: Option<Spares<Scratch>>,
     dense: OnceLock<Mat<f64>>,
     /// Each body's share of the compliance at the first point, (Aᵏ)₀₀ / A₀₀ (a uniform load
     /// moves a periodic grid not at all), for the preconditioner.
@@ -115,27 +125,29 @@ impl Operator<'_> {
     ) -> T {
         let b = self.bodies[body].get();
         match (&self.pair, &self.scratch, body) {
-            (Some(pair), Some(scratch), 1) => {
-                let mut scratch = scratch.lock().unwrap_or_else(|e| e.into_inner());
-                let Scratch {
-                    input: own_in,
-                    output: own_out,
-                    contact: own_contact,
-                } = &mut *scratch;
-                for (i, &j) in pair.iter().enumerate() {
-                    own_in[j] = input[i];
-                }
-                if !contact.is_empty() {
+            (Some(pair), Some(scratch), 1) => scratch.with(
+                || Scratch::new(pair.len()),
+                |scratch| {
+                    let Scratch {
+                        input: own_in,
+                        output: own_out,
+                        contact: own_contact,
+                    } = scratch;
                     for (i, &j) in pair.iter().enumerate() {
-                        own_contact[j] = contact[i];
+                        own_in[j] = input[i];
                     }
-                }
-                let result = map(b, own_in, own_contact, own_out);
-                for (i, &j) in pair.iter().enumerate() {
-                    output[i] = own_out[j];
-                }
-                result
-            }
+                    if !contact.is_empty() {
+                        for (i, &j) in pair.iter().enumerate() {
+                            own_contact[j] = contact[i];
+                        }
+                    }
+                    let result = map(b, own_in, own_contact, own_out);
+                    for (i, &j) in pair.iter().enumerate() {
+                        output[i] = own_out[j];
+                    }
+                    result
+                },
+            ),
             _ => map(b, input, contact, output),
         }
     }
@@ -237,9 +249,9 @@ impl FreeMode {
 
 /// What a problem holds besides its bodies and their pairing.
 struct Parts {
-    load_gap: Option<Rc<Vec<f64>>>,
-    modes: Rc<Vec<FreeMode>>,
-    owners: Option<Rc<Vec<[usize; 2]>>>,
+    load_gap: Option<Arc<Vec<f64>>>,
+    modes: Arc<Vec<FreeMode>>,
+    owners: Option<Arc<Vec<[usize; 2]>>>,
     initial_gap: Vec<f64>,
     dense_limit: u64,
 }
@@ -264,15 +276,15 @@ struct Parts {
 /// [`Error::TooLarge`] past the memory limit.
 #[derive(Clone)]
 pub struct InterfaceProblem<'a> {
-    operator: Rc<Operator<'a>>,
-    interface: Rc<Interface>,
+    operator: Arc<Operator<'a>>,
+    interface: Arc<Interface>,
     /// f¹ + f², the displacements under the bodies' own loads; `None` when they are zero.
-    load_gap: Option<Rc<Vec<f64>>>,
-    modes: Rc<Vec<FreeMode>>,
+    load_gap: Option<Arc<Vec<f64>>>,
+    modes: Arc<Vec<FreeMode>>,
     /// Whose each of `modes` is: (body, its index among the body's rigid modes); `None` once
     /// [`InterfaceProblem::with_modes`] replaced them.
-    owners: Option<Rc<Vec<[usize; 2]>>>,
-    pressure_basis: Option<Rc<GapShape>>,
+    owners: Option<Arc<Vec<[usize; 2]>>>,
+    pressure_basis: Option<Arc<GapShape>>,
     initial_gap: Vec<f64>,
     dense_limit: u64,
 }
@@ -329,12 +341,12 @@ impl<'a> InterfaceProblem<'a> {
         let load_gap = load_gap
             .iter()
             .any(|&f| f != 0.0)
-            .then(|| Rc::new(load_gap));
+            .then(|| Arc::new(load_gap));
         let (modes, owners) = free_modes(b1, b2, &pair)?;
         let parts = Parts {
             load_gap,
-            modes: Rc::new(modes),
-            owners: Some(Rc::new(owners)),
+            modes: Arc::new(modes),
+            owners: Some(Arc::new(owners)),
             initial_gap: initial_gap.to_vec(),
             dense_limit: DEFAULT_DENSE_LIMIT_BYTES,
         };
@@ -353,18 +365,12 @@ impl<'a> InterfaceProblem<'a> {
             )?),
             (None, None) => None,
         };
-        let interface = Rc::new(b1.interface().clone());
+        let interface = Arc::new(b1.interface().clone());
         let identity = pair.iter().enumerate().all(|(i, &j)| i == j);
         let product = Product::of([b1.influence_shape(), b2.influence_shape()], identity);
         let operator = Operator {
             product,
-            scratch: (!identity).then(|| {
-                Mutex::new(Scratch {
-                    input: vec![0.0; n],
-                    output: vec![0.0; n],
-                    contact: vec![false; n],
-                })
-            }),
+            scratch: (!identity).then(|| Spares::new(Scratch::new(n))),
             pair: (!identity).then_some(pair),
             bodies,
             dense: OnceLock::new(),
@@ -372,11 +378,11 @@ impl<'a> InterfaceProblem<'a> {
         };
         Ok(Self {
             interface,
-            operator: Rc::new(operator),
+            operator: Arc::new(operator),
             load_gap: parts.load_gap,
             modes: parts.modes,
             owners: parts.owners,
-            pressure_basis: pressure_basis.map(Rc::new),
+            pressure_basis: pressure_basis.map(Arc::new),
             initial_gap: parts.initial_gap,
             dense_limit: parts.dense_limit,
         })
@@ -434,7 +440,7 @@ impl<'a> InterfaceProblem<'a> {
             )?;
         }
         Ok(Self {
-            modes: Rc::new(modes),
+            modes: Arc::new(modes),
             owners: None,
             ..self.clone()
         })
@@ -791,8 +797,8 @@ impl<'a> InterfaceProblem<'a> {
             load_gap: self
                 .load_gap
                 .as_ref()
-                .map(|f| Rc::new(index.iter().map(|&i| f[i]).collect())),
-            modes: Rc::new(modes),
+                .map(|f| Arc::new(index.iter().map(|&i| f[i]).collect())),
+            modes: Arc::new(modes),
             owners: None,
             initial_gap: index.iter().map(|&i| self.initial_gap[i]).collect(),
             dense_limit: self.dense_limit,
@@ -839,8 +845,8 @@ impl<'a> InterfaceProblem<'a> {
                 .collect::<Vec<f64>>()
         };
         let parts = Parts {
-            load_gap: self.load_gap.as_ref().map(|f| Rc::new(mean(f))),
-            modes: Rc::new(self.coarse_modes(&parent, &total)?),
+            load_gap: self.load_gap.as_ref().map(|f| Arc::new(mean(f))),
+            modes: Arc::new(self.coarse_modes(&parent, &total)?),
             owners: None,
             initial_gap: mean(&self.initial_gap),
             dense_limit: self.dense_limit,

@@ -13,7 +13,11 @@ use crate::InterfaceProblem;
 ///
 /// Build a solver from its settings ([`SolverSettings`](crate::SolverSettings), or each type's
 /// own `new(settings)`): every setting has its default in the library.
-pub trait ContactSolver {
+///
+/// A solver is `Send + Sync`: one solver solves an envelope's cases at once on several threads
+/// ([`crate::parallel`]); what a solve needs to change it allocates per solve (its work
+/// vectors) or takes from the problem ([`InterfaceProblem::dense_influence`], built once).
+pub trait ContactSolver: Send + Sync {
     /// The method, in events and reports.
     fn method(&self) -> Method;
 

@@ -726,3 +726,22 @@ fn full_penalty_matches_the_condensed_one() {
     let err = full_penalty(c).solve(&mut system).unwrap_err().to_string();
     assert!(err.contains("full system weights"), "{err}");
 }
+
+/// Dense solves at once hold the shared matrix and their own copies within the dense limit:
+/// the active set's five own copies (six with the shared one) fit three times in 16
+/// matrices, not four; the matrix-free solver is not bounded.
+#[test]
+fn dense_solves_at_once_fit_the_dense_limit() {
+    let n = 8;
+    let matrix = (n * n * 8) as u64;
+    let problem = wavy_floating(n, 1.0).with_dense_limit(16 * matrix);
+    assert_eq!(crate::parallel::at_once(&active_set(), &problem), 3);
+    let problem = problem.with_dense_limit(15 * matrix);
+    assert_eq!(crate::parallel::at_once(&active_set(), &problem), 2);
+    let problem = problem.with_dense_limit(matrix);
+    assert_eq!(crate::parallel::at_once(&active_set(), &problem), 1);
+    assert_eq!(
+        crate::parallel::at_once(&polonsky_keer(), &problem),
+        usize::MAX
+    );
+}

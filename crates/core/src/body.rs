@@ -31,7 +31,16 @@ pub struct RigidMode {
 ///
 /// Finite-element bodies, Green's-function bodies (half-space, half-plane), rigid bodies and
 /// user types implement it.
-pub trait ElasticBody {
+///
+/// A body is `Send + Sync`: the contact solves of an envelope's load cases under one crown
+/// share one body and run at once on several threads (`contopt_contact::parallel`), each
+/// calling its `&self` methods. A body that reuses work buffers between products keeps them
+/// where threads cannot meet: a set per product running at once ([`crate::Spares`]), not one
+/// behind a `RefCell` (which is not `Sync`) nor one behind a lock (the products would wait for
+/// each other, one thread at a time). A product must give the same bits on any thread and
+/// whatever ran before it (no state carried from one call to the next), so that results are
+/// the same for any number of threads.
+pub trait ElasticBody: Send + Sync {
     /// Name used in messages and reports.
     fn name(&self) -> &str;
 

@@ -20,6 +20,7 @@ mod material;
 pub mod memory;
 pub mod observe;
 mod rigid;
+mod spares;
 mod state;
 pub mod stress;
 mod termination;
@@ -33,6 +34,7 @@ pub use gap_shape::GapShape;
 pub use interface::{Geometry, Interface, NormalsView, GEOMETRY_TOLERANCE};
 pub use material::{Material, MaterialValues};
 pub use rigid::RigidBody;
+pub use spares::Spares;
 pub use state::{ContactState, Residuals};
 pub use stress::{
     Peak, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,

@@ -218,6 +218,11 @@ pub enum Flow {
 /// Receives the events of a method. Takes `&self` so that one observer can be shared by
 /// nested methods (the optimisation loop and the contact solves inside it); keep its state in
 /// a `Cell`, a `RefCell` or a lock. Any `Fn(&Event) -> Flow` closure is an observer.
+///
+/// An observer need not be `Sync`: it is called from the thread that runs the method only.
+/// Contact solves that run at once on other threads (an envelope's cases,
+/// `contopt_contact::parallel`) record their events, and the observer is shown them from the
+/// calling thread, case after case, as a run in turn shows them.
 pub trait Observer {
     /// Called after each iteration of a method.
     fn observe(&self, event: &Event) -> Flow;

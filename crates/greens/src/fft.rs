@@ -3,14 +3,16 @@
 //! (non-periodic) grid is padded to 2nx × 2ny so the circular product is the exact linear
 //! one; a periodic grid is transformed as it is.
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
-/// Buffers reused by every product (the hot loop of iterative solvers allocates nothing).
-/// Only the ny rows of the field are held in the x-transformed form, not the py rows of the
+use contopt_core::Spares;
+
+/// Buffers reused by every product (the hot loop of iterative solvers allocates nothing); a
+/// set per product running at once ([`Spares`]). Only the ny rows of the field are held in the x-transformed form, not the py rows of the
 /// padded grid: the columns are padded, transformed, multiplied and transformed back a block
 /// at a time, which halves the largest buffer of a free grid.
 struct Work {
@@ -75,7 +77,9 @@ pub(crate) struct Convolution {
     c2r: Arc<dyn ComplexToReal<f64>>,
     forward_y: Arc<dyn Fft<f64>>,
     inverse_y: Arc<dyn Fft<f64>>,
-    work: Mutex<Work>,
+    /// The scratch length of the four transforms.
+    scratch: usize,
+    work: Spares<Work>,
 }
 
 impl std::fmt::Debug for Convolution {
@@ -98,14 +102,7 @@ impl Convolution {
             inverse_y,
             scratch: scratch_len,
         } = Plans::new(px, py);
-        let cx = px / 2 + 1;
-        let work = Work {
-            row: vec![0.0; px],
-            rows: vec![Complex::new(0.0, 0.0); cx * ny],
-            block: vec![Complex::new(0.0, 0.0); BLOCK * py],
-            scratch: vec![Complex::new(0.0, 0.0); scratch_len],
-        };
-        Self {
+        let mut conv = Self {
             nx,
             ny,
             px,
@@ -115,7 +112,21 @@ impl Convolution {
             c2r,
             forward_y,
             inverse_y,
-            work: Mutex::new(work),
+            scratch: scratch_len,
+            work: Spares::default(),
+        };
+        conv.work = Spares::new(conv.new_work());
+        conv
+    }
+
+    /// A set of work buffers for one product.
+    fn new_work(&self) -> Work {
+        let cx = self.px / 2 + 1;
+        Work {
+            row: vec![0.0; self.px],
+            rows: vec![Complex::new(0.0, 0.0); cx * self.ny],
+            block: vec![Complex::new(0.0, 0.0); BLOCK * self.py],
+            scratch: vec![Complex::new(0.0, 0.0); self.scratch],
         }
     }
 
@@ -137,19 +148,18 @@ impl Convolution {
         let cx = px / 2 + 1;
         let hy = py / 2 + 1;
         let mut spectra = vec![Complex::new(0.0, 0.0); cx * py];
-        let mut work = conv.work.lock().expect("fresh lock");
         let Work {
-            row,
-            block,
-            scratch,
+            mut row,
+            mut block,
+            mut scratch,
             ..
-        } = &mut *work;
+        } = conv.new_work();
         for j in 0..py {
             for (i, v) in row.iter_mut().enumerate() {
                 *v = kernel(distance(i, nx), distance(j, ny));
             }
             conv.r2c
-                .process_with_scratch(row, &mut spectra[j * cx..(j + 1) * cx], scratch)
+                .process_with_scratch(&mut row, &mut spectra[j * cx..(j + 1) * cx], &mut scratch)
                 .expect("buffer lengths match the plan");
         }
         let mut spectrum = vec![0.0; cx * hy];
@@ -158,12 +168,11 @@ impl Convolution {
             for (j, c) in column.iter_mut().enumerate() {
                 *c = spectra[j * cx + i];
             }
-            conv.forward_y.process_with_scratch(column, scratch);
+            conv.forward_y.process_with_scratch(column, &mut scratch);
             for (s, c) in spectrum[i * hy..(i + 1) * hy].iter_mut().zip(column.iter()) {
                 *s = c.re;
             }
         }
-        drop(work);
         conv.spectrum = spectrum;
         conv
     }
@@ -205,18 +214,28 @@ impl Convolution {
     }
 
     fn convolve(&self, multiplier: impl Fn(f64) -> f64, input: &[f64], output: &mut [f64]) {
+        self.work.with(
+            || self.new_work(),
+            |work| self.convolve_on(work, multiplier, input, output),
+        );
+    }
+
+    /// [`Convolution::convolve`] on one set of work buffers.
+    fn convolve_on(
+        &self,
+        work: &mut Work,
+        multiplier: impl Fn(f64) -> f64,
+        input: &[f64],
+        output: &mut [f64],
+    ) {
         let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
         let (cx, hy) = (px / 2 + 1, py / 2 + 1);
-        let mut work = self
-            .work
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
         let Work {
             row,
             rows,
             block,
             scratch,
-        } = &mut *work;
+        } = work;
         for (j, spectrum) in rows.chunks_exact_mut(cx).enumerate() {
             row[..nx].copy_from_slice(&input[j * nx..(j + 1) * nx]);
             row[nx..].fill(0.0);

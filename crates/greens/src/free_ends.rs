@@ -25,14 +25,13 @@
 //! about three times as long (the roller, its two images and the gaps between them), so it
 //! costs about three half-space products.
 
-use std::sync::Mutex;
-
 use contopt_core::{
     check, ElasticBody, Error, Interface, Material, Result, RigidMode, SectionField, StressPeaks,
     Subsurface, SubsurfaceRequest,
 };
 
 use crate::HalfSpace;
+use contopt_core::Spares;
 
 /// A half-space grid ending at free faces x = x₋ below its first column and x = x₊ beyond its
 /// last, each loaded by the image pressure with a weight (see the module's account).
@@ -49,8 +48,8 @@ pub struct FreeEnds {
     /// The faces as placed \[mm\]: below, beyond.
     faces: [Option<f64>; 2],
     weight: f64,
-    /// Work: the extended pressure and displacement.
-    work: Mutex<(Vec<f64>, Vec<f64>)>,
+    /// Work: the extended pressure and displacement, a pair per product running at once.
+    work: Spares<(Vec<f64>, Vec<f64>)>,
 }
 
 /// The whole number of half-cells `dx/2` from a grid's edge to a face `distance` \[mm\] away
@@ -136,7 +135,7 @@ impl FreeEnds {
             images,
             faces: placed,
             weight,
-            work: Mutex::new((vec![0.0; width * ny], vec![0.0; width * ny])),
+            work: Spares::new((vec![0.0; width * ny], vec![0.0; width * ny])),
         })
     }
 
@@ -213,16 +212,17 @@ impl ElasticBody for FreeEnds {
     }
 
     fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let mut work = self
-            .work
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        let (ext, out) = &mut *work;
-        self.extend(force, ext);
-        self.extended.apply_influence(ext, out);
-        for (k, d) in displacement.iter_mut().enumerate() {
-            *d = out[self.extended_index(k)];
-        }
+        let size = self.extended.interface().len();
+        self.work.with(
+            || (vec![0.0; size], vec![0.0; size]),
+            |(ext, out)| {
+                self.extend(force, ext);
+                self.extended.apply_influence(ext, out);
+                for (k, d) in displacement.iter_mut().enumerate() {
+                    *d = out[self.extended_index(k)];
+                }
+            },
+        );
     }
 
     /// The half-space's circulant inverse: the images change the operator near the faces

@@ -42,6 +42,24 @@ mod passes;
 mod programme;
 mod settings;
 mod simplex;
+/// Solves `problem` with its initial gap changed by `gap_change` (from the pressure `start`
+/// when given), reporting to `observer`.
+pub(crate) fn solve_gap_changed(
+    solver: &dyn ContactSolver,
+    problem: &InterfaceProblem,
+    gap_change: &[f64],
+    start: Option<&[f64]>,
+    observer: &dyn Observer,
+) -> Result<ContactState> {
+    let gap: Vec<f64> = problem
+        .initial_gap()
+        .iter()
+        .zip(gap_change)
+        .map(|(h, d)| h + d)
+        .collect();
+    solver.solve_observed(&problem.with_initial_gap(&gap)?, start, observer)
+}
+
 #[cfg(test)]
 mod tests;
 
@@ -390,17 +408,7 @@ impl<'a> Optimisation<'a> {
         gap_change: &[f64],
         start: Option<&[f64]>,
     ) -> Result<ContactState> {
-        let gap: Vec<f64> = problem
-            .initial_gap()
-            .iter()
-            .zip(gap_change)
-            .map(|(h, d)| h + d)
-            .collect();
-        solver.solve_observed(
-            &problem.with_initial_gap(&gap)?,
-            start,
-            &Nested(self.observer),
-        )
+        solve_gap_changed(solver, problem, gap_change, start, &Nested(self.observer))
     }
 
     /// The largest pressure on Ω_opt of a contact solution (its p_max before any

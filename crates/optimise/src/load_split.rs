@@ -1,7 +1,7 @@
 //! The optimum of (3.5) without a dense matrix: the load carried by each design column.
 
-use contopt_contact::{ContactSolver, FreeMode, InterfaceProblem};
-use contopt_core::observe::{Flow, Method};
+use contopt_contact::{parallel, ContactSolver, FreeMode, InterfaceProblem};
+use contopt_core::observe::{Flow, Method, Nested, Observer};
 use contopt_core::{ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -324,9 +324,8 @@ impl Split<'_, '_, '_> {
         let mut envelope = columns.omega_v_pressure(opt, &state.pressure);
         let gap_change = opt.shape.apply(&dh);
         let mut cases = Vec::with_capacity(self.cases.len());
-        for (c, case) in self.cases.iter().enumerate() {
-            let start = last.map(|l| l.cases[c].pressure.as_slice());
-            let solved = opt.solve_with_gap_change(self.solver, case, &gap_change, start)?;
+        for solved in self.solve_cases(&gap_change, last) {
+            let solved = solved?;
             if !solved.is_converged() {
                 return Ok(Err(Failed {
                     end: solved.termination.inside(solved.method),
@@ -351,6 +350,25 @@ impl Split<'_, '_, '_> {
             p_max,
             miss,
         }))
+    }
+
+    /// The cases under `gap_change`, each from its pressure in `last`, solved at once on the
+    /// current rayon pool's threads ([`parallel::solve_each`]: results and events those of
+    /// solving them in turn), up to the first that fails or does not converge.
+    fn solve_cases(
+        &self,
+        gap_change: &[f64],
+        last: Option<&SplitIterate>,
+    ) -> Vec<Result<ContactState>> {
+        let (solver, cases) = (self.solver, self.cases);
+        let solve = |c: usize, observer: &dyn Observer| {
+            let start = last.map(|l| l.cases[c].pressure.as_slice());
+            crate::solve_gap_changed(solver, &cases[c], gap_change, start, observer)
+        };
+        let at_once = cases.first().map_or(1, |c| parallel::at_once(solver, c));
+        let go_on = |r: &Result<ContactState>| r.as_ref().is_ok_and(ContactState::is_converged);
+        let observer = Nested(self.opt.observer);
+        parallel::solve_each(cases.len(), at_once, &observer, solve, go_on)
     }
 
     /// The contact problem with each column a mode of its own loaded by `share` of the load.

@@ -5,7 +5,7 @@
 
 use std::ops::ControlFlow;
 
-use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_contact::{parallel, ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Event, Flow, Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, GapShape, Result, Termination};
 use contopt_optimise::{
@@ -204,7 +204,9 @@ pub fn design_case(cases: &[LoadCase]) -> usize {
 }
 
 /// Every case solved with its initial gap changed by `gap_change` \[mm per point\], each from
-/// its pressure in `start` when given, its iterations reported to `observer`.
+/// its pressure in `start` when given, its iterations reported to `observer`. The cases are
+/// solved at once on the current rayon pool's threads, as many as the dense limit holds
+/// ([`parallel::solve_each`]): results and events are those of solving them in turn.
 pub fn solve_cases(
     cases: &[LoadCase],
     gap_change: &[f64],
@@ -212,21 +214,24 @@ pub fn solve_cases(
     start: Option<&[ContactState]>,
     observer: &dyn Observer,
 ) -> Result<Vec<ContactState>> {
-    cases
-        .iter()
-        .enumerate()
-        .map(|(k, case)| {
-            let gap: Vec<f64> = case
-                .problem
-                .initial_gap()
-                .iter()
-                .zip(gap_change)
-                .map(|(h, d)| h + d)
-                .collect();
-            let problem = case.problem.with_initial_gap(&gap)?;
-            let start = start.map(|s| s[k].pressure.as_slice());
-            solver.solve_observed(&problem, start, observer)
-        })
+    let at_once = cases
+        .first()
+        .map_or(1, |c| parallel::at_once(solver, &c.problem));
+    let solve = |k: usize, observer: &dyn Observer| {
+        let case = &cases[k];
+        let gap: Vec<f64> = case
+            .problem
+            .initial_gap()
+            .iter()
+            .zip(gap_change)
+            .map(|(h, d)| h + d)
+            .collect();
+        let problem = case.problem.with_initial_gap(&gap)?;
+        let start = start.map(|s| s[k].pressure.as_slice());
+        solver.solve_observed(&problem, start, observer)
+    };
+    parallel::solve_each(cases.len(), at_once, observer, solve, Result::is_ok)
+        .into_iter()
         .collect()
 }
 

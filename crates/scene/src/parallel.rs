@@ -11,18 +11,27 @@
 //! Groups run at once only while the sum of their memory
 //! estimates stays within the scene's memory limit (a group's estimate is its largest case's,
 //! as its cases run one after another); a group that fits only alone waits for the others.
+//!
+//! The threads of one pool (`jobs` of them) do all the work: the groups' cases and the
+//! contact solves inside a case that run at once (an envelope's cases,
+//! [`contopt_contact::parallel`]), so that a case never adds threads to those of the others:
+//! a case alone on the pool has every thread for its solves, cases side by side share them.
+//! A group is handed to the pool by a runner thread that first waits for its memory at the
+//! gate, so that no pool thread ever waits there (a pool thread waiting for its solves may
+//! take up another group's case meanwhile, on its own stack: the stack holds one case per
+//! runner).
 
 use std::ops::Range;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex, PoisonError};
 
 use contopt_core::observe::Silent;
 use contopt_results::CaseReport;
-use rayon::prelude::*;
 
 use crate::{Case, Scene, SceneError};
 
-/// The stack of a thread that runs cases \[bytes\]: the main thread's on Linux, where a run
-/// on one thread solves them (rayon's default is 2 MiB).
+/// The stack of a case \[bytes\]: the main thread's on Linux, where a run on one thread
+/// solves them (rayon's default is 2 MiB).
 const CASE_STACK_BYTES: usize = 8 << 20;
 
 /// A case's report, or why it could not run.
@@ -49,29 +58,37 @@ impl Scene {
             .min()
             .unwrap_or(0);
         let gate = Gate::new(limit);
+        let runners = jobs.max(1).min(groups.len().max(1));
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(jobs.max(1))
-            .stack_size(CASE_STACK_BYTES)
+            .stack_size(CASE_STACK_BYTES.saturating_mul(runners))
             .build()
             .map_err(|e| SceneError::Io {
                 file: self.file.clone(),
                 source: std::io::Error::other(format!("could not start {jobs} threads: {e}")),
             })?;
-        let ran: Vec<Vec<(usize, CaseResult)>> = pool.install(|| {
-            groups
-                .par_iter()
-                .map(|group| {
-                    let need = group
-                        .iter()
-                        .map(|&k| cases[k].plan.memory.estimate_bytes)
-                        .max();
-                    let _held = gate.hold(need.unwrap_or(0));
-                    run_group(cases, group, done)
-                })
+        let next = AtomicUsize::new(0);
+        let runner = || {
+            let mut ran = vec![];
+            while let Some(group) = groups.get(next.fetch_add(1, Ordering::Relaxed)) {
+                let need = group
+                    .iter()
+                    .map(|&k| cases[k].plan.memory.estimate_bytes)
+                    .max();
+                let _held = gate.hold(need.unwrap_or(0));
+                ran.extend(pool.install(|| run_group(cases, group, done)));
+            }
+            ran
+        };
+        let ran: Vec<(usize, CaseResult)> = std::thread::scope(|s| {
+            let runners: Vec<_> = (0..runners).map(|_| s.spawn(runner)).collect();
+            runners
+                .into_iter()
+                .flat_map(|r| r.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
                 .collect()
         });
         let mut results: Vec<Option<CaseResult>> = (0..cases.len()).map(|_| None).collect();
-        for (k, result) in ran.into_iter().flatten() {
+        for (k, result) in ran {
             results[k] = Some(result);
         }
         Ok(results.into_iter().flatten().collect())
@@ -191,7 +208,7 @@ impl Drop for Held<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::sync::atomic::{AtomicU64, Ordering};
+    use std::sync::atomic::AtomicU64;
 
     /// The largest groups are halved until the threads have work; cases stay in order.
     #[test]
