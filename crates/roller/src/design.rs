@@ -264,8 +264,14 @@ pub struct RobustCrown {
 /// along x), Ω_v the centre row (|y| ≤ `dy`/2, the cell size across; eq. 3.3: the rest of
 /// each column follows it) and the pressure controlled by `controller` (eq. 3.1). The split
 /// reports to `observer` at level 0, its contact solves one level deeper.
+///
+/// With `levels` (one per case, in the cases' order) the cases' pressures are held to their
+/// own levels, p_c ≤ s_c·v·p̂ ([`Optimisation::envelope_split_levels`], the levels taken
+/// relative to the design case's): [`RobustCrown::p_max`] is then the design case's level.
+/// Without, every case is held to the one level p̂.
 pub fn robust_crown(
     cases: &[LoadCase],
+    levels: Option<&[f64]>,
     controller: &dyn Controller,
     dy: f64,
     solver: &dyn ContactSolver,
@@ -274,6 +280,19 @@ pub fn robust_crown(
 ) -> Result<RobustCrown> {
     check::positive("dy", dy)?;
     let design = design_case(cases);
+    let levels = match levels {
+        Some(l) if l.len() == cases.len() => l.to_vec(),
+        Some(l) => {
+            return Err(Error::invalid(
+                "levels",
+                format!("{} levels", l.len()),
+                format!("one pressure level per load case ({})", cases.len()),
+            ))
+        }
+        None => vec![1.0; cases.len()],
+    };
+    check::all_finite("levels", &levels)?;
+    check::all_positive("levels", &levels)?;
     let problem = &cases
         .get(design)
         .ok_or_else(|| Error::invalid("cases", "none", "at least one load case"))?
@@ -295,7 +314,11 @@ pub fn robust_crown(
         .filter(|&k| k != design)
         .map(|k| cases[k].problem.clone())
         .collect();
-    let found = optimisation.envelope_split(&others, solver, settings)?;
+    let relative: Vec<f64> = (0..cases.len())
+        .filter(|&k| k != design)
+        .map(|k| levels[k] / levels[design])
+        .collect();
+    let found = optimisation.envelope_split_levels(&others, &relative, solver, settings)?;
     let optimum = found.optimum;
     let own = Contact {
         pressure: optimum.pressure,
