@@ -638,3 +638,29 @@ fn check_method(spec: &CaseSpec, b: &BearingSpec) -> Result<()> {
         (_, None) => Ok(()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The levels of the bundled duty cycle (its heaviest rollers under the straight roller,
+    /// rounded): the aligned case of half the time is the reference, the 2′ case's small p₀
+    /// is lifted to it, the 4′ case's is √(4824/3440)·(0.5/0.2)^(1/8) = 1.3279; one load case
+    /// is held to 1, and so are cases of one load and time; mismatched lists are refused.
+    #[test]
+    fn duty_cycle_levels_weigh_load_and_time() {
+        let levels = duty_cycle_levels(&[3440.0, 1950.0, 4824.0], &[0.5, 0.3, 0.2]).unwrap();
+        let want = (4824.0f64 / 3440.0).sqrt() * 2.5f64.powf(0.125);
+        assert_eq!(levels[..2], [1.0, 1.0]);
+        assert!((levels[2] - want).abs() < 1e-12 && (want - 1.3279).abs() < 1e-4);
+        assert_eq!(duty_cycle_levels(&[5.0], &[1.0]).unwrap(), [1.0]);
+        assert_eq!(
+            duty_cycle_levels(&[2.0, 2.0], &[0.5, 0.5]).unwrap(),
+            [1.0, 1.0]
+        );
+        let e = duty_cycle_levels(&[1.0], &[0.5, 0.5])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("heaviest"), "{e}");
+    }
+}
