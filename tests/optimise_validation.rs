@@ -780,7 +780,12 @@ fn envelope_levels_reduce_to_the_load_split() {
     );
     for (s, ratio) in [(0.8, 1.0 / 0.8), (1.25, 1.0)] {
         let found = opt
-            .envelope_split_levels(&[design.clone()], &[s], &pk, &split_to(1e-9, 60))
+            .envelope_split_levels(
+                std::slice::from_ref(&design),
+                &[s],
+                &pk,
+                &split_to(1e-9, 60),
+            )
             .unwrap();
         let optimum = converged("levels", found.optimum);
         let p = optimum.p_max / (ratio * single.p_max);
@@ -794,7 +799,12 @@ fn envelope_levels_reduce_to_the_load_split() {
     }
     for levels in [&[0.0][..], &[]] {
         let e = opt
-            .envelope_split_levels(&[design.clone()], levels, &pk, &split_to(1e-9, 60))
+            .envelope_split_levels(
+                std::slice::from_ref(&design),
+                levels,
+                &pk,
+                &split_to(1e-9, 60),
+            )
             .unwrap_err()
             .to_string();
         assert!(e.contains("levels"), "{e}");

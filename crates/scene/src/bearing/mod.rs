@@ -128,8 +128,9 @@ pub enum BearingObjective {
     /// The duty cycle's life: ISO/TS 16281's L10r from the half-space contacts' slice loads,
     /// by Palmgren–Miner over the load cases, the band's worst. A profile search maximises it
     /// over its family; the robust crown (`envelope_split`) is designed for it without a
-    /// search, by holding each load case to its duty-cycle pressure level
-    /// ([`duty_cycle_levels`]) instead of one level for all.
+    /// search, by holding each load case i to its duty-cycle pressure level
+    /// s_i = max(1, (Q_i/Q_r)^(1/2)·(t_r/t_i)^(1/8)) times p̂ instead of one level for all
+    /// (Q_i its heaviest roller load, t_i its time fraction, r the case of the largest).
     Life,
 }
 
