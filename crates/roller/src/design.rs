@@ -167,9 +167,10 @@ fn scaled_case<'a>(
 /// Which deviations it covers: the drop off by c·t·(2x/l)² for every |c| ≤ 1, one parabolic
 /// deviation scaled (an error in the crown's depth, the centre held), seen at c = ±1 only.
 /// Why its ends are the worst: under a held load, adding c·(2x/l)² (≥ 0, largest at the ends)
-/// to the gap lowers the pressure at the ends and raises it in the middle as c grows, so a contact whose peak stays at an end (an edge-loaded or tilted case) has its
-/// largest p_max at c = −1 and one whose peak stays in the middle at c = +1: over the band
-/// the worst is at one of its ends. A contact whose peak moves between the middle and an end
+/// to the gap lowers the pressure at the ends and raises it in the middle as c grows, so a
+/// contact whose peak stays at an end (an edge-loaded or tilted case) has its largest p_max
+/// at c = −1 and one whose peak stays in the middle at c = +1: over the band the worst is at
+/// one of its ends. A contact whose peak moves between the middle and an end
 /// within the band may peak at an interior c, which three crowns do not see; and deviations
 /// of other shapes (a crown that starts elsewhere, an asymmetric or local error, a taper)
 /// are not covered at all.

@@ -597,9 +597,8 @@ fn crowned(b: &BearingSpec, at: &Locator) -> Result<CylindricalRollerBearing, Sc
     Ok(bearing)
 }
 
-/// The design methods a bearing takes: none, the robust crown over its envelope, or a
-/// profile search; the life as objective for the searches only; a design starts from the
-/// straight roller.
+/// The design methods a bearing takes: none, the robust crown over its envelope (with a
+/// controller), or a profile search (without); a design starts from the straight roller.
 fn check_method(spec: &CaseSpec, b: &BearingSpec) -> Result<()> {
     let Some(opt) = &spec.optimisation else {
         return Ok(());
