@@ -691,6 +691,63 @@ fn robust_roller_crown_over_an_envelope() {
     assert!(single_worst > 1.03 * p_max, "{single_worst} vs {p_max}");
 }
 
+/// The envelope split with levels against the load split it must reduce to: a further case
+/// identical to the design case at level s is the design case's pressure over s, so at
+/// s = 0.8 the envelope is p/0.8 and the crown is the load split's with p_max 1/0.8 times
+/// its, and at s = 1.25 it never leads and the optimum is the load split's (24 × 9 cells of
+/// the bearing roller tilted by 2′, both to 1e-5 of p_max and of the crown's largest drop:
+/// ten times the contact solves' accuracy, as the case is solved apart from the columns). A level of 0 or a missing one is refused.
+#[test]
+fn envelope_levels_reduce_to_the_load_split() {
+    let (body, h, _) = bearing_roller(24, 9);
+    let iface = body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
+    let nominal = InterfaceProblem::new(&body, &roller, &h).unwrap();
+    let design = roller_case(&nominal, &h, 1.5, (2.0f64 / 60.0).to_radians());
+    let v = Profile::cubic(4.5, 5.0).unwrap();
+    let shape = GapShape::symmetric(iface, 0).unwrap();
+    let pk = polonsky_keer();
+    let opt = Optimisation::new(&design, &shape, &v)
+        .unwrap()
+        .with_regions(centre_row(iface))
+        .unwrap();
+    let single = converged(
+        "load split",
+        opt.load_split(&pk, &split_to(1e-9, 60)).unwrap(),
+    );
+    for (s, ratio) in [(0.8, 1.0 / 0.8), (1.25, 1.0)] {
+        let found = opt
+            .envelope_split_levels(
+                std::slice::from_ref(&design),
+                &[s],
+                &pk,
+                &split_to(1e-9, 60),
+            )
+            .unwrap();
+        let optimum = converged("levels", found.optimum);
+        let p = optimum.p_max / (ratio * single.p_max);
+        let dh = dh_difference(&optimum, &single);
+        eprintln!(
+            "level {s}: p_max {:.3} MPa (ratio {p:.9}), crown off by {dh:.2e}",
+            optimum.p_max
+        );
+        assert!((p - 1.0).abs() < 1e-5, "level {s}: {p}");
+        assert!(dh < 1e-5, "level {s}: {dh}");
+    }
+    for levels in [&[0.0][..], &[]] {
+        let e = opt
+            .envelope_split_levels(
+                std::slice::from_ref(&design),
+                levels,
+                &pk,
+                &split_to(1e-9, 60),
+            )
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("levels"), "{e}");
+    }
+}
+
 /// The bearing roller (L1 = 3 mm) on `nx` × `ny` cells: its optimisation with Ω_v the centre
 /// row and the rest `outside`, run by `run`.
 fn with_bearing_roller<T>(

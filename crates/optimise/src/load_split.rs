@@ -102,8 +102,28 @@ impl Optimisation<'_> {
         solver: &dyn ContactSolver,
         settings: &LoadSplitSettings,
     ) -> Result<EnvelopeOptimum> {
+        let levels = vec![1.0; cases.len()];
+        self.envelope_split_levels(cases, &levels, solver, settings)
+    }
+
+    /// The envelope split with a pressure level per case: the least p_max with
+    /// p_c ≤ s_c·v·p_max for each of `cases` (`levels` = s_c, relative to the design case's
+    /// own level 1), so that the envelope whose Ω_v pressure is driven to v·p_max is
+    /// max(p, maxₖ p_c/s_c). A case with s_c > 1 may carry more than the design case, one with
+    /// s_c < 1 less: the levels weigh the cases (a duty cycle's time fractions, say), and with
+    /// every s_c = 1 it is [`Optimisation::envelope_split`]. Dividing a case's pressure by a
+    /// positive constant keeps the signs of the envelope's Jacobian, so the argument for the
+    /// closed envelope holds unchanged. Each case's Ω_nv is checked against s_c·v·p_max.
+    pub fn envelope_split_levels(
+        &self,
+        cases: &[InterfaceProblem],
+        levels: &[f64],
+        solver: &dyn ContactSolver,
+        settings: &LoadSplitSettings,
+    ) -> Result<EnvelopeOptimum> {
         settings.check()?;
         self.check_cases(cases)?;
+        check_levels(levels, cases.len())?;
         let columns = self.columns()?;
         let method = match cases.is_empty() {
             true => Method::LoadSplit,
@@ -113,6 +133,7 @@ impl Optimisation<'_> {
             opt: self,
             solver,
             cases,
+            levels,
             columns: &columns,
             passes: Passes::new(self, method, settings.tolerance),
         };
@@ -298,6 +319,8 @@ struct Split<'s, 'o, 'a> {
     opt: &'s Optimisation<'a>,
     solver: &'s dyn ContactSolver,
     cases: &'s [InterfaceProblem<'s>],
+    /// Each case's pressure level s_c, relative to the design case's.
+    levels: &'s [f64],
     columns: &'s Columns,
     passes: Passes<'o>,
 }
@@ -334,10 +357,11 @@ impl Split<'_, '_, '_> {
                 }));
             }
             let mean = columns.omega_v_pressure(opt, &solved.pressure);
+            let level = self.levels[c];
             envelope
                 .iter_mut()
                 .zip(mean)
-                .for_each(|(e, m)| *e = e.max(m));
+                .for_each(|(e, m)| *e = e.max(m / level));
             cases.push(solved);
         }
         let p_max = columns.fitted_p_max(&envelope);
@@ -418,7 +442,10 @@ impl Split<'_, '_, '_> {
             .cases
             .iter()
             .enumerate()
-            .filter_map(|(c, s)| Some((bound.excess(&s.pressure, iterate.p_max)?, c)))
+            .filter_map(|(c, s)| {
+                let level = self.levels[c] * iterate.p_max;
+                Some((bound.excess(&s.pressure, level)?, c))
+            })
             .max_by(|a, b| a.0 .0.total_cmp(&b.0 .0));
         let termination = match (termination, worst) {
             (Termination::Converged, Some(((value, i), c)))
@@ -531,6 +558,19 @@ impl Columns {
         }
         num / den
     }
+}
+
+/// The cases' levels, checked: one per case, each positive and finite.
+fn check_levels(levels: &[f64], cases: usize) -> Result<()> {
+    if levels.len() != cases {
+        return Err(Error::invalid(
+            "levels",
+            format!("{} levels", levels.len()),
+            format!("one pressure level per case of the envelope ({cases})"),
+        ));
+    }
+    contopt_core::check::all_finite("levels", levels)?;
+    contopt_core::check::all_positive("levels", levels)
 }
 
 /// Scales `share` to sum to one.

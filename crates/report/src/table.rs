@@ -55,10 +55,12 @@ fn bearing_table(report: &Report) -> String {
             total_ms(c)
         );
         s += &bearing_lines(b);
-        if let Some([l1, l2]) = b.controller_mm {
+        if let Some(levels) = &b.pressure_levels {
+            let levels: Vec<String> = levels.iter().map(|s| format!("{s:.3}")).collect();
             let _ = writeln!(
                 s,
-                "  the controller chosen for the life: L1 = {l1:.3} mm, L2 = {l2:.3} mm"
+                "  the load cases' pressure levels for the life: {}",
+                levels.join(", ")
             );
         }
         if let Some(t) = c.roller.as_ref().and_then(|r| r.tuned.as_ref()) {

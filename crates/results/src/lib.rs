@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 4;
+pub const SCHEMA_VERSION: u32 = 5;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -361,9 +361,9 @@ pub struct BearingReport {
     /// The crown's tolerance band ±t on its end drop \[µm\] (0: none); lives and pressures are
     /// the worst over the band.
     pub tolerance_um: f64,
-    /// The robust crown's controller L1 and L2 the life chose (`objective = "life"`) \[mm\];
-    /// null otherwise.
-    pub controller_mm: Option<[f64; 2]>,
+    /// The robust crown's pressure level per load case, relative to the reference case's,
+    /// when it is designed for the life (`objective = "life"`); null otherwise.
+    pub pressure_levels: Option<Vec<f64>>,
     /// The solved contacts: loaded rollers of every load case, duplicates (a roller and its
     /// mirror across the load line) solved once, times the band's three crowns.
     pub contacts_solved: usize,

@@ -163,6 +163,17 @@ fn scaled_case<'a>(
 /// Manuf. 4 (2010); their paper could not be read here, and this band is this crate's.)
 /// Returned in three blocks of `cases.len()`: the cases as they are, the band's top, its
 /// bottom.
+///
+/// Which deviations it covers: the drop off by c·t·(2x/l)² for every |c| ≤ 1, one parabolic
+/// deviation scaled (an error in the crown's depth, the centre held), seen at c = ±1 only.
+/// Why its ends are the worst: under a held load, adding c·(2x/l)² (≥ 0, largest at the ends)
+/// to the gap lowers the pressure at the ends and raises it in the middle as c grows, so a
+/// contact whose peak stays at an end (an edge-loaded or tilted case) has its largest p_max
+/// at c = −1 and one whose peak stays in the middle at c = +1: over the band the worst is at
+/// one of its ends. A contact whose peak moves between the middle and an end
+/// within the band may peak at an interior c, which three crowns do not see; and deviations
+/// of other shapes (a crown that starts elsewhere, an asymmetric or local error, a taper)
+/// are not covered at all.
 pub fn tolerance_band<'a>(
     cases: &[LoadCase<'a>],
     length: f64,
@@ -269,8 +280,14 @@ pub struct RobustCrown {
 /// along x), Ω_v the centre row (|y| ≤ `dy`/2, the cell size across; eq. 3.3: the rest of
 /// each column follows it) and the pressure controlled by `controller` (eq. 3.1). The split
 /// reports to `observer` at level 0, its contact solves one level deeper.
+///
+/// With `levels` (one per case, in the cases' order) the cases' pressures are held to their
+/// own levels, p_c ≤ s_c·v·p̂ ([`Optimisation::envelope_split_levels`], the levels taken
+/// relative to the design case's): [`RobustCrown::p_max`] is then the design case's level.
+/// Without, every case is held to the one level p̂.
 pub fn robust_crown(
     cases: &[LoadCase],
+    levels: Option<&[f64]>,
     controller: &dyn Controller,
     dy: f64,
     solver: &dyn ContactSolver,
@@ -279,6 +296,19 @@ pub fn robust_crown(
 ) -> Result<RobustCrown> {
     check::positive("dy", dy)?;
     let design = design_case(cases);
+    let levels = match levels {
+        Some(l) if l.len() == cases.len() => l.to_vec(),
+        Some(l) => {
+            return Err(Error::invalid(
+                "levels",
+                format!("{} levels", l.len()),
+                format!("one pressure level per load case ({})", cases.len()),
+            ))
+        }
+        None => vec![1.0; cases.len()],
+    };
+    check::all_finite("levels", &levels)?;
+    check::all_positive("levels", &levels)?;
     let problem = &cases
         .get(design)
         .ok_or_else(|| Error::invalid("cases", "none", "at least one load case"))?
@@ -300,7 +330,11 @@ pub fn robust_crown(
         .filter(|&k| k != design)
         .map(|k| cases[k].problem.clone())
         .collect();
-    let found = optimisation.envelope_split(&others, solver, settings)?;
+    let relative: Vec<f64> = (0..cases.len())
+        .filter(|&k| k != design)
+        .map(|k| levels[k] / levels[design])
+        .collect();
+    let found = optimisation.envelope_split_levels(&others, &relative, solver, settings)?;
     let optimum = found.optimum;
     let own = Contact {
         pressure: optimum.pressure,

@@ -106,6 +106,7 @@ fn robust_crown_beats_the_straight_roller_in_every_case() {
         );
         let robust = robust_crown(
             cases,
+            None,
             &v,
             dy,
             &solver(),

@@ -27,7 +27,6 @@ use crate::error::Locator;
 use crate::methods::MethodSpec;
 use crate::spec::CaseSpec;
 use crate::SceneError;
-use contopt_optimise::ControllerSettings;
 
 /// The image pressure's weight at the roller's free ends unless the scene sets one: the
 /// weight with which the image alone matches Hetényi's free end face for pressures that reach
@@ -49,6 +48,47 @@ const MAX_TOLERANCE_UM: f64 = 1000.0;
 
 /// Stribeck's factor of the design load: Q₀ = 5·F_r/Z for the heaviest load case.
 const STRIBECK: f64 = 5.0;
+
+/// The eighth root of a time fraction's ratio in [`duty_cycle_levels`]: ISO/TS 16281's slice
+/// life goes as q^(−4) (its exponents 9/2 and 8/9 of [`contopt_roller::reference_rating_life`]
+/// on one slice), and a slice's Hertzian load as p₀² (Johnson eq. 4.45), so a case's damage
+/// t·L⁻¹ goes as t·p₀⁸.
+const DAMAGE_EXPONENT: f64 = 8.0;
+
+/// The robust crown's pressure level s_i of each load case for the duty-cycle life, relative
+/// to the reference case r, the one of the largest time fraction (the first of those):
+///
+/// s_i = max(1, (Q_i/Q_r)^(1/2) · (t_r/t_i)^(1/8)),
+///
+/// `heaviest` = Q_i the load case's heaviest roller load on the solved raceway, `fractions` =
+/// t_i. (Q_i/Q_r)^(1/2) is the ratio of the cases' Hertzian line-contact pressures
+/// (p₀ ∝ √Q, Johnson eq. 4.45): each case is held to its own load's pressure, not to the
+/// heaviest's. (t_r/t_i)^(1/8) lets a case the duty cycle spends less time in carry more by
+/// the same damage t·p₀⁸ ([`DAMAGE_EXPONENT`]). No case is held below the reference level: a
+/// lighter case held to its own small p₀ would shape the crown for damage it hardly does.
+/// With one load case every level is 1 and the crown is the p_max one.
+pub fn duty_cycle_levels(heaviest: &[f64], fractions: &[f64]) -> Result<Vec<f64>> {
+    check::all_positive("heaviest", heaviest)?;
+    check::all_positive("fractions", fractions)?;
+    if heaviest.len() != fractions.len() {
+        return Err(Error::invalid(
+            "heaviest",
+            format!("{} loads", heaviest.len()),
+            format!("one per load case ({})", fractions.len()),
+        ));
+    }
+    let r = (0..fractions.len())
+        .reduce(|a, b| if fractions[b] > fractions[a] { b } else { a })
+        .ok_or_else(|| Error::invalid("fractions", "none", "at least one load case"))?;
+    Ok(heaviest
+        .iter()
+        .zip(fractions)
+        .map(|(q, t)| {
+            let level = (q / heaviest[r]).sqrt() * (fractions[r] / t).powf(1.0 / DAMAGE_EXPONENT);
+            level.max(1.0)
+        })
+        .collect())
+}
 
 /// A raceway, as a scene names it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -87,8 +127,10 @@ pub enum BearingObjective {
     PMax,
     /// The duty cycle's life: ISO/TS 16281's L10r from the half-space contacts' slice loads,
     /// by Palmgren–Miner over the load cases, the band's worst. A profile search maximises it
-    /// over its family; the robust crown (`envelope_split`) over its controller's L1 and L2 (a
-    /// Nelder–Mead search of robust crowns from the scene's controller).
+    /// over its family; the robust crown (`envelope_split`) is designed for it without a
+    /// search, by holding each load case i to its duty-cycle pressure level
+    /// s_i = max(1, (Q_i/Q_r)^(1/2)·(t_r/t_i)^(1/8)) times p̂ instead of one level for all
+    /// (Q_i its heaviest roller load, t_i its time fraction, r the case of the largest).
     Life,
 }
 
@@ -555,9 +597,8 @@ fn crowned(b: &BearingSpec, at: &Locator) -> Result<CylindricalRollerBearing, Sc
     Ok(bearing)
 }
 
-/// The design methods a bearing takes: none, the robust crown over its envelope, or a
-/// profile search; the life as objective for the searches only; a design starts from the
-/// straight roller.
+/// The design methods a bearing takes: none, the robust crown over its envelope (with a
+/// controller), or a profile search (without); a design starts from the straight roller.
 fn check_method(spec: &CaseSpec, b: &BearingSpec) -> Result<()> {
     let Some(opt) = &spec.optimisation else {
         return Ok(());
@@ -588,27 +629,38 @@ fn check_method(spec: &CaseSpec, b: &BearingSpec) -> Result<()> {
             "missing",
             "the robust crown needs the controller v(x): { kind = \"cubic\", l1_mm, l2_mm }",
         )),
-        (MethodSpec::EnvelopeSplit(_), Some(c)) => {
-            c.build()?;
-            let varied = matches!(
-                c,
-                ControllerSettings::Cubic { .. } | ControllerSettings::Trapezoid { .. }
-            );
-            match (b.objective, varied) {
-                (BearingObjective::Life, false) => Err(Error::invalid(
-                    "controller",
-                    format!("{c:?}"),
-                    "the life as objective chooses the robust crown's L1: give a cubic or \
-                     trapezoid controller",
-                )),
-                _ => Ok(()),
-            }
-        }
+        (MethodSpec::EnvelopeSplit(_), Some(c)) => c.build().map(|_| ()),
         (_, Some(_)) => Err(Error::invalid(
             "controller",
             "given",
             "a profile search tunes its family's parameters and takes no controller",
         )),
         (_, None) => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The levels of the bundled duty cycle (its heaviest rollers under the straight roller,
+    /// rounded): the aligned case of half the time is the reference, the 2′ case's small p₀
+    /// is lifted to it, the 4′ case's is √(4824/3440)·(0.5/0.2)^(1/8) = 1.3279; one load case
+    /// is held to 1, and so are cases of one load and time; mismatched lists are refused.
+    #[test]
+    fn duty_cycle_levels_weigh_load_and_time() {
+        let levels = duty_cycle_levels(&[3440.0, 1950.0, 4824.0], &[0.5, 0.3, 0.2]).unwrap();
+        let want = (4824.0f64 / 3440.0).sqrt() * 2.5f64.powf(0.125);
+        assert_eq!(levels[..2], [1.0, 1.0]);
+        assert!((levels[2] - want).abs() < 1e-12 && (want - 1.3279).abs() < 1e-4);
+        assert_eq!(duty_cycle_levels(&[5.0], &[1.0]).unwrap(), [1.0]);
+        assert_eq!(
+            duty_cycle_levels(&[2.0, 2.0], &[0.5, 0.5]).unwrap(),
+            [1.0, 1.0]
+        );
+        let e = duty_cycle_levels(&[1.0], &[0.5, 0.5])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("heaviest"), "{e}");
     }
 }

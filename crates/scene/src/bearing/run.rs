@@ -13,9 +13,7 @@ use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
-use std::ops::ControlFlow;
 
-use contopt_optimise::{nelder_mead, ControllerSettings, SearchSettings};
 use contopt_results::{
     BearingLoadCase, BearingReport, BearingRoller, CaseReport, Lives, TunedProfile, WorstContact,
 };
@@ -27,7 +25,7 @@ use contopt_roller::{
     RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
 };
 
-use super::{BearingObjective, BearingPlan};
+use super::{duty_cycle_levels, BearingObjective, BearingPlan};
 use crate::methods::{roller_report, Designed, MethodSpec};
 use crate::Case;
 
@@ -191,10 +189,8 @@ struct Crowned {
     termination: Termination,
     bound_p_max: Option<f64>,
     tuned: Option<TunedProfile>,
-    /// The cases' pressures under the crown, as the design found them (a robust crown's).
-    cases: Vec<Vec<f64>>,
-    /// The controller's L1 and L2 the life chose \[mm\].
-    controller: Option<[f64; 2]>,
+    /// The robust crown's pressure level per load case, for the life.
+    levels: Option<Vec<f64>>,
     /// The robust crown's largest p − v·p̂ over Ω_nv \[MPa\].
     omega_nv_excess: Option<f64>,
 }
@@ -202,79 +198,6 @@ struct Crowned {
 /// The life as a search's objective: −1000·ln L, so that the search's tolerance (absolute, in
 /// the objective's units) is in thousandths of the life's logarithm, whatever its size.
 const LOG_SCALE: f64 = 1000.0;
-
-/// The life's search over the robust crown's controller: at most this many robust crowns, the
-/// simplex's spread then 0.05 thousandths of the life's logarithm.
-const LIFE_SEARCH: SearchSettings = SearchSettings {
-    tolerance: 0.05,
-    max_evaluations: 30,
-};
-
-/// The robust crown whose controller's L1 and L2 give the longest life: a Nelder–Mead search
-/// ([`nelder_mead`]) of robust crowns from the scene's controller, L1 = h·σ(u₀) within the
-/// half-length h, L2 = L1 + h·e^u₁ (beyond h when the ends may carry load). `robust` designs a
-/// crown, `life` rates it; the longest-lived is kept.
-fn life_over_controller(
-    controller: &ControllerSettings,
-    half: f64,
-    robust: &dyn Fn(&ControllerSettings) -> Result<Crowned>,
-    life: &dyn Fn(&Crowned) -> Result<f64>,
-) -> Result<Crowned> {
-    let (l1, l2, axis, cubic) = match *controller {
-        ControllerSettings::Cubic { l1_mm, l2_mm, axis } => (l1_mm, l2_mm, axis, true),
-        ControllerSettings::Trapezoid { l1_mm, l2_mm, axis } => (l1_mm, l2_mm, axis, false),
-        ref other => {
-            return Err(Error::invalid(
-                "controller",
-                format!("{other:?}"),
-                "the life's search varies L1 and L2 of a cubic or trapezoid controller",
-            ))
-        }
-    };
-    let lengths = |u: &[f64]| {
-        let l1_mm = half / (1.0 + (-u[0]).exp());
-        [l1_mm, l1_mm + half * u[1].exp()]
-    };
-    // The scene's controller as the start, its L1 kept inside (0, h) and L2 past it.
-    let fraction = (l1 / half).clamp(LIFE_START_MARGIN, 1.0 - LIFE_START_MARGIN);
-    let start = [
-        (fraction / (1.0 - fraction)).ln(),
-        ((l2 - l1).max(LIFE_START_MARGIN * half) / half).ln(),
-    ];
-    let mut best: Option<(f64, Crowned)> = None;
-    nelder_mead(
-        |u| {
-            let [l1_mm, l2_mm] = lengths(u);
-            let settings = match cubic {
-                true => ControllerSettings::Cubic { l1_mm, l2_mm, axis },
-                false => ControllerSettings::Trapezoid { l1_mm, l2_mm, axis },
-            };
-            let mut crowned = robust(&settings)?;
-            crowned.controller = Some([l1_mm, l2_mm]);
-            let value = life(&crowned)?;
-            let objective = match value > 0.0 {
-                true => -LOG_SCALE * value.ln(),
-                false => f64::INFINITY,
-            };
-            if best.as_ref().is_none_or(|b| value > b.0) {
-                best = Some((value, crowned));
-            }
-            Ok(ControlFlow::Continue(objective))
-        },
-        &start,
-        &LIFE_START_STEP,
-        &LIFE_SEARCH,
-    )?;
-    best.map(|b| b.1)
-        .ok_or_else(|| Error::invalid("controller", "l1_mm", "no robust crown was designed"))
-}
-
-/// The life's search starts L1 at least this fraction of the half-length inside it, and L2 at
-/// least this far beyond L1.
-const LIFE_START_MARGIN: f64 = 0.02;
-
-/// The life's search's first steps in (u₀, u₁).
-const LIFE_START_STEP: [f64; 2] = [1.0, 0.7];
 
 /// The design of the crown over the envelope `cases` of `first` (the distributions under the
 /// scene's roller), by the scene's method; `None` without `[optimisation]`.
@@ -303,45 +226,29 @@ fn design(
                 .controller
                 .as_ref()
                 .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?;
-            let robust = |c: &ControllerSettings| -> Result<Crowned> {
-                let crown = robust_crown(
-                    cases,
-                    c.build()?.as_ref(),
-                    at.cell[1],
-                    solver,
-                    settings,
-                    observer,
-                )?;
-                Ok(Crowned {
-                    change: crown.drop,
-                    method: Method::EnvelopeSplit,
-                    termination: crown.termination,
-                    bound_p_max: Some(crown.p_max),
-                    tuned: None,
-                    cases: crown.cases.into_iter().map(|c| c.pressure).collect(),
-                    controller: None,
-                    omega_nv_excess: crown.omega_nv_excess,
-                })
+            // For the life, each load case is held to its duty-cycle level.
+            let levels = match plan.objective {
+                BearingObjective::PMax => None,
+                BearingObjective::Life => Some(contact_levels(plan, env, cases.len())?),
             };
-            return match plan.objective {
-                BearingObjective::PMax => robust(controller).map(Some),
-                BearingObjective::Life => {
-                    let life = |crowned: &Crowned| -> Result<f64> {
-                        let pressures: Vec<&[f64]> =
-                            crowned.cases.iter().map(Vec::as_slice).collect();
-                        let complete =
-                            pressures.len() == cases.len() && crowned.termination.is_converged();
-                        match complete {
-                            true => Ok(lives(plan, first, env, &pressures, at)?
-                                .1
-                                .peak_pressure_mrev),
-                            false => Ok(0.0),
-                        }
-                    };
-                    let half = 0.5 * at.length;
-                    life_over_controller(controller, half, &robust, &life).map(Some)
-                }
-            };
+            let crown = robust_crown(
+                cases,
+                levels.as_ref().map(|l| l.1.as_slice()),
+                controller.build()?.as_ref(),
+                at.cell[1],
+                solver,
+                settings,
+                observer,
+            )?;
+            return Ok(Some(Crowned {
+                change: crown.drop,
+                method: Method::EnvelopeSplit,
+                termination: crown.termination,
+                bound_p_max: Some(crown.p_max),
+                tuned: None,
+                levels: levels.map(|l| l.0),
+                omega_nv_excess: crown.omega_nv_excess,
+            }));
         }
         MethodSpec::ProfileSearch(s) => (ProfileFamily::FujiwaraKawase, s),
         MethodSpec::CircularSearch(s) => (ProfileFamily::Circular, s),
@@ -379,10 +286,27 @@ fn design(
         method: Method::ProfileSearch,
         termination: tuned.termination,
         bound_p_max: None,
-        cases: vec![],
-        controller: None,
+        levels: None,
         omega_nv_excess: None,
     }))
+}
+
+/// The load cases' duty-cycle pressure levels ([`duty_cycle_levels`]) from their heaviest
+/// rollers in `env`, and each of the `cases` contacts' (band after band): its load case's.
+fn contact_levels(
+    plan: &BearingPlan,
+    env: &Envelope,
+    cases: usize,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut heaviest = vec![0.0; plan.loads.len()];
+    for (contact, (i, _)) in env.contacts.iter().zip(&env.origin) {
+        heaviest[*i] = f64::max(heaviest[*i], contact.load_n);
+    }
+    let fractions: Vec<f64> = plan.loads.iter().map(|l| l.2).collect();
+    let levels = duty_cycle_levels(&heaviest, &fractions)?;
+    let n = env.contacts.len().max(1);
+    let per_contact = (0..cases).map(|k| levels[env.origin[k % n].0]).collect();
+    Ok((levels, per_contact))
 }
 
 /// The designed drop along the centre row as the roller's crown for the slice model: a table
@@ -484,9 +408,9 @@ pub(crate) fn run<'a>(
     let worst = (0..states.len())
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(0);
-    let l1 = designed.as_ref().and_then(|d| d.controller);
+    let levels = designed.as_ref().and_then(|d| d.levels.clone());
     report.bearing = Some(bearing_report(
-        plan, &dists, &env, &states, worst, &at, per_case, duty, l1,
+        plan, &dists, &env, &states, worst, &at, per_case, duty, levels,
     ));
     let drop: Vec<f64> = match &designed {
         Some(d) => d.change.clone(),
@@ -563,7 +487,7 @@ fn bearing_report(
     at: &Geometry,
     per_case: Vec<Lives>,
     duty: Lives,
-    l1: Option<[f64; 2]>,
+    levels: Option<Vec<f64>>,
 ) -> BearingReport {
     let n = env.contacts.len();
     let bands = env.bands(states.len());
@@ -623,7 +547,7 @@ fn bearing_report(
         design_load_n: plan.design_load,
         free_ends_weight: plan.free_ends,
         tolerance_um: 1e3 * plan.tolerance,
-        controller_mm: l1,
+        pressure_levels: levels,
         contacts_solved: states.len(),
         load_cases,
         duty_cycle: duty,

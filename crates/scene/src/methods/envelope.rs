@@ -42,6 +42,7 @@ impl Design for EnvelopeSplit {
         let dy = cell_across(c.plan);
         let crown = contopt_roller::robust_crown(
             c.cases,
+            None,
             controller.as_ref(),
             dy,
             c.solver,
