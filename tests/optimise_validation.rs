@@ -696,20 +696,21 @@ fn robust_roller_crown_over_an_envelope() {
 /// s = 0.8 the envelope is p/0.8 and the crown is the load split's with p_max 1/0.8 times
 /// its, and at s = 1.25 it never leads and the optimum is the load split's (24 × 9 cells of
 /// the bearing roller tilted by 2′, both to 1e-5 of p_max and of the crown's largest drop:
-/// ten times the contact solves' accuracy, as the case is solved apart from the columns). A level of 0 or a missing one is refused.
+/// ten times the contact solves' accuracy, as the case is solved apart from the columns). A
+/// level of 0 or a missing one is refused.
 #[test]
 fn envelope_levels_reduce_to_the_load_split() {
-    let (body, h, _) = bearing_roller(24, 9);
-    let iface = body.interface();
-    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
-    let nominal = InterfaceProblem::new(&body, &roller, &h).unwrap();
-    let design = roller_case(&nominal, &h, 1.5, (2.0f64 / 60.0).to_radians());
+    let grid = Roller::grid(24, 9).unwrap();
+    let iface = grid.body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+    let nominal = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
+    let design = roller_case(&nominal, &grid.gap, 1.5, (2.0f64 / 60.0).to_radians());
     let v = Profile::cubic(4.5, 5.0).unwrap();
     let shape = GapShape::symmetric(iface, 0).unwrap();
     let pk = polonsky_keer();
     let opt = Optimisation::new(&design, &shape, &v)
         .unwrap()
-        .with_regions(centre_row(iface))
+        .with_regions(grid.centre_row(Region::OmegaNv))
         .unwrap();
     let single = converged(
         "load split",

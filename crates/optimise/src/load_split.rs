@@ -347,7 +347,7 @@ impl Split<'_, '_, '_> {
         let mut envelope = columns.omega_v_pressure(opt, &state.pressure);
         let gap_change = opt.shape.apply(&dh);
         let mut cases = Vec::with_capacity(self.cases.len());
-        for solved in self.solve_cases(&gap_change, last) {
+        for (c, solved) in self.solve_cases(&gap_change, last).into_iter().enumerate() {
             let solved = solved?;
             if !solved.is_converged() {
                 return Ok(Err(Failed {
