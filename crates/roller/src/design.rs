@@ -528,16 +528,17 @@ pub struct Grid<'g, 'a> {
     pub objective: &'g mut Objective<'g>,
 }
 
-/// [`tune_profile`] coarse to fine: the search on `coarse` (the same cases on a grid of
-/// fewer cells, [`InterfaceProblem::coarsen`]), then a polish on `fine` (the scene's grid):
-/// a Nelder–Mead search from the coarse optimum with first steps half the coarse search's last
+/// [`tune_profile`] coarse to fine: the search on `coarse` (the same cases on a grid of fewer
+/// cells, [`InterfaceProblem::coarsen`]), then a polish on `fine` (the scene's grid): a
+/// Nelder–Mead search from the coarse optimum with first steps half the coarse search's last
 /// simplex ([`contopt_optimise::Minimum::extent`]; at least a tenth of a fresh search's), at
-/// most 24 crowns, to `settings`' tolerance; the best fine crown is returned, ended as the
-/// coarse search ended (the polish's budget is its design). The two grids' optima differ by
-/// the discretisation, so the polish is a short local search where a restart from scratch on
-/// the fine grid would spend a search's budget again. The crowns solved on the coarse grid
-/// are counted in [`TunedCrown::coarse_evaluations`]; a coarse search that did not end
-/// converged or at its budget (a stop, a contact solve that failed) is returned as it is.
+/// most 24 crowns (and the simplex step under way), to `settings`' tolerance; the best fine
+/// crown is returned, ended as the coarse search ended (the polish's budget is its design). The
+/// two grids' optima differ by the discretisation, so the polish is a short local search where
+/// a restart from scratch on the fine grid would spend a search's budget again. The crowns
+/// solved on the coarse grid are counted in [`TunedCrown::coarse_evaluations`]; a coarse search
+/// that did not end converged or at its budget (a stop, a contact solve that failed) is
+/// returned as it is.
 pub fn tune_profile_coarse_to_fine(
     coarse: Grid,
     fine: Grid,
