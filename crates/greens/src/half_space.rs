@@ -40,7 +40,7 @@ pub struct HalfSpace {
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
     compliance: f64,
-    material: Material,
+    pub(crate) material: Material,
     /// Cell sizes \[mm\].
     pub(crate) dx: f64,
     pub(crate) dy: f64,
@@ -325,6 +325,38 @@ impl HalfSpace {
         }
     }
 
+    /// The grid coarsened ([`ElasticBody::coarsen`]), as a half-space grid of its own.
+    pub(crate) fn coarse_grid(&self) -> Option<(HalfSpace, Vec<usize>)> {
+        let (nx, ny) = (self.nx, self.ny);
+        let (fx, fy) = (if nx > 1 { 2 } else { 1 }, if ny > 1 { 2 } else { 1 });
+        if fx * fy == 1 || (self.periodic && (nx % fx != 0 || ny % fy != 0)) {
+            return None;
+        }
+        let (cx, cy) = (nx.div_ceil(fx), ny.div_ceil(fy));
+        let (dx, dy) = (fx as f64 * self.dx, fy as f64 * self.dy);
+        let first = self.interface.points()[0];
+        let origin = [
+            first[0] + 0.5 * (fx - 1) as f64 * self.dx,
+            first[1] + 0.5 * (fy - 1) as f64 * self.dy,
+        ];
+        let build = if self.periodic {
+            HalfSpace::periodic
+        } else {
+            HalfSpace::grid
+        };
+        let mut coarse = build(&self.name, self.material, cx, cy, dx, dy, origin).ok()?;
+        if let Some(mode) = self.modes.first() {
+            coarse = coarse.pressed(-mode.load).ok()?;
+        }
+        if self.interface.normals()[0][2] < 0.0 {
+            coarse = coarse.upper();
+        }
+        let parent = (0..nx * ny)
+            .map(|k| (k / nx / fy) * cx + (k % nx) / fx)
+            .collect();
+        Some((coarse, parent))
+    }
+
     /// Number of cells (nx, ny).
     pub fn cells(&self) -> (usize, usize) {
         (self.nx, self.ny)
@@ -407,33 +439,7 @@ impl ElasticBody for HalfSpace {
     /// side's last coarse cell reaches half a coarse cell past the grid); pressed by the same
     /// force, facing the same way. A periodic grid coarsens only when its sides are even.
     fn coarsen(&self) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
-        let (nx, ny) = (self.nx, self.ny);
-        let (fx, fy) = (if nx > 1 { 2 } else { 1 }, if ny > 1 { 2 } else { 1 });
-        if fx * fy == 1 || (self.periodic && (nx % fx != 0 || ny % fy != 0)) {
-            return None;
-        }
-        let (cx, cy) = (nx.div_ceil(fx), ny.div_ceil(fy));
-        let (dx, dy) = (fx as f64 * self.dx, fy as f64 * self.dy);
-        let first = self.interface.points()[0];
-        let origin = [
-            first[0] + 0.5 * (fx - 1) as f64 * self.dx,
-            first[1] + 0.5 * (fy - 1) as f64 * self.dy,
-        ];
-        let build = if self.periodic {
-            HalfSpace::periodic
-        } else {
-            HalfSpace::grid
-        };
-        let mut coarse = build(&self.name, self.material, cx, cy, dx, dy, origin).ok()?;
-        if let Some(mode) = self.modes.first() {
-            coarse = coarse.pressed(-mode.load).ok()?;
-        }
-        if self.interface.normals()[0][2] < 0.0 {
-            coarse = coarse.upper();
-        }
-        let parent = (0..nx * ny)
-            .map(|k| (k / nx / fy) * cx + (k % nx) / fx)
-            .collect();
+        let (coarse, parent) = self.coarse_grid()?;
         Some((Box::new(coarse), parent))
     }
 

@@ -60,6 +60,10 @@ pub struct Minimum {
     pub value: f64,
     /// How many times the objective was evaluated.
     pub evaluations: usize,
+    /// The last simplex's extent along each parameter (its largest less its smallest
+    /// coordinate; empty when no simplex was made): how finely the search placed the minimum,
+    /// the steps of a search that goes on from it.
+    pub extent: Vec<f64>,
     /// [`Termination::Converged`] when the spread fell to the tolerance,
     /// [`Termination::StepLimit`] when the budget ran out (its steps are evaluations, its
     /// measure the last spread), or the termination the objective stopped it with.
@@ -154,6 +158,14 @@ impl<F: FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>> Search<F> {
     /// The best vertex, ended as `termination` (the start when there is no vertex).
     fn minimum(mut self, start: &[f64], termination: Termination) -> Minimum {
         self.sort();
+        let extent = (0..start.len())
+            .map(|k| {
+                let along = self.simplex.iter().map(|(x, _)| x[k]);
+                along.clone().fold(f64::NEG_INFINITY, f64::max)
+                    - along.fold(f64::INFINITY, f64::min)
+            })
+            .filter(|e| e.is_finite())
+            .collect();
         let (x, value) = match self.simplex.into_iter().next() {
             Some(best) => best,
             None => (start.to_vec(), f64::INFINITY),
@@ -162,6 +174,7 @@ impl<F: FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>> Search<F> {
             x,
             value,
             evaluations: self.evaluations,
+            extent,
             termination,
         }
     }
@@ -266,6 +279,12 @@ mod tests {
         );
         assert!(m.evaluations < 600, "{}", m.evaluations);
         assert_eq!(m.termination, Termination::Converged);
+        // The last simplex is small about the minimum, and not a point.
+        assert!(
+            m.extent.iter().all(|&e| e > 0.0 && e < 1e-3),
+            "{:?}",
+            m.extent
+        );
     }
 
     /// The budget ends the search with a step limit, not an error; the objective's error is

@@ -9,7 +9,7 @@ use contopt_contact::{parallel, ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Event, Flow, Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, GapShape, Result, Termination};
 use contopt_optimise::{
-    nelder_mead, Controller, LoadSplitSettings, Optimisation, Region, SearchSettings,
+    nelder_mead, Controller, LoadSplitSettings, Minimum, Optimisation, Region, SearchSettings,
 };
 use serde::{Deserialize, Serialize};
 
@@ -403,8 +403,11 @@ pub struct TunedCrown {
     pub worst: f64,
     /// Each case's contact under it (empty when no crown was solved).
     pub states: Vec<ContactState>,
-    /// The crowns evaluated.
+    /// The crowns evaluated (on the scene's grid, after a coarse search's).
     pub evaluations: usize,
+    /// The crowns evaluated on a coarser grid first ([`tune_profile_coarse_to_fine`]; 0
+    /// without).
+    pub coarse_evaluations: usize,
     /// How the search ended: converged, its budget used ([`Termination::StepLimit`]), an
     /// observer's stop ([`Termination::Stopped`]) or a contact solve that did not converge
     /// ([`Termination::Inner`]).
@@ -421,6 +424,17 @@ const CIRCULAR_START: [f64; 2] = [0.0, 1.609_437_912_434_100_3];
 /// Its first simplex's steps.
 const CIRCULAR_STEP: [f64; 2] = [1.0, 0.5];
 
+/// The polish on the scene's grid after a coarse search starts with steps this fraction of
+/// the coarse search's last simplex ([`contopt_optimise::Minimum::extent`]): the two grids'
+/// optima differ by the discretisation, which the coarse simplex's size bounds from below.
+const POLISH_STEP: f64 = 0.5;
+/// The polish's smallest first step, as a fraction of a fresh search's (a coarse simplex
+/// collapsed along a parameter still lets the polish move along it).
+const POLISH_FLOOR: f64 = 0.1;
+/// The polish's budget of crowns on the scene's grid: a few simplex steps about the coarse
+/// optimum, the best kept.
+const POLISH_EVALUATIONS: usize = 24;
+
 /// A family's parameters, unconstrained for the search: K1 = e^u, a fraction K = 1/(1 +
 /// e^−u) in (0, 1), z_m = scale·e^u > 0.
 struct Parameters<'r> {
@@ -432,7 +446,17 @@ struct Parameters<'r> {
 /// The crown of a search: its K1 (Fujiwara–Kawase), fraction K and end drop z_m \[mm\].
 type Values = (Option<f64>, f64, f64);
 
-impl Parameters<'_> {
+impl<'r> Parameters<'r> {
+    /// The family's parameters for `roller`: the end drop's scale Q/(π l E*).
+    fn new(family: ProfileFamily, roller: &'r Roller) -> Self {
+        let scale = roller.load / (std::f64::consts::PI * roller.length * roller.e_star());
+        Parameters {
+            family,
+            roller,
+            scale,
+        }
+    }
+
     fn start_and_step(&self) -> (&'static [f64], &'static [f64]) {
         match self.family {
             ProfileFamily::FujiwaraKawase => (&FK_START, &FK_STEP),
@@ -524,60 +548,156 @@ pub fn tune_profile(
     objective: &mut Objective,
     observer: &dyn Observer,
 ) -> Result<TunedCrown> {
-    let points = first_points(cases)?;
-    let scale = roller.load / (std::f64::consts::PI * roller.length * roller.e_star());
-    let parameters = Parameters {
-        family,
-        roller,
-        scale,
-    };
+    let parameters = Parameters::new(family, roller);
     let (start, step) = parameters.start_and_step();
-    let mut best: Option<Best> = None;
-    let mut warm: Option<Vec<ContactState>> = None;
-    let mut crowns = 0;
-    let minimum = nelder_mead(
-        |u| {
-            let states = solve_cases(
-                cases,
-                &parameters.drops(u, points)?,
-                solver,
-                warm.as_deref(),
-                &Nested(observer),
-            )?;
-            if let Some(s) = states.iter().find(|s| !s.is_converged()) {
-                return Ok(ControlFlow::Break(s.termination.clone().inside(s.method)));
-            }
-            let value = objective(&states)?;
-            crowns += 1;
-            if best.as_ref().is_none_or(|b| value < b.1) {
-                best = Some((u.to_vec(), value, states.clone()));
-            }
-            warm = Some(states);
-            let event = Event::step(Method::ProfileSearch, crowns, value, settings.tolerance);
-            Ok(match observer.observe(&event) {
-                Flow::Continue => ControlFlow::Continue(value),
-                Flow::Stop => ControlFlow::Break(Termination::Stopped { after: crowns }),
-            })
-        },
-        start,
-        step,
-        settings,
-    )?;
-    let (u, worst, states) = best.unwrap_or((start.to_vec(), f64::INFINITY, vec![]));
-    let end = Event::step(Method::ProfileSearch, crowns, worst, settings.tolerance)
-        .ending(&minimum.termination);
-    let _ = observer.observe(&end);
-    let (k1, k2, z_m_mm) = parameters.values(&u);
+    let run = Run {
+        parameters: &parameters,
+        solver,
+        observer,
+    };
+    Ok(run.search(cases, start, step, settings, objective)?.0)
+}
+
+/// One grid of a coarse-to-fine search ([`tune_profile_coarse_to_fine`]): the load cases on
+/// it and the objective over their contacts.
+pub struct Grid<'g, 'a> {
+    /// The cases, on this grid.
+    pub cases: &'g [LoadCase<'a>],
+    /// What the search minimises over their contacts.
+    pub objective: &'g mut Objective<'g>,
+}
+
+/// [`tune_profile`] coarse to fine: the search on `coarse` (the same cases on a grid of fewer
+/// cells, [`InterfaceProblem::coarsen`]), then a polish on `fine` (the scene's grid): a
+/// Nelder–Mead search from the coarse optimum with first steps half the coarse search's last
+/// simplex ([`contopt_optimise::Minimum::extent`]; at least a tenth of a fresh search's), at
+/// most 24 crowns (and the simplex step under way), to `settings`' tolerance; the best fine
+/// crown is returned, ended as the coarse search ended (the polish's budget is its design). The
+/// two grids' optima differ by the discretisation, so the polish is a short local search where
+/// a restart from scratch on the fine grid would spend a search's budget again. The crowns
+/// solved on the coarse grid are counted in [`TunedCrown::coarse_evaluations`]; a coarse search
+/// that did not end converged or at its budget (a stop, a contact solve that failed) is
+/// returned as it is.
+pub fn tune_profile_coarse_to_fine(
+    coarse: Grid,
+    fine: Grid,
+    roller: &Roller,
+    family: ProfileFamily,
+    solver: &dyn ContactSolver,
+    settings: &SearchSettings,
+    observer: &dyn Observer,
+) -> Result<TunedCrown> {
+    let parameters = Parameters::new(family, roller);
+    let (start, step) = parameters.start_and_step();
+    let run = Run {
+        parameters: &parameters,
+        solver,
+        observer,
+    };
+    let (first, minimum) = run.search(coarse.cases, start, step, settings, coarse.objective)?;
+    if !matches!(
+        first.termination,
+        Termination::Converged | Termination::StepLimit { .. }
+    ) {
+        return Ok(first);
+    }
+    let steps: Vec<f64> = step
+        .iter()
+        .zip(&minimum.extent)
+        .map(|(fresh, extent)| (POLISH_STEP * extent).max(POLISH_FLOOR * fresh))
+        .collect();
+    let polish = SearchSettings {
+        max_evaluations: POLISH_EVALUATIONS.min(settings.max_evaluations),
+        ..*settings
+    };
+    let (tuned, _) = run.search(fine.cases, &minimum.x, &steps, &polish, fine.objective)?;
+    // The polish's budget is its design: ended there (or converged) it ends as the coarse
+    // search did; a stop or a failed contact solve is its own.
+    let termination = match tuned.termination {
+        Termination::Converged | Termination::StepLimit { .. } => first.termination,
+        ref other => other.clone(),
+    };
     Ok(TunedCrown {
-        family,
-        crown: parameters.crown(&u)?,
-        k1,
-        k2,
-        z_m_mm,
-        drop: parameters.drops(&u, points)?,
-        worst,
-        states,
-        evaluations: minimum.evaluations,
-        termination: minimum.termination,
+        coarse_evaluations: first.evaluations,
+        termination,
+        ..tuned
     })
+}
+
+/// What every search of a family runs with: its parameters, contact solver and observer.
+struct Run<'r> {
+    parameters: &'r Parameters<'r>,
+    solver: &'r dyn ContactSolver,
+    observer: &'r dyn Observer,
+}
+
+impl Run<'_> {
+    /// A Nelder–Mead search of `objective` over `cases` from `start` with first steps `step`:
+    /// the best crown, and the search's minimum (its last simplex's extent).
+    fn search(
+        &self,
+        cases: &[LoadCase],
+        start: &[f64],
+        step: &[f64],
+        settings: &SearchSettings,
+        objective: &mut Objective,
+    ) -> Result<(TunedCrown, Minimum)> {
+        let Run {
+            parameters,
+            solver,
+            observer,
+        } = *self;
+        let family = parameters.family;
+        let points = first_points(cases)?;
+        let mut best: Option<Best> = None;
+        let mut warm: Option<Vec<ContactState>> = None;
+        let mut crowns = 0;
+        let minimum = nelder_mead(
+            |u| {
+                let states = solve_cases(
+                    cases,
+                    &parameters.drops(u, points)?,
+                    solver,
+                    warm.as_deref(),
+                    &Nested(observer),
+                )?;
+                if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+                    return Ok(ControlFlow::Break(s.termination.clone().inside(s.method)));
+                }
+                let value = objective(&states)?;
+                crowns += 1;
+                if best.as_ref().is_none_or(|b| value < b.1) {
+                    best = Some((u.to_vec(), value, states.clone()));
+                }
+                warm = Some(states);
+                let event = Event::step(Method::ProfileSearch, crowns, value, settings.tolerance);
+                Ok(match observer.observe(&event) {
+                    Flow::Continue => ControlFlow::Continue(value),
+                    Flow::Stop => ControlFlow::Break(Termination::Stopped { after: crowns }),
+                })
+            },
+            start,
+            step,
+            settings,
+        )?;
+        let (u, worst, states) = best.unwrap_or_else(|| (start.to_vec(), f64::INFINITY, vec![]));
+        let end = Event::step(Method::ProfileSearch, crowns, worst, settings.tolerance)
+            .ending(&minimum.termination);
+        let _ = observer.observe(&end);
+        let (k1, k2, z_m_mm) = parameters.values(&u);
+        let tuned = TunedCrown {
+            family,
+            crown: parameters.crown(&u)?,
+            k1,
+            k2,
+            z_m_mm,
+            drop: parameters.drops(&u, points)?,
+            worst,
+            states,
+            evaluations: minimum.evaluations,
+            coarse_evaluations: 0,
+            termination: minimum.termination.clone(),
+        };
+        Ok((tuned, minimum))
+    }
 }

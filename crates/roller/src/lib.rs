@@ -26,8 +26,8 @@ pub use bearing::{
 pub use crown::{Crown, CrownSettings, JOHNS_GOHAR_END};
 pub use design::{
     bearing_cases, design_case, load_cases, penalised_worst, robust_crown, solve_cases,
-    tolerance_band, tune_fujiwara_kawase, tune_profile, Contact, Envelope, LoadCase, Objective,
-    ProfileFamily, RobustCrown, TunedCrown,
+    tolerance_band, tune_fujiwara_kawase, tune_profile, tune_profile_coarse_to_fine, Contact,
+    Envelope, Grid, LoadCase, Objective, ProfileFamily, RobustCrown, TunedCrown,
 };
 pub use figures::{end_ratio, CaseContact, CaseFigures, RollerFigures, EDGE_LOADING};
 pub use geometry::{Roller, RollerEnds};
