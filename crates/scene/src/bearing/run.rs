@@ -9,9 +9,7 @@
 
 use std::time::Instant;
 
-use contopt_contact::{
-    ContactSolver, InterfaceProblem, PolonskyKeer, PolonskyKeerSettings, SolverSettings,
-};
+use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
@@ -264,7 +262,7 @@ fn design(
             ))
         }
     };
-    let loose = search_solver(&case.spec.solver, solver, problem)?;
+    let loose = crate::methods::search::search_solver(&case.spec.solver, solver, problem)?;
     let solver = loose.as_deref().unwrap_or(solver);
     let mut objective = search_objective(plan, first, env, at);
     let fine = Grid {
@@ -345,45 +343,6 @@ fn search_objective<'o>(
             }
         }
     }
-}
-
-/// The relative tolerance of the contact solves of a profile search's crowns, when the
-/// scene's is tighter: Polonsky–Keer's relative pressure change per step (its
-/// [`PolonskyKeerSettings::tolerance`]). A search compares objectives to about 10⁻⁵ of the
-/// worst p_max (its tolerance, 0.05 MPa on 2300 MPa); solved to 10⁻⁶ instead of 10⁻¹² the
-/// bundled bearing's Fujiwara–Kawase search takes the same 107 crowns to the same crown in
-/// half the time, its worst p_max 0.002 MPa off. The designed crown's contacts are solved
-/// again at the scene's tolerance.
-const SEARCH_SOLVE_TOLERANCE: f64 = 1e-6;
-
-/// The contact solver of a profile search's crowns: the scene's Polonsky–Keer (named, or
-/// chosen by `auto` for `problem`) at [`SEARCH_SOLVE_TOLERANCE`] when its own is tighter;
-/// `None` to search with the scene's `solver`.
-fn search_solver(
-    settings: &SolverSettings,
-    solver: &dyn ContactSolver,
-    problem: &InterfaceProblem,
-) -> Result<Option<Box<dyn ContactSolver>>> {
-    let own = match settings {
-        SolverSettings::PolonskyKeer(s) => Some(*s),
-        SolverSettings::Auto => {
-            (solver.method_for(problem) == Method::PolonskyKeer).then(PolonskyKeerSettings::default)
-        }
-        SolverSettings::Qp(_)
-        | SolverSettings::ActiveSet(_)
-        | SolverSettings::Penalty(_)
-        | SolverSettings::AugmentedLagrangian(_) => None,
-    };
-    Ok(match own {
-        Some(s) if s.tolerance < SEARCH_SOLVE_TOLERANCE => {
-            let loose = PolonskyKeerSettings {
-                tolerance: SEARCH_SOLVE_TOLERANCE,
-                ..s
-            };
-            Some(Box::new(PolonskyKeer::new(loose)?) as Box<dyn ContactSolver>)
-        }
-        _ => None,
-    })
 }
 
 /// A grid of at least this many points is searched coarse to fine
