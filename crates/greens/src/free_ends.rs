@@ -314,6 +314,30 @@ mod tests {
         Material::new(2.1e5, 0.3).unwrap()
     }
 
+    /// A steel grid of `nx` × `ny` cells of `cell` from `origin` with end faces `faces` and
+    /// image weight `weight`.
+    fn steel_ends(
+        nx: usize,
+        ny: usize,
+        cell: [f64; 2],
+        origin: [f64; 2],
+        faces: [Option<f64>; 2],
+        weight: f64,
+    ) -> FreeEnds {
+        FreeEnds::grid(
+            "f",
+            steel(),
+            nx,
+            ny,
+            cell[0],
+            cell[1],
+            origin,
+            faces,
+            weight,
+        )
+        .unwrap()
+    }
+
     fn pressure(n: usize) -> Vec<f64> {
         (0..n)
             .map(|k| 1.0 + ((k * 37 % 101) as f64).sin())
@@ -333,35 +357,13 @@ mod tests {
         let plain = HalfSpace::grid("h", steel(), nx, ny, dx, dy, origin).unwrap();
         let mut want = vec![0.0; nx * ny];
         plain.apply_influence(&p, &mut want);
-        let none = FreeEnds::grid(
-            "f",
-            steel(),
-            nx,
-            ny,
-            dx,
-            dy,
-            origin,
-            [Some(lo), Some(hi)],
-            0.0,
-        )
-        .unwrap();
+        let none = steel_ends(nx, ny, [dx, dy], origin, [Some(lo), Some(hi)], 0.0);
         let mut got = vec![0.0; nx * ny];
         none.apply_influence(&p, &mut got);
         for (a, b) in got.iter().zip(&want) {
             assert!((a - b).abs() < 1e-12 * want[0].abs(), "{a} vs {b}");
         }
-        let ends = FreeEnds::grid(
-            "f",
-            steel(),
-            nx,
-            ny,
-            dx,
-            dy,
-            origin,
-            [Some(lo), Some(hi)],
-            1.0,
-        )
-        .unwrap();
+        let ends = steel_ends(nx, ny, [dx, dy], origin, [Some(lo), Some(hi)], 1.0);
         for (got, want) in ends.faces().into_iter().zip([lo, hi]) {
             assert!((got.unwrap() - want).abs() < 1e-12 * want.abs());
         }
@@ -393,18 +395,7 @@ mod tests {
                 assert!((a - b).abs() < 1e-12 * b.abs(), "{i} {j}: {a} vs {b}");
             }
         }
-        let half = FreeEnds::grid(
-            "f",
-            steel(),
-            nx,
-            ny,
-            dx,
-            dy,
-            origin,
-            [None, Some(0.53)],
-            0.7,
-        )
-        .unwrap();
+        let half = steel_ends(nx, ny, [dx, dy], origin, [None, Some(0.53)], 0.7);
         assert!(
             (half.faces()[1].unwrap() - 0.55).abs() < 1e-12,
             "{:?}",
@@ -427,21 +418,10 @@ mod tests {
     fn coarsen_keeps_the_faces() {
         let (nx, ny, dx, dy) = (40, 10, 0.1, 0.02);
         let origin = [-1.95, -0.09];
-        let fine = FreeEnds::grid(
-            "f",
-            steel(),
-            nx,
-            ny,
-            dx,
-            dy,
-            origin,
-            [Some(-2.0), Some(2.0)],
-            1.0,
-        )
-        .unwrap()
-        .pressed(30.0)
-        .unwrap()
-        .upper();
+        let fine = steel_ends(nx, ny, [dx, dy], origin, [Some(-2.0), Some(2.0)], 1.0)
+            .pressed(30.0)
+            .unwrap()
+            .upper();
         let (coarse, parent) = fine.coarsen().unwrap();
         let plain = fine.own.coarse_grid().unwrap().0;
         let m = coarse.interface().len();
@@ -494,18 +474,7 @@ mod tests {
         let origin = [-1.95, -0.08];
         let p = vec![1.0; nx * ny];
         let plain = HalfSpace::grid("h", steel(), nx, ny, dx, dy, origin).unwrap();
-        let ends = FreeEnds::grid(
-            "f",
-            steel(),
-            nx,
-            ny,
-            dx,
-            dy,
-            origin,
-            [Some(-2.0), Some(2.0)],
-            1.0,
-        )
-        .unwrap();
+        let ends = steel_ends(nx, ny, [dx, dy], origin, [Some(-2.0), Some(2.0)], 1.0);
         let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
         plain.apply_influence(&p, &mut a);
         ends.apply_influence(&p, &mut b);
