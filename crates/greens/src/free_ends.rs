@@ -83,14 +83,22 @@ impl FreeEnds {
         faces: [Option<f64>; 2],
         weight: f64,
     ) -> Result<Self> {
-        let name = name.into();
+        let own = HalfSpace::grid(name, material, nx, ny, dx, dy, origin)?;
+        Self::around(own, faces, weight)
+    }
+
+    /// The free faces and images of [`FreeEnds::grid`] around the grid `own` as it is (its
+    /// load and side kept).
+    fn around(own: HalfSpace, faces: [Option<f64>; 2], weight: f64) -> Result<Self> {
         check::between(
             "free_ends.weight",
             weight,
             -f64::EPSILON,
             2.0 + f64::EPSILON,
         )?;
-        let own = HalfSpace::grid(name.clone(), material, nx, ny, dx, dy, origin)?;
+        let ((nx, ny), (dx, dy), material) = (own.cells(), (own.dx, own.dy), own.material);
+        let first = own.interface().points()[0];
+        let (name, origin) = (own.name().to_string(), [first[0], first[1]]);
         let (lo, hi) = (origin[0] - 0.5 * dx, origin[0] + (nx as f64 - 0.5) * dx);
         let below = faces[0]
             .map(|f| {
@@ -244,21 +252,7 @@ impl ElasticBody for FreeEnds {
     /// of a coarse cell) with images of the same weight: the nested start of a solver.
     fn coarsen(&self) -> Option<(Box<dyn ElasticBody>, Vec<usize>)> {
         let (own, parent) = self.own.coarse_grid()?;
-        let (nx, ny) = own.cells();
-        let first = own.interface().points()[0];
-        let mut coarse = FreeEnds::grid(
-            own.name(),
-            own.material,
-            nx,
-            ny,
-            own.dx,
-            own.dy,
-            [first[0], first[1]],
-            self.faces,
-            self.weight,
-        )
-        .ok()?;
-        coarse.own = own;
+        let coarse = FreeEnds::around(own, self.faces, self.weight).ok()?;
         Some((Box::new(coarse), parent))
     }
 
