@@ -410,7 +410,7 @@ pub(crate) fn run<'a>(
     let started = Instant::now();
     let first = match distributions(&plan.bearing, plan)? {
         Ok(d) => d,
-        Err(why) => return Ok((unsolved(why, solver), problem.clone())),
+        Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
     };
     report.time("distribution", started);
     let env = Envelope::new(&first, plan.raceway);
@@ -428,7 +428,7 @@ pub(crate) fn run<'a>(
         report.time("optimise", started);
         if !d.termination.is_converged() && !matches!(d.termination, Termination::StepLimit { .. })
         {
-            let mut out = unsolved(d.termination.clone(), solver);
+            let mut out = Designed::unsolved(d.termination.clone(), solver.method());
             out.method = Some(d.method);
             return Ok((out, problem.clone()));
         }
@@ -443,7 +443,7 @@ pub(crate) fn run<'a>(
                 .plus(crown_table(at.points, &d.change, dy)?);
             match distributions(&bearing, plan)? {
                 Ok(dists) => dists,
-                Err(why) => return Ok((unsolved(why, solver), problem.clone())),
+                Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
             }
         }
         None => first,
@@ -458,7 +458,7 @@ pub(crate) fn run<'a>(
     report.time("solve", started);
     if let Some(s) = states.iter().find(|s| !s.is_converged()) {
         let why = s.termination.clone().inside(s.method);
-        return Ok((unsolved(why, solver), problem.clone()));
+        return Ok((Designed::unsolved(why, solver.method()), problem.clone()));
     }
     let started = Instant::now();
     let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
@@ -514,25 +514,6 @@ pub(crate) fn run<'a>(
         roller: roller_report(&figures, true, tuned),
     };
     Ok((out, cases[worst].problem.clone()))
-}
-
-/// A design's account when the run stopped short: `why`, nothing solved.
-fn unsolved(why: Termination, solver: &dyn ContactSolver) -> Designed {
-    Designed {
-        method: None,
-        solver: Some(solver.method()),
-        termination: why,
-        pressure: vec![],
-        gap: vec![],
-        rigid: vec![],
-        gap_change: vec![],
-        crown: None,
-        bound_p_max: None,
-        dh_max: None,
-        omega_nv_excess: None,
-        passes: vec![],
-        roller: None,
-    }
 }
 
 /// The bearing's report from the final state.

@@ -138,12 +138,22 @@ impl Designed {
     /// A contact solve's state, nothing designed.
     fn contact(state: ContactState) -> Self {
         Self {
-            method: None,
-            solver: Some(state.method),
-            termination: state.termination,
             pressure: state.pressure,
             gap: state.gap,
             rigid: state.rigid,
+            ..Self::unsolved(state.termination, state.method)
+        }
+    }
+
+    /// Nothing solved nor designed: how the run ended, and the solver it had.
+    pub(crate) fn unsolved(termination: Termination, solver: Method) -> Self {
+        Self {
+            method: None,
+            solver: Some(solver),
+            termination,
+            pressure: vec![],
+            gap: vec![],
+            rigid: vec![],
             gap_change: vec![],
             crown: None,
             bound_p_max: None,
