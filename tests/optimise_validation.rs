@@ -539,6 +539,34 @@ fn optimised_roller_crown_by_the_load_split() {
     assert!((opt.p_max / 2316.94 - 1.0).abs() < 5e-4, "{}", opt.p_max);
 }
 
+/// The load split's updates do not grow with the grid: the roller's crown for L1 = 3 and 5 mm
+/// on 50 × 27 to 200 × 105 cells converges to 1e-8 in at most 10 updates on every grid (the
+/// exponents read from each column's contact; with exponents from secants of the first updates
+/// L1 = 3 mm took 11 on 50 × 27, and L1 = 5 mm 12 on 200 × 105 and 16 on 800 × 417).
+#[test]
+fn the_load_splits_updates_do_not_grow_with_the_grid() {
+    for l1 in [3.0, 5.0] {
+        for (nx, ny) in [(50, 27), (100, 53), (200, 105)] {
+            let grid = Roller::grid(nx, ny).unwrap();
+            let iface = grid.body.interface();
+            let roller =
+                RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+            let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
+            let v = Profile::cubic(l1, 0.5 * Roller::LENGTH).unwrap();
+            let shape = GapShape::extruded(iface, 0).unwrap();
+            let opt = Optimisation::new(&problem, &shape, &v)
+                .unwrap()
+                .with_regions(grid.centre_row(Region::OmegaNv))
+                .unwrap()
+                .load_split(&polonsky_keer(), &split_to(1e-8, 50))
+                .unwrap();
+            let opt = converged("load split", opt);
+            eprintln!("L1 = {l1} mm, {nx} × {ny}: {} updates", opt.passes.len());
+            assert!(opt.passes.len() <= 10, "L1 = {l1}, {nx} × {ny}");
+        }
+    }
+}
+
 /// One load case of the roller's envelope: the `nominal` problem with its load times `factor`
 /// and the roller tilted by `tilt` \[rad\] about the centre (the initial gap `h` plus tilt·x).
 fn roller_case<'a>(

@@ -11,14 +11,12 @@ use crate::{
     LoadSplitSettings, Optimisation, Optimum, Pass, Reference, Region, ROUND_OFF, SOLVER_ACCURACY,
 };
 
-/// Bounds of the exponent α in p̄ ∝ F^α that a column's update assumes: ½ for a Hertzian line
-/// contact, 1 for a single point; secant estimates outside are noise from the coupling.
-const EXPONENT: (f64, f64) = (0.25, 1.0);
-/// Relative change of a column's load below which the secant estimate of α is not taken.
-const SECANT_STEP: f64 = 1e-3;
-/// The updates whose secants set α; later ones keep it, so that the map Anderson mixing
-/// accelerates stays the same.
-const SECANT_UPDATES: usize = 3;
+/// The exponent α of p̄ ∝ F^α for a column whose contact spans several points: a Hertzian line
+/// contact's p₀ grows as the square root of its load.
+const LINE_EXPONENT: f64 = 0.5;
+/// The exponent for a column whose contact is one point: its pressure is its load over its
+/// weight.
+const POINT_EXPONENT: f64 = 1.0;
 /// How many past iterates Anderson mixing combines.
 const ANDERSON_DEPTH: usize = 5;
 /// Tikhonov term of Anderson mixing's normal equations, relative to their trace: keeps nearly
@@ -54,10 +52,10 @@ impl Optimisation<'_> {
     /// column of least r·λ_j, so min Δh = 0; the body's approach is then λ_N, which keeps the
     /// optimum's gap that of the solve). An outer update of the shares drives
     /// each column's Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the
-    /// exponent α_j of p̄ ∝ F^α from the first secants (½ for a Hertzian line contact, 1 for a
-    /// single point) and p_max the value at which the shares add up to the load, accelerated by
-    /// Anderson mixing of the last updates, which learns how the columns couple through the
-    /// body. At its fixed point the Ω_v points are closed at
+    /// exponent α_j of p̄ ∝ F^α read from the column's own contact (1 for one point, ½ at the
+    /// peak of a Hertzian line contact, ½ (p₀/p̄)² ≤ 1 off its peak), and p_max
+    /// the value at which the shares add up to the load, accelerated by Anderson mixing of the
+    /// last updates, which learns how the columns couple through the body. At its fixed point the Ω_v points are closed at
     /// v·p_max, equilibrium holds and the rest of Ω is complementary: the conditions of (3.5),
     /// whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the programme's feasible set
     /// is that one point). A column whose Ω_v holds several points is driven by the largest
@@ -154,7 +152,12 @@ impl Optimisation<'_> {
             if flow == Flow::Stop {
                 return Ok(split.finish(iterate, Termination::Stopped { after: k }));
             }
-            update.next(k, &iterate.envelope, &columns.v, iterate.p_max);
+            update.next(
+                &iterate.envelope,
+                &iterate.exponent,
+                &columns.v,
+                iterate.p_max,
+            );
             last = Some(iterate);
         }
         let end = split.passes.step_limit();
@@ -286,6 +289,8 @@ struct SplitIterate {
     cases: Vec<ContactState>,
     dh: Vec<f64>,
     envelope: Vec<f64>,
+    /// Each column's exponent α in the solve that sets its envelope.
+    exponent: Vec<f64>,
     p_max: f64,
     miss: f64,
 }
@@ -345,6 +350,7 @@ impl Split<'_, '_, '_> {
         }
         let (dh, _) = self.crown(&state.rigid);
         let mut envelope = columns.omega_v_pressure(opt, &state.pressure);
+        let mut exponent = columns.exponents(&opt.regions, &opt.v, &state.pressure);
         let gap_change = opt.shape.apply(&dh);
         let mut cases = Vec::with_capacity(self.cases.len());
         for (c, solved) in self.solve_cases(&gap_change, last).into_iter().enumerate() {
@@ -357,11 +363,14 @@ impl Split<'_, '_, '_> {
                 }));
             }
             let mean = columns.omega_v_pressure(opt, &solved.pressure);
+            let case_exponent = columns.exponents(&opt.regions, &opt.v, &solved.pressure);
             let level = self.levels[c];
-            envelope
-                .iter_mut()
-                .zip(mean)
-                .for_each(|(e, m)| *e = e.max(m / level));
+            for (j, m) in mean.into_iter().enumerate() {
+                if m / level > envelope[j] {
+                    envelope[j] = m / level;
+                    exponent[j] = case_exponent[j];
+                }
+            }
             cases.push(solved);
         }
         let p_max = columns.fitted_p_max(&envelope);
@@ -371,6 +380,7 @@ impl Split<'_, '_, '_> {
             cases,
             dh,
             envelope,
+            exponent,
             p_max,
             miss,
         }))
@@ -495,6 +505,7 @@ impl Split<'_, '_, '_> {
                     cases: vec![],
                     dh,
                     envelope: vec![],
+                    exponent: vec![],
                     p_max,
                     miss: f64::NAN,
                 };
@@ -529,6 +540,34 @@ impl Columns {
                     .filter(|&&i| opt.regions[i] == Region::OmegaV && opt.v[i] > 0.0)
                     .map(|&i| pressure[i] / opt.v[i])
                     .fold(0.0, f64::max)
+            })
+            .collect()
+    }
+
+    /// The exponent α_j of p̄_j ∝ F_j^α of each column under `pressure`: 1 where its contact
+    /// is one Ω_v point (its pressure is its load over its weight), else that of a Hertzian
+    /// line contact p = p₀√(1 − s²) at the Ω_v point that drives the column, whose p₀ and
+    /// half-width grow as F^½: α = ½/(1 − s²) = ½ (p₀/p̄)², ½ at the peak and growing towards
+    /// the contact's edge, at most 1 (a point just reached by the contact).
+    fn exponents(&self, regions: &[Region], v: &[f64], pressure: &[f64]) -> Vec<f64> {
+        self.points
+            .iter()
+            .map(|members| {
+                let mut loaded = members.iter().filter(|&&i| pressure[i] > 0.0);
+                if let (Some(&i), None) = (loaded.next(), loaded.next()) {
+                    if regions[i] == Region::OmegaV {
+                        return POINT_EXPONENT;
+                    }
+                }
+                let driving = members
+                    .iter()
+                    .filter(|&&i| regions[i] == Region::OmegaV && v[i] > 0.0)
+                    .max_by(|&&a, &&b| (pressure[a] / v[a]).total_cmp(&(pressure[b] / v[b])));
+                let peak = members.iter().map(|&i| pressure[i]).fold(0.0, f64::max);
+                match driving.map(|&i| pressure[i]) {
+                    Some(p) if p > 0.0 => (LINE_EXPONENT * (peak / p).powi(2)).min(POINT_EXPONENT),
+                    _ => LINE_EXPONENT,
+                }
             })
             .collect()
     }
@@ -617,14 +656,11 @@ fn next_shares(share: &[f64], mean: &[f64], v: &[f64], exponent: &[f64], p_max: 
     next
 }
 
-/// The shares F_j / Q of the load split and how they are updated: the per-column power law with
-/// secant exponents (the first [`SECANT_UPDATES`] updates), accelerated by Anderson mixing.
+/// The shares F_j / Q of the load split and how they are updated: the per-column power law,
+/// accelerated by Anderson mixing.
 struct ShareUpdate {
     share: Vec<f64>,
-    exponent: Vec<f64>,
     anderson: Anderson,
-    /// The shares and Ω_v pressures of the previous solve.
-    last: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl ShareUpdate {
@@ -635,27 +671,15 @@ impl ShareUpdate {
             .collect();
         normalise(&mut share);
         Self {
-            exponent: vec![0.5; share.len()],
             share,
             anderson: Anderson::default(),
-            last: None,
         }
     }
 
-    /// The shares after the `k`-th solve, which gave the Ω_v pressures `mean` and `p_max`.
-    fn next(&mut self, k: usize, mean: &[f64], v: &[f64], p_max: f64) {
-        if let (Some((share_last, mean_last)), true) = (&self.last, k <= SECANT_UPDATES) {
-            for j in 0..mean.len() {
-                let step = (self.share[j] / share_last[j]).ln();
-                if step.abs() > SECANT_STEP && mean[j] > 0.0 && mean_last[j] > 0.0 {
-                    let alpha = (mean[j] / mean_last[j]).ln() / step;
-                    self.exponent[j] = alpha.clamp(EXPONENT.0, EXPONENT.1);
-                }
-            }
-            self.anderson.reset();
-        }
-        self.last = Some((self.share.clone(), mean.to_vec()));
-        let image = next_shares(&self.share, mean, v, &self.exponent, p_max);
+    /// The shares after a solve that gave the Ω_v pressures `mean` and `p_max`, with each
+    /// column's `exponent` there.
+    fn next(&mut self, mean: &[f64], exponent: &[f64], v: &[f64], p_max: f64) {
+        let image = next_shares(&self.share, mean, v, exponent, p_max);
         self.share = if mean.iter().zip(v).all(|(p, v)| *p > 0.0 || *v == 0.0) {
             self.anderson.mix(&self.share, &image)
         } else {
@@ -751,5 +775,41 @@ mod tests {
         let p_max = columns.fitted_p_max(&[2.0, 0.5]);
         let want = (2.0 - p_max).abs().max((0.5 - 0.5 * p_max).abs()) / p_max;
         assert_eq!(columns.miss(&[2.0, 0.5], p_max), want);
+    }
+
+    /// A column's exponent is that of a Hertzian line contact p = p₀√(1 − y²/b²) with p₀ and
+    /// b ∝ F^½ at its Ω_v point: d ln p / d ln F at fixed y, by a central difference of the
+    /// closed form, ½ at the peak and 2/3 at y = b/2; 1 for a contact of one Ω_v point and for
+    /// a point at the contact's edge.
+    #[test]
+    fn a_columns_exponent_is_the_hertzian_one_at_its_omega_v_point() {
+        let hertz = |f: f64, y: f64| f.sqrt() * (1.0 - y * y / f).max(0.0).sqrt();
+        let ys: Vec<f64> = (-8..=8).map(|k| k as f64 / 8.0).collect();
+        let pressure: Vec<f64> = ys.iter().map(|&y| hertz(1.0, y)).collect();
+        let columns = Columns {
+            points: vec![(0..ys.len()).collect()],
+            r: vec![1.0],
+            measure: vec![1.0],
+            v: vec![1.0],
+        };
+        let v = vec![1.0; ys.len()];
+        for (at, want) in [(0.0, 0.5), (0.5, 2.0 / 3.0), (0.875, 1.0)] {
+            let i = ys.iter().position(|&y| y == at).unwrap();
+            let mut regions = vec![Region::OmegaNv; ys.len()];
+            regions[i] = Region::OmegaV;
+            let h = 1e-6;
+            let slope = (hertz(1.0 + h, at).ln() - hertz(1.0 - h, at).ln()) / (2.0 * h);
+            let alpha = columns.exponents(&regions, &v, &pressure)[0];
+            assert!((alpha - want).abs() < 1e-12, "y = {at}: {alpha}");
+            assert!(
+                (alpha - slope.min(1.0)).abs() < 1e-6,
+                "y = {at}: {alpha} {slope}"
+            );
+        }
+        let mut one = vec![0.0; ys.len()];
+        one[8] = 3.0;
+        let mut regions = vec![Region::OmegaNv; ys.len()];
+        regions[8] = Region::OmegaV;
+        assert_eq!(columns.exponents(&regions, &v, &one), vec![1.0]);
     }
 }
