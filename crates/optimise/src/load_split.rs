@@ -53,13 +53,13 @@ impl Optimisation<'_> {
     /// optimum's gap that of the solve). An outer update of the shares drives
     /// each column's Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the
     /// exponent α_j of p̄ ∝ F^α read from the column's own contact (1 for one point, ½ at the
-    /// peak of a Hertzian line contact, ½ (p₀/p̄)² ≤ 1 off its peak), and p_max
-    /// the value at which the shares add up to the load, accelerated by Anderson mixing of the
-    /// last updates, which learns how the columns couple through the body. At its fixed point the Ω_v points are closed at
-    /// v·p_max, equilibrium holds and the rest of Ω is complementary: the conditions of (3.5),
-    /// whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the programme's feasible set
-    /// is that one point). A column whose Ω_v holds several points is driven by the largest
-    /// p/v among them, so that none exceeds v·p_max.
+    /// peak of a Hertzian line contact, ½ (p₀/p̄)² ≤ 1 off its peak), and p_max the value at
+    /// which the shares add up to the load, accelerated by Anderson mixing of the last updates,
+    /// which learns how the columns couple through the body. At its fixed point the Ω_v points
+    /// are closed at v·p_max, equilibrium holds and the rest of Ω is complementary: the
+    /// conditions of (3.5), whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the
+    /// programme's feasible set is that one point). A column whose Ω_v holds several points is
+    /// driven by the largest p/v among them, so that none exceeds v·p_max.
     ///
     /// Every contact solve starts from the previous pressure, so a matrix-free `solver`
     /// ([`contopt_contact::PolonskyKeer`]) takes a few steps after the first; a dense one works
