@@ -548,13 +548,8 @@ pub fn tune_profile(
     objective: &mut Objective,
     observer: &dyn Observer,
 ) -> Result<TunedCrown> {
-    let parameters = Parameters::new(family, roller);
-    let (start, step) = parameters.start_and_step();
-    let run = Run {
-        parameters: &parameters,
-        solver,
-        observer,
-    };
+    let run = Run::new(family, roller, solver, observer);
+    let (start, step) = run.parameters.start_and_step();
     Ok(run.search(cases, start, step, settings, objective)?.0)
 }
 
@@ -587,13 +582,8 @@ pub fn tune_profile_coarse_to_fine(
     settings: &SearchSettings,
     observer: &dyn Observer,
 ) -> Result<TunedCrown> {
-    let parameters = Parameters::new(family, roller);
-    let (start, step) = parameters.start_and_step();
-    let run = Run {
-        parameters: &parameters,
-        solver,
-        observer,
-    };
+    let run = Run::new(family, roller, solver, observer);
+    let (start, step) = run.parameters.start_and_step();
     let (first, minimum) = run.search(coarse.cases, start, step, settings, coarse.objective)?;
     if !matches!(
         first.termination,
@@ -626,12 +616,26 @@ pub fn tune_profile_coarse_to_fine(
 
 /// What every search of a family runs with: its parameters, contact solver and observer.
 struct Run<'r> {
-    parameters: &'r Parameters<'r>,
+    parameters: Parameters<'r>,
     solver: &'r dyn ContactSolver,
     observer: &'r dyn Observer,
 }
 
-impl Run<'_> {
+impl<'r> Run<'r> {
+    /// The searches of `family` for `roller`, solving with `solver`, reported to `observer`.
+    fn new(
+        family: ProfileFamily,
+        roller: &'r Roller,
+        solver: &'r dyn ContactSolver,
+        observer: &'r dyn Observer,
+    ) -> Self {
+        Self {
+            parameters: Parameters::new(family, roller),
+            solver,
+            observer,
+        }
+    }
+
     /// A Nelder–Mead search of `objective` over `cases` from `start` with first steps `step`:
     /// the best crown, and the search's minimum (its last simplex's extent).
     fn search(
@@ -643,7 +647,7 @@ impl Run<'_> {
         objective: &mut Objective,
     ) -> Result<(TunedCrown, Minimum)> {
         let Run {
-            parameters,
+            ref parameters,
             solver,
             observer,
         } = *self;
