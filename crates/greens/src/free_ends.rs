@@ -21,15 +21,19 @@
 //!
 //! The images lie on the grid's own lattice when each face is a whole number of half-cells
 //! beyond the grid's edge: a face is moved to the nearest such place (at most a quarter of a
-//! cell; [`FreeEnds::faces`] says where it is). The product is one FFT convolution on a grid
-//! about three times as long (the roller, its two images and the gaps between them), so it
-//! costs about three half-space products.
+//! cell; [`FreeEnds::faces`] says where it is). Love's kernel is even, so the product of the
+//! image is the reflection of the own pressure's product, C·M p = M·C p: the product is one
+//! FFT convolution of the own pressure alone, read beyond the grid as far as the images reach
+//! (a padded length of about 2(2nx + m) cells for faces m half-cells out, where the
+//! pressure and its images written out on one long grid took 2(3nx + 2m)), and each cell
+//! adds its images' values.
 
 use contopt_core::{
     check, ElasticBody, Error, Interface, Material, Result, RigidMode, SectionField, StressPeaks,
     Subsurface, SubsurfaceRequest,
 };
 
+use crate::fft::Convolution;
 use crate::HalfSpace;
 use contopt_core::Spares;
 
@@ -39,8 +43,15 @@ use contopt_core::Spares;
 pub struct FreeEnds {
     /// The grid itself: its points, modes and name.
     own: HalfSpace,
-    /// The grid with its images: `extended.nx` columns, the own grid's first at `offset`.
+    /// The grid with its images: `extended.nx` columns, the own grid's first at `offset`
+    /// (the stresses below).
     extended: HalfSpace,
+    /// The own grid's product read `reach` columns beyond it each side (the influence).
+    wide: Convolution,
+    reach: usize,
+    /// The column of a `wide` row holding own column 0's image about each face; own column
+    /// i's is `mirror − i`.
+    mirrors: Vec<usize>,
     offset: usize,
     /// The image column (on the extended grid) of own column 0 about each face, and the
     /// direction in which the images run: own column i's image is `start − i`.
@@ -48,8 +59,8 @@ pub struct FreeEnds {
     /// The faces as placed \[mm\]: below, beyond.
     faces: [Option<f64>; 2],
     weight: f64,
-    /// Work: the extended pressure and displacement, a pair per product running at once.
-    work: Spares<(Vec<f64>, Vec<f64>)>,
+    /// Work: a `wide` product, one per product running at once.
+    work: Spares<Vec<f64>>,
 }
 
 /// The whole number of half-cells `dx/2` from a grid's edge to a face `distance` \[mm\] away
@@ -136,14 +147,22 @@ impl FreeEnds {
             below.map(|m| lo - m as f64 * 0.5 * dx),
             beyond.map(|m| hi + m as f64 * 0.5 * dx),
         ];
+        // An image lies at most m + nx columns beyond the grid's edge.
+        let reach = [below, beyond].into_iter().flatten().map(|m| m + nx).max();
+        let reach = reach.unwrap_or(0);
+        let wide = own.wide_convolution(reach)?;
+        let mirrors = images.iter().map(|&start| start + reach - first).collect();
         Ok(Self {
             own,
             extended,
+            wide,
+            reach,
+            mirrors,
             offset: first,
             images,
             faces: placed,
             weight,
-            work: Spares::new((vec![0.0; width * ny], vec![0.0; width * ny])),
+            work: Spares::new(vec![0.0; (nx + 2 * reach) * ny]),
         })
     }
 
@@ -219,15 +238,23 @@ impl ElasticBody for FreeEnds {
         self.own.interface()
     }
 
+    /// u = C·(p + w·M p) = C p + w·M(C p): the own pressure's product read at each cell and,
+    /// weighted, at its images.
     fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let size = self.extended.interface().len();
+        let (nx, ny) = self.own.cells();
+        let width = nx + 2 * self.reach;
         self.work.with(
-            || (vec![0.0; size], vec![0.0; size]),
-            |(ext, out)| {
-                self.extend(force, ext);
-                self.extended.apply_influence(ext, out);
-                for (k, d) in displacement.iter_mut().enumerate() {
-                    *d = out[self.extended_index(k)];
+            || vec![0.0; width * ny],
+            |wide| {
+                self.wide.apply(force, wide);
+                let rows = wide
+                    .chunks_exact(width)
+                    .zip(displacement.chunks_exact_mut(nx));
+                for (row, out) in rows {
+                    for (i, d) in out.iter_mut().enumerate() {
+                        let images: f64 = self.mirrors.iter().map(|&m| row[m - i]).sum();
+                        *d = row[self.reach + i] + self.weight * images;
+                    }
                 }
             },
         );
@@ -399,6 +426,39 @@ mod tests {
         for i in 0..nx * ny {
             for j in 0..i {
                 assert!((a[(i, j)] - a[(j, i)]).abs() < 1e-12 * a[(0, 0)], "{i} {j}");
+            }
+        }
+    }
+
+    /// The product read beyond the grid (C p + w·M C p) is the product of the pressure and its
+    /// weighted images written out on the extended grid (C (p + w·M p), as it was computed
+    /// before), to round-off of the largest value, for two faces, one either side, none, and
+    /// an odd, FFT-unfriendly width: an image column one off, or the reflection's parity
+    /// wrong, is a change of a few per cent at the ends.
+    #[test]
+    fn wide_product_equals_the_extended_one() {
+        let (ny, dx, dy) = (7, 0.12, 0.03);
+        for (nx, faces, weight) in [
+            (41, [Some(-2.6), Some(2.55)], 1.0),
+            (20, [None, Some(1.3)], 1.4),
+            (23, [Some(-1.5), None], 0.6),
+            (16, [None, None], 1.0),
+        ] {
+            let origin = [-0.5 * (nx - 1) as f64 * dx, -0.09];
+            let ends = steel_ends(nx, ny, [dx, dy], origin, faces, weight);
+            let p = pressure(nx * ny);
+            let mut got = vec![0.0; nx * ny];
+            ends.apply_influence(&p, &mut got);
+            let ext = ends.extended_pressure(&p);
+            let mut out = vec![0.0; ext.len()];
+            ends.extended.apply_influence(&ext, &mut out);
+            let scale = out.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (k, a) in got.iter().enumerate() {
+                let b = out[ends.extended_index(k)];
+                assert!(
+                    (a - b).abs() < 1e-12 * scale,
+                    "{nx} {faces:?}, cell {k}: {a} vs {b}"
+                );
             }
         }
     }
