@@ -241,8 +241,21 @@ impl ElasticBody for FreeEnds {
     /// u = C·(p + w·M p) = C p + w·M(C p): the own pressure's product read at each cell and,
     /// weighted, at its images.
     fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+        self.apply_influence_adding(force, 0.0, displacement);
+    }
+
+    /// The own grid's half-space ([`HalfSpace`]'s shape and scale (1 − ν²)/E): a raceway on
+    /// the same grid adds its product to this one's.
+    fn base_shape(&self) -> Option<(String, f64)> {
+        self.own.influence_shape()
+    }
+
+    /// u = C p + w·M(C p) + added·C₀ p = (1 + added/c)·C p + w·M(C p), C = c·C₀ the own grid's
+    /// operator: a partner on the grid costs no product of its own.
+    fn apply_influence_adding(&self, force: &[f64], added: f64, displacement: &mut [f64]) {
         let (nx, ny) = self.own.cells();
         let width = nx + 2 * self.reach;
+        let own = 1.0 + added / self.own.compliance;
         self.work.with(
             || vec![0.0; width * ny],
             |wide| {
@@ -253,7 +266,7 @@ impl ElasticBody for FreeEnds {
                 for (row, out) in rows {
                     for (i, d) in out.iter_mut().enumerate() {
                         let images: f64 = self.mirrors.iter().map(|&m| row[m - i]).sum();
-                        *d = row[self.reach + i] + self.weight * images;
+                        *d = own * row[self.reach + i] + self.weight * images;
                     }
                 }
             },

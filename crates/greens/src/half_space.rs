@@ -39,7 +39,7 @@ pub struct HalfSpace {
     /// The free translation of a pressed body ([`HalfSpace::pressed`]), or none.
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
-    compliance: f64,
+    pub(crate) compliance: f64,
     pub(crate) material: Material,
     /// Cell sizes \[mm\].
     pub(crate) dx: f64,
