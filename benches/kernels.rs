@@ -14,15 +14,24 @@
 //!   difference printed;
 //! - the element stiffness of every element of an axisymmetric T6 mesh against a Q8 mesh of
 //!   about the same number of nodes (30 401 and 30 625): what an imported triangle mesh costs
-//!   to integrate against the structured quadrilaterals.
+//!   to integrate against the structured quadrilaterals;
+//! - the influence product of the bundled bearing's contact (80 × 49 cells, a roller with free
+//!   ends 0.2 mm beyond its effective length on its raceway's grid): as it was (the raceway's
+//!   product and the roller's pressure with its images written out on a grid three times as
+//!   long, padded to 492 = 4·3·41 columns), the roller's own product read beyond its grid
+//!   (`FreeEnds`), and the contact's one product for both (the raceway added into the
+//!   roller's), with their largest difference printed.
 //!
 //! `cargo bench --bench kernels`
 
 use std::hint::black_box;
 use std::time::Duration;
 
+use contopt::contact::InterfaceProblem;
 use contopt::fem::element::{GAUSS3, MAX_NODES};
 use contopt::fem::{Analysis, ElementKind, FeModel, Material, Mesh, Spacing};
+use contopt::greens::{FreeEnds, HalfSpace};
+use contopt::ElasticBody;
 use contopt::StressTensor;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 use nalgebra::Matrix3;
@@ -363,5 +372,73 @@ fn triangles(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, principal, elements, triangles);
+/// The bearing's contact product three ways (see the module's account): each timed, and the
+/// largest difference of the last two from the first printed relative to its largest value.
+fn bearing_product(c: &mut Criterion) {
+    let steel = Material::new(2.1e5, 0.3).unwrap();
+    let (nx, ny, dx, dy) = (80, 49, 0.12, 0.0107);
+    let origin = [-4.74, -24.0 * dy];
+    // Faces 0.2 mm beyond the cells' edges at ±4.8 mm: m = 3 half-cells out.
+    let (m, faces) = (3, [Some(-5.0), Some(5.0)]);
+    let raceway = HalfSpace::grid("raceway", steel, nx, ny, dx, dy, origin).unwrap();
+    let roller = FreeEnds::grid("roller", steel, nx, ny, dx, dy, origin, faces, 1.0)
+        .unwrap()
+        .upper();
+    let (first, n) = (m + nx, nx * ny);
+    let width = first + 2 * nx + m;
+    let long_origin = [origin[0] - first as f64 * dx, origin[1]];
+    let long = HalfSpace::grid("long", steel, width, ny, dx, dy, long_origin).unwrap();
+    let force: Vec<f64> = (0..n)
+        .map(|k| 1.0 + ((k * 37 % 101) as f64).sin())
+        .collect();
+    let mut written = vec![0.0; width * ny];
+    for j in 0..ny {
+        for i in 0..nx {
+            let (f, row) = (force[j * nx + i], j * width);
+            written[row + first + i] += f;
+            written[row + first - m - 1 - i] += f;
+            written[row + first + 2 * nx + m - 1 - i] += f;
+        }
+    }
+    let problem = InterfaceProblem::new(&raceway, &roller, &vec![0.0; n]).unwrap();
+    let (mut u, mut v, mut out) = (vec![0.0; n], vec![0.0; n], vec![0.0; width * ny]);
+    let as_it_was = |u: &mut [f64], out: &mut [f64]| {
+        raceway.apply_influence(&force, u);
+        long.apply_influence(&written, out);
+        for (k, u) in u.iter_mut().enumerate() {
+            *u += out[(k / nx) * width + first + k % nx];
+        }
+    };
+    as_it_was(&mut u, &mut out);
+    let scale = u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    roller.apply_influence(&force, &mut v);
+    let mut sum = vec![0.0; n];
+    raceway.apply_influence(&force, &mut sum);
+    let read: f64 = (0..n)
+        .map(|k| (sum[k] + v[k] - u[k]).abs())
+        .fold(0.0, f64::max);
+    problem.apply_influence(&force, &mut v);
+    let added: f64 = (0..n).map(|k| (v[k] - u[k]).abs()).fold(0.0, f64::max);
+    println!(
+        "bearing product: read beyond the grid {:.1e}, raceway added {:.1e} of the largest value",
+        read / scale,
+        added / scale
+    );
+    let mut group = c.benchmark_group("bearing_product");
+    group.bench_function("written_out_and_raceway", |b| {
+        b.iter(|| as_it_was(&mut u, &mut out))
+    });
+    group.bench_function("roller_read_beyond_and_raceway", |b| {
+        b.iter(|| {
+            raceway.apply_influence(&force, &mut u);
+            roller.apply_influence(&force, &mut v);
+        })
+    });
+    group.bench_function("raceway_added", |b| {
+        b.iter(|| problem.apply_influence(&force, &mut v))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, principal, elements, triangles, bearing_product);
 criterion_main!(benches);

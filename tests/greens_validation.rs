@@ -3,7 +3,9 @@
 
 use std::f64::consts::PI;
 
-use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace, Pasternak, PlaneState};
+use contopt::greens::{
+    AxisymmetricHalfSpace, FreeEnds, HalfPlane, HalfSpace, Pasternak, PlaneState,
+};
 use contopt::prelude::*;
 use contopt_validation::closed_form::{
     contact_modulus, FlamantStrip, FlatPunch, HertzLine, HertzSphere, UniformCircle, Westergaard,
@@ -456,6 +458,42 @@ fn two_elastic_grids_summed() {
         (approach / sphere.approach(1.0) - 1.0).abs() < 0.02,
         "approach {approach}"
     );
+}
+
+/// A raceway grid and a roller with free ends on the same cells (`FreeEnds`, of another
+/// material) share one product: the roller adds the raceway's scaled half-space product inside
+/// its own (`ElasticBody::apply_influence_adding`), so the problem sums no two products, and
+/// its product is the two bodies' products summed to 1e-12 of the largest value, either body
+/// first (the roller's scale taken for the raceway's is about 30 % off).
+#[test]
+fn raceway_adds_into_the_rollers_product() {
+    let (nx, ny, dx, dy) = (30, 11, 0.1, 0.02);
+    let origin = [-1.45, -0.1];
+    let bronze = Material::new(1.1e5, 0.34).unwrap();
+    let raceway = HalfSpace::grid("raceway", peer_steel(), nx, ny, dx, dy, origin).unwrap();
+    let faces = [Some(origin[0] - 0.6 * dx), Some(1.62)];
+    let roller = FreeEnds::grid("roller", bronze, nx, ny, dx, dy, origin, faces, 1.3)
+        .unwrap()
+        .upper();
+    let n = nx * ny;
+    let force: Vec<f64> = (0..n).map(|k| 1.0 + ((k * 17 % 23) as f64).cos()).collect();
+    let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+    raceway.apply_influence(&force, &mut a);
+    roller.apply_influence(&force, &mut b);
+    let sum: Vec<f64> = a.iter().zip(&b).map(|(a, b)| a + b).collect();
+    let scale = sum.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let gap = vec![0.0; n];
+    for problem in [
+        InterfaceProblem::new(&raceway, &roller, &gap).unwrap(),
+        InterfaceProblem::new(&roller, &raceway, &gap).unwrap(),
+    ] {
+        assert!(!problem.sums_two_products());
+        let mut u = vec![0.0; n];
+        problem.apply_influence(&force, &mut u);
+        for (k, (u, s)) in u.iter().zip(&sum).enumerate() {
+            assert!((u - s).abs() < 1e-12 * scale, "cell {k}: {u} vs {s}");
+        }
+    }
 }
 
 /// Polonsky–Keer is unit-free: the 32² Hertz case in N-m-Pa (lengths × 10⁻³, E × 10⁶) gives

@@ -137,11 +137,12 @@ impl PolonskyKeer {
         watch: Watch,
     ) -> Result<ContactState> {
         let cold = start.is_none_or(|p| p.iter().all(|&v| v <= 0.0));
+        let given = || start.map(<[f64]>::to_vec);
         if !cold || problem.len() < NESTED_POINTS {
-            return self.solve_cropped(problem, start, watch);
+            return self.solve_cropped(problem, given(), watch);
         }
         let Some((coarse, parent)) = problem.coarsen() else {
-            return self.solve_cropped(problem, start, watch);
+            return self.solve_cropped(problem, given(), watch);
         };
         let nested = PolonskyKeer {
             settings: PolonskyKeerSettings {
@@ -152,26 +153,30 @@ impl PolonskyKeer {
         let solved = nested.solve_nested(&coarse, None, watch).ok();
         drop(coarse);
         let Some(solved) = solved.filter(ContactState::is_converged) else {
-            return self.solve_cropped(problem, start, watch);
+            return self.solve_cropped(problem, given(), watch);
         };
         let fine: Vec<f64> = parent.iter().map(|&c| solved.pressure[c]).collect();
-        drop(solved.pressure);
-        let mut state = self.solve_cropped(problem, Some(&fine), watch.after(solved.iterations))?;
+        // The parent index (a usize per point) and the coarse pressure are not held through
+        // the fine solve: at 2048² cells the index alone is 32 MiB of its peak.
+        drop((parent, solved.pressure));
+        let mut state = self.solve_cropped(problem, Some(fine), watch.after(solved.iterations))?;
         state.iterations += solved.iterations;
         Ok(state)
     }
 
     /// Solves on a growing part of the interface when the problem can be restricted; each
-    /// larger part starts from the pressure of the last.
+    /// larger part starts from the pressure of the last. The start is taken, not borrowed: it
+    /// is freed once the first part has its own copy (a whole-interface vector fewer at the
+    /// part's solve).
     fn solve_cropped(
         &self,
         problem: &InterfaceProblem,
-        start: Option<&[f64]>,
+        start: Option<Vec<f64>>,
         watch: Watch,
     ) -> Result<ContactState> {
         let n = problem.len();
-        let mut keep = seed(problem, start);
-        let mut pressure: Option<Vec<f64>> = start.map(<[f64]>::to_vec);
+        let mut keep = seed(problem, start.as_deref());
+        let mut pressure = start;
         let mut steps = 0;
         while let Some((part, index)) = problem.restrict(&keep) {
             let part_start: Option<Vec<f64>> =

@@ -46,13 +46,44 @@ enum Product {
     /// A = factor·Aᵏ: the other body is rigid (factor 1), or both bodies' operators are
     /// multiples of one, paired point for point ([`ElasticBody::influence_shape`]); one product.
     One { body: usize, factor: f64 },
+    /// A = Aᵏ + `added`·A₀: the other body's operator is `added` times the fixed one A₀ that
+    /// body k's contains ([`ElasticBody::base_shape`]), paired point for point; body k adds it
+    /// inside its own product ([`ElasticBody::apply_influence_adding`]), one product.
+    Adding { body: usize, added: f64 },
     /// Both bodies' products, summed.
     Both,
 }
 
 impl Product {
-    /// The product that two bodies' shapes allow (`identity`: paired point for point).
-    fn of(shapes: [Option<(String, f64)>; 2], identity: bool) -> Self {
+    /// The product that two bodies' shapes and base shapes allow (`identity`: paired point
+    /// for point).
+    fn of(
+        shapes: [Option<(String, f64)>; 2],
+        bases: [Option<(String, f64)>; 2],
+        identity: bool,
+    ) -> Self {
+        // Body k's base holds the other's whole operator: the shape it names, a positive scale.
+        let adding = |k: usize| match (&bases[k], &shapes[1 - k]) {
+            (Some((base, scale)), Some((shape, added)))
+                if identity && base == shape && *scale > 0.0 && *added > 0.0 =>
+            {
+                Some(Product::Adding {
+                    body: k,
+                    added: *added,
+                })
+            }
+            _ => None,
+        };
+        let pure = Product::pure(shapes.clone(), identity);
+        match pure {
+            Product::Both => adding(1).or_else(|| adding(0)).unwrap_or(Product::Both),
+            _ => pure,
+        }
+    }
+
+    /// The product that two bodies' shapes allow: one when a body is rigid or both are
+    /// multiples of one operator.
+    fn pure(shapes: [Option<(String, f64)>; 2], identity: bool) -> Self {
         match shapes {
             [_, Some((_, 0.0))] => Product::One {
                 body: 0,
@@ -164,6 +195,11 @@ impl Operator<'_> {
                 if factor != 1.0 {
                     out.iter_mut().for_each(|u| *u *= factor);
                 }
+            }
+            Product::Adding { body, added } => {
+                self.in_own_numbering(body, force, &[], out, |b, f, _, o| {
+                    b.apply_influence_adding(f, added, o)
+                });
             }
             Product::Both => {
                 self.apply_one(0, force, out);
@@ -367,7 +403,11 @@ impl<'a> InterfaceProblem<'a> {
         };
         let interface = Arc::new(b1.interface().clone());
         let identity = pair.iter().enumerate().all(|(i, &j)| i == j);
-        let product = Product::of([b1.influence_shape(), b2.influence_shape()], identity);
+        let product = Product::of(
+            [b1.influence_shape(), b2.influence_shape()],
+            [b1.base_shape(), b2.base_shape()],
+            identity,
+        );
         let operator = Operator {
             product,
             scratch: (!identity).then(|| Spares::new(Scratch::new(n))),

@@ -115,6 +115,29 @@ pub trait ElasticBody: Send + Sync {
         None
     }
 
+    /// A part of the influence operator that is a multiple of a fixed one: `(shape, scale)`
+    /// when A = scale·A₀ + R, A₀ named by `shape` as in [`ElasticBody::influence_shape`], and
+    /// [`ElasticBody::apply_influence_adding`] adds a partner's multiple of A₀ inside this
+    /// body's own product. A partner of that shape, paired point for point, then costs no
+    /// product of its own (a roller with free ends on its raceway's grid). The default is the
+    /// whole operator's [`ElasticBody::influence_shape`] (R = 0).
+    fn base_shape(&self) -> Option<(String, f64)> {
+        self.influence_shape()
+    }
+
+    /// displacement = A·force + `added`·A₀·force, A₀ the operator of
+    /// [`ElasticBody::base_shape`] at unit scale: this body's product and a partner's of that
+    /// shape and scale `added`, in one. The default, for a body whose operator is scale·A₀
+    /// (R = 0), scales its product by 1 + added/scale; a body with R ≠ 0 that names a base
+    /// shape implements it.
+    fn apply_influence_adding(&self, force: &[f64], added: f64, displacement: &mut [f64]) {
+        self.apply_influence(force, displacement);
+        if let Some((_, scale)) = self.base_shape().filter(|(_, s)| *s > 0.0) {
+            let factor = 1.0 + added / scale;
+            displacement.iter_mut().for_each(|u| *u *= factor);
+        }
+    }
+
     /// A body over a subset of this body's points that contains every point marked in `keep`
     /// and whose influence product is cheaper (a grid's bounding box), with the indices of its
     /// points among this body's; `None` (the default) when the body offers none. Iterative

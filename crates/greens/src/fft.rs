@@ -68,6 +68,8 @@ pub(crate) struct Convolution {
     /// Transformed lengths: 2nx × 2ny (free) or nx × ny (periodic).
     px: usize,
     py: usize,
+    /// Columns of the output beyond the field's each side ([`Convolution::wide`]; 0 else).
+    reach: usize,
     /// Spectrum of the (padded) kernel, column-major: [i·(py/2 + 1) + j] for x-frequency i
     /// and y-frequency j ≤ py/2; real and even in j (the kernel is even), so that frequency
     /// py − j is j's. Its reciprocal, where positive, is the circulant approximation of the
@@ -93,8 +95,9 @@ impl std::fmt::Debug for Convolution {
 }
 
 impl Convolution {
-    /// Plans the transforms of a `px` × `py` grid holding an `nx` × `ny` field.
-    fn plan(nx: usize, ny: usize, px: usize, py: usize) -> Self {
+    /// Plans the transforms of a `px` × `py` grid holding an `nx` × `ny` field, read `reach`
+    /// columns beyond it each side.
+    fn plan(nx: usize, ny: usize, [px, py]: [usize; 2], reach: usize) -> Self {
         let Plans {
             r2c,
             c2r,
@@ -107,6 +110,7 @@ impl Convolution {
             ny,
             px,
             py,
+            reach,
             spectrum: vec![],
             r2c,
             c2r,
@@ -141,9 +145,38 @@ impl Convolution {
     /// turns negative at some frequencies (anisotropic cells, odd sides), and its inverse is no
     /// approximation of the operator's there.
     pub fn free(nx: usize, ny: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
-        let (px, py) = (2 * nx, 2 * ny);
-        let mut conv = Self::plan(nx, ny, px, py);
-        let distance = |i: usize, n: usize| i.min(2 * n - i);
+        Self::padded(nx, ny, 2 * nx, 0, kernel)
+    }
+
+    /// The padded length along x of [`Convolution::wide`]: the smallest with prime factors 2,
+    /// 3, 5 and 7 (fast transforms) of at least 2(nx + reach).
+    pub fn wide_length(nx: usize, reach: usize) -> usize {
+        smooth_at_least(2 * (nx + reach), usize::MAX)
+    }
+
+    /// As [`Convolution::free`], with the product also read `reach` columns beyond the field
+    /// each side (an output nx + 2·reach wide, its column `reach` the field's first): the
+    /// padded length along x is [`Convolution::wide_length`], and `kernel` is asked for
+    /// distances |Δi| up to half of it. Every output column is the exact linear product: its
+    /// distances to the field's cells are below nx + reach, at most half the period, so the
+    /// circular kernel min(a, px − a) is the kernel there, and no column wraps onto another.
+    /// A grid's images beyond its free faces are read so from one product of the field alone
+    /// ([`crate::FreeEnds`]).
+    pub fn wide(nx: usize, ny: usize, reach: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
+        Self::padded(nx, ny, Self::wide_length(nx, reach), reach, kernel)
+    }
+
+    /// The free product on a grid padded to `px` × 2ny, the kernel at the circular distances.
+    fn padded(
+        nx: usize,
+        ny: usize,
+        px: usize,
+        reach: usize,
+        kernel: impl Fn(usize, usize) -> f64,
+    ) -> Self {
+        let py = 2 * ny;
+        let mut conv = Self::plan(nx, ny, [px, py], reach);
+        let distance = |i: usize, period: usize| i.min(period - i);
         // The padded kernel fills all py rows: transform it whole, once.
         let cx = px / 2 + 1;
         let hy = py / 2 + 1;
@@ -156,7 +189,7 @@ impl Convolution {
         } = conv.new_work();
         for j in 0..py {
             for (i, v) in row.iter_mut().enumerate() {
-                *v = kernel(distance(i, nx), distance(j, ny));
+                *v = kernel(distance(i, px), distance(j, py));
             }
             conv.r2c
                 .process_with_scratch(&mut row, &mut spectra[j * cx..(j + 1) * cx], &mut scratch)
@@ -180,7 +213,7 @@ impl Convolution {
     /// The periodic (circular) convolution on the nx × ny grid whose spectrum at the signed
     /// frequency indices (i, j) is `spectrum(i, j)` (even in each index).
     pub fn periodic(nx: usize, ny: usize, spectrum: impl Fn(isize, isize) -> f64) -> Self {
-        let mut conv = Self::plan(nx, ny, nx, ny);
+        let mut conv = Self::plan(nx, ny, [nx, ny], 0);
         let signed = |k: usize, n: usize| {
             if 2 * k <= n {
                 k as isize
@@ -202,7 +235,8 @@ impl Convolution {
         self.spectrum.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
-    /// output = kernel ∗ input on the nx × ny grid (x fastest).
+    /// output = kernel ∗ input on the nx × ny grid (x fastest); on a [`Convolution::wide`]
+    /// one the output rows are nx + 2·reach long.
     pub fn apply(&self, input: &[f64], output: &mut [f64]) {
         self.convolve(|s| s, input, output);
     }
@@ -272,6 +306,7 @@ impl Convolution {
             }
         }
         let scale = 1.0 / (px * py) as f64;
+        let width = nx + 2 * self.reach;
         for (j, spectrum) in rows.chunks_exact_mut(cx).enumerate() {
             // The input of a real inverse transform has real end points (the last one only
             // when the length is even).
@@ -282,9 +317,28 @@ impl Convolution {
             self.c2r
                 .process_with_scratch(spectrum, row, scratch)
                 .expect("buffer lengths match the plan");
-            for i in 0..nx {
-                output[j * nx + i] = row[i] * scale;
+            // Column −reach + o of the field is the row's (o − reach) mod px.
+            let (before, rest) = output[j * width..(j + 1) * width].split_at_mut(self.reach);
+            for (o, r) in before.iter_mut().zip(&row[px - self.reach..]) {
+                *o = r * scale;
+            }
+            for (o, r) in rest.iter_mut().zip(row.iter()) {
+                *o = r * scale;
             }
         }
     }
+}
+
+/// The smallest length ≥ `n` (at most `max`) whose prime factors are 2, 3, 5 and 7, for
+/// which FFTs are fast.
+pub(crate) fn smooth_at_least(n: usize, max: usize) -> usize {
+    let smooth = |mut m: usize| {
+        for f in [2, 3, 5, 7] {
+            while m.is_multiple_of(f) {
+                m /= f;
+            }
+        }
+        m == 1
+    };
+    (n.min(max)..=max).find(|&m| smooth(m)).unwrap_or(max)
 }

@@ -21,15 +21,20 @@
 //!
 //! The images lie on the grid's own lattice when each face is a whole number of half-cells
 //! beyond the grid's edge: a face is moved to the nearest such place (at most a quarter of a
-//! cell; [`FreeEnds::faces`] says where it is). The product is one FFT convolution on a grid
-//! about three times as long (the roller, its two images and the gaps between them), so it
-//! costs about three half-space products.
+//! cell; [`FreeEnds::faces`] says where it is). Love's kernel is even, so the product of the
+//! image is the reflection of the own pressure's product, C·M p = M·C p: the product is one
+//! FFT convolution of the own pressure alone, read beyond the grid as far as the images reach
+//! (a padded length of about 2(2nx + m) cells for faces m half-cells out, where the
+//! pressure and its images written out on one long grid took 2(3nx + 2m)), and each cell
+//! adds its images' values.
 
 use contopt_core::{
-    check, ElasticBody, Error, Interface, Material, Result, RigidMode, SectionField, StressPeaks,
-    Subsurface, SubsurfaceRequest,
+    check, ElasticBody, Error, Interface, Material, Result, RigidMode, Subsurface,
+    SubsurfaceRequest,
 };
 
+use crate::fft::Convolution;
+use crate::subsurface::Images;
 use crate::HalfSpace;
 use contopt_core::Spares;
 
@@ -39,17 +44,18 @@ use contopt_core::Spares;
 pub struct FreeEnds {
     /// The grid itself: its points, modes and name.
     own: HalfSpace,
-    /// The grid with its images: `extended.nx` columns, the own grid's first at `offset`.
-    extended: HalfSpace,
-    offset: usize,
-    /// The image column (on the extended grid) of own column 0 about each face, and the
-    /// direction in which the images run: own column i's image is `start − i`.
-    images: Vec<usize>,
+    /// The own grid's product read `reach` columns beyond it each side, as far as the images
+    /// lie (own column i at column `reach + i` of a row).
+    wide: Convolution,
+    reach: usize,
+    /// The column of a `wide` row holding own column 0's image about each face; own column
+    /// i's is `mirror − i`.
+    mirrors: Vec<usize>,
     /// The faces as placed \[mm\]: below, beyond.
     faces: [Option<f64>; 2],
     weight: f64,
-    /// Work: the extended pressure and displacement, a pair per product running at once.
-    work: Spares<(Vec<f64>, Vec<f64>)>,
+    /// Work: a `wide` product, one per product running at once.
+    work: Spares<Vec<f64>>,
 }
 
 /// The whole number of half-cells `dx/2` from a grid's edge to a face `distance` \[mm\] away
@@ -96,10 +102,9 @@ impl FreeEnds {
             -f64::EPSILON,
             2.0 + f64::EPSILON,
         )?;
-        let ((nx, ny), (dx, dy), material) = (own.cells(), (own.dx, own.dy), own.material);
-        let first = own.interface().points()[0];
-        let (name, origin) = (own.name().to_string(), [first[0], first[1]]);
-        let (lo, hi) = (origin[0] - 0.5 * dx, origin[0] + (nx as f64 - 0.5) * dx);
+        let ((nx, ny), dx) = (own.cells(), own.dx);
+        let first = own.interface().points()[0][0];
+        let (lo, hi) = (first - 0.5 * dx, first + (nx as f64 - 0.5) * dx);
         let below = faces[0]
             .map(|f| {
                 half_cells(
@@ -118,41 +123,41 @@ impl FreeEnds {
                 )
             })
             .transpose()?;
-        // Own column i lies at lattice index i; its image about the lower face at
-        // −m₋ − 1 − i, about the upper at 2nx + m₊ − 1 − i.
-        let first = below.map_or(0, |m| m + nx);
-        let last = beyond.map_or(nx, |m| 2 * nx + m);
-        let width = first + last;
-        let images: Vec<usize> = [
-            below.map(|m| first - m - 1),
-            beyond.map(|m| first + 2 * nx + m - 1),
-        ]
-        .into_iter()
-        .flatten()
-        .collect();
-        let ext_origin = [origin[0] - first as f64 * dx, origin[1]];
-        let extended = HalfSpace::grid(name, material, width, ny, dx, dy, ext_origin)?;
         let placed = [
             below.map(|m| lo - m as f64 * 0.5 * dx),
             beyond.map(|m| hi + m as f64 * 0.5 * dx),
         ];
+        // Own column i lies at lattice index i; its image about the lower face at
+        // −m₋ − 1 − i, about the upper at 2nx + m₊ − 1 − i: at most m + nx columns beyond the
+        // grid's edge.
+        let reach = [below, beyond].into_iter().flatten().map(|m| m + nx).max();
+        let reach = reach.unwrap_or(0);
+        let mirrors = [
+            below.map(|m| reach - m - 1),
+            beyond.map(|m| reach + 2 * nx + m - 1),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        let wide = own.wide_convolution(reach)?;
         Ok(Self {
             own,
-            extended,
-            offset: first,
-            images,
+            wide,
+            reach,
+            mirrors,
             faces: placed,
             weight,
-            work: Spares::new((vec![0.0; width * ny], vec![0.0; width * ny])),
+            work: Spares::new(vec![0.0; (nx + 2 * reach) * ny]),
         })
     }
 
-    /// The memory of an `nx` × `ny` grid with its images \[bytes\]: its own grid's and an
-    /// extended one five times as long at most; `None` when the count overflows.
+    /// The memory of an `nx` × `ny` grid with its images \[bytes\]: its own grid's and, for the
+    /// product read beyond it (kernel, spectrum and buffers), a grid's five times as long (an
+    /// upper bound); `None` when the count overflows.
     pub fn grid_bytes(nx: usize, ny: usize) -> Option<u64> {
         let own = HalfSpace::grid_bytes(nx, ny)?;
-        let extended = HalfSpace::grid_bytes(nx.checked_mul(5)?, ny)?;
-        own.checked_add(extended)
+        let wide = HalfSpace::grid_bytes(nx.checked_mul(5)?, ny)?;
+        own.checked_add(wide)
     }
 
     /// The faces as placed on the lattice \[mm\]: below the first column, beyond the last.
@@ -176,38 +181,6 @@ impl FreeEnds {
         self.own = self.own.pressed(force)?;
         Ok(self)
     }
-
-    /// Writes `force` on the own grid and its weighted images into the extended grid's
-    /// buffer `ext`.
-    fn extend(&self, force: &[f64], ext: &mut [f64]) {
-        let (nx, ny) = self.own.cells();
-        let width = self.extended.cells().0;
-        ext.fill(0.0);
-        for j in 0..ny {
-            let row = &force[j * nx..(j + 1) * nx];
-            let out = &mut ext[j * width..(j + 1) * width];
-            out[self.offset..self.offset + nx].copy_from_slice(row);
-            for &start in &self.images {
-                for (i, f) in row.iter().enumerate() {
-                    out[start - i] += self.weight * f;
-                }
-            }
-        }
-    }
-
-    /// The own grid's index of each extended cell it holds: own cell k at extended cell
-    /// `self.extended_index(k)`.
-    fn extended_index(&self, k: usize) -> usize {
-        let nx = self.own.cells().0;
-        (k / nx) * self.extended.cells().0 + self.offset + k % nx
-    }
-
-    /// The pressure on the extended grid, images weighted.
-    fn extended_pressure(&self, pressure: &[f64]) -> Vec<f64> {
-        let mut ext = vec![0.0; self.extended.interface().len()];
-        self.extend(pressure, &mut ext);
-        ext
-    }
 }
 
 impl ElasticBody for FreeEnds {
@@ -219,15 +192,36 @@ impl ElasticBody for FreeEnds {
         self.own.interface()
     }
 
+    /// u = C·(p + w·M p) = C p + w·M(C p): the own pressure's product read at each cell and,
+    /// weighted, at its images.
     fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        let size = self.extended.interface().len();
+        self.apply_influence_adding(force, 0.0, displacement);
+    }
+
+    /// The own grid's half-space ([`HalfSpace`]'s shape and scale (1 − ν²)/E): a raceway on
+    /// the same grid adds its product to this one's.
+    fn base_shape(&self) -> Option<(String, f64)> {
+        self.own.influence_shape()
+    }
+
+    /// u = C p + w·M(C p) + added·C₀ p = (1 + added/c)·C p + w·M(C p), C = c·C₀ the own grid's
+    /// operator: a partner on the grid costs no product of its own.
+    fn apply_influence_adding(&self, force: &[f64], added: f64, displacement: &mut [f64]) {
+        let (nx, ny) = self.own.cells();
+        let width = nx + 2 * self.reach;
+        let own = 1.0 + added / self.own.compliance;
         self.work.with(
-            || (vec![0.0; size], vec![0.0; size]),
-            |(ext, out)| {
-                self.extend(force, ext);
-                self.extended.apply_influence(ext, out);
-                for (k, d) in displacement.iter_mut().enumerate() {
-                    *d = out[self.extended_index(k)];
+            || vec![0.0; width * ny],
+            |wide| {
+                self.wide.apply(force, wide);
+                let rows = wide
+                    .chunks_exact(width)
+                    .zip(displacement.chunks_exact_mut(nx));
+                for (row, out) in rows {
+                    for (i, d) in out.iter_mut().enumerate() {
+                        let images: f64 = self.mirrors.iter().map(|&m| row[m - i]).sum();
+                        *d = own * row[self.reach + i] + self.weight * images;
+                    }
                 }
             },
         );
@@ -256,47 +250,22 @@ impl ElasticBody for FreeEnds {
         Some((Box::new(coarse), parent))
     }
 
-    /// The stresses of the image model: the extended grid's under the pressure and its
-    /// weighted images, at the own grid's cells only.
+    /// The stresses of the image model, σ(p + w·M p) = σ(p) + w·M σ(p) (each component with
+    /// its parity in x), from the own pressure's fields read beyond the grid, one transform of
+    /// the pressure for every depth.
     fn subsurface(
         &self,
         pressure: &[f64],
         request: &SubsurfaceRequest,
     ) -> Result<Option<Subsurface>> {
-        crate::subsurface_2d::check_pressure(self.name(), pressure, self.own.interface().len())?;
-        request.check()?;
-        let ext = self.extended_pressure(pressure);
-        let origin = self.own.interface().points()[0];
-        let lines: Vec<_> = request
-            .sections
-            .iter()
-            .map(|s| self.own.section_cells(*s, origin))
-            .collect();
-        let mut sections: Vec<SectionField> = lines
-            .iter()
-            .map(|(section, _, positions)| SectionField {
-                section: *section,
-                positions: positions.clone(),
-                depths: request.depths.clone(),
-                tensors: Vec::with_capacity(positions.len() * request.depths.len()),
-            })
-            .collect();
-        let mut peaks = StressPeaks::default();
-        let points = self.own.interface().points();
-        for &z in &request.depths {
-            let field = self.extended.stress_field(&ext, z)?;
-            for (k, p) in points.iter().enumerate() {
-                peaks.record(&field[self.extended_index(k)], p[0], p[1], z);
-            }
-            for (out, (_, cells, _)) in sections.iter_mut().zip(&lines) {
-                out.tensors
-                    .extend(cells.iter().map(|&k| field[self.extended_index(k)]));
-            }
-        }
-        Ok(Some(Subsurface {
-            peaks: peaks.finite(self.name())?,
-            sections,
-        }))
+        let images = Images {
+            reach: self.reach,
+            mirrors: &self.mirrors,
+            weight: self.weight,
+        };
+        self.own
+            .stresses_imaged(pressure, request, &images)
+            .map(Some)
     }
 }
 
@@ -399,6 +368,126 @@ mod tests {
         for i in 0..nx * ny {
             for j in 0..i {
                 assert!((a[(i, j)] - a[(j, i)]).abs() < 1e-12 * a[(0, 0)], "{i} {j}");
+            }
+        }
+    }
+
+    /// The pressure and its weighted images written out on a grid `reach` columns wider each
+    /// side, as the product and the stresses were computed before they were read beyond the
+    /// grid: that grid, the written-out pressure, and each own cell's index on it.
+    fn written_out(ends: &FreeEnds, p: &[f64]) -> (HalfSpace, Vec<f64>, Vec<usize>) {
+        let ((nx, ny), r, (dx, dy)) = (ends.own.cells(), ends.reach, (ends.own.dx, ends.own.dy));
+        let width = nx + 2 * r;
+        let first = ends.own.interface().points()[0];
+        let origin = [first[0] - r as f64 * dx, first[1]];
+        let long = HalfSpace::grid("long", steel(), width, ny, dx, dy, origin).unwrap();
+        let (mut ext, mut index) = (vec![0.0; width * ny], vec![0; nx * ny]);
+        for j in 0..ny {
+            for i in 0..nx {
+                let (k, row) = (j * nx + i, j * width);
+                index[k] = row + r + i;
+                ext[row + r + i] += p[k];
+                for &m in &ends.mirrors {
+                    ext[row + m - i] += ends.weight * p[k];
+                }
+            }
+        }
+        (long, ext, index)
+    }
+
+    /// Free ends of two faces, one either side, none, on odd, FFT-unfriendly widths.
+    fn variety() -> Vec<(usize, [Option<f64>; 2], f64)> {
+        vec![
+            (41, [Some(-2.6), Some(2.55)], 1.0),
+            (20, [None, Some(1.3)], 1.4),
+            (23, [Some(-1.5), None], 0.6),
+            (16, [None, None], 1.0),
+        ]
+    }
+
+    /// The product read beyond the grid (C p + w·M C p) is the product of the pressure and its
+    /// weighted images written out on a longer grid (C (p + w·M p), as it was computed
+    /// before), to round-off of the largest value: an image column one off is a change of a
+    /// few per cent at the ends.
+    #[test]
+    fn wide_product_equals_the_written_out_one() {
+        let (ny, dx, dy) = (7, 0.12, 0.03);
+        for (nx, faces, weight) in variety() {
+            let origin = [-0.5 * (nx - 1) as f64 * dx, -0.09];
+            let ends = steel_ends(nx, ny, [dx, dy], origin, faces, weight);
+            let p = pressure(nx * ny);
+            let mut got = vec![0.0; nx * ny];
+            ends.apply_influence(&p, &mut got);
+            let (long, ext, index) = written_out(&ends, &p);
+            let mut out = vec![0.0; ext.len()];
+            long.apply_influence(&ext, &mut out);
+            let scale = out.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (k, a) in got.iter().enumerate() {
+                let b = out[index[k]];
+                assert!(
+                    (a - b).abs() < 1e-12 * scale,
+                    "{nx} {faces:?}, cell {k}: {a} vs {b}"
+                );
+            }
+        }
+    }
+
+    /// The stresses read beyond the grid (σ(p) + w·M σ(p), each component with its parity in
+    /// x) are the stresses of the pressure and its images written out on a longer grid, to
+    /// round-off of the largest stress, along a row and along the end column at two depths: a
+    /// shear component of the wrong parity is off by its image's share at the end.
+    #[test]
+    fn wide_stresses_equal_the_written_out_ones() {
+        let (ny, dx, dy) = (7, 0.12, 0.03);
+        for (nx, faces, weight) in variety() {
+            let origin = [-0.5 * (nx - 1) as f64 * dx, -0.09];
+            let ends = steel_ends(nx, ny, [dx, dy], origin, faces, weight);
+            let p = pressure(nx * ny);
+            let request = SubsurfaceRequest {
+                depths: vec![0.02, 0.1],
+                sections: vec![
+                    contopt_core::Section {
+                        axis: contopt_core::SectionAxis::X,
+                        at: origin[1] + 4.0 * dy,
+                    },
+                    contopt_core::Section {
+                        axis: contopt_core::SectionAxis::Y,
+                        at: origin[0],
+                    },
+                ],
+            };
+            let sub = ends.subsurface(&p, &request).unwrap().unwrap();
+            let (long, ext, index) = written_out(&ends, &p);
+            let cells = [
+                (0..nx).map(|i| 4 * nx + i).collect::<Vec<_>>(),
+                (0..ny).map(|j| j * nx).collect(),
+            ];
+            for (section, cells) in sub.sections.iter().zip(&cells) {
+                for (d, &z) in request.depths.iter().enumerate() {
+                    let want = long.stress_field(&ext, z).unwrap();
+                    let scale = want.iter().fold(0.0f64, |m, s| {
+                        [s.xx, s.yy, s.zz, s.xy, s.xz, s.yz]
+                            .iter()
+                            .fold(m, |m, v| m.max(v.abs()))
+                    });
+                    for (c, &k) in cells.iter().enumerate() {
+                        let (a, b) = (section.tensors[d * cells.len() + c], want[index[k]]);
+                        let pairs = [
+                            (a.xx, b.xx),
+                            (a.yy, b.yy),
+                            (a.zz, b.zz),
+                            (a.xy, b.xy),
+                            (a.xz, b.xz),
+                            (a.yz, b.yz),
+                        ];
+                        for (u, v) in pairs {
+                            assert!(
+                                (u - v).abs() < 1e-12 * scale,
+                                "{nx} {faces:?}, z {z}, cell {k}: {a:?} vs {b:?}"
+                            );
+                        }
+                    }
+                }
             }
         }
     }

@@ -7,7 +7,7 @@ use contopt_core::{
 };
 use faer::Mat;
 
-use crate::fft::Convolution;
+use crate::fft::{smooth_at_least, Convolution};
 
 /// An elastic half-space z ≤ 0 whose surface is divided into a regular grid of
 /// `nx` × `ny` rectangular cells of size `dx` × `dy`; the contact points are the cell
@@ -39,27 +39,13 @@ pub struct HalfSpace {
     /// The free translation of a pressed body ([`HalfSpace::pressed`]), or none.
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
-    compliance: f64,
+    pub(crate) compliance: f64,
     pub(crate) material: Material,
     /// Cell sizes \[mm\].
     pub(crate) dx: f64,
     pub(crate) dy: f64,
     /// Poisson's ratio: the stresses below the surface depend on it alone, not on E.
     pub(crate) nu: f64,
-}
-
-/// The smallest length ≥ `n` (at most `max`) whose prime factors are 2, 3, 5 and 7, for
-/// which FFTs are fast.
-fn smooth_at_least(n: usize, max: usize) -> usize {
-    let smooth = |mut m: usize| {
-        for f in [2, 3, 5, 7] {
-            while m.is_multiple_of(f) {
-                m /= f;
-            }
-        }
-        m == 1
-    };
-    (n.min(max)..=max).find(|&m| smooth(m)).unwrap_or(max)
 }
 
 /// Deflection at (x, y) under unit pressure on the rectangle |x| < a, |y| < b, divided by
@@ -271,6 +257,23 @@ impl HalfSpace {
             vec![dx * dy; n],
             vec![[0.0, 0.0, 1.0]; n],
         )
+    }
+
+    /// The product of this free grid read `reach` columns beyond it each side
+    /// ([`Convolution::wide`]): its kernel evaluated to the wider padding's half length.
+    pub(crate) fn wide_convolution(&self, reach: usize) -> Result<Convolution> {
+        let (nx, ny) = (self.nx, self.ny);
+        let px = Convolution::wide_length(nx, reach);
+        let kernel = love_kernel(self.material, px / 2 + 1, ny + 1, self.dx, self.dy);
+        let what = format!(
+            "the kernel (1 − ν²)/(πE)·Love/(dx·dy) with dy = {} mm, E = {}, read {reach} cells \
+             beyond the grid",
+            self.dy,
+            self.material.e()
+        );
+        crate::check_matrix("half_space.dx", self.dx, &what, &kernel)?;
+        check_fft_bound(&kernel, 2 * px * ny, self.dx, &what)?;
+        Ok(Convolution::wide(nx, ny, reach, |i, j| kernel[(i, j)]))
     }
 
     /// The sub-grid of `cx` × `cy` cells starting at cell (`i0`, `j0`): the same kernel, a

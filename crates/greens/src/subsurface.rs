@@ -3,10 +3,11 @@
 //! Each stress component at depth z is a convolution of the cell pressures with one kernel:
 //! the stress of a uniformly loaded rectangle (Love 1929; Johnson, *Contact Mechanics*,
 //! eqs. 3.9–3.10 through the potentials ψ = ∬ p/ρ and ψ₁ = ∬ p ln(ρ + z)). A free grid
-//! zero-pads the product to 2nx × 2ny so the circular FFT product is the exact linear one; a
-//! periodic grid multiplies the pressure's spectrum by the half-space's response to a
-//! sinusoid. Depths are taken one at a time, so memory is linear in the grid, whatever the
-//! number of depths.
+//! zero-pads the product to at least 2nx × 2ny (along x to a length of factors 2, 3, 5 and 7,
+//! and further when the fields are read beyond the grid for a free end's images) so the
+//! circular FFT product is the exact linear one; a periodic grid multiplies the pressure's
+//! spectrum by the half-space's response to a sinusoid. Depths are taken one at a time, so
+//! memory is linear in the grid, whatever the number of depths.
 
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -19,7 +20,7 @@ use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealToComplex};
 use rustfft::Fft;
 
-use crate::fft::Plans;
+use crate::fft::{Convolution, Plans};
 use crate::subsurface_2d::{check_pressure, not_finite};
 use crate::HalfSpace;
 
@@ -211,9 +212,14 @@ impl Transform {
         }
     }
 
-    /// The first `ny` rows and `nx` columns of the field whose spectrum is `spectrum`
-    /// (consumed), written to `out` (x fastest).
-    fn inverse(&mut self, spectrum: &mut [Complex<f64>], nx: usize, ny: usize, out: &mut [f64]) {
+    /// The first `ny` rows of the field whose spectrum is `spectrum` (consumed), columns
+    /// −`reach` to nx + `reach` − 1 (circular), written to `out` (x fastest).
+    fn inverse(
+        &mut self,
+        spectrum: &mut [Complex<f64>],
+        [nx, ny, reach]: [usize; 3],
+        out: &mut [f64],
+    ) {
         let cx = self.px / 2 + 1;
         for (i, column) in spectrum.chunks_exact_mut(self.py).enumerate() {
             self.inverse_y
@@ -233,16 +239,23 @@ impl Transform {
             self.c2r
                 .process_with_scratch(spectrum, &mut self.row, &mut self.scratch)
                 .expect("buffer lengths match the plan");
-            for i in 0..nx {
-                out[j * nx + i] = self.row[i] * scale;
+            let width = nx + 2 * reach;
+            let (before, rest) = out[j * width..(j + 1) * width].split_at_mut(reach);
+            for (o, r) in before.iter_mut().zip(&self.row[self.px - reach..]) {
+                *o = r * scale;
+            }
+            for (o, r) in rest.iter_mut().zip(&self.row) {
+                *o = r * scale;
             }
         }
     }
 }
 
-/// The stress fields of one grid under one pressure, depth after depth.
+/// The stress fields of one grid under one pressure, depth after depth, read `reach` columns
+/// beyond the grid each side (a free grid's; [`crate::FreeEnds`]' images).
 struct StressSolver<'a> {
     body: &'a HalfSpace,
+    reach: usize,
     transform: Transform,
     /// The pressure's spectrum.
     pressure: Vec<Complex<f64>>,
@@ -252,12 +265,15 @@ struct StressSolver<'a> {
 }
 
 impl<'a> StressSolver<'a> {
-    fn new(body: &'a HalfSpace, pressure: &[f64]) -> Self {
+    /// The solver of `body` under `pressure`, read `reach` columns beyond a free grid: the
+    /// padding along x is [`Convolution::wide_length`] (at least 2(nx + reach), factors 2, 3,
+    /// 5 and 7), so every column read is the linear product (distances below half the period).
+    fn new(body: &'a HalfSpace, pressure: &[f64], reach: usize) -> Self {
         let (nx, ny) = (body.nx, body.ny);
         let (px, py) = if body.periodic {
             (nx, ny)
         } else {
-            (2 * nx, 2 * ny)
+            (Convolution::wide_length(nx, reach), 2 * ny)
         };
         let mut transform = Transform::new(px, py);
         let mut spectrum = vec![Complex::new(0.0, 0.0); transform.spectrum_len()];
@@ -265,6 +281,7 @@ impl<'a> StressSolver<'a> {
         let product = spectrum.clone();
         Self {
             body,
+            reach: if body.periodic { 0 } else { reach },
             transform,
             pressure: spectrum,
             kernel: if body.periodic {
@@ -276,33 +293,38 @@ impl<'a> StressSolver<'a> {
         }
     }
 
-    /// The six components at depth `z` at every cell: `fields[c][j·nx + i]`.
+    /// The six components at depth `z` at every cell and `reach` beyond each side:
+    /// `fields[c][j·(nx + 2·reach) + reach + i]`.
     fn depth(&mut self, z: f64, fields: &mut [Vec<f64>; COMPONENTS]) {
         let (nx, ny) = (self.body.nx, self.body.ny);
+        // The padded period's offsets reach (px − 1)/2 cells along x: the table holds their
+        // edges.
+        let kx = self.transform.px.div_ceil(2);
         let corners = (!self.body.periodic)
-            .then(|| Corners::new(nx, ny, self.body.dx, self.body.dy, z, self.body.nu));
+            .then(|| Corners::new(kx, ny, self.body.dx, self.body.dy, z, self.body.nu));
         for (c, field) in fields.iter_mut().enumerate() {
             match &corners {
                 Some(corners) => self.free_product(corners, c),
                 None => self.periodic_product(z, c),
             }
-            self.transform.inverse(&mut self.product, nx, ny, field);
+            let window = [nx, ny, self.reach];
+            self.transform.inverse(&mut self.product, window, field);
         }
     }
 
     /// product = FFT(kernel_c) · FFT(p) on the zero-padded grid.
     fn free_product(&mut self, corners: &Corners, c: usize) {
-        let (nx, ny) = (self.body.nx, self.body.ny);
-        let (px, py) = (2 * nx, 2 * ny);
-        // Offsets on the padded (circular) grid; the middle entry is never used.
-        let offset = |a: usize, n: usize| match a.cmp(&n) {
+        let (px, py) = (self.transform.px, self.transform.py);
+        // Offsets on the padded (circular) period; the middle entry (even period) is never
+        // used.
+        let offset = |a: usize, period: usize| match (2 * a).cmp(&period) {
             std::cmp::Ordering::Less => Some(a as isize),
-            std::cmp::Ordering::Greater => Some(a as isize - 2 * n as isize),
+            std::cmp::Ordering::Greater => Some(a as isize - period as isize),
             std::cmp::Ordering::Equal => None,
         };
         for b in 0..py {
             for a in 0..px {
-                self.kernel[b * px + a] = match (offset(a, nx), offset(b, ny)) {
+                self.kernel[b * px + a] = match (offset(a, px), offset(b, py)) {
                     (Some(di), Some(dj)) => corners.kernel_value(c, di, dj),
                     _ => 0.0,
                 };
@@ -369,6 +391,37 @@ impl<'a> StressSolver<'a> {
     }
 }
 
+/// A grid's pressure mirrored beyond free faces, with a weight ([`crate::FreeEnds`]): own
+/// column i's image about a face is column `mirror − i` of a row read `reach` columns beyond
+/// the grid each side. Love's kernels are even or odd in x, so the stresses of the image
+/// pressure are the pressure's own, read there, times the component's parity.
+pub(crate) struct Images<'a> {
+    pub reach: usize,
+    pub mirrors: &'a [usize],
+    pub weight: f64,
+}
+
+impl Images<'_> {
+    /// The stress at own cell `k` (x fastest, `nx` columns) of the pressure and its images,
+    /// from the `fields` read `reach` beyond the grid.
+    fn tensor(&self, fields: &[Vec<f64>; COMPONENTS], nx: usize, k: usize) -> StressTensor {
+        let (i, row) = (k % nx, (k / nx) * (nx + 2 * self.reach));
+        let component = |c: usize| {
+            let f = &fields[c];
+            let images: f64 = self.mirrors.iter().map(|&m| f[row + m - i]).sum();
+            f[row + self.reach + i] + self.weight * PARITY[c][0] * images
+        };
+        StressTensor {
+            xx: component(0),
+            yy: component(1),
+            zz: component(2),
+            xy: component(3),
+            xz: component(4),
+            yz: component(5),
+        }
+    }
+}
+
 /// Six zero fields of `n` cells.
 fn zero_fields(n: usize) -> [Vec<f64>; COMPONENTS] {
     std::array::from_fn(|_| vec![0.0; n])
@@ -397,7 +450,7 @@ impl HalfSpace {
         };
         request.check()?;
         let mut fields = zero_fields(self.nx * self.ny);
-        StressSolver::new(self, pressure).depth(depth, &mut fields);
+        StressSolver::new(self, pressure, 0).depth(depth, &mut fields);
         let field: Vec<StressTensor> = (0..self.nx * self.ny).map(|k| tensor(&fields, k)).collect();
         match field.iter().position(|s| !s.is_finite()) {
             None => Ok(field),
@@ -415,6 +468,23 @@ impl HalfSpace {
         pressure: &[f64],
         request: &SubsurfaceRequest,
     ) -> Result<Subsurface> {
+        let none = Images {
+            reach: 0,
+            mirrors: &[],
+            weight: 0.0,
+        };
+        self.stresses_imaged(pressure, request, &none)
+    }
+
+    /// [`HalfSpace::stresses_below`] with the weighted `images` of the pressure added: the
+    /// pressure's transform is taken once for every component and depth, and each depth's
+    /// fields are read beyond the grid as far as the images reach.
+    pub(crate) fn stresses_imaged(
+        &self,
+        pressure: &[f64],
+        request: &SubsurfaceRequest,
+        images: &Images,
+    ) -> Result<Subsurface> {
         check_pressure(&self.name, pressure, self.nx * self.ny)?;
         request.check()?;
         let (nx, ny) = (self.nx, self.ny);
@@ -424,8 +494,8 @@ impl HalfSpace {
             .iter()
             .map(|s| self.section_cells(*s, origin))
             .collect();
-        let mut fields = zero_fields(nx * ny);
-        let mut solver = StressSolver::new(self, pressure);
+        let mut fields = zero_fields((nx + 2 * images.reach) * ny);
+        let mut solver = StressSolver::new(self, pressure, images.reach);
         let mut peaks = StressPeaks::default();
         let mut sections: Vec<SectionField> = lines
             .iter()
@@ -438,14 +508,13 @@ impl HalfSpace {
             .collect();
         for &z in &request.depths {
             solver.depth(z, &mut fields);
+            let at = |k: usize| images.tensor(&fields, nx, k);
             for k in 0..nx * ny {
                 let p = self.interface.points()[k];
-                peaks.record(&tensor(&fields, k), p[0], p[1], z);
+                peaks.record(&at(k), p[0], p[1], z);
             }
             for (field, (_, cells, _)) in sections.iter_mut().zip(&lines) {
-                field
-                    .tensors
-                    .extend(cells.iter().map(|&k| tensor(&fields, k)));
+                field.tensors.extend(cells.iter().map(|&k| at(k)));
             }
         }
         Ok(Subsurface {
