@@ -169,8 +169,12 @@ impl Interface {
             check::all_finite(&format!("interface.points[{i}]"), &points[i])?;
         }
         check::all_positive("interface.weights", &weights)?;
-        for (i, &nrm) in normals.iter().enumerate() {
-            check::unit_vector(&format!("interface.normals[{i}]"), nrm)?;
+        // The field's name is formatted for the first bad normal only: a grid has millions.
+        if let Some(i) = normals
+            .iter()
+            .position(|&nrm| check::unit_vector("", nrm).is_err())
+        {
+            check::unit_vector(&format!("interface.normals[{i}]"), normals[i])?;
         }
         let interface = Self {
             geometry,
@@ -376,9 +380,17 @@ mod tests {
         assert!(err.to_string().contains("one weight"), "{err}");
         let err = Interface::new(Geometry::Surface, p.clone(), vec![1.0, -2.0], n).unwrap_err();
         assert!(err.to_string().contains("weights[1] = -2"), "{err}");
-        let err = Interface::new(Geometry::Surface, p, vec![1.0; 2], vec![[0.0, 2.0, 0.0]; 2])
-            .unwrap_err();
+        let err = Interface::new(
+            Geometry::Surface,
+            p.clone(),
+            vec![1.0; 2],
+            vec![[0.0, 2.0, 0.0]; 2],
+        )
+        .unwrap_err();
         assert!(err.to_string().contains("normals[0]"), "{err}");
+        let second = vec![[0.0, 1.0, 0.0], [0.0, 0.0, 0.9]];
+        let err = Interface::new(Geometry::Surface, p, vec![1.0; 2], second).unwrap_err();
+        assert!(err.to_string().contains("interface.normals[1]"), "{err}");
     }
 
     /// A NaN normal is refused (its length passes no comparison); points 2·10²⁰⁰ mm apart
