@@ -35,6 +35,8 @@ impl Sink for BTreeMap<String, Vec<u8>> {
 /// Points whose second coordinate is within this of the smallest \[mm\] lie on the plotted
 /// row (round-off of the grid's coordinates).
 const SAME_ROW: f64 = 1e-9;
+/// The resolution of a tilt in a chart's legend \[′\]: the bearing table's 0.001′.
+const TILT_STEP_ARCMIN: f64 = 1e-3;
 
 /// Writes every file of `report` to `sink`, in order: `result.json`, `interface.csv`,
 /// `p.{svg,png}`, when some case changes the gap `dh.{svg,png}`, and for bearing cases
@@ -330,11 +332,17 @@ fn envelope_chart(report: &Report, case: &CaseReport) -> Option<LineChart> {
         let label = format!(
             "{} Q, γ = {}′",
             number(e.load_n / nominal),
-            number(e.tilt_arcmin)
+            number(to_the_table(e.tilt_arcmin))
         );
         chart = chart.line(&label, &curve(&e.centre_line));
     }
     Some(chart)
+}
+
+/// A tilt \[′\] to the table's 0.001′ (a bearing's aligned rollers come out of their
+/// equilibrium solve at 10⁻¹⁶′, not 0), without a negative zero.
+fn to_the_table(arcmin: f64) -> f64 {
+    (arcmin / TILT_STEP_ARCMIN).round() * TILT_STEP_ARCMIN + 0.0
 }
 
 /// `, <case>` in a title, or nothing when the case is the scene itself.
@@ -713,6 +721,16 @@ mod tests {
             .strip_prefix(start)
             .unwrap_or_else(|| panic!("{row} does not start with {start}"));
         rest.split(',').map(|v| v.parse().unwrap()).collect()
+    }
+
+    /// A legend's tilt is the table's, to 0.001′: round-off of an aligned roller's
+    /// equilibrium reads 0 (not −0 or 10⁻¹⁶).
+    #[test]
+    fn a_legends_tilt_is_read_to_the_tables_resolution() {
+        assert_eq!(number(to_the_table(1.24648e-16)), "0");
+        assert_eq!(number(to_the_table(-1.88598e-16)), "0");
+        assert_eq!(number(to_the_table(0.900969)), "0.901");
+        assert_eq!(number(to_the_table(-2.0)), number(-2.0));
     }
 
     /// `got` equals `want` to 10⁻⁷ (the principal stresses are solved for, to about 10⁻⁸
