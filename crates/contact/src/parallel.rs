@@ -10,8 +10,7 @@
 
 use std::cell::{Cell, RefCell};
 
-use contopt_core::observe::{Event, Flow, Method, Observer};
-use contopt_core::Termination;
+use contopt_core::observe::{Event, Flow, Observer, Recorded};
 use rayon::prelude::*;
 
 use crate::{ContactSolver, InterfaceProblem};
@@ -80,16 +79,6 @@ pub fn at_once(solver: &dyn ContactSolver, problem: &InterfaceProblem) -> usize 
     }
 }
 
-/// An event as recorded, its termination owned.
-struct Recorded {
-    method: Method,
-    level: usize,
-    iteration: usize,
-    measure: f64,
-    tolerance: f64,
-    end: Option<Termination>,
-}
-
 /// The observer of a solve on another thread: records its events, never stops it.
 #[derive(Default)]
 struct Recorder {
@@ -98,14 +87,7 @@ struct Recorder {
 
 impl Observer for Recorder {
     fn observe(&self, event: &Event) -> Flow {
-        self.events.borrow_mut().push(Recorded {
-            method: event.method,
-            level: event.level,
-            iteration: event.iteration,
-            measure: event.measure,
-            tolerance: event.tolerance,
-            end: event.end.cloned(),
-        });
+        self.events.borrow_mut().push(Recorded::of(event));
         Flow::Continue
     }
 }
@@ -114,15 +96,7 @@ impl Observer for Recorder {
 /// stop at the last of them.
 fn replay(events: &[Recorded], observer: &dyn Observer) -> Option<usize> {
     for (k, e) in events.iter().enumerate() {
-        let event = Event {
-            method: e.method,
-            level: e.level,
-            iteration: e.iteration,
-            measure: e.measure,
-            tolerance: e.tolerance,
-            end: e.end.as_ref(),
-        };
-        if observer.observe(&event) == Flow::Stop {
+        if observer.observe(&e.event()) == Flow::Stop {
             return Some(k + 1);
         }
     }
@@ -162,6 +136,8 @@ impl Observer for Resume<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use contopt_core::observe::Method;
+    use contopt_core::Termination;
 
     /// A solve that reports `k + 2` iterations and stops when told: its result is the
     /// iteration it ended on.

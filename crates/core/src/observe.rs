@@ -203,6 +203,51 @@ impl<'a> Event<'a> {
     }
 }
 
+/// An [`Event`] kept past the call that reported it, its termination owned: what an observer
+/// records to show again later (a solve on another thread, whose events are replayed in order)
+/// or to check afterwards.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Recorded {
+    /// The method.
+    pub method: Method,
+    /// Its level ([`Event::level`]).
+    pub level: usize,
+    /// The iteration's number.
+    pub iteration: usize,
+    /// The convergence measure after it.
+    pub measure: f64,
+    /// The value the measure must reach.
+    pub tolerance: f64,
+    /// How the method ended, on its last event.
+    pub end: Option<Termination>,
+}
+
+impl Recorded {
+    /// `event`, kept.
+    pub fn of(event: &Event) -> Self {
+        Self {
+            method: event.method,
+            level: event.level,
+            iteration: event.iteration,
+            measure: event.measure,
+            tolerance: event.tolerance,
+            end: event.end.cloned(),
+        }
+    }
+
+    /// The event again, as it was reported.
+    pub fn event(&self) -> Event<'_> {
+        Event {
+            method: self.method,
+            level: self.level,
+            iteration: self.iteration,
+            measure: self.measure,
+            tolerance: self.tolerance,
+            end: self.end.as_ref(),
+        }
+    }
+}
+
 /// What an observer asks of the method that reported to it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[must_use]

@@ -9,7 +9,7 @@ use contopt_contact::{
     ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem, PolonskyKeer,
     PolonskyKeerSettings,
 };
-use contopt_core::observe::{Event, Flow, Method, Observer};
+use contopt_core::observe::{Event, Flow, Method, Observer, Recorded};
 use contopt_core::{ElasticBody, GapShape, Material, RigidBody, Termination};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
 
@@ -68,27 +68,16 @@ fn with_strip<T>(
     run(&optimisation)
 }
 
-/// One event as the recorder keeps it.
-#[derive(Clone, Debug, PartialEq)]
-struct Seen {
-    method: Method,
-    level: usize,
-    iteration: usize,
-    measure: f64,
-    tolerance: f64,
-    end: Option<Termination>,
-}
-
 /// Records every event, and stops the level-0 loop after `stop_after` passes.
 #[derive(Default)]
 struct Recorder {
-    events: RefCell<Vec<Seen>>,
+    events: RefCell<Vec<Recorded>>,
     stop_after: Option<usize>,
 }
 
 impl Recorder {
     /// The events at `level` that go on (not a method's last).
-    fn steps(&self, level: usize) -> Vec<Seen> {
+    fn steps(&self, level: usize) -> Vec<Recorded> {
         let events = self.events.borrow();
         let at = events
             .iter()
@@ -97,7 +86,7 @@ impl Recorder {
     }
 
     /// The last event at level 0: how the loop ended.
-    fn end(&self) -> Seen {
+    fn end(&self) -> Recorded {
         let events = self.events.borrow();
         let mut ends = events.iter().filter(|e| e.level == 0 && e.end.is_some());
         ends.next_back().cloned().expect("the loop's last event")
@@ -106,14 +95,7 @@ impl Recorder {
 
 impl Observer for Recorder {
     fn observe(&self, e: &Event) -> Flow {
-        self.events.borrow_mut().push(Seen {
-            method: e.method,
-            level: e.level,
-            iteration: e.iteration,
-            measure: e.measure,
-            tolerance: e.tolerance,
-            end: e.end.cloned(),
-        });
+        self.events.borrow_mut().push(Recorded::of(e));
         match self.stop_after {
             Some(k) if e.level == 0 && e.iteration >= k => Flow::Stop,
             _ => Flow::Continue,
