@@ -11,39 +11,11 @@ use std::time::Instant;
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SupportedConeT};
-use contopt::greens::HalfSpace;
 use contopt::prelude::*;
 use contopt::scene::Scene;
+use contopt_validation::roller::Roller;
 
-const NU: f64 = 0.3;
 const SOLVER_ACCURACY: f64 = 1e-6;
-
-/// The roller of the example `linear_programme`.
-fn roller(nx: usize, ny: usize) -> (HalfSpace, Vec<f64>) {
-    let (e, radius, length, load) = (1.05e5, 5.0, 10.0, 5446.0);
-    let estar = e / (1.0 - NU * NU);
-    let b = (4.0 * load / length * radius / (std::f64::consts::PI * estar)).sqrt();
-    let half = ((ny - 1) / 2) as f64;
-    let (dx, dy) = (length / nx as f64, 2.6 * b / half);
-    let origin = [-0.5 * length + 0.5 * dx, -half * dy];
-    let body = HalfSpace::grid(
-        "raceway",
-        Material::new(e, NU).unwrap(),
-        nx,
-        ny,
-        dx,
-        dy,
-        origin,
-    )
-    .unwrap();
-    let gap = body
-        .interface()
-        .points()
-        .iter()
-        .map(|x| x[1] * x[1] / (2.0 * radius))
-        .collect();
-    (body, gap)
-}
 
 /// The full restricted programme: variables p (closed or free, not Ω_v) | p_max | Δh (free
 /// nodes) | λ, in contopt's units; rows: equalities, then `a·x + b ≥ 0` inequalities; sign
@@ -340,20 +312,12 @@ fn main() {
     let pk = PolonskyKeer::new(PolonskyKeerSettings::default()).unwrap();
     let v = Profile::cubic(3.0, 5.0).unwrap();
     for (nx, ny) in grids {
-        let (body, h) = roller(nx, ny);
-        let iface = body.interface();
-        let rigid = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], 5446.0).unwrap();
-        let problem = InterfaceProblem::new(&body, &rigid, &h).unwrap();
+        let grid = Roller::grid(nx, ny).unwrap();
+        let iface = grid.body.interface();
+        let rigid = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+        let problem = InterfaceProblem::new(&grid.body, &rigid, &grid.gap).unwrap();
         let shape = GapShape::extruded(iface, 0).unwrap();
-        let dy = iface.points()[nx][1] - iface.points()[0][1];
-        let regions: Vec<Region> = iface
-            .points()
-            .iter()
-            .map(|x| match x[1].abs() < 0.5 * dy {
-                true => Region::OmegaV,
-                false => Region::OmegaNv,
-            })
-            .collect();
+        let regions = grid.centre_row(Region::OmegaNv);
         let opt = Optimisation::new(&problem, &shape, &v)
             .unwrap()
             .with_regions(regions.clone())
