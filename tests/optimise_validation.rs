@@ -498,25 +498,34 @@ fn straight_roller_against_local_line_contact() {
     assert!((p / p0 - 1.0).abs() < 2e-3, "{p} vs {p0}");
 }
 
+/// The roller's crown on `grid` for the cubic controller of L1 = `l1` \[mm\] (L2 half the
+/// length), Ω_v the centre row: the load split with Polonsky–Keer to 1e-8, converged.
+fn roller_crown(grid: &CylinderGrid, l1: f64) -> Optimum {
+    let iface = grid.body.interface();
+    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
+    let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
+    let v = Profile::cubic(l1, 0.5 * Roller::LENGTH).unwrap();
+    let shape = GapShape::extruded(iface, 0).unwrap();
+    let opt = Optimisation::new(&problem, &shape, &v)
+        .unwrap()
+        .with_regions(grid.centre_row(Region::OmegaNv))
+        .unwrap()
+        .load_split(&polonsky_keer(), &split_to(1e-8, 50))
+        .unwrap();
+    converged("load split", opt)
+}
+
 /// The crown of the roller on 100 × 53 cells, L1 = 3 mm, by the load split with Polonsky–Keer:
 /// the centre row follows v·p_max within 1e-6 wherever v > 1 %, Δh ≥ 0 and zero at x = 0, and
 /// p_max is the 400 × 209 grid's 2316.94 MPa (examples/roller_scaling) within 0.05 %.
 #[test]
 fn optimised_roller_crown_by_the_load_split() {
     let grid = Roller::grid(100, 53).unwrap();
+    let opt = roller_crown(&grid, 3.0);
     let iface = grid.body.interface();
-    let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
-    let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
     let regions = grid.centre_row(Region::OmegaNv);
     let v = Profile::cubic(3.0, 5.0).unwrap();
     let shape = GapShape::extruded(iface, 0).unwrap();
-    let opt = Optimisation::new(&problem, &shape, &v)
-        .unwrap()
-        .with_regions(regions.clone())
-        .unwrap()
-        .load_split(&polonsky_keer(), &split_to(1e-8, 50))
-        .unwrap();
-    let opt = converged("load split", opt);
     let points = iface.points();
     let miss = (0..iface.len())
         .filter(|&i| regions[i] == Region::OmegaV && v.value(points[i]) > 0.01)
@@ -547,20 +556,7 @@ fn optimised_roller_crown_by_the_load_split() {
 fn the_load_splits_updates_do_not_grow_with_the_grid() {
     for l1 in [3.0, 5.0] {
         for (nx, ny) in [(50, 27), (100, 53), (200, 105)] {
-            let grid = Roller::grid(nx, ny).unwrap();
-            let iface = grid.body.interface();
-            let roller =
-                RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], Roller::LOAD).unwrap();
-            let problem = InterfaceProblem::new(&grid.body, &roller, &grid.gap).unwrap();
-            let v = Profile::cubic(l1, 0.5 * Roller::LENGTH).unwrap();
-            let shape = GapShape::extruded(iface, 0).unwrap();
-            let opt = Optimisation::new(&problem, &shape, &v)
-                .unwrap()
-                .with_regions(grid.centre_row(Region::OmegaNv))
-                .unwrap()
-                .load_split(&polonsky_keer(), &split_to(1e-8, 50))
-                .unwrap();
-            let opt = converged("load split", opt);
+            let opt = roller_crown(&Roller::grid(nx, ny).unwrap(), l1);
             eprintln!("L1 = {l1} mm, {nx} × {ny}: {} updates", opt.passes.len());
             assert!(opt.passes.len() <= 10, "L1 = {l1}, {nx} × {ny}");
         }
