@@ -72,6 +72,20 @@ fn run(scene: &Path, out: &Path, more: &[&str]) {
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
 }
 
+/// Each of `scenes` (its file, its name and a file its run must write) run on one thread and on
+/// two into `dir`: the two runs write the same files, byte for byte.
+fn one_and_two_threads_agree(dir: &Path, scenes: &[(&Path, &str, &str)]) {
+    let (one, two) = (dir.join("one"), dir.join("two"));
+    for (scene, _, _) in scenes {
+        run(scene, &one, &["--jobs", "1"]);
+        run(scene, &two, &["--jobs", "2"]);
+    }
+    for (_, name, file) in scenes {
+        let names = assert_same_files(&one.join(name), &two.join(name));
+        assert!(names.iter().any(|n| n == file), "{names:?}");
+    }
+}
+
 /// Two threads give what one gives, to the bit: five cases of different loads (five builds)
 /// run two at a time, and three cases on one pair of bodies (one build on one thread, two on
 /// two).
@@ -84,15 +98,13 @@ fn two_threads_write_what_one_writes() {
         .replace("contact.load.force_n", "output.subsurface.depths")
         .replace("[500.0, 750.0, 1000.0, 1250.0, 1500.0]", "[8, 10, 12]");
     let depths = write_scene(&dir, "hertz-depths", &shared);
-    let (one, two) = (dir.join("one"), dir.join("two"));
-    for scene in [&loads, &depths] {
-        run(scene, &one, &["--jobs", "1"]);
-        run(scene, &two, &["--jobs", "2"]);
-    }
-    let names = assert_same_files(&one.join("hertz-loads"), &two.join("hertz-loads"));
-    assert!(names.iter().any(|n| n == "subsurface_5.csv"), "{names:?}");
-    let names = assert_same_files(&one.join("hertz-depths"), &two.join("hertz-depths"));
-    assert!(names.iter().any(|n| n == "mises_3_1.svg"), "{names:?}");
+    one_and_two_threads_agree(
+        &dir,
+        &[
+            (&loads, "hertz-loads", "subsurface_5.csv"),
+            (&depths, "hertz-depths", "mises_3_1.svg"),
+        ],
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -128,19 +140,17 @@ fn two_threads_solve_an_envelope_as_one() {
     let dir = scratch(BIN, "envelope");
     let robust = envelope("robust", &["robust, L1 = 5"]);
     let three = envelope("three", &["ISO", "Fujiwara", "robust, L1 = 5"]);
-    let scenes = [
+    let (robust, three) = (
         write_scene(&dir, "robust", &robust),
         write_scene(&dir, "three", &three),
-    ];
-    let (one, two) = (dir.join("one"), dir.join("two"));
-    for scene in &scenes {
-        run(scene, &one, &["--jobs", "1"]);
-        run(scene, &two, &["--jobs", "2"]);
-    }
-    let names = assert_same_files(&one.join("robust"), &two.join("robust"));
-    assert!(names.iter().any(|n| n == "envelope_1.svg"), "{names:?}");
-    let names = assert_same_files(&one.join("three"), &two.join("three"));
-    assert!(names.iter().any(|n| n == "p_map_3.svg"), "{names:?}");
+    );
+    one_and_two_threads_agree(
+        &dir,
+        &[
+            (&robust, "robust", "envelope_1.svg"),
+            (&three, "three", "p_map_3.svg"),
+        ],
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
