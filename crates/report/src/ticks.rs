@@ -13,6 +13,11 @@ const TIGHT: f64 = 0.02;
 /// data, not a feature of them).
 const SNAP: f64 = 1e-9;
 
+/// Values whose spread is below this fraction of their magnitude are one value drawn flat:
+/// round-off of a constant (an optimum's p = v·p_max with v = 1 spreads by 10⁻¹²), below what
+/// a label's six decimals can tell apart.
+const FLAT: f64 = 1e-6;
+
 /// Below this step or above this magnitude, tick labels are written as m·10ⁿ.
 const PLAIN_SMALLEST_STEP: f64 = 1e-3;
 const PLAIN_LARGEST: f64 = 1e6;
@@ -105,7 +110,8 @@ fn round_step(raw: f64) -> f64 {
         .unwrap_or(10.0 * power)
 }
 
-/// The range of the finite `values`, widened around a single value and (0, 1) without any.
+/// The range of the finite `values`, widened around a single value (or values equal to
+/// [`FLAT`] of their size) and (0, 1) without any.
 pub(crate) fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
@@ -114,9 +120,10 @@ pub(crate) fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
         });
     if lo > hi {
         (0.0, 1.0)
-    } else if lo == hi {
-        let half = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
-        (lo - half, hi + half)
+    } else if hi - lo <= FLAT * lo.abs().max(hi.abs()) {
+        let mid = 0.5 * (lo + hi);
+        let half = if mid == 0.0 { 1.0 } else { 0.1 * mid.abs() };
+        (mid - half, mid + half)
     } else {
         (lo, hi)
     }
@@ -207,6 +214,12 @@ mod tests {
     fn one_value_is_widened_and_non_finite_skipped() {
         assert_eq!(span([5.0, f64::NAN].into_iter()), (4.5, 5.5));
         assert_eq!(span([0.0, 0.0].into_iter()), (-1.0, 1.0));
+        let flat = span([1864.2, 1864.2 * (1.0 + 1e-12)].into_iter());
+        assert!(
+            (flat.0 - 1677.78).abs() < 1e-6 && (flat.1 - 2050.62).abs() < 1e-6,
+            "{flat:?}"
+        );
+        assert_eq!(span([1.0, 1.001].into_iter()), (1.0, 1.001));
         assert_eq!(span([f64::INFINITY].into_iter()), (0.0, 1.0));
         assert_eq!(span(std::iter::empty()), (0.0, 1.0));
         let axis = Axis::over([0.0, f64::NAN, f64::NEG_INFINITY].into_iter());
