@@ -100,6 +100,16 @@ impl ContactSolver for PolonskyKeer {
         0
     }
 
+    /// Stops when Σ wᵢ |Δpᵢ| falls below `tolerance` times the load instead.
+    fn loosened(&self, tolerance: f64) -> Option<Box<dyn ContactSolver>> {
+        let settings = PolonskyKeerSettings {
+            tolerance,
+            ..self.settings
+        };
+        (tolerance > self.settings.tolerance && tolerance < 1.0)
+            .then(|| Box::new(PolonskyKeer { settings }) as Box<dyn ContactSolver>)
+    }
+
     /// Reports each conjugate-gradient step (`iterations`, numbered on across the growing
     /// parts of the interface) with the relative pressure change Σ wᵢ |Δpᵢ| / load as the
     /// measure and `tolerance`.

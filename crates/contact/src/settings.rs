@@ -109,6 +109,19 @@ impl ContactSolver for Auto {
         self.choice(points).dense_copies(points)
     }
 
+    /// The choice with its iterative solver loosened (the dense one solves exactly).
+    fn loosened(&self, tolerance: f64) -> Option<Box<dyn ContactSolver>> {
+        self.iterative.loosened(tolerance)?;
+        let settings = PolonskyKeerSettings {
+            tolerance,
+            ..*self.iterative.settings()
+        };
+        Some(Box::new(Self {
+            dense: self.dense,
+            iterative: PolonskyKeer::new(settings).ok()?,
+        }))
+    }
+
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,

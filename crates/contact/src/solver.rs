@@ -44,6 +44,13 @@ pub trait ContactSolver: Send + Sync {
         observer: &dyn Observer,
     ) -> Result<ContactState>;
 
+    /// The same solver stopping at the looser `tolerance` (in the measure of its own), for an
+    /// inexact solve inside an outer iteration whose own error is far above it; `None` when it
+    /// has no tolerance to loosen (a direct method) or `tolerance` is not looser than its own.
+    fn loosened(&self, _tolerance: f64) -> Option<Box<dyn ContactSolver>> {
+        None
+    }
+
     /// Solves `problem` from scratch, unobserved.
     fn solve(&self, problem: &InterfaceProblem) -> Result<ContactState> {
         self.solve_observed(problem, None, &Silent)

@@ -376,6 +376,43 @@ fn polonsky_keer_warm_start() {
     assert!(polonsky_keer().solve_from(&problem, &[1.0]).is_err());
 }
 
+/// A loosened Polonsky–Keer stops at the looser tolerance: on the wavy contact of 40 points
+/// its steps report 10⁻⁴ and it takes fewer of them than at its own 10⁻¹², its pressure within
+/// 10⁻³ of the exact one; a tolerance not looser than its own, or not below 1, gives none, nor
+/// does a direct method. `Auto` loosens only its iterative choice: its dense one (chosen for
+/// these 40 points) solves as before.
+#[test]
+fn a_loosened_solver_stops_at_its_tolerance() {
+    let problem = wavy_floating(40, 1.0);
+    let pk = polonsky_keer();
+    let exact = pk.solve(&problem).unwrap();
+    let loose = pk.loosened(1e-4).unwrap();
+    let tolerances = RefCell::new(vec![]);
+    let (state, _) = observed(None, |o| {
+        let o = |e: &Event| {
+            tolerances.borrow_mut().push(e.tolerance);
+            o.observe(e)
+        };
+        loose.solve_observed(&problem, None, &o)
+    });
+    let tolerances = tolerances.into_inner();
+    assert!(tolerances[..tolerances.len() - 1]
+        .iter()
+        .all(|&t| t == 1e-4));
+    assert!(state.is_converged() && state.iterations < exact.iterations);
+    let scale = exact.pressure.iter().fold(0.0, |m: f64, p| m.max(*p));
+    assert_close(&state.pressure, &exact.pressure, 1e-3 * scale, "loosened");
+    for t in [1e-12, 1e-13, 1.0] {
+        assert!(pk.loosened(t).is_none(), "{t}");
+    }
+    assert!(active_set().loosened(1e-4).is_none());
+    let auto = Auto::new().unwrap();
+    let loose_auto = auto.loosened(1e-4).unwrap();
+    assert_eq!(loose_auto.method_for(&problem), Method::ActiveSet);
+    assert_eq!(loose_auto.solve(&problem).ok(), auto.solve(&problem).ok());
+    assert!(auto.loosened(1e-13).is_none());
+}
+
 /// Free modes replaced by two column translations, each with its own load (the optimiser's
 /// load split): points 0–1 carry 2 N, point 2 carries 1 N; every solver agrees with the QP, and
 /// each column's multiplier closes its contact points.
