@@ -5,7 +5,7 @@
 // The iteration walks several parallel per-point arrays at once; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
-use contopt_core::observe::{Method, Observer};
+use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, Result, Termination};
 use serde::{Deserialize, Serialize};
 
@@ -139,7 +139,9 @@ impl PolonskyKeer {
     /// Solves from `start`; a cold start on a problem with a coarser version
     /// ([`InterfaceProblem::coarsen`]) starts from the coarse solution (itself found so, to
     /// [`NESTED_TOLERANCE`]), each point given its coarse point's pressure. Its steps count
-    /// with the solve's.
+    /// with the solve's, and number the fine ones on; they are reported one level deeper
+    /// (a solve that this one runs), so that an observer tells the fine grid's steps, the
+    /// costly ones, from the coarser grids' (a quarter of the cost each level down).
     fn solve_nested(
         &self,
         problem: &InterfaceProblem,
@@ -160,7 +162,9 @@ impl PolonskyKeer {
                 ..self.settings
             },
         };
-        let solved = nested.solve_nested(&coarse, None, watch).ok();
+        let deeper = Nested(watch.observer());
+        let coarse_watch = Watch::new(&deeper, self.method());
+        let solved = nested.solve_nested(&coarse, None, coarse_watch).ok();
         drop(coarse);
         let Some(solved) = solved.filter(ContactState::is_converged) else {
             return self.solve_cropped(problem, given(), watch);

@@ -851,8 +851,9 @@ impl<'a> InterfaceProblem<'a> {
     /// each point (`parent`): the first body coarsens itself, the second too (grouped alike)
     /// or, without compliance, is held on the coarse surface; the gaps are the W-weighted
     /// means over each coarse point's points, each mode moves the coarse points of its points
-    /// by their mean and keeps its load. `None` when a body offers no coarser version, the
-    /// two group differently, or two modes would share a coarse point.
+    /// by their mean and keeps its load (modes that share a coarse point are joined). `None`
+    /// when a body offers no coarser version, the two group differently, or a mode moves only
+    /// part of a coarse point.
     pub fn coarsen(&self) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
         let op = &self.operator;
         let (coarse1, parent) = op.bodies[0].get().coarsen()?;
@@ -897,40 +898,80 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     /// The modes on the coarse points of `parent` (of W-weights `total`): each moves a coarse
-    /// point by the W-mean of its points' rᵢ; `None` when two modes share a coarse point, or a
-    /// mode moves only some of a coarse point's points.
+    /// point by the W-mean of its points' rᵢ. Modes that share a coarse point become one,
+    /// carrying their loads' sum (the optimiser's design columns, two to a coarse column):
+    /// the coarse solution is only a start, whose pressure the fine solve rescales to each
+    /// mode's own load. `None` when a mode moves only some of a coarse point's points.
     fn coarse_modes(&self, parent: &[usize], total: &[f64]) -> Option<Vec<FreeMode>> {
         let w = self.weights();
         let m = total.len();
-        let mut owner = vec![usize::MAX; m];
+        let group = self.mode_groups(parent, m);
+        let mut merged: Vec<Option<FreeMode>> = vec![None; self.modes.len()];
         let (mut moved, mut covered) = (vec![0.0; m], vec![0.0; m]);
-        let mut modes = Vec::with_capacity(self.modes.len());
+        let mut seen = vec![false; m];
         for (k, mode) in self.modes.iter().enumerate() {
-            let mut points = vec![];
+            let into = merged[group[k]].get_or_insert_with(|| FreeMode {
+                points: vec![],
+                displacement: vec![],
+                load: 0.0,
+                ..mode.clone()
+            });
+            into.load += mode.load;
             for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
                 let c = parent[i];
-                if owner[c] == usize::MAX {
-                    owner[c] = k;
-                    points.push(c);
-                } else if owner[c] != k {
-                    return None;
+                if !seen[c] {
+                    seen[c] = true;
+                    into.points.push(c);
                 }
                 moved[c] += w[i] * r;
                 covered[c] += w[i];
             }
-            if points
+        }
+        let modes: Vec<FreeMode> = merged.into_iter().flatten().collect();
+        for mode in &modes {
+            if mode
+                .points
                 .iter()
                 .any(|&c| (covered[c] - total[c]).abs() > WEIGHT_MATCH * total[c])
             {
                 return None;
             }
-            modes.push(FreeMode {
-                displacement: points.iter().map(|&c| moved[c] / covered[c]).collect(),
-                points,
-                ..mode.clone()
-            });
         }
-        Some(modes)
+        Some(
+            modes
+                .into_iter()
+                .map(|mode| FreeMode {
+                    displacement: mode.points.iter().map(|&c| moved[c] / covered[c]).collect(),
+                    ..mode
+                })
+                .collect(),
+        )
+    }
+
+    /// The group of each mode: its first's index among the modes joined to it through shared
+    /// coarse points (of `m`, by `parent`), a union–find.
+    fn mode_groups(&self, parent: &[usize], m: usize) -> Vec<usize> {
+        fn root(group: &mut [usize], mut k: usize) -> usize {
+            while group[k] != k {
+                group[k] = group[group[k]];
+                k = group[k];
+            }
+            k
+        }
+        let mut group: Vec<usize> = (0..self.modes.len()).collect();
+        let mut owner = vec![usize::MAX; m];
+        for (k, mode) in self.modes.iter().enumerate() {
+            for &i in &mode.points {
+                let c = parent[i];
+                if owner[c] == usize::MAX {
+                    owner[c] = k;
+                } else {
+                    let (a, b) = (root(&mut group, owner[c]), root(&mut group, k));
+                    group[a.max(b)] = a.min(b);
+                }
+            }
+        }
+        (0..group.len()).map(|k| root(&mut group, k)).collect()
     }
 
     /// The second body over the points `index` of the first (whose part has the surface

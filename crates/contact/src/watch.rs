@@ -23,6 +23,11 @@ impl<'a> Watch<'a> {
         }
     }
 
+    /// Its observer.
+    pub(crate) fn observer(&self) -> &'a dyn Observer {
+        self.observer
+    }
+
     /// The same watch for a loop that follows `before` iterations of the solve.
     pub(crate) fn after(self, before: usize) -> Self {
         Self { before, ..self }

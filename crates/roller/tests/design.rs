@@ -163,14 +163,15 @@ impl Observer for Crowns {
                 return Flow::Stop;
             }
         } else {
-            assert_eq!(e.level, 1, "{e:?}");
+            // A contact solve's coarse start reports one level deeper per coarsening.
+            assert!(e.level >= 1, "{e:?}");
         }
         Flow::Continue
     }
 }
 
 /// The tuned search improves on its starting crown, reports each crown at level 0 (the
-/// contact solves at level 1) and ends with an event; an observer's stop ends it with
+/// contact solves at level 1, their coarse starts deeper) and ends with an event; an observer's stop ends it with
 /// Stopped and the best crown so far.
 #[test]
 fn tuned_search_improves_and_stops_when_asked() {
