@@ -12,6 +12,7 @@
 //! `cargo run --release --example roller_scaling` (add `large` for an 800 × 417 grid too, or
 //! name the sections to run: `production`, `dense`, `straight`, `scaling`).
 
+use std::cell::Cell;
 use std::process::Command;
 use std::time::Instant;
 
@@ -32,6 +33,29 @@ fn peak_mb() -> f64 {
     contopt_validation::fixtures::peak_resident_mib() * 1.048_576
 }
 
+/// Polonsky–Keer's steps inside a load split: on the roller's grid (level 1, below the
+/// split) and on the coarser grids of its cold starts (level 2 and deeper, a quarter of the
+/// points each level down).
+#[derive(Default)]
+struct Steps {
+    fine: Cell<usize>,
+    coarse: Cell<usize>,
+}
+
+impl Observer for Steps {
+    fn observe(&self, e: &Event) -> Flow {
+        if e.method == Method::PolonskyKeer && e.end.is_none() {
+            let count = if e.level <= 1 {
+                &self.fine
+            } else {
+                &self.coarse
+            };
+            count.set(count.get() + 1);
+        }
+        Flow::Continue
+    }
+}
+
 /// How an optimum is found.
 #[derive(Clone, Copy)]
 enum Route {
@@ -50,6 +74,7 @@ fn optimum(
     load: f64,
     v: &dyn Controller,
     route: Route,
+    observer: &dyn Observer,
 ) -> Result<(Optimum, f64)> {
     let iface = grid.body.interface();
     let roller = RigidBody::pressed("roller", iface, [0.0, 0.0, 1.0], load).unwrap();
@@ -58,7 +83,8 @@ fn optimum(
     let opt = Optimisation::new(&problem, &shape, v)
         .unwrap()
         .with_regions(grid.centre_row(Region::OmegaNv))
-        .unwrap();
+        .unwrap()
+        .with_observer(observer);
     let t = Instant::now();
     let split = LoadSplitSettings {
         tolerance: TOLERANCE,
@@ -78,12 +104,13 @@ fn optimum(
 }
 
 /// One case, in this process: prints `seconds peak_MB p_max centre_miss dh_min dh_ref dh_max
-/// solves steps` on one line (steps: the contact solver's conjugate-gradient steps, summed over
-/// the solves).
+/// solves steps coarse` on one line (steps: the contact solver's conjugate-gradient steps on
+/// the grid, summed over the solves; coarse: those on the coarser grids of its cold starts).
 fn case(nx: usize, ny: usize, l1: f64) {
     let grid = Roller::grid(nx, ny).unwrap();
     let v = Profile::cubic(l1, 0.5 * Roller::LENGTH).unwrap();
-    let (opt, seconds) = optimum(&grid, Roller::LOAD, &v, Route::Split).unwrap();
+    let steps = Steps::default();
+    let (opt, seconds) = optimum(&grid, Roller::LOAD, &v, Route::Split, &steps).unwrap();
     assert!(opt.is_converged(), "the load split {}", opt.termination);
     let regions = grid.centre_row(Region::OmegaNv);
     let iface = grid.body.interface();
@@ -102,12 +129,18 @@ fn case(nx: usize, ny: usize, l1: f64) {
         .min_by(|a, b| a.1[0].abs().total_cmp(&b.1[0].abs()))
         .map_or(f64::NAN, |(d, _)| *d);
     println!(
-        "{seconds} {} {} {miss} {dh_min} {reference} {} {} {}",
+        "{seconds} {} {} {miss} {dh_min} {reference} {} {} {} {}",
         peak_mb(),
         opt.p_max,
         opt.dh_max(),
         opt.passes.len(),
-        opt.passes.iter().map(|p| p.iterp).sum::<usize>()
+        steps.fine.get(),
+        steps.coarse.get()
+    );
+    assert_eq!(
+        steps.fine.get() + steps.coarse.get(),
+        opt.passes.iter().map(|p| p.iterp).sum::<usize>(),
+        "every step is observed"
     );
 }
 
@@ -125,6 +158,7 @@ struct Row {
     dh_max: f64,
     solves: usize,
     steps: usize,
+    coarse: usize,
 }
 
 fn child(nx: usize, ny: usize, l1: f64) -> Row {
@@ -138,7 +172,7 @@ fn child(nx: usize, ny: usize, l1: f64) -> Row {
         .map(|t| t.parse().unwrap_or(f64::NAN))
         .collect();
     assert!(
-        f.len() == 9,
+        f.len() == 10,
         "case {nx} x {ny}, L1 = {l1}: {text}{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -155,13 +189,14 @@ fn child(nx: usize, ny: usize, l1: f64) -> Row {
         dh_max: f[6],
         solves: f[7] as usize,
         steps: f[8] as usize,
+        coarse: f[9] as usize,
     }
 }
 
 /// Item 4's table: both grids, every L1.
 fn production(grids: &[(usize, usize)]) -> Vec<Row> {
     eprintln!("\n## The optimised roller (load split, Polonsky–Keer, one core)\n");
-    println!("| grid | L1 mm | time s | peak MB | solves | CG steps | p_max MPa | Δp_max to the finer grid | largest miss of v·p_max on Ω_v | Δh_max µm | min Δh µm | Δh at x = 0 µm |");
+    println!("| grid | L1 mm | time s | peak MB | solves | CG steps (+ coarser grids) | p_max MPa | Δp_max to the finer grid | largest miss of v·p_max on Ω_v | Δh_max µm | min Δh µm | Δh at x = 0 µm |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let l1s = [0.0, 2.0, 3.0, 4.0, 5.0];
     let rows: Vec<Row> = grids
@@ -176,7 +211,7 @@ fn production(grids: &[(usize, usize)]) -> Vec<Row> {
                 format!("{:+.4} %", 100.0 * (r.p_max / o.p_max - 1.0))
             });
         println!(
-            "| {} × {} | {} | {:.2} | {:.0} | {} | {} | {:.2} | {finer} | {:.1e} | {:.3} | {:.1e} | {:.1e} |",
+            "| {} × {} | {} | {:.2} | {:.0} | {} | {} (+{}) | {:.2} | {finer} | {:.1e} | {:.3} | {:.1e} | {:.1e} |",
             r.nx,
             r.ny,
             r.l1,
@@ -184,6 +219,7 @@ fn production(grids: &[(usize, usize)]) -> Vec<Row> {
             r.peak_mb,
             r.solves,
             r.steps,
+            r.coarse,
             r.p_max,
             r.miss,
             1e3 * r.dh_max,
@@ -205,13 +241,13 @@ fn dense_agreement() {
         let (ny, dx, dy) = (21, 10.0 / nx as f64, 0.04);
         let grid = CylinderGrid::steel(nx, ny, dx, dy, 10.0).unwrap();
         let v = Constant::new(1.0).unwrap();
-        let (split, split_s) = optimum(&grid, 12_000.0, &v, Route::Split).unwrap();
+        let (split, split_s) = optimum(&grid, 12_000.0, &v, Route::Split, &Silent).unwrap();
         assert!(split.is_converged(), "the load split {}", split.termination);
         for (name, route) in [
             ("LP (3.5)", Route::DenseLp),
             ("split, active set", Route::DenseSplit),
         ] {
-            match optimum(&grid, 12_000.0, &v, route) {
+            match optimum(&grid, 12_000.0, &v, route, &Silent) {
                 Ok((dense, _)) if !dense.is_converged() => {
                     println!("| {nx} × {ny} | {name} | {} | | | | |", dense.termination)
                 }
@@ -313,24 +349,26 @@ fn read_scaling(csv: &str) -> Vec<(f64, f64)> {
 /// The solve against the number of points (L1 = 3 mm): the CSV and the log-log chart.
 fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
     eprintln!("\n## Scaling (L1 = 3 mm)\n");
-    println!("| grid | points | solves | CG steps | time s | time per solve ms | peak MB |");
-    println!("| --- | --- | --- | --- | --- | --- | --- |");
-    let mut csv = String::from("nx,ny,points,solves,steps,seconds,peak_mb,p_max_mpa\n");
+    println!("| grid | points | solves | CG steps on the grid | on coarser grids | time s | time per solve ms | peak MB |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
+    let mut csv =
+        String::from("nx,ny,points,solves,steps,seconds,peak_mb,p_max_mpa,coarse_steps\n");
     let mut points = vec![];
     for &(nx, ny) in grids {
         let r = child(nx, ny, 3.0);
         let n = nx * ny;
         println!(
-            "| {nx} × {ny} | {n} | {} | {} | {:.3} | {:.1} | {:.0} |",
+            "| {nx} × {ny} | {n} | {} | {} | {} | {:.3} | {:.1} | {:.0} |",
             r.solves,
             r.steps,
+            r.coarse,
             r.seconds,
             1e3 * r.seconds / r.solves as f64,
             r.peak_mb
         );
         csv.push_str(&format!(
-            "{nx},{ny},{n},{},{},{},{},{}\n",
-            r.solves, r.steps, r.seconds, r.peak_mb, r.p_max
+            "{nx},{ny},{n},{},{},{},{},{},{}\n",
+            r.solves, r.steps, r.seconds, r.peak_mb, r.p_max, r.coarse
         ));
         points.push((n as f64, r.seconds));
     }
