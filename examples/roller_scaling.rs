@@ -18,6 +18,7 @@ use std::time::Instant;
 
 use contopt::prelude::*;
 use contopt::report::{log_log, Panel};
+use contopt_validation::fixtures::Exact;
 use contopt_validation::roller::{CylinderGrid, Roller};
 
 /// The load split's tolerance: Ω_v pressure within 1e-8·p_max of v·p_max.
@@ -61,6 +62,8 @@ impl Observer for Steps {
 enum Route {
     /// The load split with Polonsky–Keer.
     Split,
+    /// The load split with Polonsky–Keer solving every update to its full tolerance.
+    ExactSplit,
     /// The load split with the dense active set.
     DenseSplit,
     /// The LP (3.5) on the dense matrix.
@@ -94,6 +97,10 @@ fn optimum(
         Route::Split => {
             opt.load_split(&PolonskyKeer::new(PolonskyKeerSettings::default())?, &split)
         }
+        Route::ExactSplit => opt.load_split(
+            &Exact(PolonskyKeer::new(PolonskyKeerSettings::default())?),
+            &split,
+        ),
         Route::DenseSplit => opt.load_split(&ActiveSet::new(ActiveSetSettings::default())?, &split),
         Route::DenseLp => opt.linear_programme(
             &ActiveSet::new(ActiveSetSettings::default())?,
@@ -106,11 +113,11 @@ fn optimum(
 /// One case, in this process: prints `seconds peak_MB p_max centre_miss dh_min dh_ref dh_max
 /// solves steps coarse` on one line (steps: the contact solver's conjugate-gradient steps on
 /// the grid, summed over the solves; coarse: those on the coarser grids of its cold starts).
-fn case(nx: usize, ny: usize, l1: f64) {
+fn case(nx: usize, ny: usize, l1: f64, route: Route) {
     let grid = Roller::grid(nx, ny).unwrap();
     let v = Profile::cubic(l1, 0.5 * Roller::LENGTH).unwrap();
     let steps = Steps::default();
-    let (opt, seconds) = optimum(&grid, Roller::LOAD, &v, Route::Split, &steps).unwrap();
+    let (opt, seconds) = optimum(&grid, Roller::LOAD, &v, route, &steps).unwrap();
     assert!(opt.is_converged(), "the load split {}", opt.termination);
     let regions = grid.centre_row(Region::OmegaNv);
     let iface = grid.body.interface();
@@ -162,8 +169,20 @@ struct Row {
 }
 
 fn child(nx: usize, ny: usize, l1: f64) -> Row {
+    child_by(nx, ny, l1, "split")
+}
+
+/// A case run in a child process by the load split with Polonsky–Keer, its updates solved
+/// inexactly (`split`) or each to the full tolerance (`exact`).
+fn child_by(nx: usize, ny: usize, l1: f64, route: &str) -> Row {
     let out = Command::new(std::env::current_exe().unwrap())
-        .args(["case", &nx.to_string(), &ny.to_string(), &l1.to_string()])
+        .args([
+            "case",
+            &nx.to_string(),
+            &ny.to_string(),
+            &l1.to_string(),
+            route,
+        ])
         .output()
         .expect("the example runs itself");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -349,22 +368,27 @@ fn read_scaling(csv: &str) -> Vec<(f64, f64)> {
 /// The solve against the number of points (L1 = 3 mm): the CSV and the log-log chart.
 fn scaling(grids: &[(usize, usize)]) -> std::io::Result<()> {
     eprintln!("\n## Scaling (L1 = 3 mm)\n");
-    println!("| grid | points | solves | CG steps on the grid | on coarser grids | time s | time per solve ms | peak MB |");
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!("| grid | points | solves | CG steps on the grid | on coarser grids | time s | time per solve ms | peak MB | every solve exact: solves, steps (+ coarser), time s |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let mut csv =
         String::from("nx,ny,points,solves,steps,seconds,peak_mb,p_max_mpa,coarse_steps\n");
     let mut points = vec![];
     for &(nx, ny) in grids {
         let r = child(nx, ny, 3.0);
+        let e = child_by(nx, ny, 3.0, "exact");
         let n = nx * ny;
         println!(
-            "| {nx} × {ny} | {n} | {} | {} | {} | {:.3} | {:.1} | {:.0} |",
+            "| {nx} × {ny} | {n} | {} | {} | {} | {:.3} | {:.1} | {:.0} | {}, {} (+{}), {:.3} |",
             r.solves,
             r.steps,
             r.coarse,
             r.seconds,
             1e3 * r.seconds / r.solves as f64,
-            r.peak_mb
+            r.peak_mb,
+            e.solves,
+            e.steps,
+            e.coarse,
+            e.seconds
         );
         csv.push_str(&format!(
             "{nx},{ny},{n},{},{},{},{},{},{}\n",
@@ -390,8 +414,12 @@ fn main() -> std::io::Result<()> {
         return Ok(());
     }
     if args.first().map(String::as_str) == Some("case") {
-        let num = |k: usize| args[k].parse::<f64>().expect("case NX NY L1");
-        case(num(1) as usize, num(2) as usize, num(3));
+        let num = |k: usize| args[k].parse::<f64>().expect("case NX NY L1 [exact]");
+        let route = match args.get(4).map(String::as_str) {
+            Some("exact") => Route::ExactSplit,
+            _ => Route::Split,
+        };
+        case(num(1) as usize, num(2) as usize, num(3), route);
         return Ok(());
     }
     // Sections named on the command line, or all of them.

@@ -9,6 +9,7 @@ use contopt::greens::{AxisymmetricHalfSpace, HalfPlane, PlaneState};
 use contopt::prelude::*;
 use contopt::scene::{CaseReport, Scene};
 use contopt_validation::closed_form::{contact_modulus, FlamantStrip, HertzLine, UniformCircle};
+use contopt_validation::fixtures::Exact;
 use contopt_validation::paper;
 use contopt_validation::roller::{CylinderGrid, Roller};
 
@@ -571,29 +572,6 @@ fn the_load_splits_updates_do_not_grow_with_the_grid() {
             eprintln!("L1 = {l1} mm, {nx} × {ny}: {} updates", opt.passes.len());
             assert!(opt.passes.len() <= 10, "L1 = {l1}, {nx} × {ny}");
         }
-    }
-}
-
-/// Polonsky–Keer with its tolerance fixed: what the load split solves with when a solver
-/// offers no looser one.
-struct Exact(PolonskyKeer);
-
-impl ContactSolver for Exact {
-    fn method(&self) -> Method {
-        self.0.method()
-    }
-
-    fn dense_copies(&self, points: usize) -> u64 {
-        self.0.dense_copies(points)
-    }
-
-    fn solve_observed(
-        &self,
-        problem: &InterfaceProblem,
-        start: Option<&[f64]>,
-        observer: &dyn Observer,
-    ) -> contopt::prelude::Result<ContactState> {
-        self.0.solve_observed(problem, start, observer)
     }
 }
 

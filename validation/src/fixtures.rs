@@ -3,8 +3,9 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use contopt_contact::InterfaceProblem;
-use contopt_core::Result;
+use contopt_contact::{ContactSolver, InterfaceProblem, PolonskyKeer};
+use contopt_core::observe::{Method, Observer};
+use contopt_core::{ContactState, Result};
 use contopt_fem::{Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Spacing};
 use contopt_scene::{Format, Scene, SceneError};
 
@@ -100,4 +101,28 @@ name = "sphere"
     );
     let scene = Scene::parse(&text, Format::Toml, std::path::Path::new("hertz-on-block"))?;
     scene.cases()[0].problem()
+}
+
+/// Polonsky–Keer with its tolerance fixed: it offers no looser one
+/// ([`ContactSolver::loosened`]), so an optimiser solves every contact to the full tolerance,
+/// the reference its inexact solves are measured against.
+pub struct Exact(pub PolonskyKeer);
+
+impl ContactSolver for Exact {
+    fn method(&self) -> Method {
+        self.0.method()
+    }
+
+    fn dense_copies(&self, points: usize) -> u64 {
+        self.0.dense_copies(points)
+    }
+
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+    ) -> Result<ContactState> {
+        self.0.solve_observed(problem, start, observer)
+    }
 }
