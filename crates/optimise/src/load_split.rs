@@ -18,9 +18,10 @@ const LINE_EXPONENT: f64 = 0.5;
 /// weight.
 const POINT_EXPONENT: f64 = 1.0;
 /// The contact solves of an update stop at this fraction of the last update's miss (in the
-/// solver's own measure, [`ContactSolver::loosened`]). 10⁻² lets a solve that ends with a few
-/// points' error stop after one step at the roller's ends; 10⁻³ never needs more updates
-/// than exact solves (`roller_scaling`).
+/// solver's own measure, [`ContactSolver::loosened`]). With 10⁻² a solve whose error sits in a
+/// few points at the roller's ends stopped after one step, and the split took up to 16
+/// updates instead of 10; with 10⁻³ it takes the updates of exact solves, at most one more
+/// (`roller_scaling case`, L1 = 0, 3 and 5 mm on 200 × 105 to 800 × 417 cells).
 const FORCING: f64 = 1e-3;
 /// The contact solver's tolerance in the first update, before any miss is known: that of
 /// Polonsky–Keer's coarse starts.
@@ -75,8 +76,8 @@ impl Optimisation<'_> {
     /// ([`ContactSolver::loosened`]) to 10⁻³ of the last update's miss (10⁻⁶ in the first):
     /// an update far from the optimum needs no exact contact, and the roller's updates take
     /// about half the steps. The update that ends the split is solved to the solver's own
-    /// tolerance, as is the last update allowed. Stops when every column's Ω_v pressure is within
-    /// [`LoadSplitSettings::tolerance`]·p_max of v·p_max, after at most
+    /// tolerance, as is the last update allowed. Stops when every column's Ω_v pressure is
+    /// within [`LoadSplitSettings::tolerance`]·p_max of v·p_max, after at most
     /// [`LoadSplitSettings::max_iterations`] solves; each solve is a pass of the result,
     /// reported to the observer ([`Optimisation::with_observer`]) with its miss. Needs a
     /// floating body with one rigid mode (the given load) and a gap shape whose rows each reach

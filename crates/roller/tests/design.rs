@@ -171,8 +171,8 @@ impl Observer for Crowns {
 }
 
 /// The tuned search improves on its starting crown, reports each crown at level 0 (the
-/// contact solves at level 1, their coarse starts deeper) and ends with an event; an observer's stop ends it with
-/// Stopped and the best crown so far.
+/// contact solves at level 1, their coarse starts deeper) and ends with an event; an
+/// observer's stop ends it with Stopped and the best crown so far.
 #[test]
 fn tuned_search_improves_and_stops_when_asked() {
     with_cases(|r, cases, _| {
