@@ -1023,9 +1023,10 @@ impl<'a> InterfaceProblem<'a> {
                 return None;
             }
             modes.push(FreeMode {
+                name: mode.name.clone(),
                 points,
                 displacement,
-                ..mode.clone()
+                load: mode.load,
             });
         }
         Some(modes)
