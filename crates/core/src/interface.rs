@@ -242,14 +242,7 @@ impl Interface {
         let index: Vec<usize> = (0..self.len())
             .filter(|&i| keep.get(i) == Some(&true))
             .collect();
-        self.picked(&index)
-    }
-
-    /// The points at `index`, in its order, with their weights and normals; `None` when
-    /// `index` is empty or names a point beyond the interface. A part of a checked interface
-    /// needs no checks of its own (its extent and area are at most the whole's).
-    pub fn picked(&self, index: &[usize]) -> Option<Interface> {
-        if index.is_empty() || index.iter().any(|&i| i >= self.len()) {
+        if index.is_empty() {
             return None;
         }
         let normals = match &self.normals {
@@ -378,26 +371,6 @@ impl Interface {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A part picks the points at an index in its order, with their weights and normals, the
-    /// normals kept uniform when they were; an empty index or one past the end picks none.
-    #[test]
-    fn picked_keeps_the_order_of_its_index() {
-        let p = vec![[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
-        let n = vec![[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
-        let each = Interface::new(Geometry::Surface, p.clone(), vec![1.0, 2.0, 3.0], n).unwrap();
-        let part = each.picked(&[2, 0]).unwrap();
-        assert_eq!(part.points(), &[[2.0, 0.0, 0.0], [0.0; 3]]);
-        assert_eq!(part.weights(), &[3.0, 1.0]);
-        assert_eq!(
-            (part.normals()[0], part.normals()[1]),
-            ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0])
-        );
-        let uniform = Interface::new(Geometry::Surface, p, vec![1.0; 3], vec![[0.0, 0.0, 1.0]; 3]);
-        let part = uniform.unwrap().picked(&[1]).unwrap();
-        assert!(matches!(part.normals, Normals::Uniform([0.0, 0.0, 1.0])));
-        assert!(each.picked(&[]).is_none() && each.picked(&[0, 3]).is_none());
-    }
 
     #[test]
     fn rejects_bad_columns() {

@@ -282,13 +282,14 @@ impl HalfSpace {
         let index: Vec<usize> = (0..cx * cy)
             .map(|k| (j0 + k / cx) * self.nx + i0 + k % cx)
             .collect();
-        let interface = self.interface.picked(&index).ok_or_else(|| {
-            Error::invalid(
-                "half_space.sub_grid",
-                format!("{cx} x {cy} cells from ({i0}, {j0})"),
-                format!("cells within the {} x {} grid", self.nx, self.ny),
-            )
-        })?;
+        let points = index.iter().map(|&k| self.interface.points()[k]).collect();
+        let weights = index.iter().map(|&k| self.interface.weights()[k]).collect();
+        let interface = Interface::new(
+            Geometry::Surface,
+            points,
+            weights,
+            vec![self.interface.normals()[0]; cx * cy],
+        )?;
         let kernel = &self.kernel;
         let convolution = Arc::new(Convolution::free(cx, cy, |i, j| kernel[(i, j)]));
         Ok((
