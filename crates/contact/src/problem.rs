@@ -911,10 +911,10 @@ impl<'a> InterfaceProblem<'a> {
         let mut seen = vec![false; m];
         for (k, mode) in self.modes.iter().enumerate() {
             let into = merged[group[k]].get_or_insert_with(|| FreeMode {
+                name: mode.name.clone(),
                 points: vec![],
                 displacement: vec![],
                 load: 0.0,
-                ..mode.clone()
             });
             into.load += mode.load;
             for (&i, &r) in mode.points.iter().zip(&mode.displacement) {
