@@ -142,7 +142,6 @@ impl Optimisation<'_> {
         };
         let mut split = Split {
             opt: self,
-            solver,
             cases,
             levels,
             columns: &columns,
@@ -158,7 +157,8 @@ impl Optimisation<'_> {
                 .filter(|_| k < settings.max_iterations)
                 .and_then(|t| solver.loosened(t));
             let exact = loose.is_none();
-            let iterate = match split.pass(loose.as_deref(), &update.share, last.as_ref())? {
+            let solver_k = loose.as_deref().unwrap_or(solver);
+            let iterate = match split.pass(solver_k, &update.share, last.as_ref())? {
                 Ok(iterate) => iterate,
                 Err(failed) => return Ok(split.held(last, failed)),
             };
@@ -353,7 +353,6 @@ struct Failed {
 /// What a load split works with.
 struct Split<'s, 'o, 'a> {
     opt: &'s Optimisation<'a>,
-    solver: &'s dyn ContactSolver,
     cases: &'s [InterfaceProblem<'s>],
     /// Each case's pressure level s_c, relative to the design case's.
     levels: &'s [f64],
@@ -362,16 +361,16 @@ struct Split<'s, 'o, 'a> {
 }
 
 impl Split<'_, '_, '_> {
-    /// An update with the column loads `share`, from the pressures of `last`: the iterate, or
-    /// the contact solve that did not converge.
+    /// An update with the column loads `share`, solved by `solver` (the split's own, or it
+    /// loosened) from the pressures of `last`: the iterate, or the contact solve that did not
+    /// converge.
     fn pass(
         &self,
-        loose: Option<&dyn ContactSolver>,
+        solver: &dyn ContactSolver,
         share: &[f64],
         last: Option<&SplitIterate>,
     ) -> Result<std::result::Result<SplitIterate, Failed>> {
         let (opt, columns) = (self.opt, self.columns);
-        let solver = loose.unwrap_or(self.solver);
         let warm = last.map(|l| l.state.pressure.as_slice());
         let state = self.column_solve(solver, share, warm)?;
         if !state.is_converged() {
