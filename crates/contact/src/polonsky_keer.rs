@@ -89,6 +89,16 @@ impl PolonskyKeer {
     pub fn settings(&self) -> &PolonskyKeerSettings {
         &self.settings
     }
+
+    /// The solver with `tolerance` when it is looser than its own and below 1
+    /// ([`ContactSolver::loosened`]).
+    pub(crate) fn looser(&self, tolerance: f64) -> Option<Self> {
+        let settings = PolonskyKeerSettings {
+            tolerance,
+            ..self.settings
+        };
+        (tolerance > self.settings.tolerance && tolerance < 1.0).then_some(Self { settings })
+    }
 }
 
 impl ContactSolver for PolonskyKeer {
@@ -102,12 +112,8 @@ impl ContactSolver for PolonskyKeer {
 
     /// Stops when Σ wᵢ |Δpᵢ| falls below `tolerance` times the load instead.
     fn loosened(&self, tolerance: f64) -> Option<Box<dyn ContactSolver>> {
-        let settings = PolonskyKeerSettings {
-            tolerance,
-            ..self.settings
-        };
-        (tolerance > self.settings.tolerance && tolerance < 1.0)
-            .then(|| Box::new(PolonskyKeer { settings }) as Box<dyn ContactSolver>)
+        self.looser(tolerance)
+            .map(|solver| Box::new(solver) as Box<dyn ContactSolver>)
     }
 
     /// Reports each conjugate-gradient step (`iterations`, numbered on across the growing

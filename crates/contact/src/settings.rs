@@ -111,14 +111,10 @@ impl ContactSolver for Auto {
 
     /// The choice with its iterative solver loosened (the dense one solves exactly).
     fn loosened(&self, tolerance: f64) -> Option<Box<dyn ContactSolver>> {
-        self.iterative.loosened(tolerance)?;
-        let settings = PolonskyKeerSettings {
-            tolerance,
-            ..*self.iterative.settings()
-        };
+        let iterative = self.iterative.looser(tolerance)?;
         Some(Box::new(Self {
             dense: self.dense,
-            iterative: PolonskyKeer::new(settings).ok()?,
+            iterative,
         }))
     }
 
