@@ -395,14 +395,41 @@ mod tests {
         (long, ext, index)
     }
 
-    /// Free ends of two faces, one either side, none, on odd, FFT-unfriendly widths.
-    fn variety() -> Vec<(usize, [Option<f64>; 2], f64)> {
-        vec![
+    /// The rows and the cell (dx, dy) \[mm\] of the grids of [`variety`].
+    const VARIETY_CELLS: (usize, f64, f64) = (7, 0.12, 0.03);
+
+    /// One grid of [`variety`]: its width, faces and first cell's centre, the body and a
+    /// pressure on it.
+    struct Variant {
+        nx: usize,
+        faces: [Option<f64>; 2],
+        origin: [f64; 2],
+        ends: FreeEnds,
+        p: Vec<f64>,
+    }
+
+    /// Free ends of two faces, one either side, none, on odd, FFT-unfriendly widths, on
+    /// [`VARIETY_CELLS`].
+    fn variety() -> Vec<Variant> {
+        let (ny, dx, dy) = VARIETY_CELLS;
+        [
             (41, [Some(-2.6), Some(2.55)], 1.0),
             (20, [None, Some(1.3)], 1.4),
             (23, [Some(-1.5), None], 0.6),
             (16, [None, None], 1.0),
         ]
+        .into_iter()
+        .map(|(nx, faces, weight)| {
+            let origin = [-0.5 * (nx - 1) as f64 * dx, -0.09];
+            Variant {
+                nx,
+                faces,
+                origin,
+                ends: steel_ends(nx, ny, [dx, dy], origin, faces, weight),
+                p: pressure(nx * ny),
+            }
+        })
+        .collect()
     }
 
     /// The product read beyond the grid (C p + w·M C p) is the product of the pressure and its
@@ -411,11 +438,11 @@ mod tests {
     /// few per cent at the ends.
     #[test]
     fn wide_product_equals_the_written_out_one() {
-        let (ny, dx, dy) = (7, 0.12, 0.03);
-        for (nx, faces, weight) in variety() {
-            let origin = [-0.5 * (nx - 1) as f64 * dx, -0.09];
-            let ends = steel_ends(nx, ny, [dx, dy], origin, faces, weight);
-            let p = pressure(nx * ny);
+        let ny = VARIETY_CELLS.0;
+        for Variant {
+            nx, faces, ends, p, ..
+        } in variety()
+        {
             let mut got = vec![0.0; nx * ny];
             ends.apply_influence(&p, &mut got);
             let (long, ext, index) = written_out(&ends, &p);
@@ -438,11 +465,15 @@ mod tests {
     /// shear component of the wrong parity is off by its image's share at the end.
     #[test]
     fn wide_stresses_equal_the_written_out_ones() {
-        let (ny, dx, dy) = (7, 0.12, 0.03);
-        for (nx, faces, weight) in variety() {
-            let origin = [-0.5 * (nx - 1) as f64 * dx, -0.09];
-            let ends = steel_ends(nx, ny, [dx, dy], origin, faces, weight);
-            let p = pressure(nx * ny);
+        let (ny, _, dy) = VARIETY_CELLS;
+        for Variant {
+            nx,
+            faces,
+            origin,
+            ends,
+            p,
+        } in variety()
+        {
             let request = SubsurfaceRequest {
                 depths: vec![0.02, 0.1],
                 sections: vec![
