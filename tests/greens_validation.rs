@@ -461,6 +461,38 @@ fn two_elastic_grids_summed() {
     );
 }
 
+/// The influence among a few points (`InterfaceProblem::influence_block`, which the load
+/// split's exponent of a narrow column reads) is the summed dense matrix's block, from the two
+/// grids' kernels before the matrix is built and from the matrix after; a rigid partner adds
+/// nothing, and a point off the interface gives no block.
+#[test]
+fn influence_blocks_are_the_dense_matrixs() {
+    let (lower, gap, _) = peer_grid(8);
+    let h = 4.0 / 8.0;
+    let aluminium = Material::new(7e4, 0.33).unwrap();
+    let upper = HalfSpace::grid("upper", aluminium, 8, 8, h, h, [-2.0, -2.0])
+        .unwrap()
+        .upper();
+    let points = [0, 9, 27, 63, 5];
+    let problem = InterfaceProblem::new(&lower, &upper, &gap).unwrap();
+    let kernels = problem.influence_block(&points).unwrap();
+    let dense = problem.dense_influence(1).unwrap().clone();
+    let block = |a: usize, b: usize| dense[(points[a], points[b])];
+    for (a, b) in (0..points.len()).flat_map(|a| (0..points.len()).map(move |b| (a, b))) {
+        assert!((kernels[(a, b)] - block(a, b)).abs() <= 1e-15 * block(a, b).abs());
+    }
+    let after = problem.influence_block(&points).unwrap();
+    assert!((0..points.len()).all(|a| after[(a, a)] == block(a, a)));
+    let roller = RigidBody::pressed("roller", lower.interface(), [0.0, 0.0, 1.0], 1.0).unwrap();
+    let rigid = InterfaceProblem::new(&lower, &roller, &gap).unwrap();
+    let own = lower.influence_matrix();
+    assert_eq!(rigid.influence_block(&[3, 4]).unwrap()[(0, 1)], own[(3, 4)]);
+    assert!(
+        rigid.influence_block(&[64]).is_none(),
+        "a point off the interface"
+    );
+}
+
 /// A raceway grid and a roller with free ends on the same cells (`FreeEnds`, of another
 /// material) share one product: the roller adds the raceway's scaled half-space product inside
 /// its own (`ElasticBody::apply_influence_adding`), so the problem sums no two products, and

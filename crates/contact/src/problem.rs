@@ -575,6 +575,30 @@ impl<'a> InterfaceProblem<'a> {
         Ok(self.operator.dense.get_or_init(|| self.build_dense()))
     }
 
+    /// The summed influence among a few `points`, A = A¹ + P A² Pᵀ there \[mm/N\]
+    /// (`block[(a, b)]` = `A[(points[a], points[b])]`): from the dense matrix once it is built,
+    /// else from both bodies' [`ElasticBody::influence_block`]. `None` when a body gives none
+    /// or a point is not on the interface.
+    pub fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
+        if points.iter().any(|&i| i >= self.len()) {
+            return None;
+        }
+        let op = &self.operator;
+        let m = points.len();
+        if let Some(a) = op.dense.get() {
+            return Some(Mat::from_fn(m, m, |i, j| a[(points[i], points[j])]));
+        }
+        let first = op.bodies[0].get().influence_block(points)?;
+        let second = match &op.pair {
+            None => op.bodies[1].get().influence_block(points)?,
+            Some(pair) => {
+                let own: Vec<usize> = points.iter().map(|&i| pair[i]).collect();
+                op.bodies[1].get().influence_block(&own)?
+            }
+        };
+        Some(first + second)
+    }
+
     fn build_dense(&self) -> Mat<f64> {
         let op = &self.operator;
         let mut a = op.bodies[0].get().influence_matrix();

@@ -73,6 +73,17 @@ pub trait ElasticBody: Send + Sync {
         a
     }
 
+    /// The influence matrix's entries among a few `points` (indices of the interface):
+    /// `block[(a, b)]` = `A[(points[a], points[b])]`, the displacement at `points[a]` under a
+    /// unit force at `points[b]`. A model of a small contact reads it (the load split's
+    /// exponent of a column a few points wide). `None` (the default) when the body cannot give
+    /// entries without influence products; bodies that hold the matrix or a kernel return
+    /// them.
+    fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
+        let _ = points;
+        None
+    }
+
     /// An approximate inverse of the influence operator, for preconditioning iterative
     /// solvers: writes to `force` forces that roughly produce `displacement`, and returns
     /// `true`; bodies without one return `false` (the default) and leave `force` alone.

@@ -72,6 +72,10 @@ impl ElasticBody for RigidBody {
         Mat::zeros(self.interface.len(), self.interface.len())
     }
 
+    fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
+        Some(Mat::zeros(points.len(), points.len()))
+    }
+
     /// A = 0·A₀: no compliance, whatever the shape.
     fn influence_shape(&self) -> Option<(String, f64)> {
         Some(("rigid".into(), 0.0))

@@ -460,6 +460,13 @@ impl ElasticBody for FeBody {
         self.influence.clone()
     }
 
+    fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
+        let m = points.len();
+        Some(Mat::from_fn(m, m, |a, b| {
+            self.influence[(points[a], points[b])]
+        }))
+    }
+
     fn load_displacement(&self) -> Result<Vec<f64>> {
         Ok(self.load_displacement.clone())
     }

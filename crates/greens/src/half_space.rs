@@ -475,6 +475,14 @@ impl ElasticBody for HalfSpace {
         Mat::from_fn(n, n, |k, l| self.coefficient(k, l))
     }
 
+    /// From the kernel of Love's cells, which the grid holds.
+    fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
+        let m = points.len();
+        Some(Mat::from_fn(m, m, |a, b| {
+            self.coefficient(points[a], points[b])
+        }))
+    }
+
     fn load_displacement(&self) -> Result<Vec<f64>> {
         Ok(vec![0.0; self.interface.len()])
     }

@@ -139,6 +139,11 @@ macro_rules! surface_body {
                 self.surface.influence.clone()
             }
 
+            fn influence_block(&self, points: &[usize]) -> Option<faer::Mat<f64>> {
+                let (a, m) = (&self.surface.influence, points.len());
+                Some(faer::Mat::from_fn(m, m, |i, j| a[(points[i], points[j])]))
+            }
+
             fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
                 Ok(vec![0.0; self.surface.interface.len()])
             }
