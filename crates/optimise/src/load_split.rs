@@ -22,7 +22,12 @@ const POINT_EXPONENT: f64 = 1.0;
 /// ends, where rows enter one by one, the measured ∂ln p̄/∂ln F of contacts 3 to 7 points
 /// across is 0.23 to 0.64 against the ½ of a line contact (800 × 417 cells), and with it the
 /// 800 × 417 roller takes the updates of the 200 × 105 one (9 at L1 = 0 and 3 mm, 11 with
-/// the line contact's exponent).
+/// the line contact's exponent; 9–10 with any limit from 4 to 32 points, and 8 with every
+/// column's own, which costs a factorisation 181 points square per column and update and
+/// took 1.6–2.0 times as long). A wide contact keeps the line contact's ½, which is how p̄
+/// follows a smooth change of every column's load: a column narrower than its contact is
+/// stiffer on its own (0.76 in the roller's middle), and that coupling is Anderson mixing's
+/// to learn.
 const DISCRETE_POINTS: usize = 8;
 /// The contact solves of an update stop at this fraction of the last update's miss (in the
 /// solver's own measure, [`ContactSolver::loosened`]). With 10⁻² a solve whose error sits in a
@@ -76,8 +81,8 @@ impl Optimisation<'_> {
     /// exponent α_j of p̄ ∝ F^α read from the column's own contact (1 for one point, that of
     /// the discrete contact for a few points when the bodies give the influence among them,
     /// ½ at the peak of a Hertzian line contact, ½ (p₀/p̄)² ≤ 1 off its peak), and p_max the
-    /// value at
-    /// which the shares add up to the load, accelerated by Anderson mixing of the last updates,
+    /// value at which the shares add up to the load, accelerated by Anderson mixing of the
+    /// last updates,
     /// which learns how the columns couple through the body. At its fixed point the Ω_v points
     /// are closed at v·p_max, equilibrium holds and the rest of Ω is complementary: the
     /// conditions of (3.5), whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the
@@ -614,10 +619,10 @@ impl Columns {
     /// The exponent α_j of p̄_j ∝ F_j^α of each column under `pressure`: 1 where its contact
     /// is one Ω_v point (its pressure is its load over its weight); for a contact of at most
     /// [`DISCRETE_POINTS`] points, `discrete(set, d)` of its loaded points and driving point
-    /// when it gives one; else that of a Hertzian line contact p = p₀√(1 − s²) at the Ω_v point that drives the
-    /// column, whose p₀ and half-width grow as F^½: α = ½/(1 − s²) = ½ (p₀/p̄)², ½ at the peak
-    /// and growing towards the contact's edge, at most 1 (a point just reached by the
-    /// contact).
+    /// when it gives one; else that of a Hertzian line contact p = p₀√(1 − s²) at the Ω_v
+    /// point that drives the column, whose p₀ and half-width grow as F^½:
+    /// α = ½/(1 − s²) = ½ (p₀/p̄)², ½ at the peak and growing towards the contact's edge, at
+    /// most 1 (a point just reached by the contact).
     fn exponents_with(
         &self,
         regions: &[Region],
@@ -705,12 +710,13 @@ fn check_levels(levels: &[f64], cases: usize) -> Result<()> {
 /// driving point d, with the set held: a unit approach of the column puts the forces
 /// f = A_CC⁻¹·1 on it (A_CC the influence among the set's points,
 /// [`InterfaceProblem::influence_block`]), so p_d grows by f_d/w_d while the load grows by
-/// Σ f, and α = (f_d / w_d p_d) · (Σ wᵢpᵢ / Σ fᵢ). On a line contact of many points it is
-/// the Hertzian ½ at the peak: the increment of a Hertzian pressure with its load,
-/// ∂p/∂F ∝ 1/√(1 − s²), is the flat punch's A_CC⁻¹·1. On a few points it is the discrete
-/// contact's own: where a row has just entered, the load goes to that row and α falls well
-/// below ½; one point gives 1. `None` when the bodies give no influence entries or the
-/// block is not positive definite.
+/// Σ f, and α = (f_d / w_d p_d) · (Σ wᵢpᵢ / Σ fᵢ): the column's own ∂ln p_d/∂ln F with its
+/// neighbours' loads held, to the third digit of a finite difference on the roller. For a
+/// plane line contact resolved by many points it tends to the Hertzian ½ at the peak (the
+/// increment of a Hertzian pressure with its load, ∂p/∂F ∝ 1/√(1 − s²), is the flat punch's
+/// A_CC⁻¹·1); on a few points it is the discrete contact's: where a row has just entered,
+/// the load goes to that row and α falls well below ½; one point gives 1. `None` when the
+/// bodies give no influence entries or the block is not positive definite.
 fn discrete_exponent(
     problem: &InterfaceProblem,
     set: &[usize],
