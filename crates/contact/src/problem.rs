@@ -584,9 +584,8 @@ impl<'a> InterfaceProblem<'a> {
             return None;
         }
         let op = &self.operator;
-        let m = points.len();
         if let Some(a) = op.dense.get() {
-            return Some(Mat::from_fn(m, m, |i, j| a[(points[i], points[j])]));
+            return Some(contopt_core::block_among(a, points));
         }
         let first = op.bodies[0].get().influence_block(points)?;
         let second = match &op.pair {

@@ -19,6 +19,14 @@ pub struct RigidMode {
     pub load: f64,
 }
 
+/// The entries of a dense influence matrix among `points`, `block[(a, b)]` =
+/// `matrix[(points[a], points[b])]`: [`ElasticBody::influence_block`] of a body that holds its
+/// matrix.
+pub fn block_among(matrix: &Mat<f64>, points: &[usize]) -> Mat<f64> {
+    let m = points.len();
+    Mat::from_fn(m, m, |a, b| matrix[(points[a], points[b])])
+}
+
 /// A linear-elastic body as contact sees it: its contact surface, how normal forces on that
 /// surface move it, where its given loads move it, and which rigid motions it is free to make
 /// (eqs. 2.5–2.6).

@@ -461,10 +461,7 @@ impl ElasticBody for FeBody {
     }
 
     fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
-        let m = points.len();
-        Some(Mat::from_fn(m, m, |a, b| {
-            self.influence[(points[a], points[b])]
-        }))
+        Some(contopt_core::block_among(&self.influence, points))
     }
 
     fn load_displacement(&self) -> Result<Vec<f64>> {

@@ -140,8 +140,7 @@ macro_rules! surface_body {
             }
 
             fn influence_block(&self, points: &[usize]) -> Option<faer::Mat<f64>> {
-                let (a, m) = (&self.surface.influence, points.len());
-                Some(faer::Mat::from_fn(m, m, |i, j| a[(points[i], points[j])]))
+                Some(contopt_core::block_among(&self.surface.influence, points))
             }
 
             fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
