@@ -76,15 +76,14 @@ impl Optimisation<'_> {
     /// whose multipliers λ_j are the column approaches; the gap change is their spread,
     /// Δh_j = r (λ_j − λ_N), zero at the reference node N (under [`Reference::Least`] the
     /// column of least r·λ_j, so min Δh = 0; the body's approach is then λ_N, which keeps the
-    /// optimum's gap that of the solve). An outer update of the shares drives
-    /// each column's Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the
-    /// exponent α_j of p̄ ∝ F^α read from the column's own contact (1 for one point, that of
-    /// the discrete contact for a few points when the bodies give the influence among them,
-    /// ½ at the peak of a Hertzian line contact, ½ (p₀/p̄)² ≤ 1 off its peak), and p_max the
-    /// value at which the shares add up to the load, accelerated by Anderson mixing of the
-    /// last updates,
-    /// which learns how the columns couple through the body. At its fixed point the Ω_v points
-    /// are closed at v·p_max, equilibrium holds and the rest of Ω is complementary: the
+    /// optimum's gap that of the solve). An outer update of the shares drives each column's
+    /// Ω_v pressure to v_j·p_max: F_j ← F_j (v_j p_max / p̄_j)^(1/α_j), with the exponent α_j
+    /// of p̄ ∝ F^α read from the column's own contact (1 for one point, that of the discrete
+    /// contact for a few points when the bodies give the influence among them, ½ at the peak
+    /// of a Hertzian line contact, ½ (p₀/p̄)² ≤ 1 off its peak), and p_max the value at which
+    /// the shares add up to the load, accelerated by Anderson mixing of the last updates, which
+    /// learns how the columns couple through the body. At its fixed point the Ω_v points are
+    /// closed at v·p_max, equilibrium holds and the rest of Ω is complementary: the
     /// conditions of (3.5), whose optimum it is (with d = 0 and χ = 0 prescribed on Ω_v, the
     /// programme's feasible set is that one point). A column whose Ω_v holds several points is
     /// driven by the largest p/v among them, so that none exceeds v·p_max.
@@ -96,8 +95,8 @@ impl Optimisation<'_> {
     /// an update far from the optimum needs no exact contact, and the roller's updates take
     /// about half the steps. The update expected to end the split is solved to the solver's
     /// own tolerance, as is the last update allowed, and the split ends only on an update
-    /// solved to that or to 10⁻² of its own tolerance. Stops when every column's Ω_v pressure is
-    /// within [`LoadSplitSettings::tolerance`]·p_max of v·p_max, after at most
+    /// solved to that or to 10⁻² of its own tolerance. Stops when every column's Ω_v pressure
+    /// is within [`LoadSplitSettings::tolerance`]·p_max of v·p_max, after at most
     /// [`LoadSplitSettings::max_iterations`] solves; each solve is a pass of the result,
     /// reported to the observer ([`Optimisation::with_observer`]) with its miss. Needs a
     /// floating body with one rigid mode (the given load) and a gap shape whose rows each reach
