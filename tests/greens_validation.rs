@@ -464,7 +464,8 @@ fn two_elastic_grids_summed() {
 /// The influence among a few points (`InterfaceProblem::influence_block`, which the load
 /// split's exponent of a narrow column reads) is the summed dense matrix's block, from the two
 /// grids' kernels before the matrix is built and from the matrix after; a rigid partner adds
-/// nothing, and a point off the interface gives no block.
+/// nothing, and a point off the interface gives no block, from the problem, a body or a dense
+/// matrix (`block_among`).
 #[test]
 fn influence_blocks_are_the_dense_matrixs() {
     let (lower, gap, _) = peer_grid(8);
@@ -491,6 +492,11 @@ fn influence_blocks_are_the_dense_matrixs() {
         rigid.influence_block(&[64]).is_none(),
         "a point off the interface"
     );
+    assert!(lower.influence_block(&[3, 64]).is_none());
+    assert!(roller.influence_block(&[64]).is_none());
+    let dense = contopt::core::block_among(&own, &[3, 4]).unwrap();
+    assert_eq!(dense[(1, 0)], own[(4, 3)]);
+    assert!(contopt::core::block_among(&own, &[64]).is_none());
 }
 
 /// A raceway grid and a roller with free ends on the same cells (`FreeEnds`, of another

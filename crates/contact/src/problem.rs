@@ -585,7 +585,7 @@ impl<'a> InterfaceProblem<'a> {
         }
         let op = &self.operator;
         if let Some(a) = op.dense.get() {
-            return Some(contopt_core::block_among(a, points));
+            return contopt_core::block_among(a, points);
         }
         let first = op.bodies[0].get().influence_block(points)?;
         let second = match &op.pair {

@@ -21,10 +21,13 @@ pub struct RigidMode {
 
 /// The entries of a dense influence matrix among `points`, `block[(a, b)]` =
 /// `matrix[(points[a], points[b])]`: [`ElasticBody::influence_block`] of a body that holds its
-/// matrix.
-pub fn block_among(matrix: &Mat<f64>, points: &[usize]) -> Mat<f64> {
+/// matrix. `None` when a point is not among the matrix's rows.
+pub fn block_among(matrix: &Mat<f64>, points: &[usize]) -> Option<Mat<f64>> {
     let m = points.len();
-    Mat::from_fn(m, m, |a, b| matrix[(points[a], points[b])])
+    let on = points
+        .iter()
+        .all(|&i| i < matrix.nrows().min(matrix.ncols()));
+    on.then(|| Mat::from_fn(m, m, |a, b| matrix[(points[a], points[b])]))
 }
 
 /// A linear-elastic body as contact sees it: its contact surface, how normal forces on that
@@ -85,8 +88,8 @@ pub trait ElasticBody: Send + Sync {
     /// `block[(a, b)]` = `A[(points[a], points[b])]`, the displacement at `points[a]` under a
     /// unit force at `points[b]`. A model of a small contact reads it (the load split's
     /// exponent of a column a few points wide). `None` (the default) when the body cannot give
-    /// entries without influence products; bodies that hold the matrix or a kernel return
-    /// them.
+    /// entries without influence products, and when a point is not on the interface; bodies
+    /// that hold the matrix or a kernel return them.
     fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
         let _ = points;
         None

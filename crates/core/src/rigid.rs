@@ -73,7 +73,8 @@ impl ElasticBody for RigidBody {
     }
 
     fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
-        Some(Mat::zeros(points.len(), points.len()))
+        let on = points.iter().all(|&i| i < self.interface.len());
+        on.then(|| Mat::zeros(points.len(), points.len()))
     }
 
     /// A = 0·A₀: no compliance, whatever the shape.

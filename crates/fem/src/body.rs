@@ -461,7 +461,7 @@ impl ElasticBody for FeBody {
     }
 
     fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
-        Some(contopt_core::block_among(&self.influence, points))
+        contopt_core::block_among(&self.influence, points)
     }
 
     fn load_displacement(&self) -> Result<Vec<f64>> {

@@ -477,10 +477,9 @@ impl ElasticBody for HalfSpace {
 
     /// From the kernel of Love's cells, which the grid holds.
     fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
-        let m = points.len();
-        Some(Mat::from_fn(m, m, |a, b| {
-            self.coefficient(points[a], points[b])
-        }))
+        let (m, n) = (points.len(), self.interface.len());
+        let on = points.iter().all(|&i| i < n);
+        on.then(|| Mat::from_fn(m, m, |a, b| self.coefficient(points[a], points[b])))
     }
 
     fn load_displacement(&self) -> Result<Vec<f64>> {

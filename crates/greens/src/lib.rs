@@ -140,7 +140,7 @@ macro_rules! surface_body {
             }
 
             fn influence_block(&self, points: &[usize]) -> Option<faer::Mat<f64>> {
-                Some(contopt_core::block_among(&self.surface.influence, points))
+                contopt_core::block_among(&self.surface.influence, points)
             }
 
             fn load_displacement(&self) -> contopt_core::Result<Vec<f64>> {
