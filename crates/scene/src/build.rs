@@ -88,14 +88,13 @@ impl Case {
         let at = &self.locator;
         let mut built: [Option<Box<dyn ElasticBody>>; 2] = [None, None];
         // Owners first: a finite-element body meshes the faces its partner stands on.
-        let order = [0, 1].map(|k| (!spec.body[k].kind().owns_surface(), k));
+        let order = [0, 1].map(|k| (!spec.body[k].owns_surface(), k));
         let mut order = order.to_vec();
         order.sort();
         for (_, k) in order {
             let place = crate::prepare::placement(spec, &self.plan.layout, k, at, &self.meshes);
             let surface = self.surface(&built, k)?;
             let body = spec.body[k]
-                .kind()
                 .build(&place, surface.as_ref())
                 .map_err(|e| at.library(&format!("body[{k}]"), e))?;
             built[k] = Some(body);

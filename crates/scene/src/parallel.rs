@@ -99,9 +99,9 @@ impl Scene {
 /// order of their first case.
 fn groups(cases: &[Case]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = vec![];
-    let mut keys: Vec<&str> = vec![];
+    let mut keys: Vec<&crate::prepare::BuildKey> = vec![];
     for (k, case) in cases.iter().enumerate() {
-        match keys.iter().position(|key| *key == case.plan.key) {
+        match keys.iter().position(|key| **key == case.plan.key) {
             Some(g) => groups[g].push(k),
             None => {
                 keys.push(&case.plan.key);

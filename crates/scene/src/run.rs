@@ -1,7 +1,6 @@
 //! The run of a scene's cases, which builds each distinct pair of bodies once, and the run of
 //! one case on its bodies.
 
-use std::collections::HashMap;
 use std::time::Instant;
 
 use contopt_contact::InterfaceProblem;
@@ -10,6 +9,7 @@ use contopt_results::CaseReport;
 
 use crate::build::Built;
 use crate::methods::Context;
+use crate::prepare::BuildKey;
 use crate::{Case, Scene, SceneError};
 
 /// The initial gap of a point where the gap is open for good (beyond a flat punch's rim), in
@@ -25,10 +25,10 @@ const OPEN_SIZES: f64 = 4.0;
 /// dropped after its last.
 pub struct Run<'s, 'o> {
     cases: &'s [Case],
-    /// The index of each key's last case.
-    last: HashMap<&'s str, usize>,
+    /// Each distinct key with the index of its last case.
+    last: Vec<(&'s BuildKey, usize)>,
     /// The bodies of pairs whose last case is still to come.
-    built: HashMap<&'s str, Built>,
+    built: Vec<(&'s BuildKey, Built)>,
     next: usize,
     /// How many pairs were built so far.
     builds: usize,
@@ -57,15 +57,17 @@ impl Scene {
     ) -> Run<'_, 'o> {
         let all = self.cases();
         let cases = &all[range.start.min(all.len())..range.end.min(all.len())];
-        let last = cases
-            .iter()
-            .enumerate()
-            .map(|(k, case)| (case.plan.key.as_str(), k))
-            .collect();
+        let mut last: Vec<(&BuildKey, usize)> = vec![];
+        for (k, case) in cases.iter().enumerate() {
+            match last.iter_mut().find(|(key, _)| **key == case.plan.key) {
+                Some(entry) => entry.1 = k,
+                None => last.push((&case.plan.key, k)),
+            }
+        }
         Run {
             cases,
             last,
-            built: HashMap::new(),
+            built: vec![],
             next: 0,
             builds: 0,
             observer,
@@ -93,8 +95,9 @@ impl Run<'_, '_> {
     /// the last case that needs them.
     fn run_case(&mut self, k: usize) -> Result<CaseReport, SceneError> {
         let case = &self.cases[k];
-        let key = case.plan.key.as_str();
-        let built = match self.built.remove(key) {
+        let key = &case.plan.key;
+        let kept = self.built.iter().position(|(k, _)| *k == key);
+        let built = match kept.map(|i| self.built.swap_remove(i).1) {
             Some(built) => built.reused(),
             None => {
                 self.builds += 1;
@@ -102,8 +105,8 @@ impl Run<'_, '_> {
             }
         };
         let report = case.run_on(&built, self.observer);
-        if self.last.get(key).is_some_and(|&last| last > k) {
-            self.built.insert(key, built);
+        if self.last.iter().any(|(kk, last)| *kk == key && *last > k) {
+            self.built.push((key, built));
         }
         report
     }
