@@ -290,8 +290,7 @@ fn paper_fe_bodies(name: &str, elements: usize) -> (Analysis, f64, FeBody, FeBod
         &spec.contact.zone,
         spec.body[0].downcast::<FeBase>(),
         spec.body[1].downcast::<FePunch>(),
-    )
-    else {
+    ) else {
         panic!("{name} is not a punch on a base");
     };
     let edge = zone.edge_size().unwrap();
