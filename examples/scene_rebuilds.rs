@@ -4,7 +4,8 @@
 //! optimisations, and against each case run on its own (a build per case). The builds are
 //! counted as well as timed: the pairs of bodies built (`Run::builds`) and the numeric
 //! factorisations of stiffness matrices (`contopt::fem::factorisations`), which a machine's
-//! load does not move.
+//! load does not move; on one and two threads ([`Scene::run_parallel`]), the builds it reports
+//! (two factorisations each, a body's on the thread that built it).
 //!
 //! `cargo run --release --example scene_rebuilds [elements]` (default 144 elements across the
 //! contact radius, and as many layers).
@@ -108,6 +109,15 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         alone.seconds,
         Some((alone.builds, alone.factorisations)),
     );
+    for jobs in [1, 2] {
+        let start = Instant::now();
+        let ran = scene.run_parallel(0..reports.len(), jobs, &|| {})?;
+        line(
+            &format!("the whole scene on {jobs} thread(s) (run_parallel)"),
+            start.elapsed().as_secs_f64(),
+            Some((ran.builds, 2 * ran.builds as u64)),
+        );
+    }
     let ratio = total / (build + optimisations);
     println!("ratio whole / (build + optimisations): {ratio:.3} (at most {OVERHEAD})");
     for r in &reports {

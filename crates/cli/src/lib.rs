@@ -379,6 +379,7 @@ fn solve(
         let counter = progress.counter();
         return scene
             .run_parallel(range, jobs, &counter)?
+            .results
             .into_iter()
             .collect();
     }

@@ -58,7 +58,7 @@ impl Built {
         self.bodies[1].as_ref()
     }
 
-    /// The time the build took (zero for a later case that shares it).
+    /// The time the build took.
     pub fn took(&self) -> Duration {
         self.took
     }
@@ -66,14 +66,6 @@ impl Built {
     /// The two bodies, the first below the zone.
     pub fn into_bodies(self) -> [Box<dyn ElasticBody>; 2] {
         self.bodies
-    }
-
-    /// The same bodies for a later case, which does not pay for their build.
-    pub(crate) fn reused(self) -> Self {
-        Self {
-            took: Duration::ZERO,
-            ..self
-        }
     }
 }
 

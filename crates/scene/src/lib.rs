@@ -59,6 +59,7 @@ pub use methods::{
     BearingCrown, Check, CircularSearch, Context, Design, Designed, EnvelopeSplit,
     FujiwaraKawaseSearch, Gap,
 };
+pub use parallel::Ran;
 pub use region::OmegaVSpec;
 pub use registry::{Chosen, Registry, SolverKind};
 pub use report::PENETRATION_WARNING;

@@ -1,7 +1,7 @@
 //! The run of a scene's cases, which builds each distinct pair of bodies once, and the run of
 //! one case on its bodies.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use contopt_contact::InterfaceProblem;
 use contopt_core::observe::{Observer, Silent};
@@ -97,14 +97,16 @@ impl Run<'_, '_> {
         let case = &self.cases[k];
         let key = &case.plan.key;
         let kept = self.built.iter().position(|(k, _)| *k == key);
-        let built = match kept.map(|i| self.built.swap_remove(i).1) {
-            Some(built) => built.reused(),
+        let (built, took) = match kept.map(|i| self.built.swap_remove(i).1) {
+            Some(built) => (built, Duration::ZERO),
             None => {
                 self.builds += 1;
-                case.build()?
+                let built = case.build()?;
+                let took = built.took();
+                (built, took)
             }
         };
-        let report = case.run_on(&built, self.observer);
+        let report = case.run_built(&built, took, self.observer);
         if self.last.iter().any(|(kk, last)| *kk == key && *last > k) {
             self.built.push((key, built));
         }
@@ -148,6 +150,16 @@ impl Case {
     /// Runs the case on bodies built for it (by this case, or by an earlier case of the scene
     /// that shares them: its `build` time is then only the interface's).
     pub fn run_on(&self, built: &Built, observer: &dyn Observer) -> Result<CaseReport, SceneError> {
+        self.run_built(built, built.took(), observer)
+    }
+
+    /// [`Case::run_on`], its build having taken `took` (zero for bodies another case built).
+    pub(crate) fn run_built(
+        &self,
+        built: &Built,
+        took: Duration,
+        observer: &dyn Observer,
+    ) -> Result<CaseReport, SceneError> {
         let at = &self.locator;
         let mut report = CaseReport::new(&self.label, &self.params, self.input());
         let start = Instant::now();
@@ -155,7 +167,7 @@ impl Case {
         let problem = InterfaceProblem::new(built.first(), built.second(), &gap)
             .map_err(|e| at.library("body", e))?
             .with_dense_limit(self.plan.dense_limit);
-        let build_ms = 1e3 * (built.took() + start.elapsed()).as_secs_f64();
+        let build_ms = 1e3 * (took + start.elapsed()).as_secs_f64();
         report.timings_ms.insert("build".into(), build_ms);
         let solver = self
             .spec
