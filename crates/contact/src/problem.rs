@@ -815,10 +815,18 @@ impl<'a> InterfaceProblem<'a> {
     /// The largest elastic displacement of a solution, maxᵢ |dᵢ − hᵢ − (Rλ)ᵢ| \[mm\]: the
     /// scale against which its penetration is judged. `gap` is d less any gap change Δh.
     pub fn elastic_displacement(&self, gap: &[f64], rigid: &[f64]) -> f64 {
-        let mut rigid_gap = self.free_gap();
-        self.add_rigid_motion(rigid, &mut rigid_gap);
+        self.elastic_displacement_in(gap, rigid, &mut vec![])
+    }
+
+    /// [`InterfaceProblem::elastic_displacement`] with the caller's buffer `scratch` (grown to
+    /// n values when shorter), for solves that must not allocate.
+    fn elastic_displacement_in(&self, gap: &[f64], rigid: &[f64], scratch: &mut Vec<f64>) -> f64 {
+        scratch.clear();
+        scratch.resize(self.len(), 0.0);
+        self.add_free_gap(scratch);
+        self.add_rigid_motion(rigid, scratch);
         gap.iter()
-            .zip(&rigid_gap)
+            .zip(scratch.iter())
             .fold(0.0f64, |m, (d, h)| m.max((d - h).abs()))
     }
 
@@ -828,11 +836,17 @@ impl<'a> InterfaceProblem<'a> {
     /// answer, but data in the wrong units or overflowing (a modulus of 10⁻³⁰⁰ MPa). Every
     /// solver passes its result through it.
     pub fn verify(&self, state: &mut ContactState) {
+        self.verify_in(state, &mut vec![]);
+    }
+
+    /// [`InterfaceProblem::verify`] with the caller's buffer `scratch` (of n values, grown
+    /// when shorter), for solves that must not allocate.
+    pub(crate) fn verify_in(&self, state: &mut ContactState, scratch: &mut Vec<f64>) {
         state.stop_if_not_finite();
         if !state.is_converged() || state.gap.len() != self.len() {
             return;
         }
-        let elastic = self.elastic_displacement(&state.gap, &state.rigid);
+        let elastic = self.elastic_displacement_in(&state.gap, &state.rigid, scratch);
         let size = self.interface().extent();
         if size > 0.0 && elastic > SMALL_STRAIN * size {
             state.termination = Termination::LargeDisplacement {
