@@ -27,13 +27,16 @@ mod solver;
 #[cfg(test)]
 mod tests;
 mod watch;
+mod workspace;
 
 pub use active_set::{ActiveSet, ActiveSetSettings};
 pub use augmented::{AugmentedLagrangian, AugmentedLagrangianSettings};
 pub use full::FullPenalty;
+pub use kalker::KalkerWorkspace;
 pub use penalty::{Penalty, PenaltySettings};
-pub use polonsky_keer::{PolonskyKeer, PolonskyKeerSettings};
+pub use polonsky_keer::{PolonskyKeer, PolonskyKeerSettings, PolonskyKeerWorkspace};
 pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
 pub use qp::{Qp, QpSettings};
 pub use settings::{Auto, SolverSettings};
 pub use solver::ContactSolver;
+pub use workspace::Workspace;

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::{
     ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
     InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer, PolonskyKeerSettings, Qp, QpSettings,
+    Workspace,
 };
 
 /// A contact solver and its settings, as a scene names it (`{ kind = "polonsky_keer",
@@ -126,5 +127,16 @@ impl ContactSolver for Auto {
     ) -> Result<ContactState> {
         self.choice_for(problem)
             .solve_observed(problem, start, observer)
+    }
+
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        self.choice_for(problem)
+            .solve_in(problem, start, observer, workspace)
     }
 }
