@@ -4,8 +4,8 @@ use std::sync::{Arc, OnceLock};
 
 use contopt_core::observe::Method;
 use contopt_core::{
-    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, RigidBody,
-    Spares, Termination,
+    check, ContactState, ElasticBody, Error, GapShape, InfluenceShape, Interface, Residuals,
+    Result, RigidBody, Spares, Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -40,6 +40,9 @@ impl Body<'_> {
     }
 }
 
+/// A body's influence as a multiple of a fixed operator ([`ElasticBody::influence_shape`]).
+type Shape = Option<(InfluenceShape, f64)>;
+
 /// How the summed operator A = A¹ + P A² Pᵀ is applied.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Product {
@@ -57,24 +60,17 @@ enum Product {
 impl Product {
     /// The product that two bodies' shapes and base shapes allow (`identity`: paired point
     /// for point).
-    fn of(
-        shapes: [Option<(String, f64)>; 2],
-        bases: [Option<(String, f64)>; 2],
-        identity: bool,
-    ) -> Self {
+    fn of(shapes: [Shape; 2], bases: [Shape; 2], identity: bool) -> Self {
         // Body k's base holds the other's whole operator: the shape it names, a positive scale.
-        let adding = |k: usize| match (&bases[k], &shapes[1 - k]) {
+        let adding = |k: usize| match (bases[k], shapes[1 - k]) {
             (Some((base, scale)), Some((shape, added)))
-                if identity && base == shape && *scale > 0.0 && *added > 0.0 =>
+                if identity && base == shape && scale > 0.0 && added > 0.0 =>
             {
-                Some(Product::Adding {
-                    body: k,
-                    added: *added,
-                })
+                Some(Product::Adding { body: k, added })
             }
             _ => None,
         };
-        let pure = Product::pure(shapes.clone(), identity);
+        let pure = Product::pure(shapes, identity);
         match pure {
             Product::Both => adding(1).or_else(|| adding(0)).unwrap_or(Product::Both),
             _ => pure,
@@ -83,7 +79,7 @@ impl Product {
 
     /// The product that two bodies' shapes allow: one when a body is rigid or both are
     /// multiples of one operator.
-    fn pure(shapes: [Option<(String, f64)>; 2], identity: bool) -> Self {
+    fn pure(shapes: [Shape; 2], identity: bool) -> Self {
         match shapes {
             [_, Some((_, 0.0))] => Product::One {
                 body: 0,
