@@ -426,10 +426,10 @@ impl ContactMatrix {
 /// [`ContactSolver::solve_in`](crate::ContactSolver::solve_in)): the problem's free gap, R and
 /// q, the index lists, the iterate and its gap, the products' buffers, sized for the number of
 /// points n and of rigid modes m and grown for a larger problem; and the contact-set matrix's,
-/// sized to the largest contact set solved on ([`ContactMatrix`]). A solve on C then allocates
-/// nothing of its own, unless its set is the largest yet or it is the first spectral one;
-/// faer's kernels, which factorise and multiply in these buffers, allocate nothing either at
-/// the sizes tested (see the crate's `tests/allocations.rs`).
+/// sized to the largest contact set solved on. A solve on C then allocates nothing of its
+/// own, unless its set is the largest yet or it is the first spectral one; faer's kernels,
+/// which factorise and multiply in these buffers, allocate nothing either at the sizes tested
+/// (see the crate's `tests/allocations.rs`).
 pub struct KalkerWorkspace {
     /// The free gap g and its largest |gᵢ|.
     free_gap: Vec<f64>,

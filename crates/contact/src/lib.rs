@@ -10,7 +10,9 @@
 //! (`PolonskyKeer::new(PolonskyKeerSettings::default())`, or [`SolverSettings::build`] for a
 //! solver named at run time); each reports its iterations to an
 //! [`Observer`](contopt_core::observe::Observer) ([`ContactSolver::solve_observed`]) and ends
-//! with a [`Termination`](contopt_core::Termination).
+//! with a [`Termination`](contopt_core::Termination). A design loop keeps one [`Workspace`]
+//! across its solves ([`ContactSolver::solve_in`]): the solvers' buffers are then sized once
+//! ([`PolonskyKeerWorkspace`], [`KalkerWorkspace`]).
 
 mod active_set;
 mod augmented;

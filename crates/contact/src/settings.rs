@@ -47,7 +47,7 @@ impl SolverSettings {
 }
 
 /// The solver chosen per problem, the faster of the two exact ones: [`PolonskyKeer`] when a
-/// body offers an inverse of its operator ([`InterfaceProblem::offers_inverse`]: a half-space
+/// body offers an inverse of its operator ([`InterfaceProblem::precondition`]: a half-space
 /// grid's circulant, a bed's stiffness), whose few preconditioned steps through the bodies'
 /// operators beat a dense matrix at any size, or when the interface has more than
 /// [`Auto::DENSE_POINTS`] points; Kalker's [`ActiveSet`] on the other small interfaces
