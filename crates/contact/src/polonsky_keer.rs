@@ -198,12 +198,12 @@ impl PolonskyKeerWorkspace {
         }
     }
 
-    /// The state of the last solve.
+    /// The state of the last solve (before any, an empty one).
     pub fn state(&self) -> &ContactState {
         &self.state
     }
 
-    /// The state of the last solve, the workspace given up.
+    /// The state of the last solve (before any, an empty one), the workspace given up.
     pub fn into_state(self) -> ContactState {
         self.state
     }
