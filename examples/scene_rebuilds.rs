@@ -121,11 +121,13 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let ratio = total / (build + optimisations);
     println!("ratio whole / (build + optimisations): {ratio:.3} (at most {OVERHEAD})");
     for r in &reports {
+        let ms = |key: &str| r.timings_ms.get(key).copied().unwrap_or(0.0);
         println!(
-            "  {:<12} build {:>8.1} ms, optimise {:>8.1} ms, bound p_max {:.2} MPa",
+            "  {:<12} build {:>8.1} ms, optimise {:>8.1} ms, fields {:>8.1} ms, bound p_max {:.2} MPa",
             r.label,
-            r.timings_ms.get("build").copied().unwrap_or(0.0),
-            r.timings_ms.get("optimise").copied().unwrap_or(0.0),
+            ms("build"),
+            ms("optimise"),
+            ms("fields"),
             r.bound_p_max_mpa.unwrap_or(f64::NAN)
         );
     }
