@@ -1,6 +1,6 @@
 //! A case's bodies, built on its zone: the kinds that mesh or grid their own surface first,
 //! then those that stand on a surface they are given (the zone's, or their partner's); two
-//! imported bodies are paired and built together by their zone ([`crate::mesh_zone`]).
+//! imported bodies are paired and built together by their zone ([`crate::mesh_surface`]).
 
 use std::time::{Duration, Instant};
 
@@ -84,7 +84,7 @@ impl Case {
         let mut order = order.to_vec();
         order.sort();
         for (_, k) in order {
-            let place = crate::prepare::placement(spec, &self.plan.layout, k, at, &self.meshes);
+            let place = crate::plan::placement(spec, &self.plan.layout, k, at, &self.meshes);
             let surface = self.surface(&built, k)?;
             let body = spec.body[k]
                 .build(&place, surface.as_ref())
@@ -132,5 +132,36 @@ fn side(k: usize) -> Side {
         Side::Below
     } else {
         Side::Above
+    }
+}
+
+impl Case {
+    /// The two imported bodies of a mesh zone, paired and built together (`None` unless both
+    /// bodies are imported), with the pairing that measured the gap between them.
+    pub(crate) fn build_pair(&self) -> Result<Option<Built>, SceneError> {
+        let start = std::time::Instant::now();
+        let (spec, at) = (&self.spec, &self.locator);
+        let crate::zone::ZoneSpec::Mesh(zone) = &spec.contact.zone else {
+            return Ok(None);
+        };
+        let [Some(first), Some(second)] =
+            crate::plan::survey::parts(&spec.body, zone, &self.meshes, at)?
+        else {
+            return Ok(None);
+        };
+        let settings =
+            crate::plan::survey::settings(zone).map_err(|e| at.library("contact.zone", e))?;
+        let pairing = ContactPairing::new(
+            (&first.model, &first.contact),
+            (&second.model, &second.contact),
+            &settings,
+        )
+        .map_err(|e| crate::plan::survey::pairing_error(e, at))?;
+        let (a, b) = pairing
+            .bodies((first.name, first.model), (second.name, second.model))
+            .map_err(|e| at.library("body", e))?;
+        let stats = [*a.stats(), *b.stats()];
+        let bodies: [Box<dyn contopt_core::ElasticBody>; 2] = [Box::new(a), Box::new(b)];
+        Ok(Some(Built::paired(bodies, pairing, stats, start.elapsed())))
     }
 }

@@ -14,20 +14,21 @@
 //! own and reads scenes through it ([`Registry::load`]), without editing this crate.
 
 mod bearing;
+mod bearing_spec;
 mod bodies;
-mod budget;
 mod build;
 mod bundled;
 mod cases;
+mod contact;
 mod error;
 mod fields;
 mod gap;
 mod limits;
-mod mesh_zone;
+mod mesh_surface;
 mod meshes;
 mod methods;
 pub mod parallel;
-mod prepare;
+mod plan;
 mod reference;
 mod region;
 mod registry;
@@ -42,24 +43,26 @@ use std::sync::Arc;
 
 use contopt_input::{Limits, Node};
 
-pub use bearing::{BearingLoadSpec, BearingObjective, BearingSpec, RacewaySpec, FREE_END_WEIGHT};
+pub use bearing_spec::{
+    BearingLoadSpec, BearingObjective, BearingSpec, RacewaySpec, FREE_END_WEIGHT,
+};
 pub use bodies::{
     misplaced, own_surface, BodyKind, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec,
     GroupLoad, GroupSupport, HalfSpaceBody, Placement, PunchLoad, Rigid, Side, Support, Takes,
     WinklerBed,
 };
-pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};
 pub use error::{Located, SceneError};
 pub use gap::{GapSpec, Hertz, Radius, RollerGap};
-pub use mesh_zone::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
+pub use mesh_surface::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
 pub use meshes::{Imported, MeshFiles};
 pub use methods::{
     BearingCrown, Check, CircularSearch, Context, Design, Designed, EnvelopeSplit,
     FujiwaraKawaseSearch, Gap,
 };
 pub use parallel::Ran;
+pub use plan::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 pub use region::OmegaVSpec;
 pub use registry::{Chosen, Registry, SolverKind};
 pub use report::PENETRATION_WARNING;
@@ -71,7 +74,7 @@ pub use zone::{FacesZone, GridZone, Layout, MeshZone, RingsZone, StripsZone, Zon
 pub use contopt_results::{CaseReport, Report};
 
 use error::Locator;
-use prepare::Plan;
+use plan::Plan;
 
 /// The largest scene file \[bytes\]: a scene is a page of settings, not data.
 pub const MAX_TEXT_BYTES: u64 = 1_000_000;
@@ -388,7 +391,7 @@ impl Case {
         } else {
             input.label
         };
-        let plan = prepare::plan(&spec, &locator, meshes)?;
+        let plan = plan::plan(&spec, &locator, meshes)?;
         Ok(Self {
             label,
             params: input.params,
@@ -401,7 +404,7 @@ impl Case {
 
     /// The memory the case needs, estimated by its check from what each part says of itself
     /// before anything is built, and the scene's limit it was checked against.
-    pub fn memory(&self) -> budget::Memory {
+    pub fn memory(&self) -> plan::Memory {
         self.plan.memory
     }
 

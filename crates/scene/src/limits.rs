@@ -8,7 +8,7 @@ use contopt_contact::InterfaceProblem;
 use contopt_core::stress::peak_index;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
-use crate::mesh_zone::MeshSurface;
+use crate::mesh_surface::MeshSurface;
 use crate::zone::Layout;
 use crate::Case;
 

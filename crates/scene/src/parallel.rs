@@ -32,7 +32,7 @@ use contopt_core::observe::Silent;
 use contopt_results::CaseReport;
 
 use crate::build::Built;
-use crate::prepare::BuildKey;
+use crate::plan::BuildKey;
 use crate::{Case, Scene, SceneError};
 
 /// The stack of a case \[bytes\]: the main thread's on Linux, where a run on one thread

@@ -9,8 +9,8 @@ use std::f64::consts::PI;
 
 use contopt_results::{CaseReport, CurvePoint, ReferenceCurve};
 
+use crate::contact::LoadSpec;
 use crate::gap::{GapSpec, Hertz};
-use crate::spec::LoadSpec;
 use crate::zone::Layout;
 use crate::Case;
 

@@ -6,10 +6,11 @@ use std::time::{Duration, Instant};
 use contopt_contact::InterfaceProblem;
 use contopt_core::observe::{Observer, Silent};
 use contopt_results::CaseReport;
+use contopt_roller::LoadCase;
 
 use crate::build::Built;
 use crate::methods::Context;
-use crate::prepare::BuildKey;
+use crate::plan::BuildKey;
 use crate::{Case, Scene, SceneError};
 
 /// The initial gap of a point where the gap is open for good (beyond a flat punch's rim), in
@@ -174,8 +175,10 @@ impl Case {
             .solver
             .build()
             .map_err(|e| at.library("solver", e))?;
-        let cases =
-            crate::methods::load_cases(self, &problem).map_err(|e| at.library("envelope", e))?;
+        let cases = self
+            .load_cases(&problem)
+            .map_err(|e| at.library("envelope", e))?;
+        let view = self.spec.view(&self.plan.layout, self.plan.roller.as_ref());
         let (designed, shown) = match &self.plan.bearing {
             // A bearing reports its worst contact, whose problem the report's checks take.
             Some(bearing) => crate::bearing::run(
@@ -189,14 +192,13 @@ impl Case {
             .map_err(|e| at.library("bearing", e))?,
             None => {
                 let context = Context {
-                    spec: &self.spec,
-                    plan: &self.plan,
+                    case: view,
                     problem: &problem,
                     solver: solver.as_ref(),
                     observer,
                     cases: &cases,
                 };
-                let designed = crate::methods::design(&self.spec)
+                let designed = (self.spec.design())
                     .run(&context, &mut report)
                     .map_err(|e| at.library("optimisation", e))?;
                 (designed, problem.clone())
@@ -204,8 +206,7 @@ impl Case {
         };
         let problem = shown;
         let context = Context {
-            spec: &self.spec,
-            plan: &self.plan,
+            case: view,
             problem: &problem,
             solver: solver.as_ref(),
             observer,
@@ -220,6 +221,19 @@ impl Case {
         report.reference = crate::reference::curve(self, &report);
         report.settle();
         Ok(report)
+    }
+
+    /// A roller's load cases for `problem`, its own first; none for other gaps.
+    fn load_cases<'a>(
+        &self,
+        problem: &InterfaceProblem<'a>,
+    ) -> contopt_core::Result<Vec<LoadCase<'a>>> {
+        match &self.plan.roller {
+            Some(roller) => {
+                contopt_roller::load_cases(problem, roller, self.spec.envelope.as_ref())
+            }
+            None => Ok(vec![]),
+        }
     }
 
     /// The case's contact problem, its bodies built and owned: to solve with any solver or
@@ -242,7 +256,7 @@ impl Case {
         let at = &self.locator;
         let contact = &self.spec.contact;
         let approach = match contact.load {
-            crate::spec::LoadSpec::ApproachMm(a) => a,
+            crate::contact::LoadSpec::ApproachMm(a) => a,
             _ => 0.0,
         };
         let open = OPEN_SIZES * built.first().interface().extent();

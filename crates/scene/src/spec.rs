@@ -16,11 +16,15 @@ use contopt_roller::Envelope;
 use serde::{Deserialize, Serialize};
 
 use crate::bodies::BodyKind;
-use crate::gap::GapSpec;
-use crate::methods::Design;
+pub use crate::contact::{ContactSpec, LoadSpec};
+use std::sync::Arc;
+
+use contopt_roller::Roller;
+
+use crate::methods::{Analysis, CaseView, Design};
 use crate::region::OmegaVSpec;
 use crate::registry::{Chosen, Registry, SolverKind};
-use crate::zone::ZoneSpec;
+use crate::zone::Layout;
 
 /// One case: a scene with its sweep value or its `[[case]]` values put in.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -34,7 +38,7 @@ pub struct CaseSpec {
     /// A cylindrical roller bearing around the contact (`[bearing]`): it composes the
     /// contact and the bodies (its roller on the solved raceway) and runs its load cases.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub bearing: Option<crate::bearing::BearingSpec>,
+    pub bearing: Option<crate::bearing_spec::BearingSpec>,
     /// How the bodies meet: the contact zone, the initial gap and the load that presses them.
     pub contact: ContactSpec,
     /// The two bodies: the first below the zone (its outward normal is n¹ of eq. 2.1), the
@@ -103,38 +107,47 @@ impl CaseSpec {
     }
 }
 
+/// The method of an `[optimisation]` before the registry has read it (serde's placeholder,
+/// replaced by [`CaseSpec::read`]).
+fn unread() -> Chosen<dyn Design> {
+    let analysis = Arc::new(Analysis);
+    Chosen::new("none", serde_json::Value::Null, analysis.clone(), analysis)
+}
+
+impl CaseSpec {
+    /// The case's design: its `[optimisation] method`, or the contact analysed as it is.
+    pub fn design(&self) -> &dyn Design {
+        match &self.optimisation {
+            Some(opt) => &*opt.method,
+            None => &Analysis,
+        }
+    }
+
+    /// What the case's design sees of it, on the zone and roller its plan laid out.
+    pub(crate) fn view<'a>(
+        &'a self,
+        layout: &'a Layout,
+        roller: Option<&'a Roller>,
+    ) -> CaseView<'a> {
+        let opt = self.optimisation.as_ref();
+        CaseView {
+            method: opt.map_or("none", |o| o.method.name()),
+            controller: opt.and_then(|o| o.controller.as_ref()),
+            omega_v: opt.and_then(|o| o.omega_v.as_ref()),
+            profile_axis: opt.and_then(|o| o.profile_axis),
+            envelope: self.envelope.as_ref(),
+            gap: &self.contact.gap,
+            layout,
+            roller,
+        }
+    }
+}
+
 /// A key the case must have, at the table that lacks it.
 fn missing(tree: &Node, path: &str) -> InputError {
     let (table, key) = path.rsplit_once('.').unwrap_or(("", path));
     let span = tree.get(table).and_then(Node::span);
     InputError::new(path, span, format!("missing field `{key}`"))
-}
-
-/// How the bodies meet (`[contact]`).
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactSpec {
-    /// The proposed contact zone Ω and its discretisation, shared by both bodies.
-    pub zone: ZoneSpec,
-    /// The initial gap h(x) between the bodies (default flat: zero).
-    #[serde(default)]
-    pub gap: GapSpec,
-    /// What presses the bodies together beyond their own loads (default none).
-    #[serde(default)]
-    pub load: LoadSpec,
-}
-
-/// What presses the bodies together through the contact.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LoadSpec {
-    /// Nothing beyond the bodies' own loads (a finite-element punch's pressure on its top).
-    #[default]
-    None,
-    /// A force \[N\] on the second body, which floats along the contact normal (eq. 2.10).
-    ForceN(f64),
-    /// The second body pushed in by a given approach \[mm\]: it enters the initial gap, h − δ.
-    ApproachMm(f64),
 }
 
 /// The design of the initial gap (`[optimisation]`, §3): what the pressure must satisfy and
@@ -146,7 +159,7 @@ pub struct OptimisationSpec {
     /// `load_split`, `envelope_split` (a roller's crown for its whole envelope),
     /// `profile_search` (Fujiwara–Kawase's parameters tuned for the envelope),
     /// `circular_search` (a circular crown's), or a design of the registry.
-    #[serde(skip_deserializing, default = "crate::methods::unread")]
+    #[serde(skip_deserializing, default = "unread")]
     pub method: Chosen<dyn Design>,
     /// The controller v(x) of p ≤ v·p_max (§3.1); every method but the profile search needs
     /// one.

@@ -10,7 +10,7 @@ use contopt_core::{check, Error, Geometry, Interface, Result};
 use contopt_fem::{Analysis, ElementKind, Spacing, MAX_AXIS_ELEMENTS};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace};
 
-use crate::mesh_zone::MeshSurface;
+use crate::mesh_surface::MeshSurface;
 use serde::{Deserialize, Serialize};
 
 /// The most rings or strips of a zone: their dense surface matrix grows with the square.

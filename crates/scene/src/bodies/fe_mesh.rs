@@ -18,7 +18,7 @@ use contopt_fem::{mesh_bytes, pairing::mortar_bytes, Analysis, Component, FeBody
 use serde::{Deserialize, Serialize};
 
 use super::{misplaced, BodyKind, Placement, Side, Takes};
-use crate::mesh_zone::MeshPart;
+use crate::mesh_surface::MeshPart;
 use crate::meshes::{Imported, MeshFiles};
 use crate::zone::{Layout, ZoneSpec};
 

@@ -20,7 +20,7 @@ impl Design for Analysis {
         let state = c.solver.solve_observed(c.problem, None, c.observer)?;
         report.time("solve", started);
         let mut designed = Designed::contact(state.clone());
-        if let (Some(roller), true) = (&c.plan.roller, state.is_converged()) {
+        if let (Some(roller), true) = (c.case.roller, state.is_converged()) {
             let length = roller.length;
             let drop = c
                 .problem

@@ -21,14 +21,14 @@ pub struct EnvelopeSplit(pub LoadSplitSettings);
 
 impl Design for EnvelopeSplit {
     fn check(&self, c: &Check) -> Result<()> {
-        if !c.roller {
+        if c.case.roller.is_none() {
             return Err(Error::invalid(
                 "method",
                 "envelope_split",
                 "designs a roller's crown: contact.gap = { kind = \"roller\", … }",
             ));
         }
-        if c.spec.envelope.is_none() {
+        if c.case.envelope.is_none() {
             return Err(Error::invalid(
                 "method",
                 "envelope_split",
@@ -43,7 +43,7 @@ impl Design for EnvelopeSplit {
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
         let started = std::time::Instant::now();
         let controller = controller(c)?;
-        let dy = cell_across(c.plan);
+        let dy = cell_across(c.case.layout);
         let crown = contopt_roller::robust_crown(
             c.cases,
             None,

@@ -20,7 +20,7 @@ impl Design for Gap {
     /// and the linear programme's pin none or one; a roller starts straight.
     fn check(&self, c: &Check) -> Result<()> {
         check_controller(c)?;
-        let name = c.method;
+        let name = c.case.method;
         match (&self.0, c.floating) {
             (OptimisationMethod::GivenLoad(s), true) => s.check()?,
             (OptimisationMethod::GivenDisplacement(s), false) => s.check()?,
@@ -79,7 +79,7 @@ impl Design for Gap {
             crown: None,
             roller: None,
         };
-        if c.plan.roller.is_some() && optimum.is_converged() {
+        if c.case.roller.is_some() && optimum.is_converged() {
             let own = contopt_core::ContactState {
                 pressure: optimum.pressure,
                 gap: optimum.gap,

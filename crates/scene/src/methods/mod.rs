@@ -10,39 +10,24 @@ mod envelope;
 mod gap;
 pub(crate) mod search;
 
-use std::sync::Arc;
-
-use analysis::Analysis;
+pub(crate) use analysis::Analysis;
 pub use envelope::EnvelopeSplit;
 pub use gap::Gap;
 pub use search::{CircularSearch, FujiwaraKawaseSearch};
 
-use crate::prepare::Plan;
-use crate::registry::Chosen;
-use crate::spec::{CaseSpec, OptimisationSpec};
+use crate::gap::GapSpec;
+use crate::region::OmegaVSpec;
 use crate::zone::Layout;
-use crate::Case;
 use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{ContactState, Error, GapShape, Result, Termination, GEOMETRY_TOLERANCE};
-use contopt_optimise::{Controller, LoadSplitSettings, Optimisation, Pass, Region, SearchSettings};
+use contopt_optimise::{
+    Controller, ControllerSettings, LoadSplitSettings, Optimisation, Pass, Region, SearchSettings,
+};
 use contopt_results::{CaseReport, CurvePoint, EnvelopeCase, RollerReport, TunedProfile};
-use contopt_roller::{CaseContact, CrownSettings, LoadCase, ProfileFamily, RollerFigures};
-
-/// The design of a case: its `[optimisation] method`, or the contact analysed as it is.
-pub(crate) fn design(spec: &CaseSpec) -> &dyn Design {
-    match &spec.optimisation {
-        Some(opt) => &*opt.method,
-        None => &Analysis,
-    }
-}
-
-/// The method of an `[optimisation]` before the registry has read it (serde's placeholder,
-/// replaced by [`CaseSpec::read`](crate::CaseSpec)).
-pub(crate) fn unread() -> Chosen<dyn Design> {
-    let analysis = Arc::new(Analysis);
-    Chosen::new("none", serde_json::Value::Null, analysis.clone(), analysis)
-}
+use contopt_roller::{
+    CaseContact, CrownSettings, Envelope, LoadCase, ProfileFamily, Roller, RollerFigures,
+};
 
 /// What a design method does: check a case before anything is built, count its dense
 /// matrices, and run. Its name is the one it is registered under
@@ -76,25 +61,40 @@ pub enum BearingCrown {
     Search(ProfileFamily, SearchSettings),
 }
 
-/// What a check sees of a case.
-pub struct Check<'a> {
-    /// The case's settings.
-    pub spec: &'a CaseSpec,
-    /// Its zone with every size known.
-    pub layout: &'a Layout,
+/// What a design sees of its case: the settings of `[optimisation]` besides the method, the
+/// gap, the envelope, and the zone and roller the plan laid out.
+#[derive(Clone, Copy)]
+pub struct CaseView<'a> {
     /// The method's name, as the scene wrote it (for messages).
     pub method: &'a str,
+    /// The controller v(x) of p ≤ v·p_max (§3.1), when the scene gives one.
+    pub controller: Option<&'a ControllerSettings>,
+    /// Ω_v, when the scene gives it (default: all of the zone; a roller's centre row).
+    pub omega_v: Option<&'a OmegaVSpec>,
+    /// The surface axis along which the profile changes, when the scene gives one.
+    pub profile_axis: Option<usize>,
+    /// A roller's envelope of load cases (`[envelope]`).
+    pub envelope: Option<&'a Envelope>,
+    /// The initial gap's shape.
+    pub gap: &'a GapSpec,
+    /// The zone with every size known.
+    pub layout: &'a Layout,
+    /// A roller gap's roller, its crown built.
+    pub roller: Option<&'a Roller>,
+}
+
+/// What a check sees of a case.
+pub struct Check<'a> {
+    /// The case.
+    pub case: CaseView<'a>,
     /// Whether a body floats.
     pub floating: bool,
-    /// Whether the gap is a roller's.
-    pub roller: bool,
 }
 
 /// What a design runs on.
 pub struct Context<'a> {
-    /// The case's settings.
-    pub spec: &'a CaseSpec,
-    pub(crate) plan: &'a Plan,
+    /// The case.
+    pub case: CaseView<'a>,
     /// The contact problem of the case's bodies and gap.
     pub problem: &'a InterfaceProblem<'a>,
     /// The case's contact solver.
@@ -103,13 +103,6 @@ pub struct Context<'a> {
     pub observer: &'a dyn Observer,
     /// A roller's load cases, its own first (empty for other gaps).
     pub cases: &'a [LoadCase<'a>],
-}
-
-impl Context<'_> {
-    /// The zone with every size known.
-    pub fn layout(&self) -> &Layout {
-        &self.plan.layout
-    }
 }
 
 /// What a design found: its last iterate, how it ended, and its figures.
@@ -173,28 +166,9 @@ impl Designed {
     }
 }
 
-/// A roller's load cases for `problem`, its own first; none for other gaps.
-pub(crate) fn load_cases<'a>(
-    case: &Case,
-    problem: &InterfaceProblem<'a>,
-) -> Result<Vec<LoadCase<'a>>> {
-    match &case.plan.roller {
-        Some(roller) => contopt_roller::load_cases(problem, roller, case.spec.envelope.as_ref()),
-        None => Ok(vec![]),
-    }
-}
-
-/// The optimisation settings of a design method's case.
-fn optimisation(spec: &CaseSpec) -> Result<&OptimisationSpec> {
-    spec.optimisation
-        .as_ref()
-        .ok_or_else(|| Error::invalid("method", "none", "a design needs [optimisation]"))
-}
-
 /// The controller a method needs, checked against the zone's reach, and its regions.
 fn check_controller(c: &Check) -> Result<()> {
-    let opt = optimisation(c.spec)?;
-    let Some(settings) = &opt.controller else {
+    let Some(settings) = c.case.controller else {
         return Err(Error::invalid(
             "controller",
             "missing",
@@ -215,17 +189,17 @@ fn check_controller(c: &Check) -> Result<()> {
         other => other,
     };
     settings.build().map_err(within)?;
-    let [hx, hy] = c.layout.half_extent();
-    let [cx, cy] = c.layout.edge_cell();
+    let [hx, hy] = c.case.layout.half_extent();
+    let [cx, cy] = c.case.layout.edge_cell();
     settings
         .check_reach([hx, hy, 0.0], [cx, cy, 0.0])
         .map_err(within)?;
-    check_regions(opt)
+    check_regions(&c.case)
 }
 
 /// Ω_v and the profile's axis.
-fn check_regions(opt: &OptimisationSpec) -> Result<()> {
-    if let Some(omega_v) = &opt.omega_v {
+fn check_regions(case: &CaseView) -> Result<()> {
+    if let Some(omega_v) = case.omega_v {
         omega_v.check().map_err(|e| match e {
             Error::InvalidInput {
                 field,
@@ -239,7 +213,7 @@ fn check_regions(opt: &OptimisationSpec) -> Result<()> {
             other => other,
         })?;
     }
-    if let Some(axis) = opt.profile_axis {
+    if let Some(axis) = case.profile_axis {
         contopt_core::check::count("profile_axis", axis, 0, 1)?;
     }
     Ok(())
@@ -247,7 +221,7 @@ fn check_regions(opt: &OptimisationSpec) -> Result<()> {
 
 /// A design of a roller's crown starts from the straight roller: it designs the whole crown.
 fn straight_roller(c: &Check, method: &str) -> Result<()> {
-    match c.spec.contact.gap.roller_gap() {
+    match c.case.gap.roller_gap() {
         Some(g) if g.profile == CrownSettings::Straight => Ok(()),
         Some(_) => Err(Error::invalid(
             "method",
@@ -260,8 +234,8 @@ fn straight_roller(c: &Check, method: &str) -> Result<()> {
 }
 
 /// The cell size across a roller's grid \[mm\].
-fn cell_across(plan: &Plan) -> f64 {
-    plan.layout.edge_cell()[1]
+fn cell_across(layout: &Layout) -> f64 {
+    layout.edge_cell()[1]
 }
 
 /// What an optimisation of a case is set up from.
@@ -276,9 +250,8 @@ struct Setup {
 
 /// The case's controller, built from its settings.
 fn controller(c: &Context) -> Result<Box<dyn Controller>> {
-    optimisation(c.spec)?
+    c.case
         .controller
-        .as_ref()
         .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?
         .build()
 }
@@ -288,13 +261,13 @@ fn controller(c: &Context) -> Result<Box<dyn Controller>> {
 /// faces beyond Ω_v following its edge, [`follow_edge`]), else at every point; Ω_v from
 /// `omega_v`, a roller's centre row by default, else everywhere.
 fn setup(c: &Context) -> Result<Setup> {
-    let opt = optimisation(c.spec)?;
-    let roller = c.plan.roller.is_some();
+    let case = &c.case;
+    let roller = case.roller.is_some();
     let iface = c.problem.interface();
-    let axis = opt.profile_axis.or(roller.then_some(0));
+    let axis = case.profile_axis.or(roller.then_some(0));
     let controller = controller(c)?;
-    let dy = cell_across(c.plan);
-    let omega_v = match (&opt.omega_v, roller) {
+    let dy = cell_across(case.layout);
+    let omega_v = match (case.omega_v, roller) {
         (Some(region), _) => Some(region.mask(iface)),
         (None, true) => Some(
             iface
@@ -412,10 +385,10 @@ fn roller_figures(
     drop: &[f64],
     tuned: Option<TunedProfile>,
 ) -> Option<RollerReport> {
-    c.plan.roller.as_ref()?;
+    c.case.roller?;
     let points = c.problem.interface().points();
-    let figures = RollerFigures::new(contacts, points, drop, cell_across(c.plan));
-    roller_report(&figures, c.spec.envelope.is_some(), tuned)
+    let figures = RollerFigures::new(contacts, points, drop, cell_across(c.case.layout));
+    roller_report(&figures, c.case.envelope.is_some(), tuned)
 }
 
 /// The report of a roller's figures: its first case's, and every case's as an envelope when
@@ -467,7 +440,7 @@ fn envelope_contacts(
     change: &[f64],
     report: &mut CaseReport,
 ) -> std::result::Result<Vec<ContactState>, Termination> {
-    if c.spec.envelope.is_none() || c.cases.len() < 2 {
+    if c.case.envelope.is_none() || c.cases.len() < 2 {
         return Ok(vec![own.clone()]);
     }
     let started = std::time::Instant::now();

@@ -77,18 +77,14 @@ pub(crate) fn tuned_profile(tuned: &TunedCrown) -> TunedProfile {
 
 impl ProfileSearch {
     fn check(&self, c: &Check) -> Result<()> {
-        if !c.roller {
+        if c.case.roller.is_none() {
             return Err(Error::invalid(
                 "method",
-                c.method,
+                c.case.method,
                 "tunes a roller's crown: contact.gap = { kind = \"roller\", … }",
             ));
         }
-        if c.spec
-            .optimisation
-            .as_ref()
-            .is_some_and(|o| o.controller.is_some())
-        {
+        if c.case.controller.is_some() {
             return Err(Error::invalid(
                 "controller",
                 "given",
@@ -96,14 +92,12 @@ impl ProfileSearch {
             ));
         }
         self.0.check()?;
-        straight_roller(c, c.method)
+        straight_roller(c, c.case.method)
     }
 
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
-        let roller =
-            c.plan.roller.as_ref().ok_or_else(|| {
-                Error::invalid("method", "the profile search", "needs a roller gap")
-            })?;
+        let roller = (c.case.roller)
+            .ok_or_else(|| Error::invalid("method", c.case.method, "needs a roller gap"))?;
         let started = std::time::Instant::now();
         let points = c.problem.interface().points();
         let mut worst = |states: &[contopt_core::ContactState]| {

@@ -1,20 +1,28 @@
-//! The first half of a case's run, and all of its check: every value, every combination of
+//! The plan of a case, the first stage of its run and all of its check: every value, every combination of
 //! the parts, the memory the case will take — nothing built, nothing solved. What this passes,
 //! the run accepts; what the run would refuse, this refuses, at the key that says so.
 
 use contopt_core::Material;
 use contopt_roller::Roller;
 
-use crate::bodies::{check_load, check_pair, BodyKind, Placement, Side};
+mod budget;
+mod pair;
+pub(crate) mod survey;
+
+pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
+
+use crate::bodies::{BodyKind, Placement, Side};
+use crate::contact::LoadSpec;
 use crate::error::Locator;
 use crate::gap::{GapSpec, Hertz};
-use crate::mesh_zone::MeshSurface;
+use crate::mesh_surface::MeshSurface;
 use crate::meshes::MeshFiles;
 use crate::methods::Check;
 use crate::registry::Chosen;
-use crate::spec::{CaseSpec, LoadSpec};
+use crate::spec::CaseSpec;
 use crate::zone::{Layout, ZoneSpec};
 use crate::SceneError;
+use pair::{check_load, check_pair};
 
 /// A case checked and ready to run: its zone's sizes, Hertz's nominal contact, a roller's
 /// geometry, its memory limits and the key of its bodies.
@@ -31,7 +39,7 @@ pub(crate) struct Plan {
     /// The memory limit of dense matrices \[bytes\].
     pub dense_limit: u64,
     /// The case's memory estimate and limit, checked.
-    pub memory: crate::budget::Memory,
+    pub memory: budget::Memory,
     /// What the case's bodies are built from: cases with equal keys share one build.
     pub key: BuildKey,
     /// A bearing's plan (`[bearing]`).
@@ -48,7 +56,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         .gap
         .check(&contact.zone)
         .map_err(|e| at.library("contact.gap", e))?;
-    let surveyed = crate::mesh_zone::survey(&spec.body, &contact.zone, meshes, at)?;
+    let surveyed = survey::survey(&spec.body, &contact.zone, meshes, at)?;
     check_measured(spec, surveyed.as_ref(), at)?;
     let e_star = pair_modulus(&spec.body, &contact.zone);
     let (force, approach) = load_figures(contact.load);
@@ -72,18 +80,12 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         .map_err(|e| at.library("", e))?;
     let floating = floats(spec, &layout);
     let check = Check {
-        spec,
-        layout: &layout,
-        method: spec
-            .optimisation
-            .as_ref()
-            .map_or("none", |o| o.method.name()),
+        case: spec.view(&layout, roller.as_ref()),
         floating,
-        roller: roller.is_some(),
     };
     // A bearing checks its own design over its own envelope.
     if bearing.is_none() {
-        crate::methods::design(spec)
+        (spec.design())
             .check(&check)
             .map_err(|e| at.library("optimisation", e))?;
     }
@@ -101,8 +103,8 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
             .map_err(|e| at.library("output.subsurface", e))?;
     }
     let solver = spec.solver.build().map_err(|e| at.library("solver", e))?;
-    let dense_limit = crate::budget::dense_limit(spec).map_err(|e| at.library("", e))?;
-    let memory = crate::budget::check(spec, &layout, solver.as_ref(), at, meshes)?;
+    let dense_limit = budget::dense_limit(spec).map_err(|e| at.library("", e))?;
+    let memory = budget::check(spec, &layout, solver.as_ref(), at, meshes)?;
     Ok(Plan {
         memory,
         layout,

@@ -56,11 +56,11 @@ pub(crate) fn check(
     let points = layout.points();
     let bodies: Vec<Option<u64>> = (0..spec.body.len())
         .map(|k| {
-            let place = crate::prepare::placement(spec, layout, k, at, meshes);
+            let place = super::placement(spec, layout, k, at, meshes);
             spec.body[k].memory(&place)
         })
         .collect();
-    let design = crate::methods::design(spec);
+    let design = spec.design();
     let copies = points.map(|n| solver.dense_copies(n).max(design.dense_copies(n, solver)));
     let dense = points
         .zip(copies)

@@ -1,4 +1,9 @@
-//! The zone of imported meshes (`contact.zone.kind = "mesh"`): the contact faces of bodies
+//! The zone of imported meshes (`contact.zone.kind = "mesh"`) as the check surveys it: the
+//! contact faces a user meshed (`fe_mesh`), each body's own chain of element edges, and what
+//! the pairing of two such bodies says of the surface before either is built
+//! ([`MeshSurface`]). The survey itself is the plan's ([`crate::plan`]), the paired build the
+//! build stage's ([`crate::build`]).
+//!
 //! that a user meshed (`fe_mesh`), each body's own chain of element edges, curved or straight.
 //!
 //! Two imported bodies are paired before either is condensed: the first body's contact faces
@@ -20,19 +25,11 @@
 
 use std::collections::{HashMap, HashSet};
 
-use contopt_core::{check, Error, Result};
+use contopt_core::Result;
 use contopt_fem::element::lagrange2;
-use contopt_fem::{Analysis, ContactPairing, Face, FaceSample, FeModel, PairingSettings};
+use contopt_fem::{Analysis, Face, FeModel};
 
 use contopt_results::Resolution;
-
-use crate::bodies::BodyKind;
-use crate::build::Built;
-use crate::error::Locator;
-use crate::meshes::MeshFiles;
-use crate::registry::Chosen;
-use crate::zone::MeshZone;
-use crate::{Case, SceneError};
 
 /// A chain's end is a corner of its body when the boundary turns there by more than this
 /// angle's cosine (30°): a punch's rim or the axis; less, and the boundary goes on beyond it
@@ -98,7 +95,7 @@ impl MeshPart {
     }
 
     /// Whether it floats: a free motion moves its contact faces.
-    fn floats(&self) -> Result<bool> {
+    pub(crate) fn floats(&self) -> Result<bool> {
         Ok(self.free_motions()?.iter().any(FreeMotion::moves_faces))
     }
 
@@ -119,14 +116,14 @@ impl MeshPart {
     }
 
     /// The length of the chord of face `f` \[mm\].
-    fn chord(&self, f: Face) -> f64 {
+    pub(crate) fn chord(&self, f: Face) -> f64 {
         let (a, _) = self.face_at(f, -1.0);
         let (b, _) = self.face_at(f, 1.0);
         (b[0] - a[0]).hypot(b[1] - a[1])
     }
 
     /// The ends of its contact chain(s), each a corner of the body or not.
-    fn ends(&self) -> Vec<ChainEnd> {
+    pub(crate) fn ends(&self) -> Vec<ChainEnd> {
         let mesh = self.model.mesh();
         let corners = |f: Face| {
             let [a, _, b] = mesh.face_nodes(f);
@@ -284,174 +281,5 @@ impl MeshSurface {
             half_width_mm: share * length,
             cells: share * faces.len() as f64,
         }
-    }
-}
-
-/// The mesh zone of `spec`, surveyed from its bodies' meshes (`None` for other zones);
-/// errors placed at the body or the zone's key.
-pub(crate) fn survey(
-    bodies: &[Chosen<dyn BodyKind>],
-    zone: &crate::zone::ZoneSpec,
-    meshes: &MeshFiles,
-    at: &Locator,
-) -> Result<Option<MeshSurface>, SceneError> {
-    let crate::zone::ZoneSpec::Mesh(zone) = zone else {
-        return Ok(None);
-    };
-    let settings = settings(zone).map_err(|e| at.library("contact.zone", e))?;
-    let parts = parts(bodies, zone, meshes, at)?;
-    let floats = parts
-        .iter()
-        .flatten()
-        .map(MeshPart::floats)
-        .collect::<Result<Vec<bool>>>()
-        .map_err(|e| at.library("body", e))?;
-    if floats == [true, true] {
-        return Err(at.at(
-            "body[1].supports",
-            "both imported bodies float along the contact normal, each pressed only by the \
-             other: hold one of them (a support that stops its motion along the normal), as \
-             the run would refuse two free motions that move the contact alike",
-        ));
-    }
-    let floating = floats.contains(&true);
-    let nodes = [0, 1].map(|k| parts[k].as_ref().map(|p| p.model.mesh().nodes().len()));
-    let (owner, paired) = match &parts {
-        [Some(a), Some(b)] => {
-            let survey =
-                ContactPairing::survey((&a.model, &a.contact), (&b.model, &b.contact), &settings)
-                    .map_err(|e| pairing_error(e, at))?;
-            (a, Some(survey))
-        }
-        [Some(a), None] | [None, Some(a)] => (a, None),
-        [None, None] => {
-            return Err(at.at(
-                "contact.zone.kind",
-                "a zone of kind \"mesh\" is the contact faces of an imported body: give one \
-                 body (or both) of kind \"fe_mesh\"",
-            ))
-        }
-    };
-    let index: HashMap<Face, usize> = owner
-        .contact
-        .iter()
-        .enumerate()
-        .map(|(k, &f)| (f, k))
-        .collect();
-    let (points, faces_of, samples): (Vec<[f64; 2]>, Vec<Vec<usize>>, usize) = match &paired {
-        Some(survey) => (
-            survey.nodes.clone(),
-            (survey.node_faces.iter())
-                .map(|faces| faces.iter().map(|f| index[f]).collect())
-                .collect(),
-            survey.first.len(),
-        ),
-        None => {
-            let gauss: Vec<FaceSample> = (owner.contact.iter())
-                .flat_map(|&f| FaceSample::gauss(&owner.model, f))
-                .collect();
-            (
-                gauss.iter().map(|s| s.point).collect(),
-                gauss.iter().map(|s| vec![index[&s.face]]).collect(),
-                gauss.len(),
-            )
-        }
-    };
-    let face_lengths: Vec<f64> = owner.contact.iter().map(|&f| owner.chord(f)).collect();
-    let half_extent = points.iter().fold([0.0f64; 2], |m, p| {
-        [m[0].max(p[0].abs()), m[1].max(p[1].abs())]
-    });
-    let mut ends = vec![];
-    for part in parts.iter().flatten() {
-        ends.extend(part.ends());
-    }
-    Ok(Some(MeshSurface {
-        analysis: zone.analysis,
-        samples,
-        cell: face_lengths.iter().fold(0.0, |m: f64, &l| m.max(l)),
-        points,
-        faces_of,
-        face_lengths,
-        paired: paired.is_some(),
-        nodes,
-        half_extent,
-        ends,
-        floating,
-    }))
-}
-
-/// The pairing's settings of a zone: its search distance, positive and finite when given.
-fn settings(zone: &MeshZone) -> Result<PairingSettings> {
-    if let Some(d) = zone.search_mm {
-        check::positive("search_mm", d)?;
-    }
-    Ok(PairingSettings {
-        search_distance: zone.search_mm,
-    })
-}
-
-/// The parts the bodies offer, each error at its body.
-fn parts(
-    bodies: &[Chosen<dyn BodyKind>],
-    zone: &MeshZone,
-    meshes: &MeshFiles,
-    at: &Locator,
-) -> Result<[Option<MeshPart>; 2], SceneError> {
-    let part = |k: usize| {
-        bodies[k]
-            .part(meshes, zone.analysis)
-            .transpose()
-            .map_err(|e| at.library(&format!("body[{k}]"), e))
-    };
-    Ok([part(0)?, part(1)?])
-}
-
-/// A pairing's error at the key it concerns: a chain that breaks at its body's `contact`,
-/// faces that do not pair at the zone.
-fn pairing_error(e: Error, at: &Locator) -> SceneError {
-    let Error::InvalidInput {
-        field,
-        value,
-        reason,
-    } = e
-    else {
-        return at.library("contact.zone", e);
-    };
-    let key = match field.as_str() {
-        f if f.starts_with("pairing.first") => "body[0].contact",
-        f if f.starts_with("pairing.second") => "body[1].contact",
-        _ => "contact.zone",
-    };
-    at.at(
-        key,
-        format!("the contact faces ({value}) do not pair: {reason}"),
-    )
-}
-
-impl Case {
-    /// The two imported bodies of a mesh zone, paired and built together (`None` unless both
-    /// bodies are imported), with the pairing that measured the gap between them.
-    pub(crate) fn build_pair(&self) -> Result<Option<Built>, SceneError> {
-        let start = std::time::Instant::now();
-        let (spec, at) = (&self.spec, &self.locator);
-        let crate::zone::ZoneSpec::Mesh(zone) = &spec.contact.zone else {
-            return Ok(None);
-        };
-        let [Some(first), Some(second)] = parts(&spec.body, zone, &self.meshes, at)? else {
-            return Ok(None);
-        };
-        let settings = settings(zone).map_err(|e| at.library("contact.zone", e))?;
-        let pairing = ContactPairing::new(
-            (&first.model, &first.contact),
-            (&second.model, &second.contact),
-            &settings,
-        )
-        .map_err(|e| pairing_error(e, at))?;
-        let (a, b) = pairing
-            .bodies((first.name, first.model), (second.name, second.model))
-            .map_err(|e| at.library("body", e))?;
-        let stats = [*a.stats(), *b.stats()];
-        let bodies: [Box<dyn contopt_core::ElasticBody>; 2] = [Box::new(a), Box::new(b)];
-        Ok(Some(Built::paired(bodies, pairing, stats, start.elapsed())))
     }
 }
