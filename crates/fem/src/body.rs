@@ -8,7 +8,7 @@ use contopt_core::{
 };
 use faer::Mat;
 
-use crate::pairing::{FaceSample, Mortar};
+use crate::samples::{gap_basis, nodes_of, FaceSample, Mortar};
 use crate::system::{Dof, System};
 use crate::{Face, FeModel};
 
@@ -365,44 +365,6 @@ impl Sampled {
             rows,
         })
     }
-}
-
-/// The nodes of `faces`, sorted and distinct.
-pub(crate) fn nodes_of(model: &FeModel, faces: &[Face]) -> Vec<usize> {
-    let mut nodes: Vec<usize> = faces
-        .iter()
-        .flat_map(|&f| model.mesh.face_nodes(f))
-        .collect();
-    nodes.sort_unstable();
-    nodes.dedup();
-    nodes
-}
-
-/// The map Q from the faces' nodes `face_nodes` (sorted, distinct; every node of a sample's
-/// face among them) to the `samples`: each face's quadratic shape functions at the point.
-pub(crate) fn gap_basis(
-    model: &FeModel,
-    samples: &[FaceSample],
-    face_nodes: &[usize],
-) -> Result<GapShape> {
-    let rows = samples
-        .iter()
-        .map(|sample| {
-            let nodes = model.mesh.face_nodes(sample.face);
-            let shape = model.face_point(sample.face, sample.s).shape;
-            (0..3)
-                .map(|k| (face_nodes.partition_point(|&j| j < nodes[k]), shape[k]))
-                .collect()
-        })
-        .collect();
-    let nodes = face_nodes
-        .iter()
-        .map(|&k| {
-            let x = model.mesh.nodes()[k];
-            [x[0], x[1], 0.0]
-        })
-        .collect();
-    GapShape::new(nodes, rows)
 }
 
 /// The influence matrix A = L K⁻¹ Lᵀ (eq. 2.22) from the face block T of K⁻¹, the face

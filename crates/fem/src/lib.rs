@@ -18,6 +18,7 @@ mod mesh;
 mod model;
 pub mod pairing;
 mod recovery;
+mod samples;
 mod solution;
 mod system;
 
@@ -28,6 +29,7 @@ pub use element::ElementKind;
 pub use factor::factorisations;
 pub use mesh::{body_bytes, mesh_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
 pub use model::{Component, FeModel};
-pub use pairing::{ContactPairing, FaceSample, PairingSettings, PairingSurvey};
+pub use pairing::{ContactPairing, PairingSettings, PairingSurvey};
+pub use samples::FaceSample;
 pub use solution::{Solution, Stress};
 pub use system::RigidMotion;

@@ -49,8 +49,8 @@ use std::collections::{HashMap, HashSet};
 use contopt_core::{check, memory, Error, GapShape, Interface, Result, GEOMETRY_TOLERANCE};
 use faer::Mat;
 
-use crate::body::{gap_basis, nodes_of};
 use crate::element::GAUSS3;
+use crate::samples::{gap_basis, nodes_of, FaceSample, Mortar};
 use crate::{Analysis, Face, FeBody, FeModel};
 
 /// Sub-segments shorter than this part of their face's parameter range [−1, 1] merge with a
@@ -78,40 +78,6 @@ const ROOT_STEPS: usize = 100;
 /// d̃ₖ = ∫ N¹ₖ d dS / w̃ₖ would divide by it: its shape function joins its face's middle
 /// node's ([`ties`]).
 const NODE_SHARE: f64 = 0.1;
-
-/// One interface point of a finite-element body: where on which face the body's displacement
-/// is interpolated, and the point, surface measure and normal the interface reports.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FaceSample {
-    /// The boundary face.
-    pub face: Face,
-    /// The parameter along the face, s ∈ [−1, 1] (start node −1, middle 0, end 1), where the
-    /// face's shape functions interpolate the displacement.
-    pub s: f64,
-    /// The interface point (x, y) \[mm\], (r, z) in axisymmetry: the point itself, or the first
-    /// body's point for a partner of a [`ContactPairing`].
-    pub point: [f64; 2],
-    /// Surface measure w \[mm²\] (quadrature weight × Jacobian × thickness or 2πr).
-    pub weight: f64,
-    /// Unit outward normal along which the displacement is measured (−n¹ for a partner).
-    pub normal: [f64; 2],
-}
-
-impl FaceSample {
-    /// The three Gauss points of `face`, as [`FeBody::new`] checks contact (§2.2).
-    pub fn gauss(model: &FeModel, face: Face) -> [FaceSample; 3] {
-        GAUSS3.map(|(s, w)| {
-            let fp = model.face_point(face, s);
-            FaceSample {
-                face,
-                s,
-                point: fp.x,
-                weight: w * fp.jacobian * model.analysis.measure(fp.x[0]),
-                normal: fp.normal,
-            }
-        })
-    }
-}
 
 /// How a [`ContactPairing`] searches.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -204,7 +170,7 @@ impl ContactPairing {
     ) -> Result<Self> {
         let (paired, search_distance) = pair(first, second, settings)?;
         let (nodes, shares) = Nodes::new(first.0, &paired.first)?;
-        let mortar = Mortar::new(&nodes, &shares, paired.first.len())?;
+        let mortar = mortar(&nodes, &shares, paired.first.len())?;
         let shape = shares.shape;
         Ok(Self {
             initial_gap: mortar.apply(&paired.measured_gap),
@@ -991,51 +957,22 @@ struct Shares {
     shape: GapShape,
 }
 
-/// The mortar map T = W̃⁻¹ Bᵀ W from the pairing's points to the interface's nodes (see the
-/// [module](self)): node k's value of point values v is ∫ N¹ₖ v dS / w̃ₖ, and a node's force
-/// spreads over the points as the pressure N¹ₖ/w̃ₖ (Tᵀ).
-#[derive(Clone, Debug)]
-pub(crate) struct Mortar {
-    /// T, nodes × points.
-    t: Mat<f64>,
-}
-
-impl Mortar {
-    fn new(nodes: &Nodes, shares: &Shares, points: usize) -> Result<Self> {
-        let m = nodes.points.len();
-        memory::require(
-            format!("the map of {points} paired points onto {m} nodes"),
-            mortar_bytes(points, m),
-            memory::BODY_LIMIT_BYTES,
-            "pair fewer faces",
-        )?;
-        let mut t = Mat::<f64>::zeros(m, points);
-        for (k, share) in shares.points.iter().enumerate() {
-            for &(i, w) in share {
-                t[(k, i)] += w / nodes.weights[k];
-            }
+/// The mortar map T of `nodes` and their `shares` of the `points` (see [`Mortar`]).
+fn mortar(nodes: &Nodes, shares: &Shares, points: usize) -> Result<Mortar> {
+    let m = nodes.points.len();
+    memory::require(
+        format!("the map of {points} paired points onto {m} nodes"),
+        mortar_bytes(points, m),
+        memory::BODY_LIMIT_BYTES,
+        "pair fewer faces",
+    )?;
+    let mut t = Mat::<f64>::zeros(m, points);
+    for (k, share) in shares.points.iter().enumerate() {
+        for &(i, w) in share {
+            t[(k, i)] += w / nodes.weights[k];
         }
-        Ok(Self { t })
     }
-
-    /// T v: point values onto the nodes.
-    pub(crate) fn apply(&self, v: &[f64]) -> Vec<f64> {
-        (0..self.t.nrows())
-            .map(|k| (0..self.t.ncols()).map(|i| self.t[(k, i)] * v[i]).sum())
-            .collect()
-    }
-
-    /// Tᵀ f: node forces onto the points.
-    pub(crate) fn apply_transpose(&self, f: &[f64]) -> Vec<f64> {
-        (0..self.t.ncols())
-            .map(|i| (0..self.t.nrows()).map(|k| self.t[(k, i)] * f[k]).sum())
-            .collect()
-    }
-
-    /// T A Tᵀ.
-    pub(crate) fn congruence(&self, a: &Mat<f64>) -> Mat<f64> {
-        &self.t * (a * self.t.transpose())
-    }
+    Ok(Mortar::new(t))
 }
 
 #[cfg(test)]
