@@ -165,3 +165,55 @@ impl Case {
         Ok(Some(Built::paired(bodies, pairing, stats, start.elapsed())))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use crate::{Format, Registry};
+
+    /// A sphere on a bed, swept over `key` with `values`.
+    fn sweep(key: &str, values: &str) -> crate::Scene {
+        let text = format!(
+            "name = \"sweep\"\n[sweep]\nkey = \"{key}\"\nvalues = {values}\n[contact]\nzone = \
+             {{ kind = \"rings\", rings = 40, radius_mm = 5.0 }}\ngap = {{ kind = \"sphere\", \
+             radius_mm = 20.0 }}\nload = {{ force_n = 1000.0 }}\n[[body]]\nkind = \"winkler\"\n\
+             modulus_mpa_per_mm = 50.0\n[[body]]\nkind = \"rigid\"\n"
+        );
+        Registry::standard()
+            .parse(&text, Format::Toml, Path::new("sweep.toml"))
+            .unwrap()
+    }
+
+    /// Cases share a build when their zone, bodies and load are equal as values: a sweep over
+    /// the gap shares one, a sweep over a body's setting or the zone does not.
+    #[test]
+    fn cases_share_bodies_by_their_key() {
+        let distinct = |scene: &crate::Scene| scene.run().distinct_bodies();
+        assert_eq!(distinct(&sweep("contact.gap.radius_mm", "[10.0, 20.0]")), 1);
+        assert_eq!(
+            distinct(&sweep("body.0.modulus_mpa_per_mm", "[10.0, 20.0, 10.0]")),
+            2
+        );
+        assert_eq!(distinct(&sweep("contact.zone.rings", "[20, 40]")), 2);
+        assert_eq!(
+            distinct(&sweep("contact.load.force_n", "[500.0, 1000.0]")),
+            2
+        );
+    }
+
+    /// The bodies are built on the zone's surface: the bed's points are the rings', and the
+    /// rigid body above stands on them mirrored.
+    #[test]
+    fn bodies_stand_on_the_zone() {
+        let scene = sweep("contact.gap.radius_mm", "[10.0]");
+        let built = scene.cases()[0].build().unwrap();
+        let (bed, rigid) = (built.first().interface(), built.second().interface());
+        assert_eq!(bed.len(), 40);
+        assert_eq!(bed.points(), rigid.points());
+        let normal = bed.normals()[0];
+        assert!(normal.iter().any(|&c| c != 0.0));
+        assert_eq!(rigid.normals()[0], normal.map(|c| -c));
+        assert!(built.pairing().is_none() && built.stats().is_none());
+    }
+}

@@ -88,3 +88,46 @@ pub(crate) fn check(
         limit_bytes: limit,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use crate::{Format, Registry};
+
+    /// A sphere on a bed on `rings` rings, with `extra` settings.
+    fn scene(rings: usize, extra: &str) -> Result<crate::Scene, crate::SceneError> {
+        let text = format!(
+            "name = \"budget\"\n{extra}\n[contact]\nzone = {{ kind = \"rings\", rings = {rings}, \
+             radius_mm = 5.0 }}\ngap = {{ kind = \"sphere\", radius_mm = 20.0 }}\nload = {{ \
+             force_n = 1000.0 }}\n[[body]]\nkind = \"winkler\"\nmodulus_mpa_per_mm = 50.0\n\
+             [[body]]\nkind = \"rigid\"\n"
+        );
+        Registry::standard().parse(&text, Format::Toml, Path::new("budget.toml"))
+    }
+
+    /// The estimate grows with the points, each point's vectors and dense copies counted.
+    #[test]
+    fn the_estimate_counts_the_points() {
+        let memory = |rings| scene(rings, "").unwrap().cases()[0].memory();
+        let [small, large] = [memory(100), memory(200)];
+        assert_eq!(small.limit_bytes, super::DEFAULT_MEMORY_LIMIT_BYTES);
+        assert!(large.estimate_bytes > small.estimate_bytes);
+        // At least the per-point vectors of every point.
+        assert!(small.estimate_bytes >= 100 * super::POINT_BYTES);
+    }
+
+    /// A case past its limit is refused before anything is built, with both numbers.
+    #[test]
+    fn a_case_past_its_limit_is_refused_with_its_estimate() {
+        let refused = scene(2000, "memory_limit_mb = 1.0")
+            .unwrap_err()
+            .to_string();
+        assert!(refused.contains("2000 interface points"), "{refused}");
+        assert!(refused.contains("memory_limit_mb"), "{refused}");
+        let refused = scene(100, "memory_limit_mb = -1.0")
+            .unwrap_err()
+            .to_string();
+        assert!(refused.contains("memory_limit_mb"), "{refused}");
+    }
+}

@@ -81,3 +81,76 @@ pub fn check_load(
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use contopt_input::Node;
+
+    use super::*;
+    use crate::Registry;
+
+    /// The bodies and zone of a scene's text.
+    fn pair(bodies: &str, zone: &str) -> (Vec<Chosen<dyn BodyKind>>, ZoneSpec) {
+        let text = format!("body = [{bodies}]\nzone = {zone}\n");
+        let node = Node::parse_toml(&text).unwrap();
+        let registry = Registry::standard();
+        let Some(contopt_input::Value::Array(items)) = node.get("body").map(Node::value) else {
+            panic!("no bodies in {text}");
+        };
+        let bodies = (items.iter().enumerate())
+            .map(|(k, b)| registry.body(b, &format!("body[{k}]")).unwrap())
+            .collect();
+        (bodies, node.deserialize_at("zone").unwrap())
+    }
+
+    const RINGS: &str = "{ kind = \"rings\", rings = 10, radius_mm = 5.0 }";
+    const FACES: &str = "{ kind = \"faces\", analysis = \"axisymmetric\", radius_mm = 5.0, \
+                         elements = 4 }";
+    const BED: &str = "{ kind = \"winkler\", modulus_mpa_per_mm = 50.0 }";
+    const MATERIAL: &str = "material = { e_mpa = 2e5, nu = 0.3 }";
+
+    fn refusal(result: Result<()>) -> String {
+        result.unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_pair_is_two_bodies_not_both_rigid() {
+        let (one, zone) = pair("\"rigid\"", RINGS);
+        assert!(refusal(check_pair(&one, &zone)).contains("1 bodies"));
+        let (rigid, zone) = pair("\"rigid\", \"rigid\"", RINGS);
+        assert!(refusal(check_pair(&rigid, &zone)).contains("two rigid bodies"));
+        let (bed, zone) = pair(&format!("{BED}, \"rigid\""), RINGS);
+        assert!(check_pair(&bed, &zone).is_ok());
+    }
+
+    #[test]
+    fn faces_are_meshed_by_a_finite_element_body() {
+        let (bed, zone) = pair(&format!("{BED}, \"rigid\""), FACES);
+        assert!(refusal(check_pair(&bed, &zone)).contains("meshed by a finite-element body"));
+        let base = format!(
+            "{{ kind = \"fe_base\", {MATERIAL}, radius_mm = 10.0, height_mm = 5.0, \
+             supports = [\"clamped\"] }}"
+        );
+        let (fe, zone) = pair(&format!("{base}, \"rigid\""), FACES);
+        assert!(check_pair(&fe, &zone).is_ok());
+    }
+
+    #[test]
+    fn the_load_fits_the_body_above() {
+        let (bodies, zone) = pair(&format!("{BED}, \"rigid\""), RINGS);
+        let both = [&bodies[0], &bodies[1]];
+        assert!(check_load(both, &zone, LoadSpec::ForceN(10.0)).is_ok());
+        assert!(refusal(check_load(both, &zone, LoadSpec::ForceN(-1.0))).contains("force_n"));
+        assert!(refusal(check_load(both, &zone, LoadSpec::None)).contains("nothing presses"));
+        assert!(check_load(both, &zone, LoadSpec::ApproachMm(0.1)).is_ok());
+        // A bed above is held by the ground: a force cannot press it.
+        let (upside, zone) = pair(&format!("\"rigid\", {BED}"), RINGS);
+        let held = refusal(check_load(
+            [&upside[0], &upside[1]],
+            &zone,
+            LoadSpec::ForceN(1.0),
+        ));
+        assert!(held.contains("is held and cannot float"), "{held}");
+        assert!(held.contains("winkler"), "{held}");
+    }
+}
