@@ -19,7 +19,7 @@ pub struct FaceSample {
     /// face's shape functions interpolate the displacement.
     pub s: f64,
     /// The interface point (x, y) \[mm\], (r, z) in axisymmetry: the point itself, or the first
-    /// body's point for a partner of a [`ContactPairing`].
+    /// body's point for a partner of a [`ContactPairing`](crate::ContactPairing).
     pub point: [f64; 2],
     /// Surface measure w \[mm²\] (quadrature weight × Jacobian × thickness or 2πr).
     pub weight: f64,
@@ -28,7 +28,7 @@ pub struct FaceSample {
 }
 
 impl FaceSample {
-    /// The three Gauss points of `face`, as [`FeBody::new`] checks contact (§2.2).
+    /// The three Gauss points of `face`, as [`FeBody::new`](crate::FeBody::new) checks contact (§2.2).
     pub fn gauss(model: &FeModel, face: Face) -> [FaceSample; 3] {
         GAUSS3.map(|(s, w)| {
             let fp = model.face_point(face, s);
