@@ -58,8 +58,8 @@ pub use gap::{GapSpec, Hertz, Radius, RollerGap};
 pub use mesh_surface::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
 pub use meshes::{Imported, MeshFiles};
 pub use methods::{
-    BearingCrown, Check, CircularSearch, Context, Design, Designed, EnvelopeSplit,
-    FujiwaraKawaseSearch, Gap,
+    BearingCrown, CaseView, Check, Circular, CircularSearch, Context, Design, Designed,
+    EnvelopeSplit, Family, FujiwaraKawase, FujiwaraKawaseSearch, Gap, ProfileSearch,
 };
 pub use parallel::Ran;
 pub use plan::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};

@@ -307,6 +307,20 @@ fn own<K: DeserializeOwned + Serialize>(
     Ok((kind, serde_json::json!({ name: settings })))
 }
 
+/// The reader of a kind `K` of its own settings, as the trait object `T` (`as_kind` is the
+/// unsizing `|kind| kind`).
+fn single<T, K>(as_kind: fn(Arc<K>) -> Arc<T>) -> Reader<T>
+where
+    T: ?Sized + 'static,
+    K: DeserializeOwned + Serialize + Send + Sync + 'static,
+{
+    Arc::new(move |name, tagged| {
+        let (kind, written) = own::<K>(name, tagged)?;
+        let kind = Arc::new(kind);
+        Ok(Chosen::new(name, written, as_kind(kind.clone()), kind))
+    })
+}
+
 /// A member of an externally tagged enum `E` of kinds, read from the whole node (the enum
 /// names its variants as the registry does) and written back as the enum writes itself.
 fn member<E: DeserializeOwned + Serialize>(
@@ -434,14 +448,7 @@ impl Registry {
     where
         K: BodyKind + DeserializeOwned + Serialize + 'static,
     {
-        self.bodies.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<K>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.bodies.add(name, single::<_, K>(|kind| kind));
         self
     }
 
@@ -450,14 +457,7 @@ impl Registry {
     where
         D: Design + DeserializeOwned + Serialize + 'static,
     {
-        self.designs.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<D>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.designs.add(name, single::<_, D>(|kind| kind));
         self
     }
 
@@ -485,14 +485,7 @@ impl Registry {
     where
         S: SolverKind + DeserializeOwned + Serialize + 'static,
     {
-        self.solvers.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<S>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.solvers.add(name, single::<_, S>(|kind| kind));
         self
     }
 

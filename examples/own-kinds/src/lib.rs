@@ -11,7 +11,7 @@
 //! `contopt` command over it ([`contopt_cli::main_with`]), every command kept.
 
 use contopt_core::observe::Method;
-use contopt_core::{ElasticBody, Interface, Material, Result};
+use contopt_core::{ElasticBody, Interface, Result};
 use contopt_greens::Pasternak;
 use contopt_results::CaseReport;
 use contopt_scene::{
@@ -91,15 +91,6 @@ impl BodyKind for PasternakBed {
             self.shear_n_per_mm,
         )?;
         Ok(Box::new(bed))
-    }
-
-    fn material(&self) -> Option<Material> {
-        None
-    }
-
-    /// Hertz does not describe a bed.
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
-        None
     }
 }
 // ANCHOR_END: kind

@@ -94,14 +94,18 @@ pub trait BodyKind: Send + Sync {
     /// surface as the body below sees it (outward normal n¹), which a body above mirrors.
     fn build(&self, at: &Placement, surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>>;
 
-    /// Its material, when it has one.
-    fn material(&self) -> Option<Material>;
+    /// Its material, when it has one (default none).
+    fn material(&self) -> Option<Material> {
+        None
+    }
 
     /// Its share of the pair's contact compliance 1/E* on this zone \[1/MPa\]: (1 − ν²)/E for
     /// a half-space or a block standing in for one, 1/E for a half-plane in plane stress, 0 for
-    /// a rigid body; `None` for a body whose compliance Hertz does not describe (a punch, a
-    /// bed).
-    fn compliance(&self, zone: &ZoneSpec) -> Option<f64>;
+    /// a rigid body; `None` (the default) for a body whose compliance Hertz does not describe
+    /// (a punch, a bed).
+    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
+        None
+    }
 
     /// Whether its surface ends at the zone's rim (a punch's face is the zone): contact there
     /// is the body's edge, not the zone's limit.

@@ -1,6 +1,6 @@
 //! A rigid body (`kind = "rigid"`): no compliance; the contact's gap is its shape.
 
-use contopt_core::{ElasticBody, Interface, Material, Result, RigidBody};
+use contopt_core::{ElasticBody, Interface, Result, RigidBody};
 use serde::{Deserialize, Serialize};
 
 use super::{own_surface, BodyKind, Placement, Side, Takes};
@@ -54,10 +54,6 @@ impl BodyKind for Rigid {
             }
             _ => RigidBody::fixed(self.name(), &partner),
         }))
-    }
-
-    fn material(&self) -> Option<Material> {
-        None
     }
 
     fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {

@@ -1,7 +1,7 @@
 //! A Winkler bed (`kind = "winkler"`): the book's worked example of a body kind of one's own,
 //! this file and one line of `bodies/mod.rs`.
 
-use contopt_core::{ElasticBody, Interface, Material, Result};
+use contopt_core::{ElasticBody, Interface, Result};
 use contopt_greens::Winkler;
 use serde::{Deserialize, Serialize};
 
@@ -56,15 +56,6 @@ impl BodyKind for WinklerBed {
             own,
             self.modulus_mpa_per_mm,
         )?))
-    }
-
-    fn material(&self) -> Option<Material> {
-        None
-    }
-
-    /// Hertz does not describe a bed.
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
-        None
     }
 }
 // ANCHOR_END: kind

@@ -13,7 +13,9 @@ pub(crate) mod search;
 pub(crate) use analysis::Analysis;
 pub use envelope::EnvelopeSplit;
 pub use gap::Gap;
-pub use search::{CircularSearch, FujiwaraKawaseSearch};
+pub use search::{
+    Circular, CircularSearch, Family, FujiwaraKawase, FujiwaraKawaseSearch, ProfileSearch,
+};
 
 use crate::gap::GapSpec;
 use crate::region::OmegaVSpec;

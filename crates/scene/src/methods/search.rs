@@ -2,6 +2,8 @@
 //! search: Fujiwara–Kawase's profile, the published practice the optimised crowns are
 //! compared with, or a circular crown.
 
+use std::marker::PhantomData;
+
 use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::Method;
 use contopt_core::{Error, Result};
@@ -14,49 +16,62 @@ use super::{
     contacts, roller_figures, straight_roller, BearingCrown, Check, Context, Design, Designed,
 };
 
-/// A roller's Fujiwara–Kawase profile with K1, K2 and z_m tuned by a Nelder–Mead search to the
-/// least worst-case p_max over its `[envelope]` (or its own load), edge-loaded crowns
-/// penalised (`profile_search`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct FujiwaraKawaseSearch(pub SearchSettings);
+/// A family of crowns a profile search tunes.
+pub trait Family: Send + Sync + 'static {
+    /// The family.
+    const FAMILY: ProfileFamily;
+}
 
-/// A roller's circular crown, its crowned fraction and end drop tuned as the profile search
-/// tunes Fujiwara–Kawase's (`circular_search`).
+/// Fujiwara–Kawase's logarithmic profile (K1, K2, z_m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FujiwaraKawase;
+
+impl Family for FujiwaraKawase {
+    const FAMILY: ProfileFamily = ProfileFamily::FujiwaraKawase;
+}
+
+/// A circular crown (its crowned fraction and end drop).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Circular;
+
+impl Family for Circular {
+    const FAMILY: ProfileFamily = ProfileFamily::Circular;
+}
+
+/// A roller's crown of the family `F` with its parameters tuned by a Nelder–Mead search to the
+/// least worst-case p_max over its `[envelope]` (or its own load), edge-loaded crowns
+/// penalised.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(transparent)]
-pub struct CircularSearch(pub SearchSettings);
+pub struct ProfileSearch<F> {
+    /// The search's settings.
+    pub settings: SearchSettings,
+    #[serde(skip)]
+    family: PhantomData<F>,
+}
+
+/// Fujiwara–Kawase's K1, K2 and z_m tuned (`profile_search`).
+pub type FujiwaraKawaseSearch = ProfileSearch<FujiwaraKawase>;
+
+/// A circular crown's crowned fraction and end drop tuned (`circular_search`).
+pub type CircularSearch = ProfileSearch<Circular>;
+
+impl<F: Family> Design for ProfileSearch<F> {
+    fn check(&self, c: &Check) -> Result<()> {
+        Search(self.settings, F::FAMILY).check(c)
+    }
+
+    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
+        Search(self.settings, F::FAMILY).run(c, report)
+    }
+
+    fn bearing_crown(&self) -> Option<BearingCrown> {
+        Some(BearingCrown::Search(F::FAMILY, self.settings))
+    }
+}
 
 /// The profile search of a family.
-struct ProfileSearch(SearchSettings, ProfileFamily);
-
-impl Design for FujiwaraKawaseSearch {
-    fn check(&self, c: &Check) -> Result<()> {
-        ProfileSearch(self.0, ProfileFamily::FujiwaraKawase).check(c)
-    }
-
-    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
-        ProfileSearch(self.0, ProfileFamily::FujiwaraKawase).run(c, report)
-    }
-
-    fn bearing_crown(&self) -> Option<BearingCrown> {
-        Some(BearingCrown::Search(ProfileFamily::FujiwaraKawase, self.0))
-    }
-}
-
-impl Design for CircularSearch {
-    fn check(&self, c: &Check) -> Result<()> {
-        ProfileSearch(self.0, ProfileFamily::Circular).check(c)
-    }
-
-    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
-        ProfileSearch(self.0, ProfileFamily::Circular).run(c, report)
-    }
-
-    fn bearing_crown(&self) -> Option<BearingCrown> {
-        Some(BearingCrown::Search(ProfileFamily::Circular, self.0))
-    }
-}
+struct Search(SearchSettings, ProfileFamily);
 
 /// A tuned crown's parameters, as the report gives them.
 pub(crate) fn tuned_profile(tuned: &TunedCrown) -> TunedProfile {
@@ -75,7 +90,7 @@ pub(crate) fn tuned_profile(tuned: &TunedCrown) -> TunedProfile {
     }
 }
 
-impl ProfileSearch {
+impl Search {
     fn check(&self, c: &Check) -> Result<()> {
         if c.case.roller.is_none() {
             return Err(Error::invalid(
