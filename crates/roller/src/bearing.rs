@@ -30,7 +30,7 @@ use std::f64::consts::PI;
 
 use contopt_core::faer::linalg::solvers::{Llt, Solve};
 use contopt_core::faer::{Mat, Side};
-use contopt_core::{check, Error, Result, Termination};
+use contopt_core::{check, Error, Quantity, Result, Stall, Termination};
 use serde::Serialize;
 
 use crate::Crown;
@@ -674,7 +674,7 @@ impl Model {
             let residual = self.residual(&rings.gradient);
             if !rings.potential.is_finite() || !residual.is_finite() {
                 break Termination::NonFinite {
-                    field: "the rings' equilibrium".into(),
+                    quantity: Quantity::RingEquilibrium,
                 };
             }
             if residual <= settings.tolerance && rings.converged {
@@ -692,9 +692,9 @@ impl Model {
                 Some(next) => rings = next,
                 None => {
                     break Termination::Stalled {
-                        reason: format!(
-                            "the line search found no decrease of the rings' potential at an imbalance of {residual:e}"
-                        ),
+                        cause: Stall::NoDescent {
+                            imbalance: residual,
+                        },
                     }
                 }
             }

@@ -112,7 +112,7 @@ fn distributions(
     let mut all = Vec::with_capacity(plan.loads.len());
     for (_, load, _) in &plan.loads {
         let d = bearing.solve(load, &settings)?;
-        if !d.termination.is_converged() {
+        if !d.termination.is_solved() {
             return Ok(Err(d.termination));
         }
         all.push(d);
@@ -426,8 +426,7 @@ pub(crate) fn run<'a>(
     };
     if let Some(d) = &designed {
         report.time("optimise", started);
-        if !d.termination.is_converged() && !matches!(d.termination, Termination::StepLimit { .. })
-        {
+        if !d.termination.is_solved() && !matches!(d.termination, Termination::StepLimit { .. }) {
             let mut out = Designed::unsolved(d.termination.clone(), solver.method());
             out.method = Some(d.method);
             return Ok((out, problem.clone()));
@@ -456,7 +455,7 @@ pub(crate) fn run<'a>(
         .map_or_else(|| vec![0.0; problem.len()], |d| d.change.clone());
     let states = solve_cases(&cases, &change, solver, None, &Nested(observer))?;
     report.time("solve", started);
-    if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+    if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
         let why = s.termination.clone().inside(s.method);
         return Ok((Designed::unsolved(why, solver.method()), problem.clone()));
     }
