@@ -49,8 +49,7 @@ pub enum Step {
     /// on unless the observer stops it or the step limit is reached.
     Next(f64),
     /// The step is done, with its measure, and it is the method's last: it is reported, and
-    /// the method ends as the termination says. An observer's stop wins over any end whose
-    /// answer does not stand ([`Termination::is_solved`]).
+    /// the method ends as the termination says (an observer's stop asks for no more).
     Last(f64, Termination),
     /// The step could not be done (an inner method that ended short, a value that is not
     /// finite): the method ends as the termination says, the step unreported.
@@ -142,9 +141,8 @@ impl<'o> Driver<'o> {
                 Step::Ended(end) => return Ok(self.end(end)),
             };
             match (end, self.report(measure)) {
-                (Some(end), _) if end.is_solved() => return Ok(self.end(end)),
-                (_, Some(stopped)) => return Ok(stopped),
-                (Some(end), None) => return Ok(self.end(end)),
+                (Some(end), _) => return Ok(self.end(end)),
+                (None, Some(stopped)) => return Ok(stopped),
                 (None, None) => {}
             }
         }
@@ -160,6 +158,12 @@ impl<'o> Driver<'o> {
         let event = Event::step(self.method, self.steps, measure, self.tolerance);
         (self.observer.observe(&event) == Flow::Stop)
             .then_some(Termination::Stopped { after: self.steps })
+    }
+
+    /// Sets the measure the last event carries, for a method whose answer is not its last
+    /// step (a search's best point).
+    pub fn settle(&mut self, measure: f64) {
+        self.measure = measure;
     }
 
     /// The step limit after the steps so far, with the last measure.
@@ -198,20 +202,20 @@ mod tests {
 
     use crate::observe::Recorded;
 
-    /// A stop wins over an end whose answer does not stand, not over convergence; an ended
-    /// step goes unreported; a reduced accuracy noted turns the convergence.
+    /// A stop ends a method that would go on, not one whose step was its last; an ended step
+    /// goes unreported; a reduced accuracy noted turns the convergence.
     #[test]
     fn stops_ends_and_reduced_accuracy() {
         let stop = |_: &Event| Flow::Stop;
+        let mut driver = Driver::new(Method::Other("t"), &stop, 0.0, 9);
+        let end = driver.run(|_, _| Ok::<_, ()>(Step::Next(1.0)));
+        assert_eq!(end, Ok(Termination::Stopped { after: 1 }));
         let mut driver = Driver::new(Method::Other("t"), &stop, 0.0, 9);
         let cycled = Termination::Stalled {
             cause: crate::Stall::WanderingReference { moves: 1 },
         };
         let end = driver.run(|_, _| Ok::<_, ()>(Step::Last(1.0, cycled.clone())));
-        assert_eq!(end, Ok(Termination::Stopped { after: 1 }));
-        let mut driver = Driver::new(Method::Other("t"), &stop, 0.0, 9);
-        let end = driver.run(|_, _| Ok::<_, ()>(Step::Last(0.0, Termination::Converged)));
-        assert_eq!(end, Ok(Termination::Converged));
+        assert_eq!(end, Ok(cycled));
         let seen = RefCell::new(vec![]);
         let record = |e: &Event| {
             seen.borrow_mut().push(Recorded::of(e));

@@ -103,15 +103,17 @@ struct Geometry<'p> {
     e_star: f64,
 }
 
-/// Each load case's distribution for `bearing`; an unmet equilibrium is its termination.
+/// Each load case's distribution for `bearing`, its equilibrium's steps reported to
+/// `observer`; an unmet equilibrium is its termination.
 fn distributions(
     bearing: &CylindricalRollerBearing,
     plan: &BearingPlan,
+    observer: &dyn Observer,
 ) -> Result<std::result::Result<Vec<LoadDistribution>, Termination>> {
     let settings = BearingSettings::default();
     let mut all = Vec::with_capacity(plan.loads.len());
     for (_, load, _) in &plan.loads {
-        let d = bearing.solve(load, &settings)?;
+        let d = bearing.solve_observed(load, &settings, observer)?;
         if !d.termination.is_solved() {
             return Ok(Err(d.termination));
         }
@@ -408,7 +410,7 @@ pub(crate) fn run<'a>(
         e_star: roller.e_star(),
     };
     let started = Instant::now();
-    let first = match distributions(&plan.bearing, plan)? {
+    let first = match distributions(&plan.bearing, plan, observer)? {
         Ok(d) => d,
         Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
     };
@@ -440,7 +442,7 @@ pub(crate) fn run<'a>(
                 .roller_crown
                 .clone()
                 .plus(crown_table(at.points, &d.change, dy)?);
-            match distributions(&bearing, plan)? {
+            match distributions(&bearing, plan, observer)? {
                 Ok(dists) => dists,
                 Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
             }
