@@ -561,13 +561,14 @@ impl From<contopt_core::StressPeaks> for Peaks {
 impl CaseReport {
     /// A case that has not run yet: every figure null, `status` not converged.
     pub fn new(label: &str, params: &BTreeMap<String, f64>, input: serde_json::Value) -> Self {
+        let termination = Termination::Stopped { after: 0 };
         Self {
             label: label.to_string(),
             params: params.clone(),
             input,
             status: CaseStatus::NotConverged,
-            termination: Termination::Stopped { after: 0 },
-            message: String::new(),
+            message: termination.to_string(),
+            termination,
             method: None,
             solver: None,
             warnings: vec![],
