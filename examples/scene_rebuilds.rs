@@ -4,7 +4,8 @@
 //! optimisations, and against each case run on its own (a build per case). The builds are
 //! counted as well as timed: the pairs of bodies built (`Run::builds`) and the numeric
 //! factorisations of stiffness matrices (`contopt::fem::factorisations`), which a machine's
-//! load does not move.
+//! load does not move; on one and two threads ([`Scene::run_parallel`]), the builds it reports
+//! (two factorisations each, a body's on the thread that built it).
 //!
 //! `cargo run --release --example scene_rebuilds [elements]` (default 144 elements across the
 //! contact radius, and as many layers).
@@ -108,14 +109,25 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         alone.seconds,
         Some((alone.builds, alone.factorisations)),
     );
+    for jobs in [1, 2] {
+        let start = Instant::now();
+        let ran = scene.run_parallel(0..reports.len(), jobs, &|| {})?;
+        line(
+            &format!("the whole scene on {jobs} thread(s) (run_parallel)"),
+            start.elapsed().as_secs_f64(),
+            Some((ran.builds, 2 * ran.builds as u64)),
+        );
+    }
     let ratio = total / (build + optimisations);
     println!("ratio whole / (build + optimisations): {ratio:.3} (at most {OVERHEAD})");
     for r in &reports {
+        let ms = |key: &str| r.timings_ms.get(key).copied().unwrap_or(0.0);
         println!(
-            "  {:<12} build {:>8.1} ms, optimise {:>8.1} ms, bound p_max {:.2} MPa",
+            "  {:<12} build {:>8.1} ms, optimise {:>8.1} ms, fields {:>8.1} ms, bound p_max {:.2} MPa",
             r.label,
-            r.timings_ms.get("build").copied().unwrap_or(0.0),
-            r.timings_ms.get("optimise").copied().unwrap_or(0.0),
+            ms("build"),
+            ms("optimise"),
+            ms("fields"),
             r.bound_p_max_mpa.unwrap_or(f64::NAN)
         );
     }

@@ -118,6 +118,8 @@ load = {{ pressure_mpa = {P} }}
 layers = {ELEMENTS}
 [solver]
 kind = "active_set"
+[output]
+fields = true
 "#
         );
         let (case, files) = run(&text);
@@ -212,6 +214,7 @@ fn punch_and_base_meet_where_they_touch() {
             ("sweep", None),
             ("optimisation", None),
             ("solver", Some("{ kind = \"active_set\" }")),
+            ("output", Some("{ fields = true }")),
         ],
     )
     .unwrap();

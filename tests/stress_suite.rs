@@ -35,7 +35,7 @@ use contopt::fem::{
 };
 use contopt::greens::HalfSpace;
 use contopt::prelude::*;
-use contopt::scene::{BodySpec, FacesZone, ZoneSpec};
+use contopt::scene::{FacesZone, FeBase, FePunch, ZoneSpec};
 use contopt_validation::closed_form::{contact_modulus, HertzSphere, ThickCylinder};
 
 /// Young's modulus of every case \[MPa\] (steel, as in the paper).
@@ -361,7 +361,7 @@ fn penalty_sweep_on_the_paper_punch() {
     let load = paper_load();
     for scene in scenes {
         let zone = faces(&scene);
-        let BodySpec::FeBase(base) = &scene.cases()[0].spec.body[0] else {
+        let Some(base) = scene.cases()[0].spec.body[0].downcast::<FeBase>() else {
             panic!("the paper's first body is its base");
         };
         let name = format!(
@@ -1143,9 +1143,9 @@ fn stretched_elements_in_a_slender_strip() {
 fn punch_with_thin_layer(kind: ElementKind, t: f64) -> (FeBody, FeBody) {
     let scene = paper(&[]);
     let radius = faces(&scene).radius_mm;
-    let (BodySpec::FeBase(base), BodySpec::FePunch(punch)) = (
-        &scene.cases()[0].spec.body[0],
-        &scene.cases()[0].spec.body[1],
+    let (Some(base), Some(punch)) = (
+        scene.cases()[0].spec.body[0].downcast::<FeBase>(),
+        scene.cases()[0].spec.body[1].downcast::<FePunch>(),
     ) else {
         panic!("the paper's scene is a punch on a base");
     };

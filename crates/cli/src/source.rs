@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use contopt_scene::{Scene, SceneError, BUNDLED};
+use contopt_scene::{Registry, Scene, SceneError, BUNDLED};
 
 /// Why a scene cannot be loaded.
 #[derive(Debug, thiserror::Error)]
@@ -17,14 +17,19 @@ pub enum SourceError {
     Name(String),
 }
 
-/// The scene `argument` names: a bundled scene (`bundled`, or a bare name with nothing of that
-/// name here), or a file. `command` (`run`, `check`) is the subcommand given, which a refusal
-/// repeats in the way out it offers.
-pub fn load(argument: &str, bundled: bool, command: &str) -> Result<Scene, SourceError> {
+/// The scene `argument` names, its kinds `registry`'s: a bundled scene (`bundled`, or a bare
+/// name with nothing of that name here), or a file. `command` (`run`, `check`) is the
+/// subcommand given, which a refusal repeats in the way out it offers.
+pub fn load(
+    registry: &Registry,
+    argument: &str,
+    bundled: bool,
+    command: &str,
+) -> Result<Scene, SourceError> {
     let is_bundled = BUNDLED.iter().any(|b| b.name == argument);
     if bundled {
         return if is_bundled {
-            Ok(Scene::bundled(argument)?)
+            Ok(registry.bundled(argument)?)
         } else {
             Err(not_bundled(argument))
         };
@@ -33,7 +38,7 @@ pub fn load(argument: &str, bundled: bool, command: &str) -> Result<Scene, Sourc
     let here = std::fs::symlink_metadata(path).ok();
     let bare = !argument.contains(['/', '\\']) && path.extension().is_none();
     match (is_bundled && bare, here) {
-        (true, None) => Ok(Scene::bundled(argument)?),
+        (true, None) => Ok(registry.bundled(argument)?),
         (true, Some(meta)) => {
             let what = if meta.is_dir() { "folder" } else { "file" };
             Err(SourceError::Name(format!(
@@ -46,7 +51,7 @@ pub fn load(argument: &str, bundled: bool, command: &str) -> Result<Scene, Sourc
             "`{argument}` is a folder, not a scene file (a .toml or .json file); `contopt \
              list` shows the bundled scenes"
         ))),
-        (false, Some(_)) => Ok(Scene::load(path)?),
+        (false, Some(_)) => Ok(registry.load(path)?),
         (false, None) => Err(SourceError::Name(format!(
             "no scene file `{argument}`, and no bundled scene of that name: `contopt list` \
              shows the bundled scenes"

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::kalker;
 use crate::watch::{self, Watch};
-use crate::{ContactSolver, InterfaceProblem};
+use crate::{ContactSolver, InterfaceProblem, Workspace};
 
 /// The settings of the [`ActiveSet`] solver: none yet (it is exact, and its iteration is
 /// finite), kept so that every solver is built alike.
@@ -53,10 +53,22 @@ impl ContactSolver for ActiveSet {
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,
-        _start: Option<&[f64]>,
+        start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        let state = kalker::exact_observed(problem, None, Watch::new(observer, self.method()))?;
+        self.solve_in(problem, start, observer, &mut Workspace::default())
+    }
+
+    /// In the workspace's [`KalkerWorkspace`](crate::KalkerWorkspace).
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        let watch = Watch::new(observer, self.method());
+        let state = kalker::exact_observed(problem, None, watch, &mut workspace.kalker)?;
         watch::announce(observer, &state);
         Ok(state)
     }

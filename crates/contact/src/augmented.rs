@@ -5,9 +5,9 @@ use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Result, Termination};
 use serde::{Deserialize, Serialize};
 
-use crate::kalker::{self, Iterate, Subproblem, Workspace};
+use crate::kalker::{self, Iterate, KalkerWorkspace, Subproblem};
 use crate::watch::{self, Watch};
-use crate::{ContactSolver, InterfaceProblem};
+use crate::{ContactSolver, InterfaceProblem, Workspace};
 
 /// The settings of the [`AugmentedLagrangian`]: the penalty parameter, which has no default,
 /// and the stopping rule, which has.
@@ -101,10 +101,21 @@ impl ContactSolver for AugmentedLagrangian {
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,
-        _start: Option<&[f64]>,
+        start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        let state = uzawa(problem, &self.settings, observer)?;
+        self.solve_in(problem, start, observer, &mut Workspace::default())
+    }
+
+    /// In the workspace's [`KalkerWorkspace`].
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        let state = uzawa(problem, &self.settings, observer, &mut workspace.kalker)?;
         watch::announce(observer, &state);
         Ok(state)
     }
@@ -118,15 +129,16 @@ fn uzawa(
     problem: &InterfaceProblem,
     al: &AugmentedLagrangianSettings,
     observer: &dyn Observer,
+    ws: &mut KalkerWorkspace,
 ) -> Result<ContactState> {
     let method = Method::AugmentedLagrangian;
     let c = al.c_mpa_per_mm;
     let steps = Watch::new(observer, method);
     let nested = Nested(observer);
     let inner_watch = Watch::new(&nested, Method::Kalker);
-    let (n, m) = (problem.len(), problem.load().len());
+    let (n, m) = (problem.len(), problem.modes().len());
     // One workspace for every step: the steps allocate nothing of their own.
-    let mut ws = Workspace::new(problem);
+    ws.prepare(problem);
     let mut active = vec![true; n];
     let mut counts = [0, 0];
     let mut current = Iterate::zero(n, m);
@@ -137,7 +149,7 @@ fn uzawa(
         &mut counts,
         inner_watch,
         &mut current,
-        &mut ws,
+        ws,
     )?;
     if let Some(stopped) = started {
         return Ok(kalker::finish(
@@ -149,7 +161,7 @@ fn uzawa(
     let mut shift = vec![0.0; n];
     for step in 1..=al.max_steps {
         shift.copy_from_slice(&current.pressure);
-        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current, &mut ws)?
+        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current, ws)?
             .solve(&mut active, inner_watch.after(counts[0]))?;
         if inner.stopped.is_some() {
             return Ok(kalker::finish(
@@ -179,7 +191,7 @@ fn uzawa(
                 &current,
                 &mut active,
                 inner_watch.after(counts[0]),
-                &mut ws,
+                ws,
             )?;
             return Ok(kalker::finish(
                 problem, method, jump, ws, active, step, counts,

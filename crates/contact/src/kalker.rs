@@ -13,6 +13,7 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Conj, Mat, MatMut, Par};
 
 use crate::watch::{self, Watch};
+use crate::workspace::refill;
 use crate::{problem, InterfaceProblem};
 
 /// The n × n matrices a Kalker solve may hold at once, counted at its worst (every point in
@@ -185,12 +186,29 @@ impl Infeasible {
             penetrating: Vec::with_capacity(n),
         }
     }
+
+    /// Room for n points in each list.
+    fn reserve(&mut self, n: usize) {
+        for list in [&mut self.negative, &mut self.penetrating] {
+            list.clear();
+            list.reserve(n);
+        }
+    }
 }
 
 /// The parallelism of faer's dense kernels: the global one, as faer's own `Llt::new` and
 /// `self_adjoint_eigen` use.
 fn par() -> Par {
     faer::get_global_parallelism()
+}
+
+/// Makes `mat` exactly `rows` × `cols`, zeroed; reallocated only when its size differs.
+fn exactly(mat: &mut Mat<f64>, rows: usize, cols: usize) {
+    if (mat.nrows(), mat.ncols()) == (rows, cols) {
+        mat.fill(0.0);
+    } else {
+        *mat = Mat::zeros(rows, cols);
+    }
 }
 
 /// Makes `mat` at least `rows` × `cols`; its leading block is then used as that size. It is
@@ -235,11 +253,7 @@ struct ContactMatrix {
 impl ContactMatrix {
     /// Empty buffers for n points and m rigid modes.
     fn new(n: usize, m: usize) -> Self {
-        // The Cholesky factorisations' scratch (of M and of the modes' Gram matrix) is n values.
-        let scratch_size = StackReq::any_of(&[
-            llt::factor::cholesky_in_place_scratch::<f64>(n, par(), Default::default()),
-            llt::factor::cholesky_in_place_scratch::<f64>(m, par(), Default::default()),
-        ]);
+        let scratch_size = Self::cholesky_scratch(n, m);
         Self {
             storage: Mat::new(),
             eigenvectors: Mat::new(),
@@ -252,6 +266,22 @@ impl ContactMatrix {
             k: 0,
             spectral: false,
         }
+    }
+
+    /// The Cholesky factorisations' scratch (of M and of the modes' Gram matrix): n values.
+    fn cholesky_scratch(n: usize, m: usize) -> StackReq {
+        StackReq::any_of(&[
+            llt::factor::cholesky_in_place_scratch::<f64>(n, par(), Default::default()),
+            llt::factor::cholesky_in_place_scratch::<f64>(m, par(), Default::default()),
+        ])
+    }
+
+    /// Makes room for a problem of n points and m modes, with no contact set factorised.
+    fn prepare(&mut self, n: usize, m: usize) {
+        self.reserve_scratch(Self::cholesky_scratch(n, m));
+        self.inverse.reserve(n);
+        self.root_w.reserve(n);
+        (self.k, self.spectral) = (0, false);
     }
 
     /// Makes the scratch space hold `req`.
@@ -390,15 +420,17 @@ impl ContactMatrix {
     }
 }
 
-/// What a contact solve holds for Kalker's iteration, reused by every solve on a contact set and
-/// every subproblem of the solve (the Uzawa steps): the problem's free gap, R and q, the index
-/// lists, the iterate and its gap, the products' buffers, sized once from the number of points
-/// n and of rigid modes m; and the contact-set matrix's, sized to the largest contact set solved
-/// on ([`ContactMatrix`]). A solve on C then allocates nothing of its own, unless its set is
-/// the largest yet or it is the first spectral one; faer's kernels, which factorise and multiply
-/// in these buffers, allocate nothing either at the sizes tested (see the crate's
-/// `tests/allocations.rs`).
-pub(crate) struct Workspace {
+/// What Kalker's iteration holds (the active-set, penalty and augmented-Lagrangian solvers),
+/// reused by every solve on a contact set and every subproblem of a solve (the Uzawa steps),
+/// and kept by a caller across the solves of a design loop (faer's explicit scratch,
+/// [`ContactSolver::solve_in`](crate::ContactSolver::solve_in)): the problem's free gap, R and
+/// q, the index lists, the iterate and its gap, the products' buffers, sized for the number of
+/// points n and of rigid modes m and grown for a larger problem; and the contact-set matrix's,
+/// sized to the largest contact set solved on. A solve on C then allocates nothing of its
+/// own, unless its set is the largest yet or it is the first spectral one; faer's kernels,
+/// which factorise and multiply in these buffers, allocate nothing either at the sizes tested
+/// (see the crate's `tests/allocations.rs`).
+pub struct KalkerWorkspace {
     /// The free gap g and its largest |gᵢ|.
     free_gap: Vec<f64>,
     free_scale: f64,
@@ -428,23 +460,30 @@ pub(crate) struct Workspace {
     mode_correction: Mat<f64>,
 }
 
-impl Workspace {
-    pub(crate) fn new(problem: &InterfaceProblem) -> Self {
-        let free_gap = problem.free_gap();
-        let (n, q) = (problem.len(), problem.load());
-        let m = q.len();
+impl Default for KalkerWorkspace {
+    /// An empty workspace: its first solve sizes it.
+    fn default() -> Self {
+        Self::new(0, 0)
+    }
+}
+
+impl KalkerWorkspace {
+    /// A workspace for problems of `points` points and `modes` free rigid modes (it grows
+    /// for larger ones).
+    pub fn new(points: usize, modes: usize) -> Self {
+        let (n, m) = (points, modes);
         Self {
-            free_scale: free_gap.iter().fold(0.0f64, |s, v| s.max(v.abs())),
-            free_gap,
-            r: problem.rigid(),
-            q,
+            free_gap: Vec::with_capacity(n),
+            free_scale: 0.0,
+            r: Mat::zeros(n, m),
+            q: Vec::with_capacity(m),
             idx: Vec::with_capacity(n),
             infeasible: Infeasible::new(n),
             current: Iterate::zero(n, m),
-            gap: vec![0.0; n],
-            reference_gap: vec![0.0; n],
-            force: vec![0.0; n],
-            spare: vec![0.0; n],
+            gap: Vec::with_capacity(n),
+            reference_gap: Vec::with_capacity(n),
+            force: Vec::with_capacity(n),
+            spare: Vec::with_capacity(n),
             matrix: ContactMatrix::new(n, m),
             rhs: Mat::zeros(n, 1),
             modes: Mat::zeros(n, m),
@@ -453,6 +492,48 @@ impl Workspace {
             lambda: Mat::zeros(m, 1),
             mode_correction: Mat::zeros(n, 1),
         }
+    }
+
+    /// Takes `problem`'s free gap, R and q, and sizes the buffers for its n points and m
+    /// modes, reallocating only those too small.
+    pub(crate) fn prepare(&mut self, problem: &InterfaceProblem) {
+        let (n, modes) = (problem.len(), problem.modes());
+        let m = modes.len();
+        refill(&mut self.free_gap, n, 0.0);
+        problem.add_free_gap(&mut self.free_gap);
+        self.free_scale = self.free_gap.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        exactly(&mut self.r, n, m);
+        for (k, mode) in modes.iter().enumerate() {
+            for (&i, &v) in mode.points.iter().zip(&mode.displacement) {
+                self.r[(i, k)] = v;
+            }
+        }
+        self.q.clear();
+        self.q.extend(modes.iter().map(|mode| mode.load));
+        self.idx.clear();
+        self.idx.reserve(n);
+        self.infeasible.reserve(n);
+        refill(&mut self.current.pressure, n, 0.0);
+        refill(&mut self.current.rigid, m, 0.0);
+        for v in [
+            &mut self.gap,
+            &mut self.reference_gap,
+            &mut self.force,
+            &mut self.spare,
+        ] {
+            refill(v, n, 0.0);
+        }
+        self.matrix.prepare(n, m);
+        for (mat, cols) in [
+            (&mut self.rhs, 1),
+            (&mut self.modes, m),
+            (&mut self.solved_modes, m),
+            (&mut self.mode_correction, 1),
+        ] {
+            reserve(mat, n, cols);
+        }
+        exactly(&mut self.gram, m, m);
+        exactly(&mut self.lambda, m, 1);
     }
 
     /// The last subproblem's solution (its last iterate when it stopped short).
@@ -474,7 +555,7 @@ impl Workspace {
     }
 }
 
-/// How one subproblem ended; its solution is the workspace's ([`Workspace::solution`]).
+/// How one subproblem ended; its solution is the workspace's ([`KalkerWorkspace::solution`]).
 pub(crate) struct Inner {
     /// Round-off level of the gap ([`GAP_ROUND_OFF`] of its largest terms); 0 when stopped.
     pub(crate) gap_floor: f64,
@@ -509,7 +590,7 @@ impl Inner {
 /// form it multiplies the reference's residual instead of the whole gap, so a reference close
 /// to the answer keeps large c accurate.
 ///
-/// It works in the solve's [`Workspace`], where it leaves its solution.
+/// It works in the solve's [`KalkerWorkspace`], where it leaves its solution.
 pub(crate) struct Subproblem<'a> {
     problem: &'a InterfaceProblem<'a>,
     rho: f64,
@@ -519,7 +600,7 @@ pub(crate) struct Subproblem<'a> {
     reference: &'a Iterate,
     /// The dense influence matrix A.
     a: &'a Mat<f64>,
-    ws: &'a mut Workspace,
+    ws: &'a mut KalkerWorkspace,
 }
 
 impl<'a> Subproblem<'a> {
@@ -529,7 +610,7 @@ impl<'a> Subproblem<'a> {
         shift: &'a [f64],
         spectral: bool,
         reference: &'a Iterate,
-        ws: &'a mut Workspace,
+        ws: &'a mut KalkerWorkspace,
     ) -> Result<Self> {
         Ok(Self {
             a: problem.dense_influence(DENSE_COPIES)?,
@@ -794,22 +875,22 @@ impl PivotRule {
     }
 }
 
-/// The contact state of a subproblem's solution (the workspace's, which it ends), after
+/// The contact state of a subproblem's solution (the workspace's), after
 /// `steps` outer steps, with the set changes counted before it.
 pub(crate) fn finish(
     problem: &InterfaceProblem,
     method: Method,
     inner: Inner,
-    ws: Workspace,
+    ws: &KalkerWorkspace,
     active: Vec<bool>,
     steps: usize,
     counts: [usize; 2],
 ) -> ContactState {
-    let s = ws.current;
+    let s = &ws.current;
     let mut state = problem.state(
         method,
-        s.pressure,
-        s.rigid,
+        s.pressure.clone(),
+        s.rigid.clone(),
         active,
         [steps, counts[0] + inner.iterp, counts[1] + inner.iterd],
     );
@@ -827,7 +908,7 @@ pub(crate) fn solve_exact(
     reference: &Iterate,
     active: &mut [bool],
     watch: Watch,
-    ws: &mut Workspace,
+    ws: &mut KalkerWorkspace,
 ) -> Result<Inner> {
     let zeros = vec![0.0; problem.len()];
     Subproblem::new(problem, 0.0, &zeros, true, reference, ws)?.solve(active, watch)
@@ -855,7 +936,7 @@ pub(crate) fn start(
     counts: &mut [usize; 2],
     watch: Watch,
     reference: &mut Iterate,
-    ws: &mut Workspace,
+    ws: &mut KalkerWorkspace,
 ) -> Result<Option<Inner>> {
     let c_stiff = stiff_penalty(problem)?;
     if c <= c_stiff {
@@ -874,9 +955,14 @@ pub(crate) fn start(
 }
 
 /// The penalty method: one subproblem with ρ = 1/c and p̂ = 0, so p = c⟨−d⟩.
-pub(crate) fn penalty(problem: &InterfaceProblem, c: f64, watch: Watch) -> Result<ContactState> {
-    let (n, m) = (problem.len(), problem.load().len());
-    let mut ws = Workspace::new(problem);
+pub(crate) fn penalty(
+    problem: &InterfaceProblem,
+    c: f64,
+    watch: Watch,
+    ws: &mut KalkerWorkspace,
+) -> Result<ContactState> {
+    let (n, m) = (problem.len(), problem.modes().len());
+    ws.prepare(problem);
     let mut active = vec![true; n];
     let mut counts = [0, 0];
     let mut reference = Iterate::zero(n, m);
@@ -888,14 +974,14 @@ pub(crate) fn penalty(problem: &InterfaceProblem, c: f64, watch: Watch) -> Resul
         &mut counts,
         watch,
         &mut reference,
-        &mut ws,
+        ws,
     )?;
     if let Some(stopped) = started {
         return Ok(finish(problem, method, stopped, ws, active, 1, counts));
     }
     let zeros = vec![0.0; n];
     let spectral = c > stiff_penalty(problem)?;
-    let inner = Subproblem::new(problem, 1.0 / c, &zeros, spectral, &reference, &mut ws)?
+    let inner = Subproblem::new(problem, 1.0 / c, &zeros, spectral, &reference, ws)?
         .solve(&mut active, watch.after(counts[0]))?;
     Ok(finish(problem, method, inner, ws, active, 1, counts))
 }
@@ -910,17 +996,19 @@ pub(crate) fn exact(
     start_set: Option<&[bool]>,
 ) -> Result<ContactState> {
     let silent = contopt_core::observe::Silent;
-    exact_observed(problem, start_set, Watch::new(&silent, Method::ActiveSet))
+    let watch = Watch::new(&silent, Method::ActiveSet);
+    exact_observed(problem, start_set, watch, &mut KalkerWorkspace::default())
 }
 
-/// [`exact`], reporting each of Kalker's solves to `watch`.
+/// [`exact`], reporting each of Kalker's solves to `watch`, in the workspace `ws`.
 pub(crate) fn exact_observed(
     problem: &InterfaceProblem,
     start_set: Option<&[bool]>,
     watch: Watch,
+    ws: &mut KalkerWorkspace,
 ) -> Result<ContactState> {
-    let (n, m) = (problem.len(), problem.load().len());
-    let mut ws = Workspace::new(problem);
+    let (n, m) = (problem.len(), problem.modes().len());
+    ws.prepare(problem);
     let mut reference = Iterate::zero(n, m);
     let mut counts = [0, 0];
     let method = Method::ActiveSet;
@@ -930,7 +1018,7 @@ pub(crate) fn exact_observed(
             let mut active = vec![true; n];
             let zeros = vec![0.0; n];
             let rho = 1.0 / stiff_penalty(problem)?;
-            let pre = Subproblem::new(problem, rho, &zeros, false, &reference, &mut ws)?
+            let pre = Subproblem::new(problem, rho, &zeros, false, &reference, ws)?
                 .solve(&mut active, watch)?;
             if pre.stopped.is_some() {
                 return Ok(finish(problem, method, pre, ws, active, 1, counts));
@@ -940,13 +1028,7 @@ pub(crate) fn exact_observed(
             active
         }
     };
-    let inner = solve_exact(
-        problem,
-        &reference,
-        &mut active,
-        watch.after(counts[0]),
-        &mut ws,
-    )?;
+    let inner = solve_exact(problem, &reference, &mut active, watch.after(counts[0]), ws)?;
     Ok(finish(problem, method, inner, ws, active, 1, counts))
 }
 

@@ -10,7 +10,9 @@
 //! (`PolonskyKeer::new(PolonskyKeerSettings::default())`, or [`SolverSettings::build`] for a
 //! solver named at run time); each reports its iterations to an
 //! [`Observer`](contopt_core::observe::Observer) ([`ContactSolver::solve_observed`]) and ends
-//! with a [`Termination`](contopt_core::Termination).
+//! with a [`Termination`](contopt_core::Termination). A design loop keeps one [`Workspace`]
+//! across its solves ([`ContactSolver::solve_in`]): the solvers' buffers are then sized once
+//! ([`PolonskyKeerWorkspace`], [`KalkerWorkspace`]).
 
 mod active_set;
 mod augmented;
@@ -27,13 +29,16 @@ mod solver;
 #[cfg(test)]
 mod tests;
 mod watch;
+mod workspace;
 
 pub use active_set::{ActiveSet, ActiveSetSettings};
 pub use augmented::{AugmentedLagrangian, AugmentedLagrangianSettings};
 pub use full::FullPenalty;
+pub use kalker::KalkerWorkspace;
 pub use penalty::{Penalty, PenaltySettings};
-pub use polonsky_keer::{PolonskyKeer, PolonskyKeerSettings};
+pub use polonsky_keer::{PolonskyKeer, PolonskyKeerSettings, PolonskyKeerWorkspace};
 pub use problem::{FreeMode, InterfaceProblem, DEFAULT_DENSE_LIMIT_BYTES, SMALL_STRAIN};
 pub use qp::{Qp, QpSettings};
 pub use settings::{Auto, SolverSettings};
 pub use solver::ContactSolver;
+pub use workspace::Workspace;

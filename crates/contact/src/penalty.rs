@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::kalker;
 use crate::watch::{self, Watch};
-use crate::{ContactSolver, InterfaceProblem};
+use crate::{ContactSolver, InterfaceProblem, Workspace};
 
 /// The settings of the [`Penalty`] method: its parameter, which has no default (the paper
 /// takes c = E·10⁴).
@@ -54,10 +54,22 @@ impl ContactSolver for Penalty {
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,
-        _start: Option<&[f64]>,
+        start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        let state = kalker::penalty(problem, self.c, Watch::new(observer, self.method()))?;
+        self.solve_in(problem, start, observer, &mut Workspace::default())
+    }
+
+    /// In the workspace's [`KalkerWorkspace`](crate::KalkerWorkspace).
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        _start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        let watch = Watch::new(observer, self.method());
+        let state = kalker::penalty(problem, self.c, watch, &mut workspace.kalker)?;
         watch::announce(observer, &state);
         Ok(state)
     }

@@ -6,11 +6,12 @@
 #![allow(clippy::needless_range_loop)]
 
 use contopt_core::observe::{Method, Nested, Observer};
-use contopt_core::{check, ContactState, Error, Quantity, Result, Stall, Termination};
+use contopt_core::{check, ContactState, Error, Quantity, Residuals, Result, Stall, Termination};
 use serde::{Deserialize, Serialize};
 
 use crate::watch::{self, Watch};
-use crate::{problem, ContactSolver, InterfaceProblem};
+use crate::workspace::refill;
+use crate::{problem, ContactSolver, InterfaceProblem, Workspace};
 
 /// Relative size of a penetration outside the solved part that makes the part grow
 /// (round-off).
@@ -118,13 +119,108 @@ impl ContactSolver for PolonskyKeer {
 
     /// Reports each conjugate-gradient step (`iterations`, numbered on across the growing
     /// parts of the interface) with the relative pressure change Σ wᵢ |Δpᵢ| / load as the
-    /// measure and `tolerance`.
+    /// measure and `tolerance`. Solves in a workspace of its own
+    /// ([`PolonskyKeer::solve_with`] keeps one across solves).
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,
         start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
+        let mut workspace = PolonskyKeerWorkspace::default();
+        self.solve_with(problem, start, observer, &mut workspace)?;
+        Ok(workspace.into_state())
+    }
+
+    /// [`PolonskyKeer::solve_with`] in the workspace's [`PolonskyKeerWorkspace`], the state
+    /// copied out.
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        let state = self.solve_with(problem, start, observer, &mut workspace.polonsky_keer)?;
+        Ok(state.clone())
+    }
+}
+
+/// The vectors of Polonsky–Keer solves, which a caller keeps across the solves of a design
+/// loop (faer's explicit scratch): sized for a number of points ([`PolonskyKeerWorkspace::new`])
+/// and grown when a problem is larger, they hold the conjugate-gradient buffers, the modes'
+/// form, the iterate and the last solve's [`ContactState`]. A solve in a workspace that has
+/// held a problem as large allocates nothing of its own; what the problem builds for it does
+/// (a restricted part of a grid, [`InterfaceProblem::restrict`], or its coarser version for a
+/// cold start, [`InterfaceProblem::coarsen`]: bodies with their own FFT plans).
+pub struct PolonskyKeerWorkspace {
+    cg: Buffers,
+    groups: Groups,
+    /// The iterate; on entry to a solve on a problem (or a part), its start when one is given.
+    p: Vec<f64>,
+    /// The pressure before the last step; also the spare vector of the steps that need one.
+    previous: Vec<f64>,
+    /// The points a solve on growing parts keeps.
+    keep: Vec<bool>,
+    /// The last solve's state.
+    state: ContactState,
+}
+
+impl Default for PolonskyKeerWorkspace {
+    /// An empty workspace: its first solve sizes it.
+    fn default() -> Self {
+        Self::new(0)
+    }
+}
+
+impl PolonskyKeerWorkspace {
+    /// A workspace for problems of up to `points` points (it grows for larger ones).
+    pub fn new(points: usize) -> Self {
+        let state = ContactState {
+            pressure: Vec::with_capacity(points),
+            gap: Vec::with_capacity(points),
+            rigid: vec![],
+            active: Vec::with_capacity(points),
+            iterations: 0,
+            iterp: 0,
+            iterd: 0,
+            residuals: Residuals::new(0.0, &[], &[]),
+            method: Method::PolonskyKeer,
+            termination: Termination::Converged,
+        };
+        Self {
+            cg: Buffers::new(points),
+            groups: Groups::new(points),
+            p: Vec::with_capacity(points),
+            previous: Vec::with_capacity(points),
+            keep: Vec::with_capacity(points),
+            state,
+        }
+    }
+
+    /// The state of the last solve (before any, an empty one).
+    pub fn state(&self) -> &ContactState {
+        &self.state
+    }
+
+    /// The state of the last solve (before any, an empty one), the workspace given up.
+    pub fn into_state(self) -> ContactState {
+        self.state
+    }
+}
+
+impl PolonskyKeer {
+    /// [`ContactSolver::solve_observed`] in the caller's `workspace`, which holds the returned
+    /// state until its next solve: kept across the solves of a design loop, a solve of a
+    /// problem no larger than an earlier one allocates nothing of its own (see
+    /// [`PolonskyKeerWorkspace`]).
+    pub fn solve_with<'w>(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &'w mut PolonskyKeerWorkspace,
+    ) -> Result<&'w ContactState> {
         if let Some(start) = start {
             if start.len() != problem.len() {
                 return Err(Error::invalid(
@@ -134,33 +230,35 @@ impl ContactSolver for PolonskyKeer {
                 ));
             }
             check::all_finite("start", start)?;
+            workspace.p.clear();
+            workspace.p.extend_from_slice(start);
         }
-        let state = self.solve_nested(problem, start, Watch::new(observer, self.method()))?;
-        watch::announce(observer, &state);
-        Ok(state)
+        let watch = Watch::new(observer, self.method());
+        self.solve_nested(problem, start.is_some(), watch, workspace)?;
+        watch::announce(observer, &workspace.state);
+        Ok(&workspace.state)
     }
-}
 
-impl PolonskyKeer {
-    /// Solves from `start`; a cold start on a problem with a coarser version
-    /// ([`InterfaceProblem::coarsen`]) starts from the coarse solution (itself found so, to
-    /// [`NESTED_TOLERANCE`]), each point given its coarse point's pressure. Its steps count
-    /// with the solve's, and number the fine ones on; they are reported one level deeper
-    /// (a solve that this one runs), so that an observer tells the fine grid's steps, the
-    /// costly ones, from the coarser grids' (a quarter of the cost each level down).
+    /// Solves from the start in `ws.p` when `warm`; a cold start (or a start without pressure)
+    /// on a problem with a coarser version ([`InterfaceProblem::coarsen`]) starts from the
+    /// coarse solution (itself found so, to [`NESTED_TOLERANCE`]), each point given its coarse
+    /// point's pressure. Its steps count with the solve's, and number the fine ones on; they are
+    /// reported one level deeper (a solve that this one runs), so that an observer tells the
+    /// fine grid's steps, the costly ones, from the coarser grids' (a quarter of the cost each
+    /// level down).
     fn solve_nested(
         &self,
         problem: &InterfaceProblem,
-        start: Option<&[f64]>,
+        warm: bool,
         watch: Watch,
-    ) -> Result<ContactState> {
-        let cold = start.is_none_or(|p| p.iter().all(|&v| v <= 0.0));
-        let given = || start.map(<[f64]>::to_vec);
+        ws: &mut PolonskyKeerWorkspace,
+    ) -> Result<()> {
+        let cold = !warm || ws.p.iter().all(|&v| v <= 0.0);
         if !cold || problem.len() < NESTED_POINTS {
-            return self.solve_cropped(problem, given(), watch);
+            return self.solve_cropped(problem, warm, watch, ws);
         }
         let Some((coarse, parent)) = problem.coarsen() else {
-            return self.solve_cropped(problem, given(), watch);
+            return self.solve_cropped(problem, warm, watch, ws);
         };
         let nested = PolonskyKeer {
             settings: PolonskyKeerSettings {
@@ -170,72 +268,77 @@ impl PolonskyKeer {
         };
         let deeper = Nested(watch.observer());
         let coarse_watch = Watch::new(&deeper, self.method());
-        let solved = nested.solve_nested(&coarse, None, coarse_watch).ok();
+        let solved = nested.solve_nested(&coarse, false, coarse_watch, ws);
         drop(coarse);
-        let Some(solved) = solved.filter(ContactState::is_converged) else {
-            return self.solve_cropped(problem, given(), watch);
-        };
-        let fine: Vec<f64> = parent.iter().map(|&c| solved.pressure[c]).collect();
-        // The parent index (a usize per point) and the coarse pressure are not held through
-        // the fine solve: at 2048² cells the index alone is 32 MiB of its peak.
-        drop((parent, solved.pressure));
-        let mut state = self.solve_cropped(problem, Some(fine), watch.after(solved.iterations))?;
-        state.iterations += solved.iterations;
-        Ok(state)
+        if solved.is_err() || !ws.state.is_converged() {
+            // A start without pressure starts as zero pressure does.
+            if warm {
+                refill(&mut ws.p, problem.len(), 0.0);
+            }
+            return self.solve_cropped(problem, warm, watch, ws);
+        }
+        ws.p.clear();
+        ws.p.extend(parent.iter().map(|&c| ws.state.pressure[c]));
+        // The parent index (a usize per point) is not held through the fine solve: at 2048²
+        // cells it is 32 MiB of its peak.
+        drop(parent);
+        let coarse_steps = ws.state.iterations;
+        self.solve_cropped(problem, true, watch.after(coarse_steps), ws)?;
+        ws.state.iterations += coarse_steps;
+        Ok(())
     }
 
-    /// Solves on a growing part of the interface when the problem can be restricted; each
-    /// larger part starts from the pressure of the last. The start is taken, not borrowed: it
-    /// is freed once the first part has its own copy (a whole-interface vector fewer at the
-    /// part's solve).
+    /// Solves on a growing part of the interface when the problem can be restricted, from
+    /// the start in `ws.p` when `warm`; each larger part starts from the pressure of the last.
     fn solve_cropped(
         &self,
         problem: &InterfaceProblem,
-        start: Option<Vec<f64>>,
+        mut warm: bool,
         watch: Watch,
-    ) -> Result<ContactState> {
+        ws: &mut PolonskyKeerWorkspace,
+    ) -> Result<()> {
         let n = problem.len();
-        let mut keep = seed(problem, start.as_deref());
-        let mut pressure = start;
+        seed(problem, warm, ws);
         let mut steps = 0;
-        while let Some((part, index)) = problem.restrict(&keep) {
-            let part_start: Option<Vec<f64>> =
-                pressure.map(|p| index.iter().map(|&k| p[k]).collect());
-            let state = self.solve_whole(&part, part_start.as_deref(), watch.after(steps))?;
+        while let Some((part, index)) = problem.restrict(&ws.keep) {
+            if warm {
+                ws.previous.clear();
+                ws.previous.extend(index.iter().map(|&k| ws.p[k]));
+                std::mem::swap(&mut ws.p, &mut ws.previous);
+            }
+            self.solve_whole(&part, warm, watch.after(steps), ws)?;
             drop(part);
-            steps += state.iterations;
-            let mut whole = vec![0.0; n];
+            steps += ws.state.iterations;
+            let part_end = ws.state.termination.clone();
+            refill(&mut ws.p, n, 0.0);
             for (a, &k) in index.iter().enumerate() {
-                whole[k] = state.pressure[a];
+                ws.p[k] = ws.state.pressure[a];
             }
-            let mut groups = Groups::new(problem)?;
-            let mut forces = vec![0.0; n];
-            let (gap, rigid) = groups.final_gap(problem, &whole, &mut forces, &mut []);
-            drop(forces);
-            let penetrating = penetrating(problem, &gap, &index);
-            if penetrating.is_empty() || !state.is_converged() {
-                let mut whole = outcome(problem, whole, (gap, rigid), steps);
-                watch::end(&mut whole, state.termination);
-                return Ok(whole);
+            ws.groups.prepare(problem)?;
+            ws.cg.prepare(problem);
+            settle(problem, steps, ws);
+            let grown = penetrating(problem, &index, ws);
+            if !grown || !part_end.is_converged() {
+                watch::end(&mut ws.state, part_end);
+                return Ok(());
             }
-            for k in index.into_iter().chain(penetrating) {
-                keep[k] = true;
-            }
-            pressure = Some(whole);
+            warm = true;
         }
-        let mut state = self.solve_whole(problem, pressure.as_deref(), watch.after(steps))?;
-        state.iterations += steps;
-        Ok(state)
+        self.solve_whole(problem, warm, watch.after(steps), ws)?;
+        ws.state.iterations += steps;
+        Ok(())
     }
 
-    /// The iteration on the whole problem, each step reported to `watch`.
+    /// The iteration on the whole problem from the start in `ws.p` when `warm`, each step
+    /// reported to `watch`; leaves its state in `ws.state`.
     fn solve_whole(
         &self,
         problem: &InterfaceProblem,
-        start: Option<&[f64]>,
+        warm: bool,
         watch: Watch,
-    ) -> Result<ContactState> {
-        let mut cg = Descent::new(problem, start)?;
+        ws: &mut PolonskyKeerWorkspace,
+    ) -> Result<()> {
+        let mut cg = Descent::new(problem, warm, ws)?;
         let (tolerance, max_steps) = (self.settings.tolerance, self.settings.max_steps);
         let (mut steps, mut change, mut halt) = (0, f64::INFINITY, None);
         while steps < max_steps && halt.is_none() {
@@ -273,98 +376,100 @@ impl PolonskyKeer {
                 tolerance,
             });
         }
-        let Descent {
-            mut groups,
-            p,
-            mut cg,
-            ..
-        } = cg;
-        let gap_rigid = groups.final_gap(problem, &p, &mut cg.forces, &mut cg.spare);
-        drop(cg);
-        let mut state = outcome(problem, p, gap_rigid, steps);
+        settle(problem, steps, ws);
         if let Some(halt) = halt {
-            watch::end(&mut state, halt);
+            watch::end(&mut ws.state, halt);
         }
-        Ok(state)
+        Ok(())
     }
 }
 
-/// Where a solve starts: where the start carries pressure, or (a cold start, or a start without
-/// pressure) within [`SEED_FRACTION`] of the free gap's range above its lowest point.
-fn seed(problem: &InterfaceProblem, start: Option<&[f64]>) -> Vec<bool> {
-    match start {
-        Some(p) if p.iter().any(|&v| v > 0.0) => p.iter().map(|&v| v > 0.0).collect(),
-        _ => {
-            let g = problem.free_gap();
-            let (lo, hi) = g
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
-                    (a.min(h), b.max(h))
-                });
-            g.iter()
-                .map(|&h| h <= lo + SEED_FRACTION * (hi - lo))
-                .collect()
-        }
-    }
-}
-
-/// The points outside a solved part (`index`) that the part's answer makes penetrate, beyond
-/// round-off of the gaps' size.
-fn penetrating(problem: &InterfaceProblem, gap: &[f64], index: &[usize]) -> Vec<usize> {
+/// Marks in `ws.keep` where a solve starts: where the start in `ws.p` carries pressure (when
+/// `warm`), or (a cold start, or a start without pressure) within [`SEED_FRACTION`] of the
+/// free gap's range above its lowest point.
+fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) {
     let n = problem.len();
-    let mut scale = vec![0.0; n];
-    problem.add_free_gap(&mut scale);
-    let scale = scale
+    if warm && ws.p.iter().any(|&v| v > 0.0) {
+        ws.keep.clear();
+        ws.keep.extend(ws.p.iter().map(|&v| v > 0.0));
+        return;
+    }
+    let g = &mut ws.previous;
+    refill(g, n, 0.0);
+    problem.add_free_gap(g);
+    let (lo, hi) = g
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
+            (a.min(h), b.max(h))
+        });
+    ws.keep.clear();
+    ws.keep
+        .extend(g.iter().map(|&h| h <= lo + SEED_FRACTION * (hi - lo)));
+}
+
+/// Marks in `ws.keep` the points of a solved part (`index`) and those outside it that the
+/// part's answer (the gap of `ws.state`) makes penetrate, beyond round-off of the gaps' size;
+/// returns whether any penetrates.
+fn penetrating(
+    problem: &InterfaceProblem,
+    index: &[usize],
+    ws: &mut PolonskyKeerWorkspace,
+) -> bool {
+    let gap = &ws.state.gap;
+    let free = &mut ws.previous;
+    refill(free, problem.len(), 0.0);
+    problem.add_free_gap(free);
+    let scale = free
         .iter()
         .zip(gap)
         .fold(0.0f64, |m, (h, d)| m.max(h.abs() + d.abs()));
-    let mut inside = vec![false; n];
+    refill(&mut ws.keep, problem.len(), false);
     for &k in index {
-        inside[k] = true;
+        ws.keep[k] = true;
     }
-    (0..n)
-        .filter(|&k| !inside[k] && gap[k] < -PENETRATION * scale)
-        .collect()
+    let mut any = false;
+    for (k, &d) in gap.iter().enumerate() {
+        if !ws.keep[k] && d < -PENETRATION * scale {
+            ws.keep[k] = true;
+            any = true;
+        }
+    }
+    any
 }
 
-/// The state of Polonsky and Keer's iteration: the pressure, its previous value, the modes
-/// and the conjugate-gradient buffers.
-struct Descent {
-    groups: Groups,
-    cg: Buffers,
+/// The state of Polonsky and Keer's iteration: the workspace's pressure, its previous value,
+/// the modes and the conjugate-gradient buffers, with the step's scalars.
+struct Descent<'w> {
+    ws: &'w mut PolonskyKeerWorkspace,
     kappa: f64,
-    p: Vec<f64>,
-    previous: Vec<f64>,
     gz_old: f64,
     conjugate: bool,
 }
 
-impl Descent {
-    /// The first pressure: `start` clipped at zero, or seeded from the gap, with each loaded
-    /// mode's pressure scaled to its load.
-    fn new(problem: &InterfaceProblem, start: Option<&[f64]>) -> Result<Self> {
-        let mut groups = Groups::new(problem)?;
+impl<'w> Descent<'w> {
+    /// The first pressure: the start in `ws.p` clipped at zero (when `warm`), or seeded from
+    /// the gap, with each loaded mode's pressure scaled to its load.
+    fn new(
+        problem: &InterfaceProblem,
+        warm: bool,
+        ws: &'w mut PolonskyKeerWorkspace,
+    ) -> Result<Self> {
+        ws.groups.prepare(problem)?;
+        ws.cg.prepare(problem);
         let w = problem.weights();
-        let n = w.len();
-        let mut cg = Buffers::new(problem);
-        let kappa = cg.self_compliance(problem)?;
-        let mut p = match start {
-            Some(s) => s.iter().map(|v| v.max(0.0)).collect(),
-            None => {
-                let mut g = vec![0.0; n];
-                problem.add_free_gap(&mut g);
-                groups.initial(w, &g, kappa)
-            }
-        };
-        cg.d.fill(0.0);
-        problem.add_free_gap(&mut cg.d);
-        groups.restore(w, &cg.d, &mut p);
+        let kappa = ws.cg.self_compliance(problem)?;
+        ws.cg.d.fill(0.0);
+        problem.add_free_gap(&mut ws.cg.d);
+        if warm {
+            ws.p.iter_mut().for_each(|v| *v = v.max(0.0));
+        } else {
+            ws.groups.initial(w, &ws.cg.d, kappa, &mut ws.p);
+        }
+        ws.groups.restore(w, &ws.cg.d, &mut ws.p);
+        refill(&mut ws.previous, problem.len(), 0.0);
         Ok(Self {
-            groups,
-            cg,
+            ws,
             kappa,
-            p,
-            previous: vec![0.0; n],
             gz_old: 1.0,
             conjugate: false,
         })
@@ -373,26 +478,33 @@ impl Descent {
     /// One step: the residual, the direction, the move along it and the points that enter;
     /// returns whether any entered.
     fn step(&mut self, problem: &InterfaceProblem) -> std::result::Result<bool, Stall> {
-        let (cg, groups) = (&mut self.cg, &mut self.groups);
-        cg.residual(problem, groups, &self.p);
+        let PolonskyKeerWorkspace {
+            cg,
+            groups,
+            p,
+            previous,
+            ..
+        } = &mut *self.ws;
+        cg.residual(problem, groups, p);
         cg.direction(problem, groups, self.conjugate, &mut self.gz_old);
-        self.previous.copy_from_slice(&self.p);
-        let entered = cg.step(problem, groups, &mut self.p, self.kappa)?;
+        previous.copy_from_slice(p);
+        let entered = cg.step(problem, groups, p, self.kappa)?;
         self.conjugate = !entered;
-        groups.restore(problem.weights(), &cg.d, &mut self.p);
+        groups.restore(problem.weights(), &cg.d, p);
         Ok(entered)
     }
 
     /// The step's change of the pressure, Σ wᵢ |Δpᵢ| over the load (or the carried force).
     fn change(&self, problem: &InterfaceProblem) -> f64 {
-        let (w, p) = (problem.weights(), &self.p);
+        let (w, p) = (problem.weights(), &self.ws.p);
         let scale = self
+            .ws
             .groups
             .total_load()
             .max(p.iter().zip(w).map(|(p, w)| p * w).sum::<f64>())
             .max(f64::MIN_POSITIVE);
         p.iter()
-            .zip(&self.previous)
+            .zip(&self.ws.previous)
             .zip(w)
             .map(|((a, b), w)| w * (a - b).abs())
             .sum::<f64>()
@@ -401,34 +513,48 @@ impl Descent {
 
     /// Returns to the pressure before the last step.
     fn undo(&mut self) {
-        self.p.copy_from_slice(&self.previous);
+        self.ws.p.copy_from_slice(&self.ws.previous);
     }
 }
 
-/// The state of a final pressure with its gap and rigid amplitudes.
-fn outcome(
-    problem: &InterfaceProblem,
-    pressure: Vec<f64>,
-    (gap, rigid): (Vec<f64>, Vec<f64>),
-    steps: usize,
-) -> ContactState {
-    let mut state = ContactState {
-        active: pressure.iter().map(|&p| p > 0.0).collect(),
-        residuals: problem.residuals(&pressure, &gap),
-        pressure,
-        gap,
-        rigid,
-        iterations: steps,
-        iterp: 0,
-        iterd: 0,
-        method: Method::PolonskyKeer,
-        termination: Termination::Converged,
-    };
-    problem.verify(&mut state);
-    state
+/// The state of the final pressure `ws.p` after `steps` steps, in `ws.state`: its gap
+/// d = g + A W p + R λ and the modes' amplitudes λ, fitted on its contact set, with the
+/// residuals, checked ([`InterfaceProblem::verify`]). The buffers and the modes' form must be
+/// prepared for `problem`.
+fn settle(problem: &InterfaceProblem, steps: usize, ws: &mut PolonskyKeerWorkspace) {
+    let PolonskyKeerWorkspace {
+        cg,
+        groups,
+        p,
+        state,
+        ..
+    } = ws;
+    let w = problem.weights();
+    for ((f, p), w) in cg.forces.iter_mut().zip(p.iter()).zip(w) {
+        *f = p * w;
+    }
+    refill(&mut state.gap, p.len(), 0.0);
+    problem.apply_influence_with(&cg.forces, &mut state.gap, &mut cg.spare);
+    problem.add_free_gap(&mut state.gap);
+    for (c, &v) in cg.contact.iter_mut().zip(p.iter()) {
+        *c = v > 0.0;
+    }
+    groups.amplitudes(w, &state.gap, &cg.contact);
+    problem.add_rigid_motion(&groups.lambda, &mut state.gap);
+    state.rigid.clear();
+    state.rigid.extend_from_slice(&groups.lambda);
+    state.pressure.clear();
+    state.pressure.extend_from_slice(p);
+    state.active.clear();
+    state.active.extend(p.iter().map(|&v| v > 0.0));
+    state.residuals = problem.residuals(&state.pressure, &state.gap);
+    (state.iterations, state.iterp, state.iterd) = (steps, 0, 0);
+    state.method = Method::PolonskyKeer;
+    state.termination = Termination::Converged;
+    problem.verify_in(state, &mut cg.z);
 }
 
-/// The vectors of the iteration, allocated once per solve.
+/// The vectors of the iteration, sized once per problem size.
 struct Buffers {
     /// Forces W·p or W·t, the operator's input; the masked residual, the preconditioner's.
     forces: Vec<f64>,
@@ -448,24 +574,43 @@ struct Buffers {
 }
 
 impl Buffers {
-    fn new(problem: &InterfaceProblem) -> Self {
-        let n = problem.len();
-        let zero = || vec![0.0; n];
+    /// Empty buffers with room for `points` points.
+    fn new(points: usize) -> Self {
+        let room = || Vec::with_capacity(points);
         Self {
-            forces: zero(),
-            spare: if problem.sums_two_products() {
-                zero()
-            } else {
-                vec![]
-            },
-            d: zero(),
-            d_previous: zero(),
-            z: zero(),
-            t: zero(),
-            r: zero(),
-            contact: vec![false; n],
+            forces: room(),
+            spare: room(),
+            d: room(),
+            d_previous: room(),
+            z: room(),
+            t: room(),
+            r: room(),
+            contact: Vec::with_capacity(points),
             preconditioned: false,
         }
+    }
+
+    /// Sizes the buffers for `problem` (`spare` only when its operator sums two products),
+    /// zeroed.
+    fn prepare(&mut self, problem: &InterfaceProblem) {
+        let n = problem.len();
+        for v in [
+            &mut self.forces,
+            &mut self.d,
+            &mut self.d_previous,
+            &mut self.z,
+            &mut self.t,
+            &mut self.r,
+        ] {
+            refill(v, n, 0.0);
+        }
+        refill(
+            &mut self.spare,
+            if problem.sums_two_products() { n } else { 0 },
+            0.0,
+        );
+        refill(&mut self.contact, n, false);
+        self.preconditioned = false;
     }
 
     /// κ: a point's displacement under unit pressure on itself, for seeding pressures from
@@ -613,10 +758,25 @@ struct Groups {
 }
 
 impl Groups {
-    fn new(problem: &InterfaceProblem) -> Result<Self> {
-        let n = problem.len();
-        let modes = problem.modes();
-        let (mut owner, mut r) = (vec![NONE; n], vec![0.0; n]);
+    /// Empty buffers with room for `points` points.
+    fn new(points: usize) -> Self {
+        Self {
+            owner: Vec::with_capacity(points),
+            r: Vec::with_capacity(points),
+            target: vec![],
+            num: vec![],
+            den: vec![],
+            lambda: vec![],
+            extreme: vec![],
+            seed: vec![],
+        }
+    }
+
+    /// The modes of `problem` in this form; fails on modes the iteration cannot hold.
+    fn prepare(&mut self, problem: &InterfaceProblem) -> Result<()> {
+        let (n, modes) = (problem.len(), problem.modes());
+        refill(&mut self.owner, n, NONE);
+        refill(&mut self.r, n, 0.0);
         let unsupported = |name: &str, why: &str| {
             Error::invalid(
                 format!("rigid mode `{name}`"),
@@ -639,24 +799,26 @@ impl Groups {
                 ));
             }
             for (&i, &v) in mode.points.iter().zip(&mode.displacement) {
-                if owner[i] != NONE {
+                if self.owner[i] != NONE {
                     return Err(unsupported(&mode.name, "shares points with another mode"));
                 }
-                owner[i] = k;
-                r[i] = v;
+                self.owner[i] = k;
+                self.r[i] = v;
             }
         }
         let m = modes.len();
-        Ok(Self {
-            owner,
-            r,
-            target: modes.iter().map(|m| -m.load).collect(),
-            num: vec![0.0; m],
-            den: vec![0.0; m],
-            lambda: vec![0.0; m],
-            extreme: vec![0.0; m],
-            seed: vec![NONE; m],
-        })
+        self.target.clear();
+        self.target.extend(modes.iter().map(|m| -m.load));
+        for v in [
+            &mut self.num,
+            &mut self.den,
+            &mut self.lambda,
+            &mut self.extreme,
+        ] {
+            refill(v, m, 0.0);
+        }
+        refill(&mut self.seed, m, NONE);
+        Ok(())
     }
 
     fn total_load(&self) -> f64 {
@@ -670,15 +832,14 @@ impl Groups {
 
     /// A first pressure: each loaded mode's load spread uniformly over its points; elsewhere
     /// the overlap −g over κ.
-    fn initial(&mut self, w: &[f64], g: &[f64], kappa: f64) -> Vec<f64> {
+    fn initial(&mut self, w: &[f64], g: &[f64], kappa: f64, p: &mut Vec<f64>) {
         self.sums(w, |_| 1.0, |_| true);
-        (0..w.len())
-            .map(|i| match self.owner[i] {
-                NONE => (-g[i]).max(0.0) / kappa,
-                k if self.num[k] != 0.0 => (self.target[k] / self.num[k]).max(0.0),
-                _ => 0.0,
-            })
-            .collect()
+        p.clear();
+        p.extend((0..w.len()).map(|i| match self.owner[i] {
+            NONE => (-g[i]).max(0.0) / kappa,
+            k if self.num[k] != 0.0 => (self.target[k] / self.num[k]).max(0.0),
+            _ => 0.0,
+        }));
     }
 
     /// num\[k\] = Σ wᵢ rᵢ f(i), den\[k\] = Σ wᵢ rᵢ² over the points of mode k with `member(i)`.
@@ -779,34 +940,5 @@ impl Groups {
                 p[i] = self.target[k] / (w[i] * self.r[i]);
             }
         }
-    }
-
-    /// The gap d = g + A W p + R λ of a final pressure, and λ; `forces` and `spare` are the
-    /// product's buffers (n values each; `spare` empty when the operator is one product).
-    fn final_gap(
-        &mut self,
-        problem: &InterfaceProblem,
-        p: &[f64],
-        forces: &mut [f64],
-        spare: &mut [f64],
-    ) -> (Vec<f64>, Vec<f64>) {
-        let w = problem.weights();
-        for ((f, p), w) in forces.iter_mut().zip(p).zip(w) {
-            *f = p * w;
-        }
-        let mut d = vec![0.0; p.len()];
-        let mut own;
-        let spare = if spare.len() == p.len() || !problem.sums_two_products() {
-            spare
-        } else {
-            own = vec![0.0; p.len()];
-            &mut own[..]
-        };
-        problem.apply_influence_with(forces, &mut d, spare);
-        problem.add_free_gap(&mut d);
-        let contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
-        self.amplitudes(w, &d, &contact);
-        problem.add_rigid_motion(&self.lambda, &mut d);
-        (d, self.lambda.clone())
     }
 }

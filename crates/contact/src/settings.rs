@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::{
     ActiveSet, ActiveSetSettings, AugmentedLagrangian, AugmentedLagrangianSettings, ContactSolver,
     InterfaceProblem, Penalty, PenaltySettings, PolonskyKeer, PolonskyKeerSettings, Qp, QpSettings,
+    Workspace,
 };
 
 /// A contact solver and its settings, as a scene names it (`{ kind = "polonsky_keer",
@@ -46,7 +47,7 @@ impl SolverSettings {
 }
 
 /// The solver chosen per problem, the faster of the two exact ones: [`PolonskyKeer`] when a
-/// body offers an inverse of its operator ([`InterfaceProblem::offers_inverse`]: a half-space
+/// body offers an inverse of its operator ([`InterfaceProblem::precondition`]: a half-space
 /// grid's circulant, a bed's stiffness), whose few preconditioned steps through the bodies'
 /// operators beat a dense matrix at any size, or when the interface has more than
 /// [`Auto::DENSE_POINTS`] points; Kalker's [`ActiveSet`] on the other small interfaces
@@ -126,5 +127,16 @@ impl ContactSolver for Auto {
     ) -> Result<ContactState> {
         self.choice_for(problem)
             .solve_observed(problem, start, observer)
+    }
+
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        self.choice_for(problem)
+            .solve_in(problem, start, observer, workspace)
     }
 }

@@ -3,7 +3,7 @@
 use contopt_core::observe::{Method, Observer, Silent};
 use contopt_core::{ContactState, Result};
 
-use crate::InterfaceProblem;
+use crate::{InterfaceProblem, Workspace};
 
 /// A method that solves the interface problem: p ≥ 0, d ≥ 0, pᵀd = 0 and equilibrium (2.15).
 ///
@@ -15,8 +15,9 @@ use crate::InterfaceProblem;
 /// own `new(settings)`): every setting has its default in the library.
 ///
 /// A solver is `Send + Sync`: one solver solves an envelope's cases at once on several threads
-/// ([`crate::parallel`]); what a solve needs to change it allocates per solve (its work
-/// vectors) or takes from the problem ([`InterfaceProblem::dense_influence`], built once).
+/// ([`crate::parallel`]); what a solve needs to change it takes from the caller's
+/// [`Workspace`] ([`ContactSolver::solve_in`]), allocates per solve (its work vectors) or takes
+/// from the problem ([`InterfaceProblem::dense_influence`], built once).
 pub trait ContactSolver: Send + Sync {
     /// The method, in events and reports.
     fn method(&self) -> Method;
@@ -43,6 +44,19 @@ pub trait ContactSolver: Send + Sync {
         start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState>;
+
+    /// [`ContactSolver::solve_observed`] in the caller's `workspace`, which a design loop
+    /// keeps across its solves so that the solver sizes its buffers once (faer's explicit
+    /// scratch); solvers that keep none ignore it.
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+        _workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        self.solve_observed(problem, start, observer)
+    }
 
     /// The same solver stopping at the looser `tolerance` (in the measure of its own), for an
     /// inexact solve inside an outer iteration whose own error is far above it; `None` when it

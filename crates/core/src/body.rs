@@ -19,6 +19,28 @@ pub struct RigidMode {
     pub load: f64,
 }
 
+/// The fixed operator A₀ of which a body's influence is a multiple, A = scale·A₀
+/// ([`ElasticBody::influence_shape`]): two bodies of equal shapes, paired point for point, have
+/// proportional operators, so the interface problem applies one product for the summed
+/// H = H¹ + H² (eqs. 2.8–2.15) and scales it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InfluenceShape {
+    /// A₀ = 0: no compliance, whatever the points (a rigid body, of scale 0).
+    Zero,
+    /// Love's influence of uniform pressure on the rectangular cells of a grid on a
+    /// half-space, at unit (1 − ν²)/E.
+    CellGrid {
+        /// Cells along x and y.
+        cells: [usize; 2],
+        /// Distance between cell centres along x and y \[mm\] (0 along a side of one cell).
+        spacing: [f64; 2],
+        /// A cell's area \[mm²\].
+        cell_area: f64,
+        /// Whether the surface repeats the grid in both directions.
+        periodic: bool,
+    },
+}
+
 /// The entries of a dense influence matrix among `points`, `block[(a, b)]` =
 /// `matrix[(points[a], points[b])]`: [`ElasticBody::influence_block`] of a body that holds its
 /// matrix. `None` when a point is not among the matrix's rows.
@@ -128,22 +150,22 @@ pub trait ElasticBody: Send + Sync {
     }
 
     /// The influence operator as a multiple of a fixed one: `(shape, scale)` when A = scale·A₀
-    /// with A₀ named by `shape` (a half-space grid: its cells and spacing; scale (1 − ν²)/E).
+    /// with A₀ given by `shape` (a half-space grid: its cells and spacing; scale (1 − ν²)/E).
     /// Two bodies of one shape, paired point for point, share one product: the interface
     /// problem applies one of them and scales it. A scale of 0 says the operator is zero (a
     /// rigid body): the problem applies the partner's alone. `None` (the default) when the body
     /// does not say.
-    fn influence_shape(&self) -> Option<(String, f64)> {
+    fn influence_shape(&self) -> Option<(InfluenceShape, f64)> {
         None
     }
 
     /// A part of the influence operator that is a multiple of a fixed one: `(shape, scale)`
-    /// when A = scale·A₀ + R, A₀ named by `shape` as in [`ElasticBody::influence_shape`], and
+    /// when A = scale·A₀ + R, A₀ given by `shape` as in [`ElasticBody::influence_shape`], and
     /// [`ElasticBody::apply_influence_adding`] adds a partner's multiple of A₀ inside this
     /// body's own product. A partner of that shape, paired point for point, then costs no
     /// product of its own (a roller with free ends on its raceway's grid). The default is the
     /// whole operator's [`ElasticBody::influence_shape`] (R = 0).
-    fn base_shape(&self) -> Option<(String, f64)> {
+    fn base_shape(&self) -> Option<(InfluenceShape, f64)> {
         self.influence_shape()
     }
 

@@ -26,7 +26,7 @@ mod state;
 pub mod stress;
 mod termination;
 
-pub use body::{block_among, ElasticBody, RigidMode};
+pub use body::{block_among, ElasticBody, InfluenceShape, RigidMode};
 pub use error::{Error, Result};
 pub use faer;
 pub use fields::{BodyFields, Cell, CellKind};

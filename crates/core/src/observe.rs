@@ -128,22 +128,54 @@ impl schemars::JsonSchema for Method {
     }
 }
 
-/// Reads a library method by its [`Method::id`]; a method of your own cannot be read back
-/// (its name is not `'static`), and is refused naming the library's.
+/// Reads a method by its [`Method::id`]: a library method's, or any other name as a method of
+/// one's own ([`Method::Other`]), so that the result files of a user's solver or design read
+/// back. An empty name is refused.
 impl<'de> Deserialize<'de> for Method {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         let id = String::deserialize(deserializer)?;
-        LIBRARY_METHODS
+        if id.is_empty() {
+            return Err(serde::de::Error::custom("a method's id is empty"));
+        }
+        Ok(LIBRARY_METHODS
             .into_iter()
             .find(|m| m.id() == id)
-            .ok_or_else(|| {
-                let ids: Vec<&str> = LIBRARY_METHODS.iter().map(Method::id).collect();
-                serde::de::Error::custom(format!(
-                    "unknown method {id:?}, expected one of {}",
-                    ids.join(", ")
-                ))
-            })
+            .unwrap_or_else(|| Method::Other(interned(id))))
     }
+}
+
+/// The longest name of a method of one's own that is read back \[bytes\]; longer ones are cut.
+const MAX_OTHER_NAME_BYTES: usize = 64;
+
+/// The most distinct names of one's own methods kept for the process: past it, further names
+/// read back as one shared name.
+const MAX_OTHER_NAMES: usize = 1024;
+
+/// The name of a method of one's own as a `'static` string: each distinct name is kept once
+/// for the life of the process (they are few: a user's solvers and designs), at most
+/// [`MAX_OTHER_NAMES`] of at most [`MAX_OTHER_NAME_BYTES`] bytes, so that a hostile file cannot
+/// grow the memory without bound.
+fn interned(mut id: String) -> &'static str {
+    use std::collections::BTreeSet;
+    use std::sync::{Mutex, PoisonError};
+    static NAMES: Mutex<BTreeSet<&'static str>> = Mutex::new(BTreeSet::new());
+    if id.len() > MAX_OTHER_NAME_BYTES {
+        let mut end = MAX_OTHER_NAME_BYTES;
+        while !id.is_char_boundary(end) {
+            end -= 1;
+        }
+        id.truncate(end);
+    }
+    let mut names = NAMES.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(&name) = names.get(id.as_str()) {
+        return name;
+    }
+    if names.len() >= MAX_OTHER_NAMES {
+        return "other";
+    }
+    let name: &'static str = Box::leak(id.into_boxed_str());
+    names.insert(name);
+    name
 }
 
 impl std::fmt::Display for Method {
@@ -305,5 +337,25 @@ impl Observer for Nested<'_> {
             level: event.level + 1,
             ..*event
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Method;
+
+    #[test]
+    fn methods_of_ones_own_read_back_by_name() {
+        let read = |id: &str| serde_json::from_value::<Method>(serde_json::json!(id));
+        assert_eq!(read("load_split").unwrap(), Method::LoadSplit);
+        let own = read("relief").unwrap();
+        assert_eq!(own, Method::Other("relief"));
+        assert_eq!(serde_json::to_value(own).unwrap(), "relief");
+        // The same name twice is kept once.
+        let again = read("relief").unwrap();
+        assert!(matches!((own, again), (Method::Other(a), Method::Other(b)) if std::ptr::eq(a, b)));
+        assert!(read("").is_err());
+        let long = "x".repeat(1000);
+        assert!(matches!(read(&long).unwrap(), Method::Other(n) if n.len() == 64));
     }
 }

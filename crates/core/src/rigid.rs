@@ -1,6 +1,6 @@
 use faer::Mat;
 
-use crate::{check, ElasticBody, Interface, Result, RigidMode};
+use crate::{check, ElasticBody, InfluenceShape, Interface, Result, RigidMode};
 
 /// A rigid body facing another body's contact surface: no compliance, and either held in
 /// place or free to translate along one axis under a given force (a punch, an indenter).
@@ -78,8 +78,8 @@ impl ElasticBody for RigidBody {
     }
 
     /// A = 0·A₀: no compliance, whatever the shape.
-    fn influence_shape(&self) -> Option<(String, f64)> {
-        Some(("rigid".into(), 0.0))
+    fn influence_shape(&self) -> Option<(InfluenceShape, f64)> {
+        Some((InfluenceShape::Zero, 0.0))
     }
 
     fn load_displacement(&self) -> Result<Vec<f64>> {

@@ -36,7 +36,7 @@ use contopt_core::{
 use crate::fft::Convolution;
 use crate::subsurface::Images;
 use crate::HalfSpace;
-use contopt_core::Spares;
+use contopt_core::{InfluenceShape, Spares};
 
 /// A half-space grid ending at free faces x = x₋ below its first column and x = x₊ beyond its
 /// last, each loaded by the image pressure with a weight (see the module's account).
@@ -200,7 +200,7 @@ impl ElasticBody for FreeEnds {
 
     /// The own grid's half-space ([`HalfSpace`]'s shape and scale (1 − ν²)/E): a raceway on
     /// the same grid adds its product to this one's.
-    fn base_shape(&self) -> Option<(String, f64)> {
+    fn base_shape(&self) -> Option<(InfluenceShape, f64)> {
         self.own.influence_shape()
     }
 

@@ -2,8 +2,8 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use contopt_core::{
-    check, memory, ElasticBody, Error, Geometry, Interface, Material, Result, RigidMode,
-    Subsurface, SubsurfaceRequest,
+    check, memory, ElasticBody, Error, Geometry, InfluenceShape, Interface, Material, Result,
+    RigidMode, Subsurface, SubsurfaceRequest,
 };
 use faer::Mat;
 
@@ -447,7 +447,7 @@ impl ElasticBody for HalfSpace {
     }
 
     /// The grid's cells, spacing and kind; the kernel is (1 − ν²)/E times one of those alone.
-    fn influence_shape(&self) -> Option<(String, f64)> {
+    fn influence_shape(&self) -> Option<(InfluenceShape, f64)> {
         let p = &self.interface.points();
         let dx = if self.nx > 1 { p[1][0] - p[0][0] } else { 0.0 };
         let dy = if self.ny > 1 {
@@ -456,13 +456,13 @@ impl ElasticBody for HalfSpace {
             0.0
         };
         let w = self.interface.weights()[0];
-        Some((
-            format!(
-                "half-space grid {} x {}, {dx:e} x {dy:e} mm, cell {w:e} mm², periodic {}",
-                self.nx, self.ny, self.periodic
-            ),
-            self.compliance,
-        ))
+        let shape = InfluenceShape::CellGrid {
+            cells: [self.nx, self.ny],
+            spacing: [dx, dy],
+            cell_area: w,
+            periodic: self.periodic,
+        };
+        Some((shape, self.compliance))
     }
 
     fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {

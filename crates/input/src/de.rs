@@ -30,6 +30,16 @@ pub(crate) fn from_node<'de, T: Deserialize<'de>>(
     located(NodeDe::new(node, &path), T::deserialize).map_err(DeError::into_input_error)
 }
 
+/// Reads `node` through `seed`, as the node at the rendered path `root` of its document.
+pub(crate) fn from_node_seed<'de, S: DeserializeSeed<'de>>(
+    node: &'de Node,
+    root: &str,
+    seed: S,
+) -> Result<S::Value, InputError> {
+    let path = Path::Root(root);
+    located(NodeDe::new(node, &path), |de| seed.deserialize(de)).map_err(DeError::into_input_error)
+}
+
 /// An error while reading, placed (given a path and span) by the innermost node it passed.
 #[derive(Debug)]
 pub(crate) struct DeError {

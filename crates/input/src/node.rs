@@ -2,6 +2,7 @@
 
 use std::ops::Range;
 
+use serde::de::DeserializeSeed;
 use serde::Deserialize;
 
 use crate::path::{push_index, push_key};
@@ -227,10 +228,18 @@ impl Node {
         }
     }
 
-    /// Removes a key of this table and returns its value; `None` when there is no such key or
-    /// this is not a table.
-    pub fn remove(&mut self, key: &str) -> Option<Node> {
-        let Value::Table(entries) = &mut self.value else {
+    /// Removes the key at a dotted `path` (as in [`Node::get`]; a top-level key is its own
+    /// path) and returns its value; `None` when there is no such key or what holds it is not a
+    /// table.
+    pub fn remove(&mut self, path: &str) -> Option<Node> {
+        let (parent, key) = path.rsplit_once('.').unwrap_or(("", path));
+        let mut node = self;
+        let mut rendered = String::new();
+        for segment in segments(parent) {
+            let index = node.child_index(segment, &mut rendered).ok()?;
+            node = node.child_mut(index);
+        }
+        let Value::Table(entries) = &mut node.value else {
             return None;
         };
         let index = entries.iter().position(|(name, _)| name.name == key)?;
@@ -249,6 +258,18 @@ impl Node {
     pub fn deserialize_at<'a, T: Deserialize<'a>>(&'a self, path: &str) -> Result<T, InputError> {
         let (node, rendered) = self.walk(path)?;
         de::from_node(node, &rendered)
+    }
+
+    /// Reads this node through `seed` as the node at `path` of its document, `path` rendered
+    /// as errors render it (`body[1]`): the errors carry paths from there. A reader of kinds
+    /// registered at run time (a `DeserializeSeed` that holds the registry) reads its part of
+    /// the document this way, with every span kept.
+    pub fn deserialize_seed<'a, S: DeserializeSeed<'a>>(
+        &'a self,
+        seed: S,
+        path: &str,
+    ) -> Result<S::Value, InputError> {
+        de::from_node_seed(self, path, seed)
     }
 
     /// The node at `path` and its path as errors render it.

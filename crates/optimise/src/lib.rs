@@ -43,13 +43,14 @@ mod programme;
 mod settings;
 mod simplex;
 /// Solves `problem` with its initial gap changed by `gap_change` (from the pressure `start`
-/// when given), reporting to `observer`.
+/// when given) in `workspace`, reporting to `observer`.
 pub(crate) fn solve_gap_changed(
     solver: &dyn ContactSolver,
     problem: &InterfaceProblem,
     gap_change: &[f64],
     start: Option<&[f64]>,
     observer: &dyn Observer,
+    workspace: &mut Workspace,
 ) -> Result<ContactState> {
     let gap: Vec<f64> = problem
         .initial_gap()
@@ -57,7 +58,8 @@ pub(crate) fn solve_gap_changed(
         .zip(gap_change)
         .map(|(h, d)| h + d)
         .collect();
-    solver.solve_observed(&problem.with_initial_gap(&gap)?, start, observer)
+    let problem = problem.with_initial_gap(&gap)?;
+    solver.solve_in(&problem, start, observer, workspace)
 }
 
 #[cfg(test)]
@@ -72,8 +74,9 @@ pub use settings::{
 pub use simplex::{nelder_mead, Minimum, SearchSettings};
 
 use std::borrow::Cow;
+use std::sync::Mutex;
 
-use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_contact::{ContactSolver, InterfaceProblem, Workspace};
 use contopt_core::observe::{Method, Nested, Observer, Silent};
 use contopt_core::{ContactState, Error, GapShape, Result, Termination};
 
@@ -171,6 +174,8 @@ pub struct Optimisation<'a> {
     reference: Reference,
     /// Receives each pass of the loop; the contact solves inside report one level deeper.
     observer: &'a dyn Observer,
+    /// The contact solver's buffers, kept across the loop's solves.
+    workspace: Mutex<Workspace>,
 }
 
 impl<'a> Optimisation<'a> {
@@ -204,6 +209,7 @@ impl<'a> Optimisation<'a> {
             v,
             reference: Reference::Least,
             observer: &Silent,
+            workspace: Mutex::default(),
         };
         opt.check()?;
         Ok(opt)
@@ -400,7 +406,8 @@ impl<'a> Optimisation<'a> {
     }
 
     /// Solves `problem` with its initial gap changed by `gap_change` (from the pressure
-    /// `start` when given), the contact solver reporting one level below the loop.
+    /// `start` when given), the contact solver reporting one level below the loop, in the
+    /// loop's workspace (in one of its own while another solve holds that one).
     fn solve_with_gap_change(
         &self,
         solver: &dyn ContactSolver,
@@ -408,7 +415,14 @@ impl<'a> Optimisation<'a> {
         gap_change: &[f64],
         start: Option<&[f64]>,
     ) -> Result<ContactState> {
-        solve_gap_changed(solver, problem, gap_change, start, &Nested(self.observer))
+        let observer = Nested(self.observer);
+        let solve = |workspace: &mut Workspace| {
+            solve_gap_changed(solver, problem, gap_change, start, &observer, workspace)
+        };
+        match self.workspace.try_lock() {
+            Ok(mut kept) => solve(&mut kept),
+            Err(_) => solve(&mut Workspace::default()),
+        }
     }
 
     /// The largest pressure on Ω_opt of a contact solution (its p_max before any

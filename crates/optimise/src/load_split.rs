@@ -1,6 +1,6 @@
 //! The optimum of (3.5) without a dense matrix: the load carried by each design column.
 
-use contopt_contact::{parallel, ContactSolver, FreeMode, InterfaceProblem};
+use contopt_contact::{parallel, ContactSolver, FreeMode, InterfaceProblem, Workspace};
 use contopt_core::drive::Step;
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{ContactState, Error, Result, Termination};
@@ -453,7 +453,8 @@ impl Split<'_, '_> {
         let cases = self.cases;
         let solve = |c: usize, observer: &dyn Observer| {
             let start = last.map(|l| l.cases[c].pressure.as_slice());
-            crate::solve_gap_changed(solver, &cases[c], gap_change, start, observer)
+            let workspace = &mut Workspace::default();
+            crate::solve_gap_changed(solver, &cases[c], gap_change, start, observer, workspace)
         };
         let at_once = cases.first().map_or(1, |c| parallel::at_once(solver, c));
         let go_on = |r: &Result<ContactState>| r.as_ref().is_ok_and(|s| s.termination.is_solved());

@@ -57,7 +57,7 @@ pub(crate) fn check(
     let bodies: Vec<Option<u64>> = (0..spec.body.len())
         .map(|k| {
             let place = crate::prepare::placement(spec, layout, k, at, meshes);
-            spec.body[k].kind().memory(&place)
+            spec.body[k].memory(&place)
         })
         .collect();
     let design = crate::methods::design(spec);

@@ -58,7 +58,7 @@ impl Built {
         self.bodies[1].as_ref()
     }
 
-    /// The time the build took (zero for a later case that shares it).
+    /// The time the build took.
     pub fn took(&self) -> Duration {
         self.took
     }
@@ -66,14 +66,6 @@ impl Built {
     /// The two bodies, the first below the zone.
     pub fn into_bodies(self) -> [Box<dyn ElasticBody>; 2] {
         self.bodies
-    }
-
-    /// The same bodies for a later case, which does not pay for their build.
-    pub(crate) fn reused(self) -> Self {
-        Self {
-            took: Duration::ZERO,
-            ..self
-        }
     }
 }
 
@@ -88,14 +80,13 @@ impl Case {
         let at = &self.locator;
         let mut built: [Option<Box<dyn ElasticBody>>; 2] = [None, None];
         // Owners first: a finite-element body meshes the faces its partner stands on.
-        let order = [0, 1].map(|k| (!spec.body[k].kind().owns_surface(), k));
+        let order = [0, 1].map(|k| (!spec.body[k].owns_surface(), k));
         let mut order = order.to_vec();
         order.sort();
         for (_, k) in order {
             let place = crate::prepare::placement(spec, &self.plan.layout, k, at, &self.meshes);
             let surface = self.surface(&built, k)?;
             let body = spec.body[k]
-                .kind()
                 .build(&place, surface.as_ref())
                 .map_err(|e| at.library(&format!("body[{k}]"), e))?;
             built[k] = Some(body);

@@ -1,4 +1,4 @@
-//! The fields over the meshes of a case's bodies (`[output] fields`, on by default): each body
+//! The fields over the meshes of a case's bodies (`[output] fields`, on request): each body
 //! that has a mesh gives its nodes, cells, displacements and stresses under the case's final
 //! solution, and the report writes them for a viewer.
 
@@ -29,12 +29,14 @@ pub(crate) fn compute(
     {
         return;
     }
+    let started = std::time::Instant::now();
     match of_bodies(report, built, problem, rigid) {
         Ok(fields) => report.fields = fields,
         Err(e) => report
             .warnings
             .push(format!("the fields for ParaView are not written: {e}")),
     }
+    report.time("fields", started);
 }
 
 /// Each body's fields that has a mesh, with its number.

@@ -191,11 +191,8 @@ fn surface(zone: &ZoneSpec) -> Surface {
 impl GapSpec {
     /// The gap of a scene that gives none: the distance measured between two imported meshes
     /// on a zone of meshes, else flat.
-    pub fn default_for(zone: &ZoneSpec, bodies: &[crate::BodySpec]) -> Self {
-        let imported = bodies
-            .iter()
-            .filter(|b| matches!(b, crate::BodySpec::FeMesh(_)))
-            .count();
+    pub fn default_for(zone: &ZoneSpec, bodies: &[crate::Chosen<dyn crate::BodyKind>]) -> Self {
+        let imported = bodies.iter().filter(|b| b.imported()).count();
         match zone {
             ZoneSpec::Mesh(_) if imported == 2 => GapSpec::Measured,
             _ => GapSpec::Flat,

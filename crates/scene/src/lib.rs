@@ -9,9 +9,9 @@
 //! distinct pair of bodies once, into [`CaseReport`]s, the unit of `result.json`
 //! ([`contopt_results`]).
 //!
-//! A new body kind is one file in `bodies/` and one line of [`BodySpec`]; a new design method
-//! one file in `methods/` and one line of [`MethodSpec`]; the solvers and their settings are the
-//! contact crate's ([`contopt_contact::SolverSettings`]).
+//! The kinds a scene may name — bodies, design methods, contact solvers — are those of a
+//! [`Registry`]: [`Registry::standard`] has the library's, and a crate of one's own adds its
+//! own and reads scenes through it ([`Registry::load`]), without editing this crate.
 
 mod bearing;
 mod bodies;
@@ -30,6 +30,7 @@ pub mod parallel;
 mod prepare;
 mod reference;
 mod region;
+mod registry;
 mod report;
 mod run;
 mod spec;
@@ -43,8 +44,9 @@ use contopt_input::{Limits, Node};
 
 pub use bearing::{BearingLoadSpec, BearingObjective, BearingSpec, RacewaySpec, FREE_END_WEIGHT};
 pub use bodies::{
-    BodyKind, BodySpec, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec, GroupLoad,
-    GroupSupport, HalfSpaceBody, PunchLoad, Rigid, Support, WinklerBed,
+    misplaced, own_surface, BodyKind, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec,
+    GroupLoad, GroupSupport, HalfSpaceBody, Placement, PunchLoad, Rigid, Side, Support, Takes,
+    WinklerBed,
 };
 pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 pub use build::Built;
@@ -53,8 +55,13 @@ pub use error::{Located, SceneError};
 pub use gap::{GapSpec, Hertz, Radius, RollerGap};
 pub use mesh_zone::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
 pub use meshes::{Imported, MeshFiles};
-pub use methods::MethodSpec;
+pub use methods::{
+    BearingCrown, Check, CircularSearch, Context, Design, Designed, EnvelopeSplit,
+    FujiwaraKawaseSearch, Gap,
+};
+pub use parallel::Ran;
 pub use region::OmegaVSpec;
+pub use registry::{Chosen, Registry, SolverKind};
 pub use report::PENETRATION_WARNING;
 pub use run::Run;
 pub use spec::{CaseSpec, ContactSpec, LoadSpec, OptimisationSpec, OutputSpec};
@@ -113,9 +120,10 @@ pub struct Case {
     meshes: Arc<MeshFiles>,
 }
 
-impl Scene {
-    /// Reads and checks a scene file (TOML, or JSON when the name ends in `.json`).
-    pub fn load(path: &Path) -> Result<Self, SceneError> {
+impl Registry {
+    /// Reads and checks a scene file (TOML, or JSON when the name ends in `.json`), its kinds
+    /// this registry's.
+    pub fn load(&self, path: &Path) -> Result<Scene, SceneError> {
         let io = |source| SceneError::Io {
             file: path.to_owned(),
             source,
@@ -133,16 +141,16 @@ impl Scene {
         } else {
             Format::Toml
         };
-        Self::parse(&text, format, path)
+        self.parse(&text, format, path)
     }
 
     /// The bundled scene `name` (one of [`BUNDLED`]), as if read from `scenes/<name>.toml`.
-    pub fn bundled(name: &str) -> Result<Self, SceneError> {
+    pub fn bundled(&self, name: &str) -> Result<Scene, SceneError> {
         let file = Path::new("scenes").join(format!("{name}.toml"));
         match bundled::find(name) {
             Some(scene) => {
-                let (text, tree) = Self::read(scene.text, Format::Toml, &file)?;
-                Self::from_tree(text, tree, &file, bundled::meshes(scene, &file))
+                let (text, tree) = read(scene.text, Format::Toml, &file)?;
+                self.scene_of(text, tree, &file, bundled::meshes(scene, &file))
             }
             None => {
                 let names: Vec<&str> = BUNDLED.iter().map(|b| b.name).collect();
@@ -162,13 +170,17 @@ impl Scene {
     /// The bundled scene `name` with `edits`: dotted keys and their TOML values
     /// (`("contact.zone.elements", Some("36"))`), or `None` to remove a key — a study of a
     /// bundled scene from Rust.
-    pub fn bundled_with(name: &str, edits: &[(&str, Option<&str>)]) -> Result<Self, SceneError> {
+    pub fn bundled_with(
+        &self,
+        name: &str,
+        edits: &[(&str, Option<&str>)],
+    ) -> Result<Scene, SceneError> {
         let file = Path::new("scenes").join(format!("{name}.toml"));
         let scene = bundled::find(name).ok_or_else(|| {
             let locator = Locator::new(&file, "".into(), Arc::new(Node::table::<&str>([])), None);
             locator.at("", format!("no bundled scene {name:?}"))
         })?;
-        Self::edited(
+        self.edited(
             scene.text,
             Format::Toml,
             &file,
@@ -177,15 +189,16 @@ impl Scene {
         )
     }
 
-    /// [`Scene::parse`] with `edits` made to the text's keys first (see
+    /// [`Registry::parse`] with `edits` made to the text's keys first (see
     /// [`Scene::bundled_with`]).
     pub fn parse_with(
+        &self,
         text: &str,
         format: Format,
         file: &Path,
         edits: &[(&str, Option<&str>)],
-    ) -> Result<Self, SceneError> {
-        Self::edited(
+    ) -> Result<Scene, SceneError> {
+        self.edited(
             text,
             format,
             file,
@@ -194,15 +207,16 @@ impl Scene {
         )
     }
 
-    /// [`Scene::parse_with`] reading its meshes from `meshes`.
+    /// [`Registry::parse_with`] reading its meshes from `meshes`.
     fn edited(
+        &self,
         text: &str,
         format: Format,
         file: &Path,
         edits: &[(&str, Option<&str>)],
         meshes: MeshFiles,
-    ) -> Result<Self, SceneError> {
-        let (text, tree) = Self::read(text, format, file)?;
+    ) -> Result<Scene, SceneError> {
+        let (text, tree) = read(text, format, file)?;
         let mut tree = tree;
         let whole = Locator::new(file, text.clone(), Arc::new(tree.clone()), None);
         for (key, value) in edits {
@@ -224,47 +238,31 @@ impl Scene {
                 }
             }
         }
-        Self::from_tree(text, tree, file, meshes)
-    }
-
-    /// The text read into a tree within the scene's limits.
-    fn read(text: &str, format: Format, file: &Path) -> Result<(Arc<str>, Node), SceneError> {
-        let limits = Limits {
-            max_bytes: MAX_TEXT_BYTES,
-            max_depth: MAX_NESTING,
-        };
-        let text: Arc<str> = text.into();
-        let empty = Arc::new(Node::table::<&str>([]));
-        let whole = Locator::new(file, text.clone(), empty, None);
-        let tree = match format {
-            Format::Toml => Node::parse_toml_with(&text, &limits),
-            Format::Json => Node::parse_json_with(&text, &limits),
-        }
-        .map_err(|e| whole.input(e))?;
-        Ok((text, tree))
+        self.scene_of(text, tree, file, meshes)
     }
 
     /// Reads scene text and checks every case as its run would, without solving; `file`
     /// names it in messages and its folder is where the files a scene names are read.
-    pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
-        let (text, tree) = Self::read(text, format, file)?;
-        Self::from_tree(text, tree, file, MeshFiles::in_folder(&folder(file)))
+    pub fn parse(&self, text: &str, format: Format, file: &Path) -> Result<Scene, SceneError> {
+        let (text, tree) = read(text, format, file)?;
+        self.scene_of(text, tree, file, MeshFiles::in_folder(&folder(file)))
     }
 
     /// The scene of a tree read from `text`, its bodies' meshes read from `meshes`.
-    fn from_tree(
+    fn scene_of(
+        &self,
         text: Arc<str>,
         tree: Node,
         file: &Path,
         meshes: MeshFiles,
-    ) -> Result<Self, SceneError> {
+    ) -> Result<Scene, SceneError> {
         let whole = Locator::new(file, text.clone(), Arc::new(tree.clone()), None);
         let inputs = cases::expand(tree, &whole)?;
         let single = inputs.len() == 1 && inputs[0].named.is_none();
         let meshes = Arc::new(meshes);
         let cases = inputs
             .into_iter()
-            .map(|input| Case::prepare(input, file, &text, single, &meshes))
+            .map(|input| Case::prepare(input, file, &text, single, &meshes, self))
             .collect::<Result<Vec<_>, _>>()?;
         let first = &cases[0].spec;
         check_name(&first.name).map_err(|reason| {
@@ -272,12 +270,66 @@ impl Scene {
                 .locator
                 .at("name", format!("{:?} {reason}", first.name))
         })?;
-        Ok(Self {
+        Ok(Scene {
             file: file.to_owned(),
             name: first.name.clone(),
             description: first.description.clone(),
             cases,
         })
+    }
+}
+
+/// The text read into a tree within the scene's limits.
+fn read(text: &str, format: Format, file: &Path) -> Result<(Arc<str>, Node), SceneError> {
+    let limits = Limits {
+        max_bytes: MAX_TEXT_BYTES,
+        max_depth: MAX_NESTING,
+    };
+    let text: Arc<str> = text.into();
+    let empty = Arc::new(Node::table::<&str>([]));
+    let whole = Locator::new(file, text.clone(), empty, None);
+    let tree = match format {
+        Format::Toml => Node::parse_toml_with(&text, &limits),
+        Format::Json => Node::parse_json_with(&text, &limits),
+    }
+    .map_err(|e| whole.input(e))?;
+    Ok((text, tree))
+}
+
+impl Scene {
+    /// Reads and checks a scene file (TOML, or JSON when the name ends in `.json`) with the
+    /// library's kinds ([`Registry::load`] with one's own).
+    pub fn load(path: &Path) -> Result<Self, SceneError> {
+        Registry::standard().load(path)
+    }
+
+    /// The bundled scene `name` (one of [`BUNDLED`]), as if read from `scenes/<name>.toml`.
+    pub fn bundled(name: &str) -> Result<Self, SceneError> {
+        Registry::standard().bundled(name)
+    }
+
+    /// The bundled scene `name` with `edits`: dotted keys and their TOML values
+    /// (`("contact.zone.elements", Some("36"))`), or `None` to remove a key — a study of a
+    /// bundled scene from Rust.
+    pub fn bundled_with(name: &str, edits: &[(&str, Option<&str>)]) -> Result<Self, SceneError> {
+        Registry::standard().bundled_with(name, edits)
+    }
+
+    /// [`Scene::parse`] with `edits` made to the text's keys first (see
+    /// [`Scene::bundled_with`]).
+    pub fn parse_with(
+        text: &str,
+        format: Format,
+        file: &Path,
+        edits: &[(&str, Option<&str>)],
+    ) -> Result<Self, SceneError> {
+        Registry::standard().parse_with(text, format, file, edits)
+    }
+
+    /// Reads scene text and checks every case as its run would, without solving; `file`
+    /// names it in messages and its folder is where the files a scene names are read.
+    pub fn parse(text: &str, format: Format, file: &Path) -> Result<Self, SceneError> {
+        Registry::standard().parse(text, format, file)
     }
 
     /// The cases, in the scene's order.
@@ -315,6 +367,7 @@ impl Case {
         text: &Arc<str>,
         single: bool,
         meshes: &Arc<MeshFiles>,
+        registry: &Registry,
     ) -> Result<Self, SceneError> {
         let case_name = (!single).then(|| input.label.clone());
         let mut tree = input.tree;
@@ -326,7 +379,7 @@ impl Case {
         );
         bearing::compose(&mut tree, &whole)?;
         let locator = Locator::new(file, text.clone(), Arc::new(tree), case_name);
-        let mut spec: CaseSpec = locator.tree.deserialize().map_err(|e| locator.input(e))?;
+        let mut spec = CaseSpec::read(&locator.tree, registry).map_err(|e| locator.input(e))?;
         if locator.tree.get("contact.gap").is_none() {
             spec.contact.gap = GapSpec::default_for(&spec.contact.zone, &spec.body);
         }

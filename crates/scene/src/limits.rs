@@ -107,7 +107,7 @@ fn edge_reached(
 ) -> Option<ModelLimit> {
     let layout = &case.plan.layout;
     let zone = &case.spec.contact.zone;
-    let rim_is_a_body = case.spec.body.iter().any(|b| b.kind().ends_at_rim());
+    let rim_is_a_body = case.spec.body.iter().any(|b| b.ends_at_rim());
     let cell = layout.edge_cell();
     for edge in edges(layout, points) {
         if rim_is_a_body && edge.axis == 0 {

@@ -26,10 +26,11 @@ use contopt_fem::{Analysis, ContactPairing, Face, FaceSample, FeModel, PairingSe
 
 use contopt_results::Resolution;
 
-use crate::bodies::BodySpec;
+use crate::bodies::BodyKind;
 use crate::build::Built;
 use crate::error::Locator;
 use crate::meshes::MeshFiles;
+use crate::registry::Chosen;
 use crate::zone::MeshZone;
 use crate::{Case, SceneError};
 
@@ -289,7 +290,7 @@ impl MeshSurface {
 /// The mesh zone of `spec`, surveyed from its bodies' meshes (`None` for other zones);
 /// errors placed at the body or the zone's key.
 pub(crate) fn survey(
-    bodies: &[BodySpec],
+    bodies: &[Chosen<dyn BodyKind>],
     zone: &crate::zone::ZoneSpec,
     meshes: &MeshFiles,
     at: &Locator,
@@ -391,14 +392,13 @@ fn settings(zone: &MeshZone) -> Result<PairingSettings> {
 
 /// The parts the bodies offer, each error at its body.
 fn parts(
-    bodies: &[BodySpec],
+    bodies: &[Chosen<dyn BodyKind>],
     zone: &MeshZone,
     meshes: &MeshFiles,
     at: &Locator,
 ) -> Result<[Option<MeshPart>; 2], SceneError> {
     let part = |k: usize| {
         bodies[k]
-            .kind()
             .part(meshes, zone.analysis)
             .transpose()
             .map_err(|e| at.library(&format!("body[{k}]"), e))

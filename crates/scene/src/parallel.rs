@@ -4,10 +4,12 @@
 //! The unit of work is a group of cases that share their bodies (one key, [`crate::Run`]):
 //! a group runs on one thread, in the scene's order, on one build of its bodies, as the
 //! sequential run does, so that no case sees another thread's state. With fewer groups than
-//! threads the largest groups are halved (contiguous halves, each built on its own: a build is
-//! deterministic, so a case solved on its own build of the bodies gives the same bits as on a
-//! shared one) until every thread has work or every group is one case: a study of one pair of
-//! bodies (crowns compared under one load) pays one build per thread for the threads it uses.
+//! threads the largest groups are halved (contiguous halves) until every thread has work or
+//! every group is one case; the halves of one key share one build of their bodies, made by the
+//! first that needs it (the others wait for it) and dropped when the last is done, so that a
+//! study of one pair of bodies (crowns compared under one load) builds it once on any number
+//! of threads. The bodies are only read while a case runs, so a case gives the same bits on a
+//! shared build as alone.
 //! Groups run at once only while the sum of their memory
 //! estimates stays within the scene's memory limit (a group's estimate is its largest case's,
 //! as its cases run one after another); a group that fits only alone waits for the others.
@@ -23,11 +25,14 @@
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Condvar, Mutex, PoisonError};
+use std::sync::{Arc, Condvar, Mutex, PoisonError};
+use std::time::Duration;
 
 use contopt_core::observe::Silent;
 use contopt_results::CaseReport;
 
+use crate::build::Built;
+use crate::prepare::BuildKey;
 use crate::{Case, Scene, SceneError};
 
 /// The stack of a case \[bytes\]: the main thread's on Linux, where a run on one thread
@@ -37,9 +42,19 @@ const CASE_STACK_BYTES: usize = 8 << 20;
 /// A case's report, or why it could not run.
 pub type CaseResult = Result<CaseReport, SceneError>;
 
+/// What a run on several threads gives: every case's result, and how many pairs of bodies it
+/// built.
+#[derive(Debug)]
+pub struct Ran {
+    /// The cases' results, in the scene's order.
+    pub results: Vec<CaseResult>,
+    /// The pairs of bodies built: one per distinct key, on any number of threads.
+    pub builds: usize,
+}
+
 impl Scene {
     /// Runs the cases `range` (cut to the scene's cases) on `jobs` threads (at least one),
-    /// calling `done` as each case ends: their results in the scene's order, each the same to
+    /// calling `done` as each case ends: their results in the scene's order ([`Ran`]), each the same to
     /// the bit as [`Scene::run_cases`] gives, for any `jobs`. At most `jobs` groups of cases
     /// that share their bodies run at once, and only as many as the scene's memory limit holds
     /// (module [`crate::parallel`]'s notes). An error starting the threads is the scene's.
@@ -48,10 +63,11 @@ impl Scene {
         range: Range<usize>,
         jobs: usize,
         done: &(dyn Fn() + Sync),
-    ) -> Result<Vec<CaseResult>, SceneError> {
+    ) -> Result<Ran, SceneError> {
         let all = self.cases();
         let cases = &all[range.start.min(all.len())..range.end.min(all.len())];
         let groups = split(groups(cases), jobs);
+        let builds = Builds::new(cases, &groups);
         let limit = cases
             .iter()
             .map(|c| c.plan.memory.limit_bytes)
@@ -76,7 +92,7 @@ impl Scene {
                     .map(|&k| cases[k].plan.memory.estimate_bytes)
                     .max();
                 let _held = gate.hold(need.unwrap_or(0));
-                ran.extend(pool.install(|| run_group(cases, group, done)));
+                ran.extend(pool.install(|| run_group(cases, group, &builds, done)));
             }
             ran
         };
@@ -91,7 +107,10 @@ impl Scene {
         for (k, result) in ran {
             results[k] = Some(result);
         }
-        Ok(results.into_iter().flatten().collect())
+        Ok(Ran {
+            results: results.into_iter().flatten().collect(),
+            builds: builds.made.load(Ordering::Relaxed),
+        })
     }
 }
 
@@ -99,9 +118,9 @@ impl Scene {
 /// order of their first case.
 fn groups(cases: &[Case]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = vec![];
-    let mut keys: Vec<&str> = vec![];
+    let mut keys: Vec<&BuildKey> = vec![];
     for (k, case) in cases.iter().enumerate() {
-        match keys.iter().position(|key| *key == case.plan.key) {
+        match keys.iter().position(|key| **key == case.plan.key) {
             Some(g) => groups[g].push(k),
             None => {
                 keys.push(&case.plan.key);
@@ -129,31 +148,107 @@ fn split(mut groups: Vec<Vec<usize>>, jobs: usize) -> Vec<Vec<usize>> {
     groups
 }
 
-/// Runs a group's cases in order on one build of their bodies, as [`crate::Run`] does; a
+/// Runs a group's cases in order on the one build of their bodies that `builds` shares; a
 /// build that fails is every case's error.
 fn run_group(
     cases: &[Case],
     group: &[usize],
+    builds: &Builds,
     done: &(dyn Fn() + Sync),
 ) -> Vec<(usize, CaseResult)> {
-    let mut built = None;
-    group
+    let ran = group
         .iter()
         .map(|&k| {
             let case = &cases[k];
-            let result = match built.take() {
-                Some(b) => Ok(crate::build::Built::reused(b)),
-                None => case.build(),
-            }
-            .and_then(|b| {
-                let report = case.run_on(&b, &Silent);
-                built = Some(b);
-                report
-            });
+            let result = builds
+                .bodies(cases, k)
+                .and_then(|(built, took)| case.run_built(&built, took, &Silent));
             done();
             (k, result)
         })
-        .collect()
+        .collect();
+    if let Some(&first) = group.first() {
+        builds.finished(first);
+    }
+    ran
+}
+
+/// One build of the bodies of each key, shared by the groups of that key on every thread.
+struct Builds {
+    /// Per distinct key (in the order of [`groups`]): the build, and the groups still to end.
+    slots: Vec<Mutex<Slot>>,
+    /// The key of each case, as an index into `slots`.
+    key_of: Vec<usize>,
+    /// The builds made.
+    made: AtomicUsize,
+}
+
+/// The build of one key's bodies.
+struct Slot {
+    built: Option<Arc<Built>>,
+    groups_left: usize,
+}
+
+impl Builds {
+    /// No build yet for the keys of `cases`, each awaited by its groups of `groups`.
+    fn new(cases: &[Case], groups: &[Vec<usize>]) -> Self {
+        let mut keys: Vec<&BuildKey> = vec![];
+        let key_of = cases
+            .iter()
+            .map(
+                |case| match keys.iter().position(|key| **key == case.plan.key) {
+                    Some(i) => i,
+                    None => {
+                        keys.push(&case.plan.key);
+                        keys.len() - 1
+                    }
+                },
+            )
+            .collect::<Vec<_>>();
+        let mut slots: Vec<Slot> = (0..keys.len())
+            .map(|_| Slot {
+                built: None,
+                groups_left: 0,
+            })
+            .collect();
+        for group in groups {
+            if let Some(&first) = group.first() {
+                slots[key_of[first]].groups_left += 1;
+            }
+        }
+        Self {
+            slots: slots.into_iter().map(Mutex::new).collect(),
+            key_of,
+            made: AtomicUsize::new(0),
+        }
+    }
+
+    /// The bodies of case `k` and the time their build took (zero when another case built
+    /// them): built now, while the groups of its key wait, or shared.
+    fn bodies(&self, cases: &[Case], k: usize) -> Result<(Arc<Built>, Duration), SceneError> {
+        let mut slot = self.slots[self.key_of[k]]
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        if let Some(built) = &slot.built {
+            return Ok((built.clone(), Duration::ZERO));
+        }
+        let built = Arc::new(cases[k].build()?);
+        self.made.fetch_add(1, Ordering::Relaxed);
+        slot.built = Some(built.clone());
+        let took = built.took();
+        Ok((built, took))
+    }
+
+    /// A group of case `first`'s key has ended: the last drops the build.
+    fn finished(&self, first: usize) {
+        let mut slot = self.slots[self.key_of[first]]
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        slot.groups_left = slot.groups_left.saturating_sub(1);
+        if slot.groups_left == 0 {
+            slot.built = None;
+        }
+    }
 }
 
 /// Memory held by the groups running: a group waits until its estimate fits beside theirs

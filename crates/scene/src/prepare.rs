@@ -5,12 +5,13 @@
 use contopt_core::Material;
 use contopt_roller::Roller;
 
-use crate::bodies::{check_load, check_pair, BodySpec, Placement, PunchLoad, Side};
+use crate::bodies::{check_load, check_pair, BodyKind, Placement, Side};
 use crate::error::Locator;
 use crate::gap::{GapSpec, Hertz};
 use crate::mesh_zone::MeshSurface;
 use crate::meshes::MeshFiles;
 use crate::methods::Check;
+use crate::registry::Chosen;
 use crate::spec::{CaseSpec, LoadSpec};
 use crate::zone::{Layout, ZoneSpec};
 use crate::SceneError;
@@ -31,8 +32,8 @@ pub(crate) struct Plan {
     pub dense_limit: u64,
     /// The case's memory estimate and limit, checked.
     pub memory: crate::budget::Memory,
-    /// The key of the case's bodies: cases with one key share one build.
-    pub key: String,
+    /// What the case's bodies are built from: cases with equal keys share one build.
+    pub key: BuildKey,
     /// A bearing's plan (`[bearing]`).
     pub bearing: Option<crate::bearing::BearingPlan>,
 }
@@ -64,16 +65,19 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
     let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
     for (k, body) in spec.body.iter().enumerate() {
         let place = placement(spec, &layout, k, at, meshes);
-        body.kind()
-            .check(&place)
+        body.check(&place)
             .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
-    let kinds = [spec.body[0].kind(), spec.body[1].kind()];
-    check_load(kinds, &contact.zone, contact.load).map_err(|e| at.library("", e))?;
+    check_load([&spec.body[0], &spec.body[1]], &contact.zone, contact.load)
+        .map_err(|e| at.library("", e))?;
     let floating = floats(spec, &layout);
     let check = Check {
         spec,
         layout: &layout,
+        method: spec
+            .optimisation
+            .as_ref()
+            .map_or("none", |o| o.method.name()),
         floating,
         roller: roller.is_some(),
     };
@@ -106,9 +110,22 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         hertz,
         roller,
         dense_limit,
-        key: format!("{:?}", (&contact.zone, &spec.body, contact.load)),
+        key: BuildKey {
+            zone: contact.zone.clone(),
+            bodies: spec.body.clone(),
+            load: contact.load,
+        },
         bearing,
     })
+}
+
+/// What a case's bodies are built from — the zone, the bodies' kinds with their settings, and
+/// the contact's load — compared as values: cases with equal keys share one build.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct BuildKey {
+    zone: ZoneSpec,
+    bodies: Vec<Chosen<dyn BodyKind>>,
+    load: LoadSpec,
 }
 
 /// Where body `k` stands.
@@ -120,6 +137,7 @@ pub(crate) fn placement<'a>(
     meshes: &'a MeshFiles,
 ) -> Placement<'a> {
     Placement {
+        kind: spec.body[k].name(),
         zone: &spec.contact.zone,
         layout,
         side: if k == 0 { Side::Below } else { Side::Above },
@@ -147,10 +165,10 @@ fn check_measured(
 }
 
 /// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.
-fn pair_modulus(bodies: &[BodySpec], zone: &ZoneSpec) -> Option<f64> {
+fn pair_modulus(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Option<f64> {
     let total: f64 = bodies
         .iter()
-        .map(|b| b.kind().compliance(zone))
+        .map(|b| b.compliance(zone))
         .sum::<Option<f64>>()?;
     (total > 0.0 && total.is_finite()).then(|| 1.0 / total)
 }
@@ -169,12 +187,7 @@ fn load_figures(load: LoadSpec) -> (Option<f64>, Option<f64>) {
 fn floats(spec: &CaseSpec, layout: &Layout) -> bool {
     matches!(spec.contact.load, LoadSpec::ForceN(_))
         || matches!(layout, Layout::Mesh(m) if m.floating)
-        || spec.body.iter().any(|b| {
-            matches!(
-                b,
-                BodySpec::FePunch(p) if matches!(p.load, PunchLoad::PressureMpa(_))
-            )
-        })
+        || spec.body.iter().any(|b| b.floats())
 }
 
 /// A roller gap's roller: two half-spaces on the grid, the raceway first, pressed by a force.
@@ -185,8 +198,8 @@ fn roller(spec: &CaseSpec, force: Option<f64>, at: &Locator) -> Result<Option<Ro
     let materials: Vec<Material> = spec
         .body
         .iter()
-        .filter(|b| matches!(b, BodySpec::HalfSpace(_)))
-        .filter_map(|b| b.kind().material())
+        .filter(|b| b.is_half_space())
+        .filter_map(|b| b.material())
         .collect();
     let (Some(force), [raceway, roller]) = (force, materials.as_slice()) else {
         return Err(at.at(

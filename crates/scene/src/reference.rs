@@ -207,8 +207,5 @@ impl Row {
 
 /// Whether the elastic body is a half-space itself (not a block standing in for one).
 fn on_half_space(case: &Case) -> bool {
-    case.spec
-        .body
-        .iter()
-        .any(|b| matches!(b, crate::BodySpec::HalfSpace(_)))
+    case.spec.body.iter().any(|b| b.is_half_space())
 }

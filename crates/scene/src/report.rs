@@ -115,11 +115,7 @@ pub(crate) fn below_surface(
     let pressure: Vec<f64> = report.interface.iter().map(|q| q.p_mpa).collect();
     let roller = case.plan.roller.is_some();
     // A roller with free ends has its own field, not the raceway's.
-    let free_ends = case
-        .spec
-        .body
-        .iter()
-        .any(|b| matches!(b, crate::bodies::BodySpec::HalfSpace(h) if h.free_ends.is_some()));
+    let free_ends = case.spec.body.iter().any(|b| b.free_ends());
     let shared = !free_ends
         && case
             .plan

@@ -1,8 +1,7 @@
 //! The run of a scene's cases, which builds each distinct pair of bodies once, and the run of
 //! one case on its bodies.
 
-use std::collections::HashMap;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use contopt_contact::InterfaceProblem;
 use contopt_core::observe::{Observer, Silent};
@@ -10,6 +9,7 @@ use contopt_results::CaseReport;
 
 use crate::build::Built;
 use crate::methods::Context;
+use crate::prepare::BuildKey;
 use crate::{Case, Scene, SceneError};
 
 /// The initial gap of a point where the gap is open for good (beyond a flat punch's rim), in
@@ -25,10 +25,10 @@ const OPEN_SIZES: f64 = 4.0;
 /// dropped after its last.
 pub struct Run<'s, 'o> {
     cases: &'s [Case],
-    /// The index of each key's last case.
-    last: HashMap<&'s str, usize>,
+    /// Each distinct key with the index of its last case.
+    last: Vec<(&'s BuildKey, usize)>,
     /// The bodies of pairs whose last case is still to come.
-    built: HashMap<&'s str, Built>,
+    built: Vec<(&'s BuildKey, Built)>,
     next: usize,
     /// How many pairs were built so far.
     builds: usize,
@@ -57,15 +57,17 @@ impl Scene {
     ) -> Run<'_, 'o> {
         let all = self.cases();
         let cases = &all[range.start.min(all.len())..range.end.min(all.len())];
-        let last = cases
-            .iter()
-            .enumerate()
-            .map(|(k, case)| (case.plan.key.as_str(), k))
-            .collect();
+        let mut last: Vec<(&BuildKey, usize)> = vec![];
+        for (k, case) in cases.iter().enumerate() {
+            match last.iter_mut().find(|(key, _)| **key == case.plan.key) {
+                Some(entry) => entry.1 = k,
+                None => last.push((&case.plan.key, k)),
+            }
+        }
         Run {
             cases,
             last,
-            built: HashMap::new(),
+            built: vec![],
             next: 0,
             builds: 0,
             observer,
@@ -93,17 +95,20 @@ impl Run<'_, '_> {
     /// the last case that needs them.
     fn run_case(&mut self, k: usize) -> Result<CaseReport, SceneError> {
         let case = &self.cases[k];
-        let key = case.plan.key.as_str();
-        let built = match self.built.remove(key) {
-            Some(built) => built.reused(),
+        let key = &case.plan.key;
+        let kept = self.built.iter().position(|(k, _)| *k == key);
+        let (built, took) = match kept.map(|i| self.built.swap_remove(i).1) {
+            Some(built) => (built, Duration::ZERO),
             None => {
                 self.builds += 1;
-                case.build()?
+                let built = case.build()?;
+                let took = built.took();
+                (built, took)
             }
         };
-        let report = case.run_on(&built, self.observer);
-        if self.last.get(key).is_some_and(|&last| last > k) {
-            self.built.insert(key, built);
+        let report = case.run_built(&built, took, self.observer);
+        if self.last.iter().any(|(kk, last)| *kk == key && *last > k) {
+            self.built.push((key, built));
         }
         report
     }
@@ -145,6 +150,16 @@ impl Case {
     /// Runs the case on bodies built for it (by this case, or by an earlier case of the scene
     /// that shares them: its `build` time is then only the interface's).
     pub fn run_on(&self, built: &Built, observer: &dyn Observer) -> Result<CaseReport, SceneError> {
+        self.run_built(built, built.took(), observer)
+    }
+
+    /// [`Case::run_on`], its build having taken `took` (zero for bodies another case built).
+    pub(crate) fn run_built(
+        &self,
+        built: &Built,
+        took: Duration,
+        observer: &dyn Observer,
+    ) -> Result<CaseReport, SceneError> {
         let at = &self.locator;
         let mut report = CaseReport::new(&self.label, &self.params, self.input());
         let start = Instant::now();
@@ -152,7 +167,7 @@ impl Case {
         let problem = InterfaceProblem::new(built.first(), built.second(), &gap)
             .map_err(|e| at.library("body", e))?
             .with_dense_limit(self.plan.dense_limit);
-        let build_ms = 1e3 * (built.took() + start.elapsed()).as_secs_f64();
+        let build_ms = 1e3 * (took + start.elapsed()).as_secs_f64();
         report.timings_ms.insert("build".into(), build_ms);
         let solver = self
             .spec

@@ -6,17 +6,20 @@
 //!
 //! Choices are serde's externally tagged enums, written in a scene either way:
 //! `gap = { kind = "sphere", radius_mm = 10.0 }` or `gap = { sphere = { radius_mm = 10.0 } }`,
-//! and a choice without settings as a bare name, `solver = "auto"`.
+//! and a choice without settings as a bare name, `solver = "auto"`. The bodies, the design
+//! method and the solver are the kinds of the scene's [`Registry`], read by it
+//! ([`CaseSpec::read`]).
 
-use contopt_contact::SolverSettings;
+use contopt_input::{InputError, Node, Value};
 use contopt_optimise::ControllerSettings;
 use contopt_roller::Envelope;
 use serde::{Deserialize, Serialize};
 
-use crate::bodies::BodySpec;
+use crate::bodies::BodyKind;
 use crate::gap::GapSpec;
-use crate::methods::MethodSpec;
+use crate::methods::Design;
 use crate::region::OmegaVSpec;
+use crate::registry::{Chosen, Registry, SolverKind};
 use crate::zone::ZoneSpec;
 
 /// One case: a scene with its sweep value or its `[[case]]` values put in.
@@ -35,12 +38,14 @@ pub struct CaseSpec {
     /// How the bodies meet: the contact zone, the initial gap and the load that presses them.
     pub contact: ContactSpec,
     /// The two bodies: the first below the zone (its outward normal is n¹ of eq. 2.1), the
-    /// second above it.
-    pub body: Vec<BodySpec>,
+    /// second above it. Kinds of the registry.
+    #[serde(skip_deserializing)]
+    pub body: Vec<Chosen<dyn BodyKind>>,
     /// The contact solver (default `auto`: Polonsky–Keer on large interfaces and where a body
-    /// offers an inverse of its operator, the dense active set on the other small ones).
-    #[serde(default)]
-    pub solver: SolverSettings,
+    /// offers an inverse of its operator, the dense active set on the other small ones). A
+    /// solver of the registry.
+    #[serde(skip_deserializing, default = "crate::registry::default_solver")]
+    pub solver: Chosen<dyn SolverKind>,
     /// The design of the initial gap (none: the contact is analysed as it is).
     #[serde(default)]
     pub optimisation: Option<OptimisationSpec>,
@@ -59,6 +64,50 @@ pub struct CaseSpec {
     /// What the results gain beyond the contact pressure.
     #[serde(default)]
     pub output: OutputSpec,
+}
+
+/// Where the registry's kinds stand in a case's tree.
+const BODY: &str = "body";
+const SOLVER: &str = "solver";
+const METHOD: &str = "optimisation.method";
+
+impl CaseSpec {
+    /// Reads a case's tree: its bodies, design method and solver through `registry`, the rest
+    /// by serde; every error at its key.
+    pub(crate) fn read(tree: &Node, registry: &Registry) -> Result<Self, InputError> {
+        let mut rest = tree.clone();
+        let [bodies, solver, method] = [BODY, SOLVER, METHOD].map(|path| rest.remove(path));
+        let mut spec: CaseSpec = rest.deserialize()?;
+        let bodies = bodies.ok_or_else(|| missing(tree, BODY))?;
+        let Value::Array(items) = bodies.value() else {
+            return Err(InputError::new(
+                BODY,
+                bodies.span(),
+                format!(
+                    "invalid type: {}, expected an array of bodies",
+                    bodies.value().kind()
+                ),
+            ));
+        };
+        spec.body = (items.iter().enumerate())
+            .map(|(k, node)| registry.body(node, &format!("{BODY}[{k}]")))
+            .collect::<Result<_, _>>()?;
+        if let Some(node) = solver {
+            spec.solver = registry.solver(&node, SOLVER)?;
+        }
+        if let Some(optimisation) = &mut spec.optimisation {
+            let node = method.ok_or_else(|| missing(tree, METHOD))?;
+            optimisation.method = registry.design(&node, METHOD)?;
+        }
+        Ok(spec)
+    }
+}
+
+/// A key the case must have, at the table that lacks it.
+fn missing(tree: &Node, path: &str) -> InputError {
+    let (table, key) = path.rsplit_once('.').unwrap_or(("", path));
+    let span = tree.get(table).and_then(Node::span);
+    InputError::new(path, span, format!("missing field `{key}`"))
 }
 
 /// How the bodies meet (`[contact]`).
@@ -95,9 +144,10 @@ pub enum LoadSpec {
 pub struct OptimisationSpec {
     /// The method and its settings: `given_load`, `given_displacement`, `linear_programme`,
     /// `load_split`, `envelope_split` (a roller's crown for its whole envelope),
-    /// `profile_search` (Fujiwara–Kawase's parameters tuned for the envelope) or
-    /// `circular_search` (a circular crown's).
-    pub method: MethodSpec,
+    /// `profile_search` (Fujiwara–Kawase's parameters tuned for the envelope),
+    /// `circular_search` (a circular crown's), or a design of the registry.
+    #[serde(skip_deserializing, default = "crate::methods::unread")]
+    pub method: Chosen<dyn Design>,
     /// The controller v(x) of p ≤ v·p_max (§3.1); every method but the profile search needs
     /// one.
     #[serde(default)]
@@ -113,7 +163,7 @@ pub struct OptimisationSpec {
 }
 
 /// What the results gain beyond the contact pressure (`[output]`).
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// Stresses below the surface (`[output.subsurface]`).
@@ -121,23 +171,10 @@ pub struct OutputSpec {
     pub subsurface: Option<crate::subsurface::SubsurfaceSpec>,
     /// The fields over the meshes of the finite-element bodies under each case's solution —
     /// displacements, nodal stresses, and the contact pressure and gap on the faces — as VTK
-    /// files for ParaView (`fields_<case>.vtu`, `contact_<case>.vtu`); default on. A case
-    /// without a finite-element body writes none.
-    #[serde(default = "OutputSpec::default_fields")]
+    /// files for ParaView (`fields_<case>.vtu`, `contact_<case>.vtu`); on request (default
+    /// off): their recovery over the whole meshes costs about as much as a case's design (on
+    /// the paper's Table 2 at 72 elements, 0.10 s a case against 0.03–0.14 s). A case without
+    /// a finite-element body writes none.
+    #[serde(default)]
     pub fields: bool,
-}
-
-impl OutputSpec {
-    fn default_fields() -> bool {
-        true
-    }
-}
-
-impl Default for OutputSpec {
-    fn default() -> Self {
-        Self {
-            subsurface: None,
-            fields: Self::default_fields(),
-        }
-    }
 }

@@ -77,6 +77,24 @@ fn cases_that_share_their_bodies_build_once() {
     assert!(build(0) > 0.0 && (1..5).all(|k| build(k) < build(0)));
 }
 
+/// On several threads the halves of a sweep over one pair of bodies share one build of it, and
+/// every case gives the bits it gives on one thread.
+#[test]
+fn threads_share_one_build() {
+    let scene =
+        Scene::bundled_with("paper-table2", &[("contact.zone.elements", Some("6"))]).unwrap();
+    let one: Vec<_> = scene.run().map(Result::unwrap).collect();
+    for jobs in [2, 3] {
+        let ran = scene.run_parallel(0..5, jobs, &|| {}).unwrap();
+        assert_eq!(ran.builds, 1, "{jobs} threads");
+        for (alone, shared) in one.iter().zip(ran.results) {
+            let shared = shared.unwrap();
+            assert_eq!(alone.interface, shared.interface, "{}", alone.label);
+            assert_eq!(alone.bound_p_max_mpa, shared.bound_p_max_mpa);
+        }
+    }
+}
+
 /// Reading a scene checks its finite-element bodies without factorising them: not one
 /// factorisation on 72 elements, and the run factorises both bodies.
 #[test]

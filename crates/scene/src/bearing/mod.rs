@@ -24,7 +24,7 @@ use contopt_roller::{
 use serde::{Deserialize, Serialize};
 
 use crate::error::Locator;
-use crate::methods::MethodSpec;
+use crate::methods::BearingCrown;
 use crate::spec::CaseSpec;
 use crate::SceneError;
 
@@ -603,17 +603,17 @@ fn check_method(spec: &CaseSpec, b: &BearingSpec) -> Result<()> {
     let Some(opt) = &spec.optimisation else {
         return Ok(());
     };
-    match (&opt.method, b.objective) {
-        (MethodSpec::EnvelopeSplit(s), _) => s.check()?,
-        (MethodSpec::ProfileSearch(s) | MethodSpec::CircularSearch(s), _) => s.check()?,
-        (other, _) => {
-            return Err(Error::invalid(
-                "method",
-                format!("{other:?}"),
-                "a bearing's crown is designed by envelope_split (the robust crown over its \
-                 rollers), profile_search or circular_search",
-            ))
-        }
+    let Some(crown) = opt.method.bearing_crown() else {
+        return Err(Error::invalid(
+            "method",
+            opt.method.name(),
+            "a bearing's crown is designed by envelope_split (the robust crown over its \
+             rollers), profile_search or circular_search",
+        ));
+    };
+    match crown {
+        BearingCrown::Envelope(s) => s.check()?,
+        BearingCrown::Search(_, s) => s.check()?,
     }
     if b.roller_profile != CrownSettings::Straight {
         return Err(Error::invalid(
@@ -623,13 +623,13 @@ fn check_method(spec: &CaseSpec, b: &BearingSpec) -> Result<()> {
              (bearing.roller_profile = \"straight\")",
         ));
     }
-    match (&opt.method, &opt.controller) {
-        (MethodSpec::EnvelopeSplit(_), None) => Err(Error::invalid(
+    match (crown, &opt.controller) {
+        (BearingCrown::Envelope(_), None) => Err(Error::invalid(
             "controller",
             "missing",
             "the robust crown needs the controller v(x): { kind = \"cubic\", l1_mm, l2_mm }",
         )),
-        (MethodSpec::EnvelopeSplit(_), Some(c)) => c.build().map(|_| ()),
+        (BearingCrown::Envelope(_), Some(c)) => c.build().map(|_| ()),
         (_, Some(_)) => Err(Error::invalid(
             "controller",
             "given",

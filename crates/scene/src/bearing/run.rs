@@ -21,12 +21,12 @@ use contopt_roller::{
     basic_rating_life, bearing_cases, end_ratio, hertz_slice_load, miner, penalised_worst,
     reference_rating_life, robust_crown, slice_loads_from_pressure, slice_peaks_from_pressure,
     solve_cases, tolerance_band, tune_profile, tune_profile_coarse_to_fine, BearingSettings,
-    CaseContact, Crown, CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, ProfileFamily,
-    Raceway, Roller, RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
+    CaseContact, Crown, CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, Raceway,
+    Roller, RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
 };
 
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
-use crate::methods::{roller_report, Designed, MethodSpec};
+use crate::methods::{roller_report, BearingCrown, Designed};
 use crate::Case;
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
@@ -223,8 +223,16 @@ fn design(
         .roller
         .as_ref()
         .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
-    let family = match &opt.method {
-        MethodSpec::EnvelopeSplit(settings) => {
+    let refused = || {
+        Error::invalid(
+            "method",
+            opt.method.name(),
+            "a bearing's crown is designed by envelope_split, profile_search or \
+             circular_search",
+        )
+    };
+    let family = match opt.method.bearing_crown().ok_or_else(refused)? {
+        BearingCrown::Envelope(settings) => {
             let controller = opt
                 .controller
                 .as_ref()
@@ -240,7 +248,7 @@ fn design(
                 controller.build()?.as_ref(),
                 at.cell[1],
                 solver,
-                settings,
+                &settings,
                 observer,
             )?;
             return Ok(Some(Crowned {
@@ -253,18 +261,9 @@ fn design(
                 omega_nv_excess: crown.omega_nv_excess,
             }));
         }
-        MethodSpec::ProfileSearch(s) => (ProfileFamily::FujiwaraKawase, s),
-        MethodSpec::CircularSearch(s) => (ProfileFamily::Circular, s),
-        other => {
-            return Err(Error::invalid(
-                "method",
-                format!("{other:?}"),
-                "a bearing's crown is designed by envelope_split, profile_search or \
-                 circular_search",
-            ))
-        }
+        BearingCrown::Search(family, settings) => (family, settings),
     };
-    let loose = crate::methods::search::search_solver(&case.spec.solver, solver, problem)?;
+    let loose = crate::methods::search::search_solver(solver, problem);
     let solver = loose.as_deref().unwrap_or(solver);
     let mut objective = search_objective(plan, first, env, at);
     let fine = Grid {
@@ -285,14 +284,14 @@ fn design(
                 objective: &mut on_coarse,
             };
             let (f, s) = family;
-            tune_profile_coarse_to_fine(coarse, fine, roller, f, solver, s, observer)?
+            tune_profile_coarse_to_fine(coarse, fine, roller, f, solver, &s, observer)?
         }
         None => tune_profile(
             cases,
             roller,
             family.0,
             solver,
-            family.1,
+            &family.1,
             fine.objective,
             observer,
         )?,

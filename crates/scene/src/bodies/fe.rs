@@ -104,11 +104,10 @@ pub struct FeBlock {
 }
 
 /// The faces zone of a finite-element body on its side, or why it cannot stand there.
-fn faces<'z>(kind: &str, at: &Placement<'z>, side: Side) -> Result<&'z FacesZone> {
+fn faces<'z>(at: &Placement<'z>, side: Side) -> Result<&'z FacesZone> {
     match (at.zone, at.side == side) {
         (ZoneSpec::Faces(f), true) => Ok(f),
         (ZoneSpec::Faces(_), false) => Err(misplaced(
-            kind,
             at,
             match side {
                 Side::Below => "a base or a block lies below the zone (the first body)",
@@ -116,7 +115,6 @@ fn faces<'z>(kind: &str, at: &Placement<'z>, side: Side) -> Result<&'z FacesZone
             },
         )),
         _ => Err(misplaced(
-            kind,
             at,
             "a finite-element body meshes a zone of faces (zone kind \"faces\")",
         )),
@@ -229,16 +227,12 @@ impl FeBase {
 }
 
 impl BodyKind for FeBase {
-    fn kind(&self) -> &'static str {
-        "fe_base"
-    }
-
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "base".into())
     }
 
     fn check(&self, at: &Placement) -> Result<()> {
-        let zone = faces(self.kind(), at, Side::Below)?;
+        let zone = faces(at, Side::Below)?;
         check::positive("height_mm", self.height_mm)?;
         check::positive("radius_mm", self.radius_mm)?;
         if self.radius_mm <= zone.radius_mm {
@@ -273,7 +267,7 @@ impl BodyKind for FeBase {
     }
 
     fn build(&self, at: &Placement, _surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
-        let zone = faces(self.kind(), at, Side::Below)?;
+        let zone = faces(at, Side::Below)?;
         let model = self.model(zone)?;
         let contact = model.mesh().faces_on_y(0.0, 0.0, zone.radius_mm);
         Ok(Box::new(FeBody::new(self.name(), model, &contact)?))
@@ -333,16 +327,12 @@ impl FePunch {
 }
 
 impl BodyKind for FePunch {
-    fn kind(&self) -> &'static str {
-        "fe_punch"
-    }
-
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "punch".into())
     }
 
     fn check(&self, at: &Placement) -> Result<()> {
-        let zone = faces(self.kind(), at, Side::Above)?;
+        let zone = faces(at, Side::Above)?;
         check::positive("height_mm", self.height_mm)?;
         layers(self.layers, zone)?;
         self.check_load()
@@ -364,7 +354,7 @@ impl BodyKind for FePunch {
     }
 
     fn build(&self, at: &Placement, _surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
-        let zone = faces(self.kind(), at, Side::Above)?;
+        let zone = faces(at, Side::Above)?;
         let model = self.model(zone)?;
         let contact = model.mesh().faces_on_y(0.0, 0.0, zone.radius_mm);
         Ok(Box::new(FeBody::new(self.name(), model, &contact)?))
@@ -381,6 +371,11 @@ impl BodyKind for FePunch {
     /// The punch's face is the zone: contact at its rim is the punch's edge.
     fn ends_at_rim(&self) -> bool {
         true
+    }
+
+    /// Under a pressure on its top it floats; a displacement holds it.
+    fn floats(&self) -> bool {
+        matches!(self.load, PunchLoad::PressureMpa(_))
     }
 }
 
@@ -425,16 +420,12 @@ impl FeBlock {
 }
 
 impl BodyKind for FeBlock {
-    fn kind(&self) -> &'static str {
-        "fe_block"
-    }
-
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "block".into())
     }
 
     fn check(&self, at: &Placement) -> Result<()> {
-        let zone = faces(self.kind(), at, Side::Below)?;
+        let zone = faces(at, Side::Below)?;
         self.spacings(zone).map(|_| ())
     }
 
@@ -456,7 +447,7 @@ impl BodyKind for FeBlock {
     }
 
     fn build(&self, at: &Placement, _surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
-        let zone = faces(self.kind(), at, Side::Below)?;
+        let zone = faces(at, Side::Below)?;
         let (across, depth) = self.spacings(zone)?;
         let mesh = Mesh::rectangle(zone.element, &across, &depth)?;
         let mut model = FeModel::new(mesh, self.material, zone.analysis)?;

@@ -114,7 +114,6 @@ impl FeMesh {
         match at.zone {
             ZoneSpec::Mesh(m) => Ok(m.analysis),
             _ => Err(misplaced(
-                self.kind(),
                 at,
                 "an imported body stands on a zone of imported meshes: contact.zone = { kind = \
                  \"mesh\", analysis = … }",
@@ -351,10 +350,6 @@ fn apply(model: &mut FeModel, imported: &Imported, key: &str, load: &GroupLoad) 
 }
 
 impl BodyKind for FeMesh {
-    fn kind(&self) -> &'static str {
-        "fe_mesh"
-    }
-
     fn name(&self) -> String {
         let stem = || {
             std::path::Path::new(&self.mesh)
@@ -428,5 +423,9 @@ impl BodyKind for FeMesh {
 
     fn part(&self, meshes: &MeshFiles, analysis: Analysis) -> Option<Result<MeshPart>> {
         Some(self.import(meshes, analysis))
+    }
+
+    fn imported(&self) -> bool {
+        true
     }
 }

@@ -71,10 +71,6 @@ impl HalfSpaceBody {
 }
 
 impl BodyKind for HalfSpaceBody {
-    fn kind(&self) -> &'static str {
-        "half_space"
-    }
-
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "half-space".into())
     }
@@ -86,18 +82,11 @@ impl BodyKind for HalfSpaceBody {
             (ZoneSpec::Grid(_), _) | (ZoneSpec::Rings(_) | ZoneSpec::Strips(_), Side::Below) => {}
             (ZoneSpec::Faces(_) | ZoneSpec::Mesh(_), _) => {
                 return Err(misplaced(
-                    self.kind(),
                     at,
                     "finite-element faces are met by a finite-element body, a rigid body or a bed",
                 ))
             }
-            _ => {
-                return Err(misplaced(
-                    self.kind(),
-                    at,
-                    "rings and strips lie under the zone",
-                ))
-            }
+            _ => return Err(misplaced(at, "rings and strips lie under the zone")),
         }
         if let (Some(_), false) = (self.free_ends, matches!(at.zone, ZoneSpec::Grid(_))) {
             return Err(Error::invalid(
@@ -207,7 +196,7 @@ impl BodyKind for HalfSpaceBody {
             Layout::Rings(edges) => Box::new(AxisymmetricHalfSpace::new(name, material, edges)?),
             Layout::Strips { edges, thickness } => {
                 let ZoneSpec::Strips(strips) = at.zone else {
-                    return Err(misplaced(self.kind(), at, "strips need a strip zone"));
+                    return Err(misplaced(at, "strips need a strip zone"));
                 };
                 let (state, _) = Self::plane(&strips.analysis)?;
                 let datum = self.datum_mm.unwrap_or(DEFAULT_DATUM_MM);
@@ -215,9 +204,7 @@ impl BodyKind for HalfSpaceBody {
                     name, material, state, *thickness, edges, datum,
                 )?)
             }
-            Layout::Faces(_) | Layout::Mesh(_) => {
-                return Err(misplaced(self.kind(), at, "not on faces"))
-            }
+            Layout::Faces(_) | Layout::Mesh(_) => return Err(misplaced(at, "not on faces")),
         })
     }
 
@@ -234,5 +221,13 @@ impl BodyKind for HalfSpaceBody {
             }
             _ => m.contact_compliance(),
         })
+    }
+
+    fn is_half_space(&self) -> bool {
+        true
+    }
+
+    fn free_ends(&self) -> bool {
+        self.free_ends.is_some()
     }
 }

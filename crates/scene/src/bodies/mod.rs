@@ -1,6 +1,7 @@
 //! The body kinds of a scene (`[[body]]`). Each kind is one file with a type that implements
-//! [`BodyKind`], and one line in [`BodySpec`] and [`BodySpec::kind`] registers it: the compiler
-//! names every `match` a new kind must join.
+//! [`BodyKind`], registered by its name in a [`crate::Registry`]; every question the scene asks
+//! of a body it asks of its kind, so that a kind of one's own (in one's own crate) answers
+//! them all.
 //!
 //! A body is built on the scene's contact zone, on one side of it: the first body below (its
 //! outward normal is n¹ of eq. 2.1), the second above. Kinds that mesh or grid their own
@@ -17,58 +18,19 @@ mod winkler;
 
 use std::path::Path;
 
-use contopt_core::{ElasticBody, Error, Interface, Material, Result};
-use contopt_fem::Analysis;
-use serde::{Deserialize, Serialize};
-
 use crate::mesh_zone::MeshPart;
 use crate::meshes::MeshFiles;
+use crate::registry::Chosen;
 use crate::spec::LoadSpec;
 use crate::zone::{Layout, ZoneSpec};
+use contopt_core::{ElasticBody, Error, Interface, Material, Result};
+use contopt_fem::Analysis;
 
 pub use fe::{FeBase, FeBlock, FePunch, PunchLoad, Support};
 pub use fe_mesh::{Direction, FeMesh, GroupLoad, GroupSupport};
 pub use half_space::{FreeEndsSpec, HalfSpaceBody};
 pub use rigid::Rigid;
 pub use winkler::WinklerBed;
-
-/// A body of a scene, by its kind.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BodySpec {
-    /// A rigid body: no compliance; its shape is the contact's gap.
-    Rigid(Rigid),
-    /// An elastic half-space on a grid, rings or strips (Green's functions).
-    HalfSpace(HalfSpaceBody),
-    /// A finite-element base below faces: a cylinder (plane: a rectangle) wider than the
-    /// zone, held at its bottom.
-    FeBase(FeBase),
-    /// A finite-element punch above faces: a cylinder whose bottom face is the zone, loaded on
-    /// its top.
-    FePunch(FePunch),
-    /// A large finite-element block below faces, clamped at its bottom: a stand-in for a
-    /// half-space.
-    FeBlock(FeBlock),
-    /// A Winkler bed of independent springs under any zone.
-    Winkler(WinklerBed),
-    /// A finite-element body read from a Gmsh mesh, on a zone of imported meshes.
-    FeMesh(FeMesh),
-}
-
-impl BodySpec {
-    /// The kind's implementation: the registration of every kind.
-    pub fn kind(&self) -> &dyn BodyKind {
-        match self {
-            BodySpec::Rigid(b) => b,
-            BodySpec::HalfSpace(b) => b,
-            BodySpec::FeBase(b) => b,
-            BodySpec::FePunch(b) => b,
-            BodySpec::FeBlock(b) => b,
-            BodySpec::Winkler(b) => b,
-            BodySpec::FeMesh(b) => b,
-        }
-    }
-}
 
 /// Which side of the zone a body is on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,6 +55,8 @@ pub enum Takes {
 /// Where a body is built: the zone, its sizes, the side, the contact's load, and the folder
 /// the scene's files are read from.
 pub struct Placement<'a> {
+    /// The body's kind, as the scene named it (for messages).
+    pub kind: &'a str,
     /// The zone as the scene writes it.
     pub zone: &'a ZoneSpec,
     /// The zone with every size known.
@@ -108,11 +72,9 @@ pub struct Placement<'a> {
 }
 
 /// What a body kind does: check itself on a zone without building anything, estimate its
-/// memory, and build its [`ElasticBody`].
-pub trait BodyKind {
-    /// The kind's name in messages (`"half_space"`).
-    fn kind(&self) -> &'static str;
-
+/// memory, build its [`ElasticBody`], and answer what the scene asks of a body. Its name is the
+/// one it is registered under ([`crate::Registry::with_body`]).
+pub trait BodyKind: Send + Sync {
     /// The body's name in reports: its own `name`, or the kind's.
     fn name(&self) -> String;
 
@@ -155,23 +117,46 @@ pub trait BodyKind {
     fn part(&self, _meshes: &MeshFiles, _analysis: Analysis) -> Option<Result<MeshPart>> {
         None
     }
+
+    /// Whether it brings a mesh of its own, which a zone of imported meshes pairs
+    /// ([`BodyKind::part`]).
+    fn imported(&self) -> bool {
+        false
+    }
+
+    /// Whether it floats under a load of its own: a rigid mode that the contact's equilibrium
+    /// holds (a punch under a pressure; eq. 2.10).
+    fn floats(&self) -> bool {
+        false
+    }
+
+    /// Whether it is a half-space itself, by its Green's functions (not a block standing in
+    /// for one): a roller gap pairs two of them, and Sneddon's approach holds on it.
+    fn is_half_space(&self) -> bool {
+        false
+    }
+
+    /// Whether its surface ends free across x (a roller's free ends), so that the stresses
+    /// below it are its own, not its partner's.
+    fn free_ends(&self) -> bool {
+        false
+    }
 }
 
 /// The pair's checks: two bodies, not both rigid, and the finite-element faces meshed by a
 /// finite-element body.
-pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec) -> Result<()> {
-    if bodies.len() != 2 {
+pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Result<()> {
+    let [below, above] = bodies else {
         return Err(Error::invalid(
             "body",
             format!("{} bodies", bodies.len()),
             "give two: the first below the zone, the second above",
         ));
-    }
-    let [below, above] = [bodies[0].kind(), bodies[1].kind()];
-    if below.kind() == "rigid" && above.kind() == "rigid" {
+    };
+    if [below, above].map(|b| b.compliance(zone)) == [Some(0.0); 2] {
         return Err(Error::invalid(
             "body[1].kind",
-            "rigid",
+            above.name(),
             "two rigid bodies have no compliance to share a load",
         ));
     }
@@ -183,8 +168,7 @@ pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec) -> Result<()> {
              fe_punch); give one, or a grid, rings or strips",
         ));
     }
-    let imported = bodies.iter().any(|b| matches!(b, BodySpec::FeMesh(_)));
-    if matches!(zone, ZoneSpec::Mesh(_)) && !imported {
+    if matches!(zone, ZoneSpec::Mesh(_)) && !(below.imported() || above.imported()) {
         return Err(Error::invalid(
             "contact.zone.kind",
             "mesh",
@@ -196,7 +180,11 @@ pub fn check_pair(bodies: &[BodySpec], zone: &ZoneSpec) -> Result<()> {
 }
 
 /// The contact's load fits the body above; without one, a body carries its own load.
-pub fn check_load(bodies: [&dyn BodyKind; 2], zone: &ZoneSpec, load: LoadSpec) -> Result<()> {
+pub fn check_load(
+    bodies: [&Chosen<dyn BodyKind>; 2],
+    zone: &ZoneSpec,
+    load: LoadSpec,
+) -> Result<()> {
     let [below, above] = bodies;
     if load == LoadSpec::None && below.takes(zone) == Takes::OwnLoad {
         return Ok(());
@@ -207,13 +195,13 @@ pub fn check_load(bodies: [&dyn BodyKind; 2], zone: &ZoneSpec, load: LoadSpec) -
         }
         (LoadSpec::ForceN(_), Takes::OwnLoad) => Err(Error::invalid(
             "contact.load.force_n",
-            above.kind(),
+            above.name(),
             "carries its own load (a punch's `load`, an imported body's `loads`): the contact \
              takes no force",
         )),
         (LoadSpec::ForceN(_), Takes::Nothing) => Err(Error::invalid(
             "contact.load.force_n",
-            above.kind(),
+            above.name(),
             "is held and cannot float under a force: press it by an approach, or put it below",
         )),
         (LoadSpec::ApproachMm(a), _) => {
@@ -238,10 +226,10 @@ pub fn side_name(side: Side) -> &'static str {
 }
 
 /// A kind refused on a side or a zone, with what it needs.
-pub fn misplaced(kind: &str, at: &Placement, needs: &str) -> Error {
+pub fn misplaced(at: &Placement, needs: &str) -> Error {
     Error::invalid(
         "kind",
-        kind,
+        at.kind,
         format!(
             "cannot be {} on {}: {needs}",
             side_name(at.side),
@@ -253,11 +241,11 @@ pub fn misplaced(kind: &str, at: &Placement, needs: &str) -> Error {
 /// The surface a body that does not own one stands on: `surface` (the zone's, as the body
 /// below sees it) for the body below, mirrored for the body above; an error when none was
 /// given.
-pub fn own_surface(kind: &str, at: &Placement, surface: Option<&Interface>) -> Result<Interface> {
+pub fn own_surface(at: &Placement, surface: Option<&Interface>) -> Result<Interface> {
     let surface = surface.ok_or_else(|| {
         Error::invalid(
             "kind",
-            kind,
+            at.kind,
             "needs a surface to stand on: the zone's, or a finite-element partner's",
         )
     })?;

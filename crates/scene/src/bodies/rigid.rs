@@ -20,10 +20,6 @@ pub struct Rigid {
 }
 
 impl BodyKind for Rigid {
-    fn kind(&self) -> &'static str {
-        "rigid"
-    }
-
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "indenter".into())
     }
@@ -49,7 +45,7 @@ impl BodyKind for Rigid {
     /// Held in place, or, above the zone under a contact force, free to translate along the
     /// normal n¹ (away from the body below) and pressed by the force.
     fn build(&self, at: &Placement, surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
-        let own = own_surface(self.kind(), at, surface)?;
+        let own = own_surface(at, surface)?;
         let partner = own.mirrored();
         Ok(Box::new(match (at.side, at.load) {
             (Side::Above, LoadSpec::ForceN(force)) => {

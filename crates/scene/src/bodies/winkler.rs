@@ -24,10 +24,6 @@ pub struct WinklerBed {
 }
 
 impl BodyKind for WinklerBed {
-    fn kind(&self) -> &'static str {
-        "winkler"
-    }
-
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "bed".into())
     }
@@ -54,7 +50,7 @@ impl BodyKind for WinklerBed {
     }
 
     fn build(&self, at: &Placement, surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
-        let own = own_surface(self.kind(), at, surface)?;
+        let own = own_surface(at, surface)?;
         Ok(Box::new(Winkler::on(
             self.name(),
             own,

@@ -6,14 +6,18 @@ use contopt_core::{Error, Result};
 use contopt_optimise::LoadSplitSettings;
 use contopt_results::CaseReport;
 use contopt_roller::CaseContact;
+use serde::{Deserialize, Serialize};
 
 use super::{
-    cell_across, check_controller, controller, roller_figures, straight_roller, Check, Context,
-    Design, Designed,
+    cell_across, check_controller, controller, roller_figures, straight_roller, BearingCrown,
+    Check, Context, Design, Designed,
 };
 
-/// The envelope load split.
-pub(crate) struct EnvelopeSplit(pub LoadSplitSettings);
+/// A roller's symmetric crown with the least worst-case p_max over its `[envelope]`: max over
+/// the cases of p ≤ v·p_max, by the envelope load split (`envelope_split`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct EnvelopeSplit(pub LoadSplitSettings);
 
 impl Design for EnvelopeSplit {
     fn check(&self, c: &Check) -> Result<()> {
@@ -81,5 +85,9 @@ impl Design for EnvelopeSplit {
             passes: vec![],
             roller,
         })
+    }
+
+    fn bearing_crown(&self) -> Option<BearingCrown> {
+        Some(BearingCrown::Envelope(self.0))
     }
 }

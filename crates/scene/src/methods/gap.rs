@@ -12,20 +12,15 @@ use super::{
     straight_roller, Check, Context, Design, Designed,
 };
 
-/// One of the library's optimisation methods.
-pub(crate) struct Gap(pub OptimisationMethod);
+/// One of the library's optimisation methods ([`OptimisationMethod`]).
+pub struct Gap(pub OptimisationMethod);
 
 impl Design for Gap {
     /// A controller within the zone; a given load needs a floating body, a given displacement
     /// and the linear programme's pin none or one; a roller starts straight.
     fn check(&self, c: &Check) -> Result<()> {
         check_controller(c)?;
-        let name = match self.0 {
-            OptimisationMethod::GivenLoad(_) => "given_load",
-            OptimisationMethod::GivenDisplacement(_) => "given_displacement",
-            OptimisationMethod::LinearProgramme(_) => "linear_programme",
-            OptimisationMethod::LoadSplit(_) => "load_split",
-        };
+        let name = c.method;
         match (&self.0, c.floating) {
             (OptimisationMethod::GivenLoad(s), true) => s.check()?,
             (OptimisationMethod::GivenDisplacement(s), false) => s.check()?,

@@ -1,85 +1,53 @@
 //! The designs a case may run on its contact: none (the contact analysed as it is), the
 //! paper's methods for the initial gap (§3: the iteration under a given load or displacement,
 //! the linear programme, the load split), and for a roller the robust crown of its envelope and
-//! the tuned Fujiwara–Kawase profile. Each is one file implementing [`Design`]; one line of
-//! [`MethodSpec`] and of [`design`] registers it.
+//! the tuned Fujiwara–Kawase profile. Each is one file implementing [`Design`], registered by
+//! its name in [`crate::Registry::standard`]; a design of one's own implements [`Design`] in
+//! its own crate and is registered there.
 
 mod analysis;
 mod envelope;
 mod gap;
 pub(crate) mod search;
 
-use contopt_contact::{ContactSolver, InterfaceProblem};
-use contopt_core::observe::{Method, Nested, Observer};
-use contopt_core::{ContactState, Error, GapShape, Result, Termination, GEOMETRY_TOLERANCE};
-use contopt_optimise::{
-    Controller, IterationSettings, LinearProgrammeSettings, LoadSplitSettings, Optimisation,
-    OptimisationMethod, Pass, Region, SearchSettings,
-};
-use contopt_results::{CaseReport, CurvePoint, EnvelopeCase, RollerReport, TunedProfile};
-use contopt_roller::{CaseContact, CrownSettings, LoadCase, ProfileFamily, RollerFigures};
-use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+use analysis::Analysis;
+pub use envelope::EnvelopeSplit;
+pub use gap::Gap;
+pub use search::{CircularSearch, FujiwaraKawaseSearch};
 
 use crate::prepare::Plan;
+use crate::registry::Chosen;
 use crate::spec::{CaseSpec, OptimisationSpec};
 use crate::zone::Layout;
 use crate::Case;
+use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_core::observe::{Method, Nested, Observer};
+use contopt_core::{ContactState, Error, GapShape, Result, Termination, GEOMETRY_TOLERANCE};
+use contopt_optimise::{Controller, LoadSplitSettings, Optimisation, Pass, Region, SearchSettings};
+use contopt_results::{CaseReport, CurvePoint, EnvelopeCase, RollerReport, TunedProfile};
+use contopt_roller::{CaseContact, CrownSettings, LoadCase, ProfileFamily, RollerFigures};
 
-/// A design method and its settings, as `[optimisation] method` names it: the library's
-/// settings with the library's defaults.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MethodSpec {
-    /// The iteration of §3.2 under a given load: p_max from the floating body's equilibrium
-    /// (Tables 1 and 3).
-    GivenLoad(IterationSettings),
-    /// The iteration of §3.2 under a given displacement: p_max from the contact pressure
-    /// (Table 2).
-    GivenDisplacement(IterationSettings),
-    /// The restricted linear programme (3.5) on the dense influence matrix (small problems).
-    LinearProgramme(LinearProgrammeSettings),
-    /// The optimum of (3.5) from the loads carried by the design columns, without a dense
-    /// matrix (a floating body; pointwise or extruded profiles).
-    LoadSplit(LoadSplitSettings),
-    /// A roller's symmetric crown with the least worst-case p_max over its `[envelope]`:
-    /// max over the cases of p ≤ v·p_max.
-    EnvelopeSplit(LoadSplitSettings),
-    /// A roller's Fujiwara–Kawase profile with K1, K2 and z_m tuned by a Nelder–Mead search to
-    /// the least worst-case p_max over its `[envelope]` (or its own load), edge-loaded crowns
-    /// penalised.
-    ProfileSearch(SearchSettings),
-    /// A roller's circular crown, its crowned fraction and end drop tuned as the profile
-    /// search tunes Fujiwara–Kawase's.
-    CircularSearch(SearchSettings),
-}
-
-/// The design of a case: the registration of every method.
-pub(crate) fn design(spec: &CaseSpec) -> Box<dyn Design> {
-    let Some(opt) = &spec.optimisation else {
-        return Box::new(analysis::Analysis);
-    };
-    match &opt.method {
-        MethodSpec::GivenLoad(s) => Box::new(gap::Gap(OptimisationMethod::GivenLoad(*s))),
-        MethodSpec::GivenDisplacement(s) => {
-            Box::new(gap::Gap(OptimisationMethod::GivenDisplacement(*s)))
-        }
-        MethodSpec::LinearProgramme(s) => {
-            Box::new(gap::Gap(OptimisationMethod::LinearProgramme(*s)))
-        }
-        MethodSpec::LoadSplit(s) => Box::new(gap::Gap(OptimisationMethod::LoadSplit(*s))),
-        MethodSpec::EnvelopeSplit(s) => Box::new(envelope::EnvelopeSplit(*s)),
-        MethodSpec::ProfileSearch(s) => {
-            Box::new(search::ProfileSearch(*s, ProfileFamily::FujiwaraKawase))
-        }
-        MethodSpec::CircularSearch(s) => {
-            Box::new(search::ProfileSearch(*s, ProfileFamily::Circular))
-        }
+/// The design of a case: its `[optimisation] method`, or the contact analysed as it is.
+pub(crate) fn design(spec: &CaseSpec) -> &dyn Design {
+    match &spec.optimisation {
+        Some(opt) => &*opt.method,
+        None => &Analysis,
     }
 }
 
+/// The method of an `[optimisation]` before the registry has read it (serde's placeholder,
+/// replaced by [`CaseSpec::read`](crate::CaseSpec)).
+pub(crate) fn unread() -> Chosen<dyn Design> {
+    let analysis = Arc::new(Analysis);
+    Chosen::new("none", serde_json::Value::Null, analysis.clone(), analysis)
+}
+
 /// What a design method does: check a case before anything is built, count its dense
-/// matrices, and run.
-pub(crate) trait Design {
+/// matrices, and run. Its name is the one it is registered under
+/// ([`crate::Registry::with_design`]).
+pub trait Design: Send + Sync {
     /// Refuses a case the method cannot run; fields are named from `[optimisation]`.
     fn check(&self, c: &Check) -> Result<()>;
 
@@ -91,12 +59,31 @@ pub(crate) trait Design {
 
     /// Runs the design on the case's contact, timing its stages into `report`.
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed>;
+
+    /// What a bearing designs its crown by, when the method is one of a bearing's
+    /// ([`BearingCrown`]); `None` for the others, which a bearing refuses.
+    fn bearing_crown(&self) -> Option<BearingCrown> {
+        None
+    }
+}
+
+/// The crown designs a bearing runs over its rollers' envelope.
+#[derive(Clone, Copy, Debug)]
+pub enum BearingCrown {
+    /// The robust crown by the envelope load split.
+    Envelope(LoadSplitSettings),
+    /// A family's parameters tuned by a search.
+    Search(ProfileFamily, SearchSettings),
 }
 
 /// What a check sees of a case.
-pub(crate) struct Check<'a> {
+pub struct Check<'a> {
+    /// The case's settings.
     pub spec: &'a CaseSpec,
+    /// Its zone with every size known.
     pub layout: &'a Layout,
+    /// The method's name, as the scene wrote it (for messages).
+    pub method: &'a str,
     /// Whether a body floats.
     pub floating: bool,
     /// Whether the gap is a roller's.
@@ -104,39 +91,60 @@ pub(crate) struct Check<'a> {
 }
 
 /// What a design runs on.
-pub(crate) struct Context<'a> {
+pub struct Context<'a> {
+    /// The case's settings.
     pub spec: &'a CaseSpec,
-    pub plan: &'a Plan,
+    pub(crate) plan: &'a Plan,
+    /// The contact problem of the case's bodies and gap.
     pub problem: &'a InterfaceProblem<'a>,
+    /// The case's contact solver.
     pub solver: &'a dyn ContactSolver,
+    /// Where the design's iterations report.
     pub observer: &'a dyn Observer,
     /// A roller's load cases, its own first (empty for other gaps).
     pub cases: &'a [LoadCase<'a>],
 }
 
+impl Context<'_> {
+    /// The zone with every size known.
+    pub fn layout(&self) -> &Layout {
+        &self.plan.layout
+    }
+}
+
 /// What a design found: its last iterate, how it ended, and its figures.
-pub(crate) struct Designed {
+pub struct Designed {
+    /// The design method that ran (`None`: the contact analysed as it is).
     pub method: Option<Method>,
+    /// The contact solver of its solves.
     pub solver: Option<Method>,
+    /// How it ended.
     pub termination: Termination,
+    /// The contact pressure of its last iterate \[MPa\], per interface point.
     pub pressure: Vec<f64>,
+    /// The gap after deformation \[mm\], per interface point.
     pub gap: Vec<f64>,
+    /// The rigid-body displacements of the floating bodies (eq. 2.10).
     pub rigid: Vec<f64>,
     /// The gap change per point \[mm\] (empty without one).
     pub gap_change: Vec<f64>,
     /// What the report shows as Δh instead: a roller's given crown \[mm\].
     pub crown: Option<Vec<f64>>,
+    /// The least p_max the method proved (p ≤ v·p_max) \[MPa\].
     pub bound_p_max: Option<f64>,
+    /// The largest gap change Δh \[mm\].
     pub dh_max: Option<f64>,
     /// The largest p − v·p̂ over Ω_nv \[MPa\]; `None` without Ω_nv.
     pub omega_nv_excess: Option<f64>,
+    /// The method's passes (an iteration's outer steps), for the report's table.
     pub passes: Vec<Pass>,
+    /// A roller's figures.
     pub roller: Option<RollerReport>,
 }
 
 impl Designed {
     /// A contact solve's state, nothing designed.
-    fn contact(state: ContactState) -> Self {
+    pub fn contact(state: ContactState) -> Self {
         Self {
             pressure: state.pressure,
             gap: state.gap,
@@ -146,7 +154,7 @@ impl Designed {
     }
 
     /// Nothing solved nor designed: how the run ended, and the solver it had.
-    pub(crate) fn unsolved(termination: Termination, solver: Method) -> Self {
+    pub fn unsolved(termination: Termination, solver: Method) -> Self {
         Self {
             method: None,
             solver: Some(solver),

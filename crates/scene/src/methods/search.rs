@@ -2,19 +2,61 @@
 //! search: Fujiwara–Kawase's profile, the published practice the optimised crowns are
 //! compared with, or a circular crown.
 
-use contopt_contact::{
-    ContactSolver, InterfaceProblem, PolonskyKeer, PolonskyKeerSettings, SolverSettings,
-};
+use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::Method;
 use contopt_core::{Error, Result};
 use contopt_optimise::SearchSettings;
 use contopt_results::{CaseReport, TunedProfile};
 use contopt_roller::{solve_cases, Crown, ProfileFamily, TunedCrown};
+use serde::{Deserialize, Serialize};
 
-use super::{contacts, roller_figures, straight_roller, Check, Context, Design, Designed};
+use super::{
+    contacts, roller_figures, straight_roller, BearingCrown, Check, Context, Design, Designed,
+};
+
+/// A roller's Fujiwara–Kawase profile with K1, K2 and z_m tuned by a Nelder–Mead search to the
+/// least worst-case p_max over its `[envelope]` (or its own load), edge-loaded crowns
+/// penalised (`profile_search`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct FujiwaraKawaseSearch(pub SearchSettings);
+
+/// A roller's circular crown, its crowned fraction and end drop tuned as the profile search
+/// tunes Fujiwara–Kawase's (`circular_search`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct CircularSearch(pub SearchSettings);
 
 /// The profile search of a family.
-pub(crate) struct ProfileSearch(pub SearchSettings, pub ProfileFamily);
+struct ProfileSearch(SearchSettings, ProfileFamily);
+
+impl Design for FujiwaraKawaseSearch {
+    fn check(&self, c: &Check) -> Result<()> {
+        ProfileSearch(self.0, ProfileFamily::FujiwaraKawase).check(c)
+    }
+
+    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
+        ProfileSearch(self.0, ProfileFamily::FujiwaraKawase).run(c, report)
+    }
+
+    fn bearing_crown(&self) -> Option<BearingCrown> {
+        Some(BearingCrown::Search(ProfileFamily::FujiwaraKawase, self.0))
+    }
+}
+
+impl Design for CircularSearch {
+    fn check(&self, c: &Check) -> Result<()> {
+        ProfileSearch(self.0, ProfileFamily::Circular).check(c)
+    }
+
+    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
+        ProfileSearch(self.0, ProfileFamily::Circular).run(c, report)
+    }
+
+    fn bearing_crown(&self) -> Option<BearingCrown> {
+        Some(BearingCrown::Search(ProfileFamily::Circular, self.0))
+    }
+}
 
 /// A tuned crown's parameters, as the report gives them.
 pub(crate) fn tuned_profile(tuned: &TunedCrown) -> TunedProfile {
@@ -34,21 +76,11 @@ pub(crate) fn tuned_profile(tuned: &TunedCrown) -> TunedProfile {
 }
 
 impl ProfileSearch {
-    /// The method's name in a scene.
-    fn name(&self) -> &'static str {
-        match self.1 {
-            ProfileFamily::FujiwaraKawase => "profile_search",
-            ProfileFamily::Circular => "circular_search",
-        }
-    }
-}
-
-impl Design for ProfileSearch {
     fn check(&self, c: &Check) -> Result<()> {
         if !c.roller {
             return Err(Error::invalid(
                 "method",
-                self.name(),
+                c.method,
                 "tunes a roller's crown: contact.gap = { kind = \"roller\", … }",
             ));
         }
@@ -64,21 +96,20 @@ impl Design for ProfileSearch {
             ));
         }
         self.0.check()?;
-        straight_roller(c, self.name())
+        straight_roller(c, c.method)
     }
 
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
-        let roller = c
-            .plan
-            .roller
-            .as_ref()
-            .ok_or_else(|| Error::invalid("method", self.name(), "needs a roller gap"))?;
+        let roller =
+            c.plan.roller.as_ref().ok_or_else(|| {
+                Error::invalid("method", "the profile search", "needs a roller gap")
+            })?;
         let started = std::time::Instant::now();
         let points = c.problem.interface().points();
         let mut worst = |states: &[contopt_core::ContactState]| {
             Ok(contopt_roller::penalised_worst(points, states))
         };
-        let loose = search_solver(&c.spec.solver, c.solver, c.problem)?;
+        let loose = search_solver(c.solver, c.problem);
         let searcher = loose.as_deref().unwrap_or(c.solver);
         let mut tuned = contopt_roller::tune_profile(
             c.cases, roller, self.1, searcher, &self.0, &mut worst, c.observer,
@@ -123,32 +154,14 @@ impl Design for ProfileSearch {
 /// again at the scene's tolerance.
 const SEARCH_SOLVE_TOLERANCE: f64 = 1e-6;
 
-/// The contact solver of a profile search's crowns: the scene's Polonsky–Keer (named, or
-/// chosen by `auto` for `problem`) at [`SEARCH_SOLVE_TOLERANCE`] when its own is tighter;
-/// `None` to search with the scene's `solver`.
+/// The contact solver of a profile search's crowns: the scene's solver loosened to
+/// [`SEARCH_SOLVE_TOLERANCE`] where it solves `problem` by Polonsky–Keer (named, or chosen by
+/// `auto`) at a tighter tolerance; `None` to search with the scene's solver.
 pub(crate) fn search_solver(
-    settings: &SolverSettings,
     solver: &dyn ContactSolver,
     problem: &InterfaceProblem,
-) -> Result<Option<Box<dyn ContactSolver>>> {
-    let own = match settings {
-        SolverSettings::PolonskyKeer(s) => Some(*s),
-        SolverSettings::Auto => {
-            (solver.method_for(problem) == Method::PolonskyKeer).then(PolonskyKeerSettings::default)
-        }
-        SolverSettings::Qp(_)
-        | SolverSettings::ActiveSet(_)
-        | SolverSettings::Penalty(_)
-        | SolverSettings::AugmentedLagrangian(_) => None,
-    };
-    Ok(match own {
-        Some(s) if s.tolerance < SEARCH_SOLVE_TOLERANCE => {
-            let loose = PolonskyKeerSettings {
-                tolerance: SEARCH_SOLVE_TOLERANCE,
-                ..s
-            };
-            Some(Box::new(PolonskyKeer::new(loose)?) as Box<dyn ContactSolver>)
-        }
-        _ => None,
-    })
+) -> Option<Box<dyn ContactSolver>> {
+    (solver.method_for(problem) == Method::PolonskyKeer)
+        .then(|| solver.loosened(SEARCH_SOLVE_TOLERANCE))
+        .flatten()
 }
