@@ -181,6 +181,28 @@ mod tests {
         assert!(err.to_string().contains("invalid tolerance = NaN"), "{err}");
     }
 
+    /// clarabel's reduced accuracy is an outcome of its own, with the residual it reached; a
+    /// numerical error stalls, naming the status and both residuals.
+    #[test]
+    fn almost_solved_is_reduced_accuracy() {
+        let mut sol = DefaultSolution::<f64>::new(1, 1);
+        (sol.status, sol.r_prim, sol.r_dual) = (SolverStatus::AlmostSolved, 1e-7, 3e-7);
+        let reduced = Termination::ReducedAccuracy {
+            measure: 3e-7,
+            tolerance: TOLERANCE,
+        };
+        assert_eq!(outcome(&sol, TOLERANCE), Outcome::ReducedAccuracy(reduced));
+        sol.status = SolverStatus::NumericalError;
+        let stalled = Termination::Stalled {
+            cause: Stall::InteriorPoint {
+                status: InteriorPointStatus::NumericalError,
+                primal_residual: 1e-7,
+                dual_residual: 3e-7,
+            },
+        };
+        assert_eq!(outcome(&sol, TOLERANCE), Outcome::Stopped(stalled));
+    }
+
     /// A QP with a known minimiser: min ½(x₀² + x₁²) − x₀ − 2x₁ with x₀ + x₁ ≤ 1 is at
     /// (0, 1), where the constraint's multiplier is 1.
     #[test]
