@@ -20,9 +20,10 @@
 //! ```
 
 use clarabel::solver::{
-    DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+    DefaultSettings, DefaultSettingsBuilder, DefaultSolution, DefaultSolver, IPSolver,
+    SolverStatus, SupportedConeT,
 };
-use contopt_core::{Error, Result, Termination};
+use contopt_core::{Error, InteriorPointStatus, Result, Stall, Termination};
 
 pub use clarabel::algebra::CscMatrix;
 
@@ -37,15 +38,19 @@ pub const MAX_ITERATIONS: u32 = 200;
 /// How a programme ended, from clarabel's status.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Outcome {
-    /// Solved to the tolerance (`Solved` or `AlmostSolved`).
+    /// Solved to the tolerance (`Solved`).
     Solved,
+    /// Solved to clarabel's reduced tolerances only (`AlmostSolved`), with how far it got
+    /// ([`Termination::ReducedAccuracy`]): an answer that stands, said to be less accurate.
+    ReducedAccuracy(Termination),
     /// No x satisfies the constraints (`PrimalInfeasible` or `AlmostPrimalInfeasible`).
     Infeasible,
     /// The objective is unbounded below on the constraints (`DualInfeasible` or
     /// `AlmostDualInfeasible`).
     Unbounded,
     /// Stopped short of the tolerance: the iteration limit ([`Termination::StepLimit`]) or
-    /// numerical trouble ([`Termination::Stalled`], with clarabel's status and residuals).
+    /// numerical trouble ([`Termination::Stalled`] by [`Stall::InteriorPoint`], with clarabel's
+    /// status and residuals).
     /// `x` and `z` hold the last iterate.
     Stopped(Termination),
 }
@@ -113,30 +118,46 @@ pub fn solve(
         .map_err(|e| Error::invalid(what, format!("{e:?}"), "clarabel rejected the programme"))?;
     solver.solve();
     let sol = &solver.solution;
-    let outcome = match sol.status {
-        SolverStatus::Solved | SolverStatus::AlmostSolved => Outcome::Solved,
+    Ok(Solution {
+        outcome: outcome(sol, tolerance),
+        x: sol.x.clone(),
+        z: sol.z.clone(),
+        iterations: sol.iterations as usize,
+    })
+}
+
+/// How a solution of clarabel's ended, by its status, `tolerance` the one it had to reach.
+fn outcome(sol: &DefaultSolution<f64>, tolerance: f64) -> Outcome {
+    let measure = sol.r_prim.max(sol.r_dual);
+    let stalled = |status| {
+        Outcome::Stopped(Termination::Stalled {
+            cause: Stall::InteriorPoint {
+                status,
+                primal_residual: sol.r_prim,
+                dual_residual: sol.r_dual,
+            },
+        })
+    };
+    match sol.status {
+        SolverStatus::Solved => Outcome::Solved,
+        SolverStatus::AlmostSolved => {
+            Outcome::ReducedAccuracy(Termination::ReducedAccuracy { measure, tolerance })
+        }
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
             Outcome::Infeasible
         }
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => Outcome::Unbounded,
         SolverStatus::MaxIterations => Outcome::Stopped(Termination::StepLimit {
             steps: sol.iterations as usize,
-            measure: sol.r_prim.max(sol.r_dual),
+            measure,
             tolerance,
         }),
-        status => Outcome::Stopped(Termination::Stalled {
-            reason: format!(
-                "clarabel status {status:?}, primal residual {:.3e}, dual residual {:.3e}",
-                sol.r_prim, sol.r_dual
-            ),
-        }),
-    };
-    Ok(Solution {
-        outcome,
-        x: sol.x.clone(),
-        z: sol.z.clone(),
-        iterations: sol.iterations as usize,
-    })
+        SolverStatus::Unsolved => stalled(InteriorPointStatus::Unsolved),
+        SolverStatus::MaxTime => stalled(InteriorPointStatus::TimeLimit),
+        SolverStatus::NumericalError => stalled(InteriorPointStatus::NumericalError),
+        SolverStatus::InsufficientProgress => stalled(InteriorPointStatus::InsufficientProgress),
+        SolverStatus::CallbackTerminated => stalled(InteriorPointStatus::CallbackTerminated),
+    }
 }
 
 #[cfg(test)]
@@ -158,6 +179,28 @@ mod tests {
         );
         let err = settings(f64::NAN).unwrap_err();
         assert!(err.to_string().contains("invalid tolerance = NaN"), "{err}");
+    }
+
+    /// clarabel's reduced accuracy is an outcome of its own, with the residual it reached; a
+    /// numerical error stalls, naming the status and both residuals.
+    #[test]
+    fn almost_solved_is_reduced_accuracy() {
+        let mut sol = DefaultSolution::<f64>::new(1, 1);
+        (sol.status, sol.r_prim, sol.r_dual) = (SolverStatus::AlmostSolved, 1e-7, 3e-7);
+        let reduced = Termination::ReducedAccuracy {
+            measure: 3e-7,
+            tolerance: TOLERANCE,
+        };
+        assert_eq!(outcome(&sol, TOLERANCE), Outcome::ReducedAccuracy(reduced));
+        sol.status = SolverStatus::NumericalError;
+        let stalled = Termination::Stalled {
+            cause: Stall::InteriorPoint {
+                status: InteriorPointStatus::NumericalError,
+                primal_residual: 1e-7,
+                dual_residual: 3e-7,
+            },
+        };
+        assert_eq!(outcome(&sol, TOLERANCE), Outcome::Stopped(stalled));
     }
 
     /// A QP with a known minimiser: min ½(x₀² + x₁²) − x₀ − 2x₁ with x₀ + x₁ ≤ 1 is at

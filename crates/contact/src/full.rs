@@ -5,7 +5,7 @@
 //! the condensation: both must agree to round-off.
 
 use contopt_core::observe::{Method, Observer, Silent};
-use contopt_core::{check, ContactState, Error, FullSystem, Residuals, Result};
+use contopt_core::{check, ContactState, Error, FullSystem, Residuals, Result, Stall};
 
 use crate::kalker::{self, ContactSet, Infeasible, Sweep};
 use crate::watch::{self, Watch};
@@ -180,7 +180,7 @@ impl ContactSet for Springs<'_> {
             .then(|| (0..h.len()).min_by(|&i, &j| h[i].total_cmp(&h[j])))?
     }
 
-    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), String>> {
+    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), Stall>> {
         self.system.solve_springs(active, self.c, &mut self.gap)?;
         for ((p, d), &on) in self.pressure.iter_mut().zip(&self.gap).zip(active) {
             *p = if on { -self.c * d } else { 0.0 };

@@ -4,7 +4,7 @@
 //! system (2.22, [`FullPenalty`](crate::FullPenalty)).
 
 use contopt_core::observe::Method;
-use contopt_core::{ContactState, Result, Termination};
+use contopt_core::{ContactState, Result, Stall, Termination};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt;
 use faer::linalg::evd::{self, ComputeEigenvectors as Eigenvectors};
@@ -52,8 +52,8 @@ pub(crate) trait ContactSet {
     /// point of least gap); `None` when nothing floats.
     fn anchor(&self) -> Option<usize>;
     /// Solves with the points of `active` in contact and zero pressure elsewhere; `Ok(Err)`
-    /// with the reason when the system is singular on C (the iterate then holds no solve).
-    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), String>>;
+    /// with the stall when the system is singular on C (the iterate then holds no solve).
+    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), Stall>>;
     /// The pressure of the last solve.
     fn pressure(&self) -> &[f64];
     /// The gap of point i after the last solve less the proximal shift, dᵢ − ρ p̂ᵢ: negative
@@ -102,8 +102,8 @@ pub(crate) fn iterate(
                 active[i] = true;
             }
         }
-        if let Err(reason) = system.solve_on(active)? {
-            sweep.halt = Some(Termination::Stalled { reason });
+        if let Err(cause) = system.solve_on(active)? {
+            sweep.halt = Some(Termination::Stalled { cause });
             return Ok(sweep);
         }
         sweep.iterp += 1;
@@ -661,16 +661,13 @@ impl<'a> Subproblem<'a> {
 
     /// Corrects the current iterate (the reference restricted to C, whose points are the
     /// workspace's `idx`) by the solve on C.
-    fn correct(&mut self) -> std::result::Result<(), String> {
+    fn correct(&mut self) -> std::result::Result<(), Stall> {
         let (problem, rho, shift) = (self.problem, self.rho, self.shift);
         let w = problem.weights();
         let ws = &mut *self.ws;
         let (idx, k) = (&ws.idx, ws.idx.len());
         if !ws.matrix.factor(self.a, w, idx, rho, self.spectral) {
-            return Err(format!(
-                "the influence matrix is singular on the {k} contact points (penalty term rho = \
-                 {rho:e}); use a finite penalty parameter or the augmented Lagrangian"
-            ));
+            return Err(Stall::SingularOnContactSet { points: k, rho });
         }
         let p = &ws.current.pressure;
         let d_ref = &mut ws.reference_gap;
@@ -692,7 +689,7 @@ impl<'a> Subproblem<'a> {
 
     /// Makes the correction y on C (the workspace's `rhs`) balance the rigid modes,
     /// Rᵀ W δ = −q − Rᵀ W p_ref (eq. 2.10), and updates their amplitudes.
-    fn balance(&mut self) -> std::result::Result<(), String> {
+    fn balance(&mut self) -> std::result::Result<(), Stall> {
         let w = self.problem.weights();
         let ws = &mut *self.ws;
         let (idx, q) = (&ws.idx, &ws.q);
@@ -739,10 +736,7 @@ impl<'a> Subproblem<'a> {
         )
         .is_err()
         {
-            return Err(format!(
-                "the {k} contact points do not hold the rigid modes {:?}",
-                self.problem.mode_names()
-            ));
+            return Err(Stall::RigidModesUnheld { points: k });
         }
         llt::solve::solve_in_place_with_conj(s.rb(), Conj::No, lambda.rb_mut(), par(), scratch);
         for (c, l) in ws.current.rigid.iter_mut().enumerate() {
@@ -775,7 +769,7 @@ impl ContactSet for Subproblem<'_> {
         (!self.ws.q.is_empty()).then(|| (0..g.len()).min_by(|&i, &j| g[i].total_cmp(&g[j])))?
     }
 
-    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), String>> {
+    fn solve_on(&mut self, active: &[bool]) -> Result<std::result::Result<(), Stall>> {
         let ws = &mut *self.ws;
         ws.idx.clear();
         ws.idx.extend((0..active.len()).filter(|&i| active[i]));

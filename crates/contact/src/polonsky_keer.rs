@@ -6,7 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use contopt_core::observe::{Method, Nested, Observer};
-use contopt_core::{check, ContactState, Error, Residuals, Result, Termination};
+use contopt_core::{check, ContactState, Error, Quantity, Residuals, Result, Stall, Termination};
 use serde::{Deserialize, Serialize};
 
 use crate::watch::{self, Watch};
@@ -345,8 +345,8 @@ impl PolonskyKeer {
             steps += 1;
             let entered = match cg.step(problem) {
                 Ok(entered) => entered,
-                Err(reason) => {
-                    halt = Some(Termination::Stalled { reason });
+                Err(cause) => {
+                    halt = Some(Termination::Stalled { cause });
                     false
                 }
             };
@@ -359,7 +359,7 @@ impl PolonskyKeer {
                 // The last finite iterate is kept; the step that overflowed is undone.
                 cg.undo();
                 halt = Some(Termination::NonFinite {
-                    field: "pressure of a conjugate-gradient step".into(),
+                    quantity: Quantity::Pressure,
                 });
             }
             let stop = watch.report(steps, change, tolerance);
@@ -477,7 +477,7 @@ impl<'w> Descent<'w> {
 
     /// One step: the residual, the direction, the move along it and the points that enter;
     /// returns whether any entered.
-    fn step(&mut self, problem: &InterfaceProblem) -> std::result::Result<bool, String> {
+    fn step(&mut self, problem: &InterfaceProblem) -> std::result::Result<bool, Stall> {
         let PolonskyKeerWorkspace {
             cg,
             groups,
@@ -635,7 +635,7 @@ impl Buffers {
         groups: &Groups,
         p: &mut [f64],
         kappa: f64,
-    ) -> std::result::Result<bool, String> {
+    ) -> std::result::Result<bool, Stall> {
         let w = problem.weights();
         for ((f, t), w) in self.forces.iter_mut().zip(&self.t).zip(w) {
             *f = t * w;
@@ -648,9 +648,7 @@ impl Buffers {
         } else if curvature > 0.0 {
             along / curvature
         } else {
-            return Err(format!(
-                "the influence operator is not positive on the contact set (curvature {curvature:e})"
-            ));
+            return Err(Stall::NotPositive { curvature });
         };
         for i in 0..p.len() {
             if self.contact[i] {

@@ -1,7 +1,7 @@
 //! The complementary-energy QP (2.14) by the interior-point solver clarabel.
 
 use contopt_core::observe::{Method, Observer};
-use contopt_core::{check, ContactState, Error, Result, Termination};
+use contopt_core::{check, ContactState, Error, Result, Stall, Termination};
 use serde::{Deserialize, Serialize};
 
 use crate::conic::{self, CscMatrix, Outcome, Solution};
@@ -103,7 +103,8 @@ impl Qp {
             "QP data",
         )?;
         match &sol.outcome {
-            Outcome::Solved => polish(problem, &sol),
+            Outcome::Solved => polish(problem, &sol, Termination::Converged),
+            Outcome::ReducedAccuracy(reduced) => polish(problem, &sol, reduced.clone()),
             Outcome::Infeasible => Err(Error::invalid(
                 "loads",
                 format!("{:?}", problem.load()),
@@ -183,8 +184,13 @@ impl ScaledQp {
 
 /// The polish on clarabel's contact set (see [`Qp`]): the exact QP on the points whose
 /// pressure exceeds [`INTERIOR_POINT_ACCURACY`]·p_max, checked against clarabel's own
-/// rigid-body approach.
-fn polish(problem: &InterfaceProblem, sol: &Solution) -> Result<ContactState> {
+/// rigid-body approach. A polish that agrees ends as `accuracy` says clarabel ended
+/// ([`Termination::Converged`] or [`Termination::ReducedAccuracy`]).
+fn polish(
+    problem: &InterfaceProblem,
+    sol: &Solution,
+    accuracy: Termination,
+) -> Result<ContactState> {
     let m = problem.load().len();
     let p_max = sol.x.iter().fold(0.0f64, |a, &b| a.max(b));
     let contact: Vec<bool> = sol
@@ -202,14 +208,17 @@ fn polish(problem: &InterfaceProblem, sol: &Solution) -> Result<ContactState> {
         .find(|(_, (mine, theirs))| {
             (*mine - *theirs).abs() > INTERIOR_POINT_ACCURACY * theirs.abs().max(ZERO_APPROACH)
         })
-        .map(|(k, (mine, theirs))| {
-            format!(
-                "polished rigid amplitude {k} = {mine:e} disagrees with the interior point's \
-                 {theirs:e}"
-            )
-        });
-    if let Some(reason) = disagreement {
-        watch::end(&mut state, Termination::Stalled { reason });
+        .map(
+            |(mode, (&polished, &interior_point))| Stall::PolishDisagrees {
+                mode,
+                polished,
+                interior_point,
+            },
+        );
+    if let Some(cause) = disagreement {
+        watch::end(&mut state, Termination::Stalled { cause });
+    } else if state.is_converged() {
+        state.termination = accuracy;
     }
     state.iterations = sol.iterations;
     Ok(state)

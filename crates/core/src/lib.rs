@@ -1,7 +1,7 @@
 //! Core of contopt: the [`ElasticBody`] trait, the contact [`Interface`] a body exposes, how
-//! an iterative method ends ([`Termination`]) and what it reports on the way
-//! ([`observe`]), the checks every input passes ([`check`]), and the [`Error`] type shared by
-//! every crate of the workspace.
+//! an iterative method ends ([`Termination`]), what it reports on the way ([`observe`]) and
+//! the loop that runs it ([`drive`]), the checks every input passes ([`check`]), and the
+//! [`Error`] type shared by every crate of the workspace.
 //!
 //! Equation numbers refer to I. Páczelt, *Some new developments in contact pressure
 //! optimization* (1994). Units throughout: N, mm, MPa.
@@ -11,6 +11,7 @@
 
 mod body;
 pub mod check;
+pub mod drive;
 mod error;
 mod fields;
 mod full_system;
@@ -40,4 +41,6 @@ pub use stress::{
     Peak, Section, SectionAxis, SectionField, StressPeaks, StressTensor, Subsurface,
     SubsurfaceRequest,
 };
-pub use termination::Termination;
+pub use termination::{
+    Constraint, Infeasibility, InteriorPointStatus, Quantity, Stall, Termination, Unboundedness,
+};

@@ -57,12 +57,14 @@ pub enum Method {
     EnvelopeSplit,
     /// A derivative-free search over a profile's parameters (Nelder–Mead).
     ProfileSearch,
+    /// Newton's steps to a bearing's ring equilibrium.
+    RingEquilibrium,
     /// A method of your own.
     Other(&'static str),
 }
 
 /// The methods of the library, as [`Method::id`] names them.
-const LIBRARY_METHODS: [Method; 12] = [
+const LIBRARY_METHODS: [Method; 13] = [
     Method::Qp,
     Method::ActiveSet,
     Method::Penalty,
@@ -75,6 +77,7 @@ const LIBRARY_METHODS: [Method; 12] = [
     Method::LoadSplit,
     Method::EnvelopeSplit,
     Method::ProfileSearch,
+    Method::RingEquilibrium,
 ];
 
 impl Method {
@@ -94,6 +97,7 @@ impl Method {
             Method::LoadSplit => "load_split",
             Method::EnvelopeSplit => "envelope_split",
             Method::ProfileSearch => "profile_search",
+            Method::RingEquilibrium => "ring_equilibrium",
             Method::Other(name) => name,
         }
     }
@@ -189,6 +193,7 @@ impl std::fmt::Display for Method {
             Method::LoadSplit => "load split (3.5)",
             Method::EnvelopeSplit => "envelope load split (3.5)",
             Method::ProfileSearch => "profile search",
+            Method::RingEquilibrium => "ring equilibrium",
             Method::Other(name) => name,
         })
     }

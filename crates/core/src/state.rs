@@ -1,7 +1,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::observe::Method;
-use crate::Termination;
+use crate::{Quantity, Termination};
 
 /// How well a contact solution satisfies the conditions (2.15).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -82,32 +82,30 @@ impl ContactState {
         self.rigid.first().map(|lambda| -lambda)
     }
 
-    /// The first field of the state that holds a NaN or an infinity, with its first such
+    /// The first quantity of the state that holds a NaN or an infinity, with its first such
     /// value; `None` when every value is finite.
-    pub fn non_finite(&self) -> Option<(&'static str, f64)> {
+    pub fn non_finite(&self) -> Option<(Quantity, f64)> {
         let first = |v: &[f64]| v.iter().copied().find(|x| !x.is_finite());
         let r = &self.residuals;
         [
-            ("pressure", first(&self.pressure)),
-            ("gap", first(&self.gap)),
-            ("rigid amplitude", first(&self.rigid)),
+            (Quantity::Pressure, first(&self.pressure)),
+            (Quantity::Gap, first(&self.gap)),
+            (Quantity::RigidAmplitude, first(&self.rigid)),
             (
-                "residual",
+                Quantity::Residual,
                 first(&[r.equilibrium, r.penetration, r.complementarity]),
             ),
         ]
         .into_iter()
-        .find_map(|(name, v)| v.map(|v| (name, v)))
+        .find_map(|(quantity, v)| v.map(|v| (quantity, v)))
     }
 
     /// Marks a state that holds a NaN or an infinity [`Termination::NonFinite`], naming the
     /// field, so that no non-finite value passes for a solution: the data overflowed f64 (a
     /// load near 10³⁰⁸ N, a modulus near 10⁻³⁰⁰) or the method broke down.
     pub fn stop_if_not_finite(&mut self) {
-        if let Some((field, _)) = self.non_finite() {
-            self.termination = Termination::NonFinite {
-                field: field.to_string(),
-            };
+        if let Some((quantity, _)) = self.non_finite() {
+            self.termination = Termination::NonFinite { quantity };
         }
     }
 

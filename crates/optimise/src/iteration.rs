@@ -3,8 +3,11 @@
 use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
-use contopt_core::observe::{Flow, Method};
-use contopt_core::{check, ContactState, Error, Result, Termination};
+use contopt_core::drive::Step;
+use contopt_core::observe::Method;
+#[cfg(doc)]
+use contopt_core::Termination;
+use contopt_core::{check, ContactState, Error, Result};
 use faer::linalg::solvers::{ColPivQr, SolveLstsq};
 use faer::Mat;
 
@@ -110,19 +113,20 @@ impl Optimisation<'_> {
         self.check_mode(mode)?;
         let mut prescribed = Prescribed::new(self)?;
         let tolh = settings.tolh_mm2;
-        let mut passes = Passes::new(self, Method::GapIteration, tolh);
+        let mut passes = Passes::new(self, Method::GapIteration, tolh, settings.max_iterations);
         let mut dh = vec![0.0; self.shape.nodes().len()];
-        let mut last: Option<Iterate> = None;
-        for k in 1..=settings.max_iterations {
+        let (mut last, mut held): (Option<Iterate>, Option<Optimum>) = (None, None);
+        let end = passes.driver.run(|k, inner| {
             // Steps 3–4, each contact solve starting from the previous pressure.
             let warm = last.as_ref().map(|(s, _, _)| s.pressure.as_slice());
             let state =
                 self.solve_with_gap_change(solver, self.problem, &self.shape.apply(&dh), warm)?;
-            if !state.is_converged() {
+            if !state.termination.is_solved() {
                 let end = state.termination.clone().inside(state.method);
-                let held = self.held(last, state, dh, mode, &prescribed.mask);
-                return Ok(passes.finish(held, end));
+                held = Some(self.held(last.take(), state, dh.clone(), mode, &prescribed.mask));
+                return Ok(Step::Ended(end));
             }
+            inner.note(state.method, &state.termination);
             let mut p_max = self.step_four(mode, &state.pressure, &prescribed.mask)?;
             if prescribed.bind(self, &state.pressure, p_max)? {
                 p_max = self.step_four(mode, &state.pressure, &prescribed.mask)?;
@@ -130,24 +134,27 @@ impl Optimisation<'_> {
             // Steps 5–6.
             let next = self.steps_five_and_six(&prescribed, &state, p_max);
             let tolh_k: f64 = next.iter().zip(&dh).map(|(a, b)| (a - b).powi(2)).sum();
-            let flow = passes.push(Pass::new(k, p_max, &next, tolh_k, [&state]), tolh_k);
+            passes
+                .rows
+                .push(Pass::new(k, p_max, &next, tolh_k, [&state]));
             // Step 7.
-            if tolh_k <= tolh {
+            let step = Step::converged_below(tolh_k, tolh);
+            if matches!(step, Step::Last(..)) {
                 self.check_sign(&dh)?;
-                let optimum = self.optimum(state, dh, p_max, Method::GapIteration);
-                return Ok(passes.finish(optimum, Termination::Converged));
             }
-            if flow == Flow::Stop {
-                let optimum = self.optimum(state, dh, p_max, Method::GapIteration);
-                return Ok(passes.finish(optimum, Termination::Stopped { after: k }));
+            last = Some((state, std::mem::replace(&mut dh, next), p_max));
+            Ok(step)
+        })?;
+        let optimum = match (held, last) {
+            (Some(held), _) => held,
+            (None, Some((state, dh, p_max))) => {
+                self.optimum(state, dh, p_max, Method::GapIteration)
             }
-            last = Some((state, dh, p_max));
-            dh = next;
-        }
-        let end = passes.step_limit();
-        let (state, dh, p_max) =
-            last.ok_or_else(|| Error::invalid("max_iterations", 0, "at least one pass"))?;
-        Ok(passes.finish(self.optimum(state, dh, p_max, Method::GapIteration), end))
+            (None, None) => {
+                return Err(Error::invalid("max_iterations", 0, "at least one pass"));
+            }
+        };
+        Ok(passes.finish(optimum, end))
     }
 
     /// The iterate a loop holds when a contact solve ends short: that solve's `state` (solved

@@ -462,7 +462,7 @@ impl<'a> Optimisation<'a> {
         let zero = vec![0.0; self.shape.nodes().len()];
         let state =
             self.solve_with_gap_change(solver, self.problem, &self.shape.apply(&zero), None)?;
-        let end = match state.is_converged() {
+        let end = match state.termination.is_solved() {
             true => termination,
             false => state.termination.clone().inside(state.method),
         };

@@ -1,7 +1,8 @@
 //! The optimum of (3.5) without a dense matrix: the load carried by each design column.
 
 use contopt_contact::{parallel, ContactSolver, FreeMode, InterfaceProblem, Workspace};
-use contopt_core::observe::{Flow, Method, Nested, Observer};
+use contopt_core::drive::Step;
+use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{ContactState, Error, Result, Termination};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -159,17 +160,17 @@ impl Optimisation<'_> {
             true => Method::LoadSplit,
             false => Method::EnvelopeSplit,
         };
-        let mut split = Split {
+        let split = Split {
             opt: self,
             cases,
             levels,
             columns: &columns,
-            passes: Passes::new(self, method, settings.tolerance),
         };
+        let mut passes = Passes::new(self, method, settings.tolerance, settings.max_iterations);
         let mut update = ShareUpdate::new(&columns);
-        let mut last: Option<SplitIterate> = None;
+        let (mut last, mut failed): (Option<SplitIterate>, Option<Failed>) = (None, None);
         let mut forcing = Some(FIRST_FORCING);
-        for k in 1..=settings.max_iterations {
+        let end = passes.driver.run(|k, inner| {
             // The last update allowed is solved exactly: a split that stops there reports
             // how far an exact contact got.
             let loose = forcing
@@ -180,19 +181,19 @@ impl Optimisation<'_> {
             let solver_k = loose.as_deref().unwrap_or(solver);
             let iterate = match split.pass(solver_k, &update.share, last.as_ref())? {
                 Ok(iterate) => iterate,
-                Err(failed) => return Ok(split.held(last, failed)),
+                Err(f) => return Ok(Step::Ended(failed.insert(f).end.clone())),
             };
-            let flow = split
-                .passes
-                .push(iterate.row(k, last.as_ref()), iterate.miss);
-            if iterate.miss <= settings.tolerance && exact {
+            std::iter::once(&iterate.state)
+                .chain(&iterate.cases)
+                .for_each(|s| inner.note(s.method, &s.termination));
+            passes.rows.push(iterate.row(k, last.as_ref()));
+            let miss = iterate.miss;
+            if miss <= settings.tolerance && exact {
                 self.check_sign(&iterate.dh)?;
-                return Ok(split.finish(iterate, Termination::Converged));
+                last = Some(iterate);
+                return Ok(Step::Last(miss, Termination::Converged));
             }
             forcing = iterate.forcing(last.as_ref(), settings.tolerance);
-            if flow == Flow::Stop {
-                return Ok(split.finish(iterate, Termination::Stopped { after: k }));
-            }
             update.next(
                 &iterate.envelope,
                 &iterate.exponent,
@@ -200,11 +201,13 @@ impl Optimisation<'_> {
                 iterate.p_max,
             );
             last = Some(iterate);
+            Ok(Step::Next(miss))
+        })?;
+        match (failed, last) {
+            (Some(failed), last) => Ok(split.held(passes, last, failed)),
+            (None, Some(last)) => Ok(split.finish(passes, last, end)),
+            (None, None) => Err(Error::invalid("max_iterations", 0, "at least one update")),
         }
-        let end = split.passes.step_limit();
-        let last =
-            last.ok_or_else(|| Error::invalid("max_iterations", 0, "at least one update"))?;
-        Ok(split.finish(last, end))
     }
 
     /// The envelope's cases share the design case's interface.
@@ -371,16 +374,15 @@ struct Failed {
 }
 
 /// What a load split works with.
-struct Split<'s, 'o, 'a> {
+struct Split<'s, 'a> {
     opt: &'s Optimisation<'a>,
     cases: &'s [InterfaceProblem<'s>],
     /// Each case's pressure level s_c, relative to the design case's.
     levels: &'s [f64],
     columns: &'s Columns,
-    passes: Passes<'o>,
 }
 
-impl Split<'_, '_, '_> {
+impl Split<'_, '_> {
     /// An update with the column loads `share`, solved by `solver` (the split's own, or it
     /// loosened) from the pressures of `last`: the iterate, or the contact solve that did not
     /// converge.
@@ -393,7 +395,7 @@ impl Split<'_, '_, '_> {
         let (opt, columns) = (self.opt, self.columns);
         let warm = last.map(|l| l.state.pressure.as_slice());
         let state = self.column_solve(solver, share, warm)?;
-        if !state.is_converged() {
+        if !state.termination.is_solved() {
             return Ok(Err(Failed {
                 end: state.termination.clone().inside(state.method),
                 column: state,
@@ -408,7 +410,7 @@ impl Split<'_, '_, '_> {
         let solved_cases = self.solve_cases(solver, &gap_change, last);
         for (c, solved) in solved_cases.into_iter().enumerate() {
             let solved = solved?;
-            if !solved.is_converged() {
+            if !solved.termination.is_solved() {
                 return Ok(Err(Failed {
                     end: solved.termination.inside(solved.method),
                     column: state,
@@ -455,7 +457,7 @@ impl Split<'_, '_, '_> {
             crate::solve_gap_changed(solver, &cases[c], gap_change, start, observer, workspace)
         };
         let at_once = cases.first().map_or(1, |c| parallel::at_once(solver, c));
-        let go_on = |r: &Result<ContactState>| r.as_ref().is_ok_and(ContactState::is_converged);
+        let go_on = |r: &Result<ContactState>| r.as_ref().is_ok_and(|s| s.termination.is_solved());
         let observer = Nested(self.opt.observer);
         parallel::solve_each(cases.len(), at_once, &observer, solve, go_on)
     }
@@ -505,7 +507,12 @@ impl Split<'_, '_, '_> {
     /// The optimum of `iterate`, ended as `termination`: its largest p − v·p_max on Ω_nv is
     /// that of every case, and a converged split whose further case breaks χ ≥ 0 there ends
     /// as infeasible, naming it (its design case is checked as every optimum is).
-    fn finish(self, iterate: SplitIterate, termination: Termination) -> EnvelopeOptimum {
+    fn finish(
+        self,
+        passes: Passes,
+        iterate: SplitIterate,
+        termination: Termination,
+    ) -> EnvelopeOptimum {
         let (_, approach) = self.crown(&iterate.state.rigid);
         let bound = Bound::new(self.opt);
         let worst = iterate
@@ -518,15 +525,10 @@ impl Split<'_, '_, '_> {
             })
             .max_by(|a, b| a.0 .0.total_cmp(&b.0 .0));
         let termination = match (termination, worst) {
-            (Termination::Converged, Some(((value, i), c)))
-                if value > SOLVER_ACCURACY * iterate.p_max =>
+            (end, Some(((value, i), c)))
+                if end.is_solved() && value > SOLVER_ACCURACY * iterate.p_max =>
             {
-                match bound.broken(value, i) {
-                    Termination::Infeasible { reason } => Termination::Infeasible {
-                        reason: format!("in case {}: {reason}", c + 1),
-                    },
-                    other => other,
-                }
+                bound.broken(value, i, Some(c + 1))
             }
             (termination, _) => termination,
         };
@@ -536,7 +538,7 @@ impl Split<'_, '_, '_> {
                 .opt
                 .optimum(iterate.state, iterate.dh, iterate.p_max, Method::LoadSplit)
         };
-        let mut optimum = self.passes.finish(optimum, termination);
+        let mut optimum = passes.finish(optimum, termination);
         if let (Some(own), Some(((value, _), _))) = (optimum.omega_nv_excess, worst) {
             optimum.omega_nv_excess = Some(own.max(value));
         }
@@ -549,14 +551,16 @@ impl Split<'_, '_, '_> {
     /// The optimum when a contact solve ended short: the last update when there is one and
     /// the failed solve is a case's or not finite; else the update's column solve, with the
     /// crown of its approaches and no cases.
-    fn held(self, last: Option<SplitIterate>, failed: Failed) -> EnvelopeOptimum {
+    fn held(self, passes: Passes, last: Option<SplitIterate>, failed: Failed) -> EnvelopeOptimum {
         let Failed {
             column,
             column_failed,
             end,
         } = failed;
         match last {
-            Some(last) if !column_failed || column.non_finite().is_some() => self.finish(last, end),
+            Some(last) if !column_failed || column.non_finite().is_some() => {
+                self.finish(passes, last, end)
+            }
             _ => {
                 let (dh, _) = self.crown(&column.rigid);
                 let p_max = self.opt.p_max_on_omega_opt(&column.pressure);
@@ -569,7 +573,7 @@ impl Split<'_, '_, '_> {
                     p_max,
                     miss: f64::NAN,
                 };
-                self.finish(iterate, end)
+                self.finish(passes, iterate, end)
             }
         }
     }

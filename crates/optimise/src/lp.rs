@@ -4,8 +4,11 @@
 use contopt_contact::ContactSolver;
 #[cfg(doc)]
 use contopt_contact::InterfaceProblem;
-use contopt_core::observe::{Flow, Method, Nested};
-use contopt_core::{check, Error, Result, Termination};
+use contopt_core::drive::Step;
+use contopt_core::observe::{Method, Nested};
+use contopt_core::{
+    check, Constraint, Error, Infeasibility, Result, Stall, Termination, Unboundedness,
+};
 use faer::Mat;
 
 use crate::passes::Passes;
@@ -35,10 +38,10 @@ enum Restriction {
 
 /// How a pass ended: its optimum; the points whose restriction its programme could not meet
 /// (a closed point that would have to pull, an open one that would have to penetrate), with
-/// the termination that says so; or why it has none.
+/// the constraints that conflict; or why it has none.
 enum PassEnd {
     Solved(Box<Optimum>),
-    Flip(Vec<usize>, Termination),
+    Flip(Vec<usize>, Infeasibility),
     Ended(Termination),
 }
 
@@ -82,43 +85,50 @@ impl Optimisation<'_> {
     ) -> Result<Optimum> {
         settings.check()?;
         let lp = Programme::new(self, settings.tolerance)?;
-        let mut passes = Passes::new(self, Method::LinearProgramme, 0.0);
+        let mut passes = Passes::new(self, Method::LinearProgramme, 0.0, settings.max_passes);
         let mut restricted = match lp.seed(contact_solver)? {
             Ok(restricted) => restricted,
             Err(end) => return self.programme_ended(contact_solver, passes, end),
         };
-        let mut tried = vec![];
-        for pass in 1..=settings.max_passes {
+        let (mut tried, mut solved) = (vec![], None);
+        let end = passes.driver.run(|pass, _| {
             tried.push(restricted.clone());
-            let end = match lp.solve_pass(&restricted)? {
+            Ok(match lp.solve_pass(&restricted)? {
                 PassEnd::Solved(optimum) => {
-                    let row = Pass {
+                    passes.rows.push(Pass {
                         k: pass,
                         ..optimum.passes[0]
-                    };
-                    let _ = passes.push(row, 0.0);
+                    });
                     self.check_sign(&optimum.dh)?;
-                    return Ok(passes.finish(*optimum, Termination::Converged));
+                    let accuracy = optimum.termination.clone();
+                    solved = Some(optimum);
+                    Step::Last(0.0, accuracy)
                 }
-                PassEnd::Flip(points, end) => {
-                    let flow = passes.report(pass, points.len() as f64);
+                PassEnd::Flip(points, conflict) => {
                     points
                         .iter()
                         .for_each(|&i| restricted[i] = restricted[i].flipped());
-                    match (flow, tried.contains(&restricted)) {
-                        (Flow::Stop, _) => Termination::Stopped { after: pass },
-                        (_, true) => Termination::Stalled {
-                            reason: format!("the contact sets of its passes repeat ({end})"),
-                        },
-                        _ => continue,
+                    let flipped = points.len() as f64;
+                    match tried.contains(&restricted) {
+                        true => Step::Last(
+                            flipped,
+                            Termination::Stalled {
+                                cause: Stall::CyclingContactSet {
+                                    passes: pass,
+                                    conflict,
+                                },
+                            },
+                        ),
+                        false => Step::Next(flipped),
                     }
                 }
-                PassEnd::Ended(end) => end,
-            };
-            return self.programme_ended(contact_solver, passes, end);
+                PassEnd::Ended(end) => Step::Ended(end),
+            })
+        })?;
+        match solved {
+            Some(optimum) => Ok(passes.finish(*optimum, end)),
+            None => self.programme_ended(contact_solver, passes, end),
         }
-        let end = passes.step_limit();
-        self.programme_ended(contact_solver, passes, end)
     }
 
     /// The optimum of a programme that ended short, `end`: the contact solution without a gap
@@ -330,9 +340,7 @@ impl<'o, 'a> Programme<'o, 'a> {
             layout = self.layout(least, false);
         }
         Ok(PassEnd::Ended(Termination::Stalled {
-            reason: format!(
-                "the node of least gap change moved {PIN_MOVES} times between programmes"
-            ),
+            cause: Stall::WanderingReference { moves: PIN_MOVES },
         }))
     }
 
@@ -342,34 +350,21 @@ impl<'o, 'a> Programme<'o, 'a> {
         let programme = Restricted::new(self, restricted, layout);
         let rows = programme.rows();
         Ok(match programme::solve(&programme, &rows, self.tolerance)? {
-            Solved::Optimal(x, iterations) => {
-                PassEnd::Solved(Box::new(programme.optimum(&x, iterations)))
+            Solved::Optimal(x, iterations, accuracy) => {
+                PassEnd::Solved(Box::new(programme.optimum(&x, iterations, accuracy)))
             }
             Solved::Infeasible(conflict) => {
-                let named: Vec<String> = conflict
-                    .iter()
-                    .take(NAMED_ROWS)
-                    .map(|&k| self.describe(k))
-                    .collect();
-                let more = match conflict.len().saturating_sub(NAMED_ROWS) {
-                    0 => String::new(),
-                    more => format!(" and {more} more"),
-                };
-                let reason = format!(
-                    "no gap change meets these together: {}{more}",
-                    named.join("; ")
+                let (blamed, cause) = (
+                    self.blamed(restricted, &conflict),
+                    self.infeasibility(&conflict),
                 );
-                let end = Termination::Infeasible { reason };
-                let blamed = self.blamed(restricted, &conflict);
                 match blamed.is_empty() {
-                    true => PassEnd::Ended(end),
-                    false => PassEnd::Flip(blamed, end),
+                    true => PassEnd::Ended(Termination::Infeasible { cause }),
+                    false => PassEnd::Flip(blamed, cause),
                 }
             }
             Solved::Unbounded => PassEnd::Ended(Termination::Unbounded {
-                reason: "p_max falls without bound along a gap change that nothing in the \
-                         programme limits"
-                    .into(),
+                cause: Unboundedness::GapChange,
             }),
             Solved::Stopped(end) => PassEnd::Ended(end),
         })
@@ -388,20 +383,43 @@ impl<'o, 'a> Programme<'o, 'a> {
             .collect()
     }
 
-    /// A row in words, with its point or node.
-    fn describe(&self, kind: Kind) -> String {
+    /// The infeasibility of a programme whose rows `conflict`, naming the first few.
+    fn infeasibility(&self, conflict: &[Kind]) -> Infeasibility {
+        Infeasibility::Programme {
+            conflict: conflict
+                .iter()
+                .take(NAMED_ROWS)
+                .map(|&k| self.constraint(k))
+                .collect(),
+            more: conflict.len().saturating_sub(NAMED_ROWS),
+        }
+    }
+
+    /// A row as the constraint it is, with its point or node.
+    fn constraint(&self, kind: Kind) -> Constraint {
         let opt = self.opt;
-        let at = |i: usize| format!("point {i} {:?}", opt.problem.interface().points()[i]);
+        let at = |point: usize| (point, opt.problem.interface().points()[point]);
         match kind {
-            Kind::Equilibrium(m) => format!(
-                "the equilibrium of {} under its load",
-                opt.problem.mode_names()[m]
-            ),
-            Kind::Gap(i) => format!("d ≥ 0 at {}", at(i)),
-            Kind::Chi(i) => format!("p ≤ v·p_max (χ ≥ 0) at {} of Ω_nv", at(i)),
-            Kind::Pressure(i) => format!("p ≥ 0 at {}", at(i)),
-            Kind::Level => "p_max ≥ 0".into(),
-            Kind::Change(k) => format!("Δh ≥ 0 at design node {k} {:?}", opt.shape.nodes()[k]),
+            Kind::Equilibrium(m) => Constraint::Equilibrium {
+                mode: opt.problem.mode_names().swap_remove(m),
+            },
+            Kind::Gap(i) => {
+                let (point, position_mm) = at(i);
+                Constraint::Gap { point, position_mm }
+            }
+            Kind::Chi(i) => {
+                let (point, position_mm) = at(i);
+                Constraint::Chi { point, position_mm }
+            }
+            Kind::Pressure(i) => {
+                let (point, position_mm) = at(i);
+                Constraint::Pressure { point, position_mm }
+            }
+            Kind::Level => Constraint::Level,
+            Kind::Change(node) => Constraint::Change {
+                node,
+                position_mm: opt.shape.nodes()[node],
+            },
         }
     }
 
@@ -426,7 +444,7 @@ impl<'o, 'a> Programme<'o, 'a> {
                 let opt = self.opt;
                 let contact =
                     opt.solve_with_gap_change(contact_solver, opt.problem, &zero, None)?;
-                if !contact.is_converged() {
+                if !contact.termination.is_solved() {
                     return Ok(Err(contact.termination.inside(contact.method)));
                 }
                 Ok(Ok(self.classify(&contact.pressure, &contact.gap)))
@@ -564,8 +582,8 @@ impl<'r, 'o, 'a> Restricted<'r, 'o, 'a> {
     }
 
     /// The solution `x` in physical units, as an optimum whose one row counts the interior
-    /// point's `iterations`.
-    fn optimum(&self, x: &[f64], iterations: usize) -> Optimum {
+    /// point's `iterations`, ended as `accuracy` says the interior point ended.
+    fn optimum(&self, x: &[f64], iterations: usize, accuracy: Termination) -> Optimum {
         let (lp, layout) = (self.lp, self.layout);
         let opt = lp.opt;
         let p_max = x[self.i_max] * lp.unit_p;
@@ -607,7 +625,7 @@ impl<'r, 'o, 'a> Restricted<'r, 'o, 'a> {
             rigid: lambda,
             passes: vec![row],
             method: Method::LinearProgramme,
-            termination: Termination::Converged,
+            termination: accuracy,
             omega_nv_excess: None,
         }
     }
@@ -701,9 +719,13 @@ mod tests {
             assert_eq!(restricted[ring], Restriction::Open);
             restricted[ring] = Restriction::Closed;
             match lp.solve_pass(&restricted).unwrap() {
-                PassEnd::Flip(flipped, end) => {
-                    assert_eq!(flipped, vec![ring], "{end}");
-                    assert!(end.to_string().contains("p ≥ 0 at point"), "{end}");
+                PassEnd::Flip(flipped, conflict) => {
+                    assert_eq!(flipped, vec![ring], "{conflict}");
+                    let pressure = |c: &Constraint| matches!(c, Constraint::Pressure { point, .. } if *point == ring);
+                    assert!(
+                        matches!(&conflict, Infeasibility::Programme { conflict, .. } if conflict.iter().any(pressure)),
+                        "{conflict}"
+                    );
                 }
                 _ => panic!("the first pass did not name the ring"),
             }

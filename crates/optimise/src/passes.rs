@@ -1,8 +1,9 @@
 //! The rows of an optimisation loop and its reports to the observer: one event per pass at
 //! level 0, and a last event with how the loop ended.
 
-use contopt_core::observe::{Event, Flow, Method, Observer};
-use contopt_core::Termination;
+use contopt_core::drive::Driver;
+use contopt_core::observe::Method;
+use contopt_core::{Infeasibility, Termination};
 
 use crate::{Optimisation, Optimum, Pass, Region, SOLVER_ACCURACY};
 
@@ -13,84 +14,54 @@ use crate::{Optimisation, Optimum, Pass, Region, SOLVER_ACCURACY};
 /// mesh carried 51 % of p_max where v = 0).
 const OMEGA_V_HELD: f64 = 0.25;
 
-/// A loop's passes so far and where it reports them.
+/// A loop's passes so far, the driver that runs them ([`Driver`]: it counts them, reports
+/// them to the observer and says how the loop ended) and the bound its optimum is checked
+/// against.
 pub(crate) struct Passes<'o> {
-    observer: &'o dyn Observer,
-    method: Method,
-    tolerance: f64,
-    rows: Vec<Pass>,
-    /// The passes reported, with a row or without.
-    steps: usize,
-    /// The measure of the last pass (NaN before the first).
-    measure: f64,
+    pub(crate) driver: Driver<'o>,
+    pub(crate) rows: Vec<Pass>,
     /// The bound χ ≥ 0 every optimum is checked against.
     bound: Bound<'o>,
 }
 
 impl<'o> Passes<'o> {
-    /// No passes yet of `method` on `opt`, whose measure must reach `tolerance`.
-    pub(crate) fn new(opt: &'o Optimisation<'_>, method: Method, tolerance: f64) -> Self {
+    /// No passes yet of `method` on `opt`, whose measure must reach `tolerance` in at most
+    /// `max_passes`.
+    pub(crate) fn new(
+        opt: &'o Optimisation<'_>,
+        method: Method,
+        tolerance: f64,
+        max_passes: usize,
+    ) -> Self {
         Self {
-            observer: opt.observer,
-            method,
-            tolerance,
+            driver: Driver::new(method, opt.observer, tolerance, max_passes),
             rows: vec![],
-            steps: 0,
-            measure: f64::NAN,
             bound: Bound::new(opt),
         }
     }
 
-    /// Records `row` with its convergence `measure` and reports it; what the observer asks.
-    pub(crate) fn push(&mut self, row: Pass, measure: f64) -> Flow {
-        self.rows.push(row);
-        self.report(row.k, measure)
-    }
-
-    /// Reports pass `k` (a pass that gave no row, or one whose row was recorded) with its
-    /// convergence `measure`; what the observer asks.
-    pub(crate) fn report(&mut self, k: usize, measure: f64) -> Flow {
-        self.steps += 1;
-        self.measure = measure;
-        let event = Event::step(self.method, k, measure, self.tolerance);
-        self.observer.observe(&event)
-    }
-
-    /// The step limit after the passes so far.
-    pub(crate) fn step_limit(&self) -> Termination {
-        Termination::StepLimit {
-            steps: self.steps,
-            measure: self.measure,
-            tolerance: self.tolerance,
-        }
-    }
-
     /// `optimum` with these rows and its largest p − v·p_max on Ω_nv, ended as
-    /// `termination`, after the last event says so. An optimum that met its tolerance but
-    /// breaks χ ≥ 0 on Ω_nv, or passes v·p_max on Ω_v by more than [`OMEGA_V_HELD`], ends as
+    /// `termination` (a convergence as the first reduced accuracy its driver noted, if any),
+    /// after the last event says so. An optimum whose answer stands but breaks χ ≥ 0 on Ω_nv,
+    /// or passes v·p_max on Ω_v by more than [`OMEGA_V_HELD`], ends as
     /// [`Termination::Infeasible`], naming where.
     pub(crate) fn finish(self, optimum: Optimum, termination: Termination) -> Optimum {
         let excess = self.bound.excess(&optimum.pressure, optimum.p_max);
         let held = self.bound.omega_v_excess(&optimum.pressure, optimum.p_max);
-        let termination = match (termination, excess, held) {
-            (Termination::Converged, Some((value, i)), _)
-                if value > SOLVER_ACCURACY * optimum.p_max =>
-            {
-                self.bound.broken(value, i)
+        let p_max = optimum.p_max;
+        let termination = match (self.driver.end(termination), excess, held) {
+            (end, Some((value, i)), _) if end.is_solved() && value > SOLVER_ACCURACY * p_max => {
+                self.bound.broken(value, i, None)
             }
-            (Termination::Converged, _, Some((value, i)))
-                if value > OMEGA_V_HELD * optimum.p_max =>
-            {
+            (end, _, Some((value, i))) if end.is_solved() && value > OMEGA_V_HELD * p_max => {
                 self.bound.not_held(value, i)
             }
             (termination, _, _) => termination,
         };
-        let event =
-            Event::step(self.method, self.steps, self.measure, self.tolerance).ending(&termination);
-        let _ = self.observer.observe(&event);
+        self.driver.announce(&termination);
         Optimum {
             passes: self.rows,
-            method: self.method,
+            method: self.driver.method(),
             termination,
             omega_nv_excess: excess.map(|(value, _)| value),
             ..optimum
@@ -141,31 +112,28 @@ impl<'o> Bound<'o> {
         largest_excess(&self.omega_v, pressure, p_max)
     }
 
-    /// The termination of an optimum whose pressure passes v·p_max by `value` at point `i`
-    /// of Ω_v, where the design prescribes p = v·p_max.
-    pub(crate) fn not_held(&self, value: f64, i: usize) -> Termination {
+    /// The termination of an optimum whose pressure passes v·p_max by `excess` at point
+    /// `point` of Ω_v, where the design prescribes p = v·p_max.
+    pub(crate) fn not_held(&self, excess: f64, point: usize) -> Termination {
         Termination::Infeasible {
-            reason: format!(
-                "p passes v·p_max by {value:.4e} MPa at point {i} {:?} of Ω_v, where the design \
-                 prescribes p = v·p_max: the gap change fitted there (step 6) cannot hold it, \
-                 as where a face beyond Ω_v's edge touches; move Ω_v's edge or coarsen the \
-                 faces there",
-                self.points[i]
-            ),
+            cause: Infeasibility::OmegaVNotHeld {
+                point,
+                position_mm: self.points[point],
+                excess_mpa: excess,
+            },
         }
     }
 
-    /// The termination of an optimum whose pressure passes v·p_max by `value` at point `i`
-    /// of Ω_nv.
-    pub(crate) fn broken(&self, value: f64, i: usize) -> Termination {
+    /// The termination of an optimum (of load case `case`, from 1, of an envelope) whose
+    /// pressure passes v·p_max by `excess` at point `point` of Ω_nv.
+    pub(crate) fn broken(&self, excess: f64, point: usize, case: Option<usize>) -> Termination {
         Termination::Infeasible {
-            reason: format!(
-                "p passes v·p_max by {value:.4e} MPa at point {i} {:?} of Ω_nv (χ ≥ 0 of 3.4): \
-                 the gap change there follows its design column, which Ω_v closes at v·p_max, \
-                 so no gap change keeps it; the linear programme (3.5) finds the same. Put Ω_v \
-                 where each column's pressure peaks",
-                self.points[i]
-            ),
+            cause: Infeasibility::OmegaNv {
+                point,
+                position_mm: self.points[point],
+                excess_mpa: excess,
+                case,
+            },
         }
     }
 }

@@ -60,8 +60,9 @@ pub(crate) trait RowSource {
 
 /// How a restricted programme ended.
 pub(crate) enum Solved {
-    /// Its optimum x and the interior point's iterations (0 when nothing was left to choose).
-    Optimal(Vec<f64>, usize),
+    /// Its optimum x, the interior point's iterations (0 when nothing was left to choose) and
+    /// its accuracy ([`Termination::Converged`] or [`Termination::ReducedAccuracy`]).
+    Optimal(Vec<f64>, usize, Termination),
     /// No x meets the rows; the rows that conflict, most to blame first (every row x₀ misses
     /// when nothing is left to choose, else those of the infeasibility certificate).
     Infeasible(Vec<Kind>),
@@ -95,7 +96,7 @@ pub(crate) fn solve(source: &dyn RowSource, rows: &Rows, tolerance: f64) -> Resu
     let steep = objective.iter().fold(0.0f64, |s, v| s.max(v.abs()));
     if dim == 0 || (reduced.rows.is_empty() && steep <= RANK) {
         // Nothing left to choose, or nothing that changes p_max: x₀ is an optimum.
-        return Ok(Solved::Optimal(affine.x0, 0));
+        return Ok(Solved::Optimal(affine.x0, 0, Termination::Converged));
     }
     if reduced.rows.is_empty() {
         return Ok(Solved::Unbounded);
@@ -121,20 +122,20 @@ pub(crate) fn solve(source: &dyn RowSource, rows: &Rows, tolerance: f64) -> Resu
         tolerance,
         "linear programme (3.5)",
     )?;
-    Ok(match sol.outcome {
-        Outcome::Solved => {
-            let mut x = affine.x0;
-            for (c, u) in sol.x.iter().enumerate() {
-                for (xi, k) in x.iter_mut().zip(affine.null.col(c).iter()) {
-                    *xi += k * u;
-                }
-            }
-            Solved::Optimal(x, sol.iterations)
+    let accuracy = match sol.outcome {
+        Outcome::Solved => Termination::Converged,
+        Outcome::ReducedAccuracy(reduced) => reduced,
+        Outcome::Infeasible => return Ok(Solved::Infeasible(blame(&reduced.kinds, &sol.z))),
+        Outcome::Unbounded => return Ok(Solved::Unbounded),
+        Outcome::Stopped(end) => return Ok(Solved::Stopped(end)),
+    };
+    let mut x = affine.x0;
+    for (c, u) in sol.x.iter().enumerate() {
+        for (xi, k) in x.iter_mut().zip(affine.null.col(c).iter()) {
+            *xi += k * u;
         }
-        Outcome::Infeasible => Solved::Infeasible(blame(&reduced.kinds, &sol.z)),
-        Outcome::Unbounded => Solved::Unbounded,
-        Outcome::Stopped(end) => Solved::Stopped(end),
-    })
+    }
+    Ok(Solved::Optimal(x, sol.iterations, accuracy))
 }
 
 /// The rows of `kinds` the certificate `z` blames, the largest multipliers first.
@@ -329,7 +330,7 @@ mod tests {
             &[Gap(0), Gap(1), Gap(2)],
             &[Pressure(0), Pressure(1)],
         ) {
-            Solved::Optimal(x, _) => {
+            Solved::Optimal(x, ..) => {
                 assert!(
                     (x[0] - 0.25).abs() < 1e-8 && (x[1] - 0.75).abs() < 1e-8,
                     "{x:?}"

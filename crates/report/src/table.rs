@@ -148,8 +148,9 @@ fn case_table(report: &Report) -> String {
     s
 }
 
-/// The lines under a case's row: how it ended when it did not converge (the termination's
-/// words) or lies outside the model (the limit's message), and Hertz's nominal contact.
+/// The lines under a case's row: how it ended when it did not converge or stands at a reduced
+/// accuracy (the termination's words) or lies outside the model (the limit's message), and
+/// Hertz's nominal contact.
 fn notes(case: &CaseReport) -> String {
     let mut s = String::new();
     match case.status {
@@ -161,6 +162,9 @@ fn notes(case: &CaseReport) -> String {
             let why = case.limit.as_ref().map_or("", |l| l.message.as_str());
             let _ = writeln!(s, "  outside the model: {why}");
         }
+    }
+    if case.status != CaseStatus::NotConverged && !case.termination.is_converged() {
+        let _ = writeln!(s, "  {}", case.termination);
     }
     if let Some(h) = &case.hertz {
         let half_width = if h.contact == "line" { "b" } else { "a" };
@@ -363,7 +367,7 @@ fn subsurface_table(report: &Report) -> String {
 mod tests {
     use std::collections::BTreeMap;
 
-    use contopt_core::Termination;
+    use contopt_core::{Stall, Termination};
     use contopt_results::{
         EnvelopeCase, Hertz, ModelLimit, RollerReport, TunedProfile, SCHEMA_VERSION,
     };
@@ -383,7 +387,7 @@ mod tests {
             }
             None => {
                 c.termination = Termination::Stalled {
-                    reason: "the contact set kept cycling".into(),
+                    cause: Stall::WanderingReference { moves: 4 },
                 };
             }
         }
@@ -457,7 +461,7 @@ mod tests {
         assert!(lines[2].starts_with("L1 = 30 mm ") && lines[2].contains(" - "));
         assert_eq!(
             lines[3],
-            "  not converged: stalled: the contact set kept cycling"
+            "  not converged: stalled: the node of least gap change moved 4 times between programmes"
         );
         assert!(lines[4].starts_with("F = 1000 N, ν = 0.3 "), "{text}");
         assert!(
@@ -554,7 +558,7 @@ mod tests {
         assert!(lines[4].starts_with("Fujiwara–Kawase ") && lines[4].contains(" - "));
         assert_eq!(
             lines[5],
-            "  not converged: stalled: the contact set kept cycling"
+            "  not converged: stalled: the node of least gap change moved 4 times between programmes"
         );
         let envelope = lines
             .iter()

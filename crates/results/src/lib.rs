@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 5;
+pub const SCHEMA_VERSION: u32 = 6;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -66,7 +66,8 @@ pub struct Report {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CaseStatus {
-    /// Every method converged and the answer lies within the model's limits.
+    /// Every method converged, or met a reduced accuracy only (which `termination` says), and
+    /// the answer lies within the model's limits.
     Solved,
     /// A method stopped short; `termination` says why and how far it got.
     NotConverged,
@@ -90,8 +91,12 @@ pub struct CaseReport {
     pub input: serde_json::Value,
     /// How the case ended.
     pub status: CaseStatus,
-    /// How its outermost method ended (the optimisation or search, else the contact solve).
+    /// How its outermost method ended (the optimisation or search, else the contact solve),
+    /// with its cause typed: which system stalled, which quantity is not finite, which bound
+    /// or constraints conflict and where.
     pub termination: Termination,
+    /// `termination` in words, as the table shows it.
+    pub message: String,
     /// The optimisation or search that designed the gap; null for a contact analysis.
     pub method: Option<Method>,
     /// The contact solver that solved it (under `auto`, the one chosen).
@@ -556,12 +561,14 @@ impl From<contopt_core::StressPeaks> for Peaks {
 impl CaseReport {
     /// A case that has not run yet: every figure null, `status` not converged.
     pub fn new(label: &str, params: &BTreeMap<String, f64>, input: serde_json::Value) -> Self {
+        let termination = Termination::Stopped { after: 0 };
         Self {
             label: label.to_string(),
             params: params.clone(),
             input,
             status: CaseStatus::NotConverged,
-            termination: Termination::Stopped { after: 0 },
+            message: termination.to_string(),
+            termination,
             method: None,
             solver: None,
             warnings: vec![],

@@ -1,7 +1,7 @@
 //! No NaN or infinity leaves a case: a report that holds one becomes a case that did not
 //! converge, naming the field, with its numbers dropped.
 
-use contopt_core::Termination;
+use contopt_core::{Quantity, Termination};
 
 use crate::{CaseReport, CaseStatus};
 
@@ -10,7 +10,8 @@ impl CaseReport {
     /// points, then turns a report that holds a NaN or an infinity (in its figures, its
     /// points, its passes, its roller figures or its termination's numbers) into one that did
     /// not converge, [`Termination::NonFinite`] naming the field, its numbers dropped: no
-    /// non-finite value reaches `result.json`, the CSV or the charts.
+    /// non-finite value reaches `result.json`, the CSV or the charts. Last, writes
+    /// `message`, the termination in words.
     pub fn settle(&mut self) {
         if self.status != CaseStatus::NotConverged && !self.interface.is_empty() {
             let top = self.interface.iter().fold(0.0f64, |m, q| m.max(q.p_mpa));
@@ -20,7 +21,9 @@ impl CaseReport {
             *self = Self {
                 status: CaseStatus::NotConverged,
                 termination: Termination::NonFinite {
-                    field: field.to_string(),
+                    quantity: Quantity::Figure {
+                        name: field.to_string(),
+                    },
                 },
                 method: self.method,
                 solver: self.solver,
@@ -28,6 +31,7 @@ impl CaseReport {
                 ..Self::new(&self.label, &self.params, self.input.take())
             };
         }
+        self.message = self.termination.to_string();
     }
 
     /// The first field holding a NaN or an infinity.
@@ -173,11 +177,12 @@ mod tests {
         case.interface[0].d_um = f64::NAN;
         case.settle();
         assert_eq!(case.status, CaseStatus::NotConverged);
-        assert_eq!(
-            case.termination,
-            Termination::NonFinite {
-                field: "gap".into()
-            }
+        let gap = Quantity::Figure { name: "gap".into() };
+        assert_eq!(case.termination, Termination::NonFinite { quantity: gap });
+        assert!(
+            case.message.starts_with("the gap is not finite"),
+            "{}",
+            case.message
         );
         assert!(case.interface.is_empty() && case.p_max_mpa.is_none());
     }
@@ -199,7 +204,8 @@ mod tests {
         assert_eq!(good.termination, case.termination);
         case.termination = limit(f64::NAN).inside(contopt_core::observe::Method::LoadSplit);
         case.settle();
-        let field = "termination measure".to_string();
-        assert_eq!(case.termination, Termination::NonFinite { field });
+        let name = "termination measure".to_string();
+        let quantity = Quantity::Figure { name };
+        assert_eq!(case.termination, Termination::NonFinite { quantity });
     }
 }

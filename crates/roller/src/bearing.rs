@@ -28,9 +28,11 @@
 
 use std::f64::consts::PI;
 
+use contopt_core::drive::{Driver, Step};
 use contopt_core::faer::linalg::solvers::{Llt, Solve};
 use contopt_core::faer::{Mat, Side};
-use contopt_core::{check, Error, Result, Termination};
+use contopt_core::observe::{Method, Observer, Silent};
+use contopt_core::{check, Error, Quantity, Result, Stall, Termination};
 use serde::Serialize;
 
 use crate::Crown;
@@ -327,6 +329,18 @@ impl CylindricalRollerBearing {
         load: &BearingLoad,
         settings: &BearingSettings,
     ) -> Result<LoadDistribution> {
+        self.solve_observed(load, settings, &Silent)
+    }
+
+    /// [`CylindricalRollerBearing::solve`], each Newton step of the rings reported to
+    /// `observer` as an event of [`Method::RingEquilibrium`] with the rings' imbalance (force
+    /// over F_r, moment over F_r·L_we) against [`BearingSettings::tolerance`].
+    pub fn solve_observed(
+        &self,
+        load: &BearingLoad,
+        settings: &BearingSettings,
+        observer: &dyn Observer,
+    ) -> Result<LoadDistribution> {
         let model = Model::new(self, load)?;
         check::positive("settings.tolerance", settings.tolerance)?;
         check::count(
@@ -335,7 +349,7 @@ impl CylindricalRollerBearing {
             1,
             usize::MAX,
         )?;
-        model.solve(settings)
+        model.solve(settings, observer)
     }
 }
 
@@ -658,7 +672,13 @@ impl Model {
         u
     }
 
-    fn solve(&self, settings: &BearingSettings) -> Result<LoadDistribution> {
+    /// Newton's steps from [`Model::start`] to the rings' equilibrium, each reported to
+    /// `observer` with the rings' imbalance.
+    fn solve(
+        &self,
+        settings: &BearingSettings,
+        observer: &dyn Observer,
+    ) -> Result<LoadDistribution> {
         let mut u = self.start();
         let symmetric = |j: usize, u: &[f64]| {
             let (delta, slope) = self.ring_motion(u, j);
@@ -669,37 +689,42 @@ impl Model {
         };
         let mut states: Vec<RollerState> = (0..self.cos.len()).map(|j| symmetric(j, &u)).collect();
         let mut rings = self.rings(&u, &mut states, settings);
-        let mut iterations = 0;
-        let termination = loop {
-            let residual = self.residual(&rings.gradient);
-            if !rings.potential.is_finite() || !residual.is_finite() {
-                break Termination::NonFinite {
-                    field: "the rings' equilibrium".into(),
-                };
-            }
-            if residual <= settings.tolerance && rings.converged {
-                break Termination::Converged;
-            }
-            if iterations == settings.max_iterations {
-                break Termination::StepLimit {
-                    steps: iterations,
-                    measure: residual,
-                    tolerance: settings.tolerance,
-                };
-            }
-            iterations += 1;
-            match self.step(&mut u, &mut states, &rings, settings) {
-                Some(next) => rings = next,
-                None => {
-                    break Termination::Stalled {
-                        reason: format!(
-                            "the line search found no decrease of the rings' potential at an imbalance of {residual:e}"
-                        ),
+        let (tolerance, max_steps) = (settings.tolerance, settings.max_iterations);
+        let mut driver = Driver::new(Method::RingEquilibrium, observer, tolerance, max_steps);
+        let termination = match self.judge(&rings, settings) {
+            Step::Next(_) => driver.run(|_, _| -> Result<Step> {
+                let imbalance = self.residual(&rings.gradient);
+                Ok(match self.step(&mut u, &mut states, &rings, settings) {
+                    Some(next) => {
+                        rings = next;
+                        self.judge(&rings, settings)
                     }
-                }
-            }
+                    None => Step::Last(
+                        imbalance,
+                        Termination::Stalled {
+                            cause: Stall::NoDescent { imbalance },
+                        },
+                    ),
+                })
+            })?,
+            Step::Last(_, end) | Step::Ended(end) => end,
         };
-        Ok(self.distribution(&u, &states, iterations, &rings, termination))
+        driver.announce(&termination);
+        Ok(self.distribution(&u, &states, driver.steps(), &rings, termination))
+    }
+
+    /// What the rings at `rings` come to: not finite, in equilibrium (every roller's contact
+    /// converged too), or not yet, with their imbalance.
+    fn judge(&self, rings: &Rings, settings: &BearingSettings) -> Step {
+        let residual = self.residual(&rings.gradient);
+        if !rings.potential.is_finite() || !residual.is_finite() {
+            let quantity = Quantity::RingEquilibrium;
+            return Step::Last(residual, Termination::NonFinite { quantity });
+        }
+        match residual <= settings.tolerance && rings.converged {
+            true => Step::Last(residual, Termination::Converged),
+            false => Step::Next(residual),
+        }
     }
 
     /// One Newton step of the rings from `u`, with backtracking; when no roller is loaded (the
@@ -967,6 +992,31 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert!(d.rollers.iter().all(|r| r.load_n.is_finite()) && d.residual > 1e-12);
+    }
+
+    /// The equilibrium reports each Newton step to an observer, numbered from 1, its imbalance
+    /// against the tolerance, the last event with how it ended; a stop ends it there.
+    #[test]
+    fn the_equilibrium_reports_its_steps() {
+        use contopt_core::observe::{Event, Flow, Recorded};
+        let seen = std::cell::RefCell::new(vec![]);
+        let record = |e: &Event| {
+            seen.borrow_mut().push(Recorded::of(e));
+            Flow::Continue
+        };
+        let (b, load, settings) = (bearing(0.02), held(8900.0, 0.0), BearingSettings::default());
+        let d = b.solve_observed(&load, &settings, &record).unwrap();
+        let seen = seen.into_inner();
+        let (last, steps) = seen.split_last().unwrap();
+        assert!(d.termination.is_converged() && d.iterations == steps.len());
+        assert!(steps.iter().enumerate().all(|(k, e)| e.iteration == k + 1
+            && e.method == Method::RingEquilibrium
+            && e.end.is_none()));
+        assert_eq!(last.end, Some(Termination::Converged));
+        assert!(last.measure <= settings.tolerance && d.residual <= settings.tolerance);
+        let stop = |_: &Event| Flow::Stop;
+        let stopped = b.solve_observed(&load, &settings, &stop).unwrap();
+        assert_eq!(stopped.termination, Termination::Stopped { after: 1 });
     }
 
     /// The standard's constant is Palmgren's line contact, δ = 3.84·10⁻⁵·Q^0.9/l^0.8 for each of

@@ -6,7 +6,8 @@
 use std::ops::ControlFlow;
 
 use contopt_contact::{parallel, ContactSolver, InterfaceProblem};
-use contopt_core::observe::{Event, Flow, Method, Nested, Observer};
+use contopt_core::drive::Driver;
+use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, GapShape, Result, Termination};
 use contopt_optimise::{
     nelder_mead, Controller, LoadSplitSettings, Minimum, Optimisation, Region, SearchSettings,
@@ -655,7 +656,12 @@ impl<'r> Run<'r> {
         let points = first_points(cases)?;
         let mut best: Option<Best> = None;
         let mut warm: Option<Vec<ContactState>> = None;
-        let mut crowns = 0;
+        let mut driver = Driver::new(
+            Method::ProfileSearch,
+            observer,
+            settings.tolerance,
+            settings.max_evaluations,
+        );
         let minimum = nelder_mead(
             |u| {
                 let states = solve_cases(
@@ -665,19 +671,20 @@ impl<'r> Run<'r> {
                     warm.as_deref(),
                     &Nested(observer),
                 )?;
-                if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+                if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
                     return Ok(ControlFlow::Break(s.termination.clone().inside(s.method)));
                 }
+                states
+                    .iter()
+                    .for_each(|s| driver.note(s.method, &s.termination));
                 let value = objective(&states)?;
-                crowns += 1;
                 if best.as_ref().is_none_or(|b| value < b.1) {
                     best = Some((u.to_vec(), value, states.clone()));
                 }
                 warm = Some(states);
-                let event = Event::step(Method::ProfileSearch, crowns, value, settings.tolerance);
-                Ok(match observer.observe(&event) {
-                    Flow::Continue => ControlFlow::Continue(value),
-                    Flow::Stop => ControlFlow::Break(Termination::Stopped { after: crowns }),
+                Ok(match driver.report(value) {
+                    None => ControlFlow::Continue(value),
+                    Some(stopped) => ControlFlow::Break(stopped),
                 })
             },
             start,
@@ -685,9 +692,9 @@ impl<'r> Run<'r> {
             settings,
         )?;
         let (u, worst, states) = best.unwrap_or_else(|| (start.to_vec(), f64::INFINITY, vec![]));
-        let end = Event::step(Method::ProfileSearch, crowns, worst, settings.tolerance)
-            .ending(&minimum.termination);
-        let _ = observer.observe(&end);
+        let termination = driver.end(minimum.termination.clone());
+        driver.settle(worst);
+        driver.announce(&termination);
         let (k1, k2, z_m_mm) = parameters.values(&u);
         let tuned = TunedCrown {
             family,
@@ -700,7 +707,7 @@ impl<'r> Run<'r> {
             states,
             evaluations: minimum.evaluations,
             coarse_evaluations: 0,
-            termination: minimum.termination.clone(),
+            termination,
         };
         Ok((tuned, minimum))
     }

@@ -19,7 +19,7 @@ const UM: f64 = 1e3;
 pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
     report.method = d.method;
     report.solver = d.solver;
-    report.status = if d.termination.is_converged() {
+    report.status = if d.termination.is_solved() {
         CaseStatus::Solved
     } else {
         CaseStatus::NotConverged

@@ -103,16 +103,18 @@ struct Geometry<'p> {
     e_star: f64,
 }
 
-/// Each load case's distribution for `bearing`; an unmet equilibrium is its termination.
+/// Each load case's distribution for `bearing`, its equilibrium's steps reported to
+/// `observer`; an unmet equilibrium is its termination.
 fn distributions(
     bearing: &CylindricalRollerBearing,
     plan: &BearingPlan,
+    observer: &dyn Observer,
 ) -> Result<std::result::Result<Vec<LoadDistribution>, Termination>> {
     let settings = BearingSettings::default();
     let mut all = Vec::with_capacity(plan.loads.len());
     for (_, load, _) in &plan.loads {
-        let d = bearing.solve(load, &settings)?;
-        if !d.termination.is_converged() {
+        let d = bearing.solve_observed(load, &settings, observer)?;
+        if !d.termination.is_solved() {
             return Ok(Err(d.termination));
         }
         all.push(d);
@@ -407,7 +409,7 @@ pub(crate) fn run<'a>(
         e_star: roller.e_star(),
     };
     let started = Instant::now();
-    let first = match distributions(&plan.bearing, plan)? {
+    let first = match distributions(&plan.bearing, plan, observer)? {
         Ok(d) => d,
         Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
     };
@@ -425,8 +427,7 @@ pub(crate) fn run<'a>(
     };
     if let Some(d) = &designed {
         report.time("optimise", started);
-        if !d.termination.is_converged() && !matches!(d.termination, Termination::StepLimit { .. })
-        {
+        if !d.termination.is_solved() && !matches!(d.termination, Termination::StepLimit { .. }) {
             let mut out = Designed::unsolved(d.termination.clone(), solver.method());
             out.method = Some(d.method);
             return Ok((out, problem.clone()));
@@ -440,7 +441,7 @@ pub(crate) fn run<'a>(
                 .roller_crown
                 .clone()
                 .plus(crown_table(at.points, &d.change, dy)?);
-            match distributions(&bearing, plan)? {
+            match distributions(&bearing, plan, observer)? {
                 Ok(dists) => dists,
                 Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
             }
@@ -455,7 +456,7 @@ pub(crate) fn run<'a>(
         .map_or_else(|| vec![0.0; problem.len()], |d| d.change.clone());
     let states = solve_cases(&cases, &change, solver, None, &Nested(observer))?;
     report.time("solve", started);
-    if let Some(s) = states.iter().find(|s| !s.is_converged()) {
+    if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
         let why = s.termination.clone().inside(s.method);
         return Ok((Designed::unsolved(why, solver.method()), problem.clone()));
     }

@@ -20,7 +20,7 @@ impl Design for Analysis {
         let state = c.solver.solve_observed(c.problem, None, c.observer)?;
         report.time("solve", started);
         let mut designed = Designed::contact(state.clone());
-        if let (Some(roller), true) = (c.case.roller, state.is_converged()) {
+        if let (Some(roller), true) = (c.case.roller, state.termination.is_solved()) {
             let length = roller.length;
             let drop = c
                 .problem
@@ -29,7 +29,7 @@ impl Design for Analysis {
                 .iter()
                 .map(|x| roller.crown.drop(x[0], length))
                 .collect::<Result<Vec<f64>>>()?;
-            match envelope_contacts(c, &state, &[], report) {
+            match envelope_contacts(c, &state, &[], report)? {
                 Ok(states) => {
                     designed.roller = roller_figures(c, &contacts(c, &states), &drop, None)
                 }

@@ -66,7 +66,7 @@ impl Design for EnvelopeSplit {
                 approach_mm: s.approach_mm,
             })
             .collect();
-        let complete = contacts.len() == c.cases.len() && crown.termination.is_converged();
+        let complete = contacts.len() == c.cases.len() && crown.termination.is_solved();
         let roller = complete
             .then(|| roller_figures(c, &contacts, &crown.drop, None))
             .flatten();

@@ -79,7 +79,7 @@ impl Design for Gap {
             crown: None,
             roller: None,
         };
-        if c.case.roller.is_some() && optimum.is_converged() {
+        if c.case.roller.is_some() && optimum.termination.is_solved() {
             let own = contopt_core::ContactState {
                 pressure: optimum.pressure,
                 gap: optimum.gap,
@@ -92,7 +92,7 @@ impl Design for Gap {
                 method: optimum.method,
                 termination: optimum.termination,
             };
-            match envelope_contacts(c, &own, &optimum.gap_change, report) {
+            match envelope_contacts(c, &own, &optimum.gap_change, report)? {
                 Ok(states) => {
                     let figures = contacts(c, &states);
                     designed.roller = roller_figures(c, &figures, &optimum.gap_change, None);

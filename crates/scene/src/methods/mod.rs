@@ -434,16 +434,16 @@ pub(crate) fn roller_report(
 
 /// The contacts of a roller's load cases under the gap change `change` (per point \[mm\]):
 /// its own `own` state, and when the scene has an envelope every further case solved from
-/// scratch, nested under the case's observer. `None` when a case did not converge, with its
-/// termination.
+/// scratch, nested under the case's observer. `Ok(Err)` when a case's answer does not stand,
+/// with its termination.
 fn envelope_contacts(
     c: &Context,
     own: &ContactState,
     change: &[f64],
     report: &mut CaseReport,
-) -> std::result::Result<Vec<ContactState>, Termination> {
+) -> Result<std::result::Result<Vec<ContactState>, Termination>> {
     if c.case.envelope.is_none() || c.cases.len() < 2 {
-        return Ok(vec![own.clone()]);
+        return Ok(Ok(vec![own.clone()]));
     }
     let started = std::time::Instant::now();
     let zeros;
@@ -456,13 +456,11 @@ fn envelope_contacts(
     let solved =
         contopt_roller::solve_cases(&c.cases[1..], change, c.solver, None, &Nested(c.observer));
     report.time("envelope", started);
-    let states = solved.map_err(|e| Termination::Stalled {
-        reason: e.to_string(),
-    })?;
-    if let Some(s) = states.iter().find(|s| !s.is_converged()) {
-        return Err(s.termination.clone().inside(s.method));
+    let states = solved?;
+    if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
+        return Ok(Err(s.termination.clone().inside(s.method)));
     }
-    Ok(std::iter::once(own.clone()).chain(states).collect())
+    Ok(Ok(std::iter::once(own.clone()).chain(states).collect()))
 }
 
 /// The contacts of states, for the figures.
