@@ -5,10 +5,16 @@
 //!   tied by a shear layer — as a body a scene may name under a row of strips;
 //! - [`ParabolicRelief`] (`method = { kind = "parabolic_relief", … }`): a design that relieves
 //!   the initial gap by a given parabola, Δh(x) = depth·(x/half_length)², and solves the
-//!   contact under it.
+//!   contact under it;
+//! - [`ProjectedGaussSeidel`] (`solver = { kind = "projected_gauss_seidel" }`): a contact
+//!   solver of its own on the dense influence matrix, run by the library's iteration driver.
 //!
 //! [`registry`] is the library's kinds and these two; the binary `contopt-own` is the
 //! `contopt` command over it ([`contopt_cli::main_with`]), every command kept.
+
+mod solver;
+
+pub use solver::ProjectedGaussSeidel;
 
 use contopt_core::observe::Method;
 use contopt_core::{ElasticBody, Interface, Result};
@@ -24,11 +30,12 @@ use serde::{Deserialize, Serialize};
 const STRIP_BYTES: u64 = 128;
 
 // ANCHOR: registry
-/// The library's kinds, the Pasternak bed and the parabolic relief.
+/// The library's kinds, the Pasternak bed, the parabolic relief and projected Gauss–Seidel.
 pub fn registry() -> Registry {
     Registry::standard()
         .with_body::<PasternakBed>("pasternak")
         .with_design::<ParabolicRelief>("parabolic_relief")
+        .with_solver::<ProjectedGaussSeidel>("projected_gauss_seidel")
 }
 // ANCHOR_END: registry
 

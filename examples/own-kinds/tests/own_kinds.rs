@@ -90,6 +90,30 @@ fn a_design_of_ones_own_relieves_as_the_closed_form() {
     assert!((1e-3 * report.dh_max_um.unwrap() - outermost).abs() < 1e-9);
 }
 
+/// A solver of one's own on the library's driver: a rigid sphere on a Winkler bed sinks by
+/// δ = √(F/(πkR)), p = k(δ − r²/2R) within a = √(2Rδ).
+#[test]
+fn a_solver_of_ones_own_solves_the_bed_as_the_closed_form() {
+    let (k, r, force): (f64, f64, f64) = (50.0, 20.0, 1000.0);
+    let delta = (force / (std::f64::consts::PI * k * r)).sqrt();
+    let report = run("winkler-pgs");
+    assert_eq!(report.solver, Some(Method::Other("projected_gauss_seidel")));
+    let approach = 1e-3 * report.approach_um.unwrap();
+    assert!(
+        (approach / delta - 1.0).abs() < 1e-3,
+        "δ {approach} mm, closed form {delta} mm"
+    );
+    for point in &report.interface {
+        let x = point.x_mm[0];
+        let expected = (k * (delta - x * x / (2.0 * r))).max(0.0);
+        assert!(
+            (point.p_mpa - expected).abs() < 1e-3 * k * delta,
+            "p({x}) {}",
+            point.p_mpa
+        );
+    }
+}
+
 /// The library's own registry does not know the crate's kinds, and says which it knows.
 #[test]
 fn an_unknown_kind_lists_the_registered_ones() {
