@@ -15,7 +15,7 @@ pub use envelope::EnvelopeSplit;
 pub use gap::Gap;
 pub use search::{CircularSearch, FujiwaraKawaseSearch};
 
-use crate::gap::GapSpec;
+use crate::gap::GapKind;
 use crate::region::OmegaVSpec;
 use crate::zone::Layout;
 use contopt_contact::{ContactSolver, InterfaceProblem};
@@ -76,7 +76,7 @@ pub struct CaseView<'a> {
     /// A roller's envelope of load cases (`[envelope]`).
     pub envelope: Option<&'a Envelope>,
     /// The initial gap's shape.
-    pub gap: &'a GapSpec,
+    pub gap: &'a dyn GapKind,
     /// The zone with every size known.
     pub layout: &'a Layout,
     /// A roller gap's roller, its crown built.
