@@ -326,6 +326,20 @@ pub(crate) fn written_under<K: Serialize>(name: &'static str, kind: &K) -> serde
     )
 }
 
+/// The reader of a kind `K` from its own settings, chosen as the sort `T` (`upcast` is the
+/// coercion `Arc<K>` → `Arc<T>`).
+fn reader<T, K>(upcast: fn(Arc<K>) -> Arc<T>) -> Reader<T>
+where
+    T: ?Sized + 'static,
+    K: DeserializeOwned + Serialize + Send + Sync + 'static,
+{
+    Arc::new(move |name, tagged| {
+        let (kind, written) = own::<K>(name, tagged)?;
+        let kind = Arc::new(kind);
+        Ok(Chosen::new(name, written, upcast(kind.clone()), kind))
+    })
+}
+
 /// A member of an externally tagged enum `E` of kinds, read from the whole node (the enum
 /// names its variants as the registry does) and written back as the enum writes itself.
 fn member<E: DeserializeOwned + Serialize>(
@@ -463,14 +477,8 @@ impl Registry {
     where
         K: BodyKind + DeserializeOwned + Serialize + 'static,
     {
-        self.bodies.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<K>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.bodies
+            .add(name, reader::<dyn BodyKind, K>(|kind| kind));
         self
     }
 
@@ -479,14 +487,7 @@ impl Registry {
     where
         K: GapKind + DeserializeOwned + Serialize + 'static,
     {
-        self.gaps.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<K>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.gaps.add(name, reader::<dyn GapKind, K>(|kind| kind));
         self
     }
 
@@ -495,14 +496,7 @@ impl Registry {
     where
         D: Design + DeserializeOwned + Serialize + 'static,
     {
-        self.designs.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<D>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.designs.add(name, reader::<dyn Design, D>(|kind| kind));
         self
     }
 
@@ -530,14 +524,8 @@ impl Registry {
     where
         S: SolverKind + DeserializeOwned + Serialize + 'static,
     {
-        self.solvers.add(
-            name,
-            Arc::new(|name, tagged| {
-                let (kind, written) = own::<S>(name, tagged)?;
-                let kind = Arc::new(kind);
-                Ok(Chosen::new(name, written, kind.clone(), kind))
-            }),
-        );
+        self.solvers
+            .add(name, reader::<dyn SolverKind, S>(|kind| kind));
         self
     }
 
