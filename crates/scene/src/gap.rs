@@ -534,3 +534,132 @@ pub(crate) fn covers(points: &[[f64; 3]], gap: &[f64], layout: &Layout) -> Resul
          its axis): enlarge the punch, or refine the zone",
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use contopt_input::{InputError, Node};
+
+    use super::*;
+    use crate::{Format, Registry};
+
+    /// The gap of `text`'s `gap` key, read by `registry` at `contact.gap`.
+    fn read_gap(registry: &Registry, text: &str) -> Result<Chosen<dyn GapKind>, InputError> {
+        let node = Node::parse_toml(text).unwrap();
+        registry.gap(node.get("gap").unwrap(), "contact.gap")
+    }
+
+    #[test]
+    fn three_spellings_read_alike() {
+        let standard = Registry::standard();
+        let read = |text| read_gap(&standard, text).unwrap();
+        let a = read("gap = { kind = \"sphere\", radius_mm = 10.0 }");
+        let b = read("gap = { sphere = { radius_mm = 10.0 } }");
+        assert_eq!(a, b);
+        assert_eq!(a.name(), "sphere");
+        assert_eq!(
+            a.written(),
+            &serde_json::json!({ "sphere": { "radius_mm": 10.0 } })
+        );
+        let zone = ZoneSpec::Rings(crate::RingsZone {
+            rings: 4,
+            radius_mm: 1.0,
+        });
+        assert_eq!(b.at(&zone, [2.0, 0.0, 0.0], None).unwrap(), 0.2);
+        let bare = read("gap = \"flat\"");
+        assert_eq!(bare, read("gap = { kind = \"flat\" }"));
+        assert_eq!(bare, read("gap = { flat = {} }"));
+        assert_eq!(bare.written(), &serde_json::json!("flat"));
+        assert_eq!(bare, flat());
+    }
+
+    #[test]
+    fn an_unknown_gap_kind_lists_the_registered_ones() {
+        let text = "gap = { kind = \"wedge\", slope = 0.1 }";
+        let e = read_gap(&Registry::standard(), text).unwrap_err();
+        assert_eq!(e.path, "contact.gap.kind");
+        assert_eq!(
+            e.message,
+            "unknown variant `wedge`, expected one of `flat`, `sphere`, `cylinder`, \
+             `flat_punch`, `roller`, `measured`"
+        );
+        let names: Vec<_> = Registry::standard().gap_kinds().collect();
+        assert_eq!(
+            names,
+            [
+                "flat",
+                "sphere",
+                "cylinder",
+                "flat_punch",
+                "roller",
+                "measured"
+            ]
+        );
+    }
+
+    /// A gap of one's own: a wedge (a cone on rings), h = s·r.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Wedge {
+        slope: f64,
+    }
+
+    impl GapKind for Wedge {
+        fn check(&self, _zone: &ZoneSpec) -> Result<()> {
+            check::positive("slope", self.slope).map(|_| ())
+        }
+
+        fn at(&self, zone: &ZoneSpec, x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+            Ok(self.slope * zone.surface().radius(x))
+        }
+    }
+
+    /// A rigid wedge pushed δ into a Winkler bed of modulus k: p = k·(δ − s·r) where r < δ/s.
+    #[test]
+    fn a_gap_of_ones_own_is_read_and_shapes_the_contact() {
+        let (k, delta, slope) = (50.0, 0.1, 0.04);
+        let text = format!(
+            "name = \"wedge\"\n\
+             [contact]\n\
+             zone = {{ kind = \"rings\", rings = 40, radius_mm = 5.0 }}\n\
+             gap = {{ kind = \"wedge\", slope = {slope} }}\n\
+             load = {{ approach_mm = {delta} }}\n\
+             [[body]]\n\
+             kind = \"winkler\"\n\
+             modulus_mpa_per_mm = {k}\n\
+             [[body]]\n\
+             kind = \"rigid\"\n"
+        );
+        let registry = Registry::standard().with_gap::<Wedge>("wedge");
+        let scene = registry
+            .parse(&text, Format::Toml, Path::new("wedge.toml"))
+            .unwrap();
+        let case = &scene.cases()[0];
+        assert_eq!(case.spec.contact.gap.name(), "wedge");
+        let report = case.run().unwrap();
+        assert!(report.is_solved(), "{:?}", report.termination);
+        let mut touching = 0;
+        for q in &report.interface {
+            let expected = k * (delta - slope * q.x_mm[0].abs());
+            if expected > 0.0 {
+                touching += 1;
+                let error = (q.p_mpa - expected).abs() / expected;
+                assert!(
+                    error < 1e-3,
+                    "{} against {expected} at {:?}",
+                    q.p_mpa,
+                    q.x_mm
+                );
+            } else {
+                assert!(q.p_mpa.abs() < 1e-9, "{} at {:?}", q.p_mpa, q.x_mm);
+            }
+        }
+        assert!(touching > 10, "{touching} points in contact");
+        let unknown = Registry::standard().parse(&text, Format::Toml, Path::new("wedge.toml"));
+        assert!(unknown
+            .unwrap_err()
+            .to_string()
+            .contains("unknown variant `wedge`"));
+    }
+}
