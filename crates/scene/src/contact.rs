@@ -13,9 +13,9 @@ use crate::zone::ZoneSpec;
 pub struct ContactSpec {
     /// The proposed contact zone Ω and its discretisation, shared by both bodies.
     pub zone: ZoneSpec,
-    /// The initial gap h(x) between the bodies: a gap kind of the registry, read by
-    /// [`crate::CaseSpec::read`] (default: measured between two imported meshes on a zone of
-    /// meshes, else flat).
+    /// The initial gap h(x) between the bodies: a gap kind of the scene's
+    /// [`crate::Registry`], read with the bodies (default: measured between two imported
+    /// meshes on a zone of meshes, else flat).
     #[serde(skip_deserializing, default = "crate::gap::flat")]
     pub gap: Chosen<dyn GapKind>,
     /// What presses the bodies together beyond their own loads (default none).
