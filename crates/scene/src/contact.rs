@@ -3,7 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::gap::GapSpec;
+use crate::gap::GapKind;
+use crate::registry::Chosen;
 use crate::zone::ZoneSpec;
 
 /// How the bodies meet (`[contact]`).
@@ -12,9 +13,11 @@ use crate::zone::ZoneSpec;
 pub struct ContactSpec {
     /// The proposed contact zone Ω and its discretisation, shared by both bodies.
     pub zone: ZoneSpec,
-    /// The initial gap h(x) between the bodies (default flat: zero).
-    #[serde(default)]
-    pub gap: GapSpec,
+    /// The initial gap h(x) between the bodies: a gap kind of the scene's
+    /// [`crate::Registry`], read with the bodies (default: measured between two imported
+    /// meshes on a zone of meshes, else flat).
+    #[serde(skip_deserializing, default = "crate::gap::flat")]
+    pub gap: Chosen<dyn GapKind>,
     /// What presses the bodies together beyond their own loads (default none).
     #[serde(default)]
     pub load: LoadSpec,

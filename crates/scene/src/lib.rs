@@ -54,7 +54,7 @@ pub use bodies::{
 pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};
 pub use error::{Located, SceneError};
-pub use gap::{GapSpec, Hertz, Radius, RollerGap};
+pub use gap::{Cylinder, Flat, FlatPunch, GapKind, Measured, RollerGap, Sphere};
 pub use mesh_surface::{ChainEnd, FreeMotion, MeshPart, MeshSurface};
 pub use meshes::{Imported, MeshFiles};
 pub use methods::{
@@ -63,13 +63,14 @@ pub use methods::{
 };
 pub use parallel::Ran;
 pub use plan::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
+pub use reference::{ClosedForm, Hertz, ReferenceCase};
 pub use region::OmegaVSpec;
 pub use registry::{Chosen, Registry, SolverKind};
 pub use report::PENETRATION_WARNING;
 pub use run::Run;
 pub use spec::{CaseSpec, ContactSpec, LoadSpec, OptimisationSpec, OutputSpec};
 pub use subsurface::{SectionSpec, SubsurfaceSpec};
-pub use zone::{FacesZone, GridZone, Layout, MeshZone, RingsZone, StripsZone, ZoneSpec};
+pub use zone::{FacesZone, GridZone, Layout, MeshZone, RingsZone, StripsZone, Surface, ZoneSpec};
 
 pub use contopt_results::{CaseReport, Report};
 
@@ -382,10 +383,7 @@ impl Case {
         );
         bearing::compose(&mut tree, &whole)?;
         let locator = Locator::new(file, text.clone(), Arc::new(tree), case_name);
-        let mut spec = CaseSpec::read(&locator.tree, registry).map_err(|e| locator.input(e))?;
-        if locator.tree.get("contact.gap").is_none() {
-            spec.contact.gap = GapSpec::default_for(&spec.contact.zone, &spec.body);
-        }
+        let spec = CaseSpec::read(&locator.tree, registry).map_err(|e| locator.input(e))?;
         let label = if single {
             spec.name.clone()
         } else {

@@ -3,15 +3,15 @@
 //! contact, eqs. 4.43–4.45); Boussinesq–Sneddon for a flat punch (p = F/(2πa√(a² − r²)),
 //! Johnson eq. 3.34; on a half-plane p = q/(π√(a² − x²)), eq. 2.64). Two elastic bodies meet
 //! with the pair's modulus 1/E* = Σ(1 − ν²)/E (plane stress: 1/E); a rigid body adds nothing,
-//! and a large finite-element block stands in for the half-space.
+//! and a large finite-element block stands in for the half-space. Which closed form a case has
+//! is its gap kind's answer ([`crate::GapKind::reference`]).
 
 use std::f64::consts::PI;
 
 use contopt_results::{CaseReport, CurvePoint, ReferenceCurve};
 
 use crate::contact::LoadSpec;
-use crate::gap::{GapSpec, Hertz};
-use crate::zone::Layout;
+use crate::zone::Surface;
 use crate::Case;
 
 /// Points of a reference curve across the computed points' range.
@@ -21,13 +21,53 @@ const SAMPLES: usize = 200;
 /// row (round-off of the grid's coordinates).
 const SAME_ROW: f64 = 1e-9;
 
-/// How the zone meets the indenter: a three-dimensional grid (r = √(x² + y²)), an
-/// axisymmetric surface (r = x) or a plane one (|x|).
+/// Hertz's nominal contact: a circle of radius a (point) or a strip of half-width b (line).
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Body {
-    Grid,
-    Axisymmetric,
-    Plane,
+pub struct Hertz {
+    /// A line contact (a cylinder, a roller).
+    pub line: bool,
+    /// The peak pressure p₀ \[MPa\].
+    pub p0: f64,
+    /// a or b \[mm\].
+    pub half_width: f64,
+}
+
+impl Hertz {
+    /// A sphere of radius `r` pressed by `force` with the pair's modulus `e_star`
+    /// (Johnson, *Contact Mechanics*, eqs. 3.39–3.41).
+    pub fn sphere(r: f64, force: f64, e_star: f64) -> Self {
+        let a = (3.0 * force * r / (4.0 * e_star)).cbrt();
+        Self {
+            line: false,
+            p0: 3.0 * force / (2.0 * PI * a * a),
+            half_width: a,
+        }
+    }
+
+    /// A sphere of radius `r` pushed in by the approach `delta`.
+    pub fn sphere_approach(r: f64, delta: f64, e_star: f64) -> Self {
+        let a = (r * delta).sqrt();
+        Self {
+            line: false,
+            p0: 2.0 * a * e_star / (PI * r),
+            half_width: a,
+        }
+    }
+
+    /// A cylinder of radius `r` under the line load `q` \[N/mm\] (Johnson, eqs. 4.43–4.45).
+    pub fn line(r: f64, q: f64, e_star: f64) -> Self {
+        let b = (4.0 * q * r / (PI * e_star)).sqrt();
+        Self {
+            line: true,
+            p0: 2.0 * q / (PI * b),
+            half_width: b,
+        }
+    }
+
+    /// Whether its numbers are usable.
+    pub(crate) fn usable(self) -> Option<Self> {
+        (self.p0 > 0.0 && self.p0.is_finite() && self.half_width > 0.0).then_some(self)
+    }
 }
 
 /// The closed-form pressure of a converged contact analysis, where one exists, along the row
@@ -36,79 +76,91 @@ pub(crate) fn curve(case: &Case, report: &CaseReport) -> Option<ReferenceCurve> 
     if !report.is_solved() || case.spec.optimisation.is_some() {
         return None;
     }
-    let body = match &case.plan.layout {
-        Layout::Grid { .. } => Body::Grid,
-        Layout::Rings(_) => Body::Axisymmetric,
-        Layout::Strips { .. } => Body::Plane,
-        Layout::Faces(f) if f.analysis == contopt_fem::Analysis::Axisymmetric => Body::Axisymmetric,
-        Layout::Mesh(m) if m.analysis == contopt_fem::Analysis::Axisymmetric => Body::Axisymmetric,
-        Layout::Faces(_) | Layout::Mesh(_) => Body::Plane,
-    };
-    let form = ClosedForm::new(case, body)?;
+    let on = ReferenceCase::of(case)?;
+    let form = ClosedForm::usable(case.spec.contact.gap.reference(&on)?)?;
     let row = Row::of(report)?;
-    let points = form.sample(&row, body);
+    let points = form.sample(&row, on.surface);
     (!points.is_empty()).then(|| ReferenceCurve {
         label: form.label(),
         points,
     })
 }
 
+/// What a gap's closed form may draw on: a converged contact analysis of its case.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferenceCase {
+    /// How the zone meets the indenter: a three-dimensional grid (r = √(x² + y²)), an
+    /// axisymmetric surface (r = x) or a plane one (|x|).
+    pub surface: Surface,
+    /// The pair's modulus E* \[MPa\].
+    pub e_star: f64,
+    /// Hertz's nominal contact, as the case's plan found it.
+    pub hertz: Option<Hertz>,
+    /// The contact's load.
+    pub load: LoadSpec,
+    /// The zone's grid length or plane thickness \[mm\].
+    pub line_length: Option<f64>,
+    /// Whether an elastic body is a half-space itself (not a block standing in for one).
+    pub on_half_space: bool,
+}
+
+impl ReferenceCase {
+    /// The case's, when the pair's modulus is known.
+    fn of(case: &Case) -> Option<Self> {
+        Some(Self {
+            surface: case.spec.contact.zone.surface(),
+            e_star: case.plan.e_star?,
+            hertz: case.plan.hertz,
+            load: case.spec.contact.load,
+            line_length: case.plan.layout.line_length(),
+            on_half_space: case.spec.body.iter().any(|b| b.is_half_space()),
+        })
+    }
+}
+
 /// A closed form: the pressure at distance r from the axis (or x from the plane's).
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum ClosedForm {
+pub enum ClosedForm {
     /// p₀√(1 − r²/a²) for r < a (sphere: contact radius a; cylinder: half-width b).
-    Hertz { p0: f64, a: f64, line: bool },
+    Hertz {
+        /// The peak pressure p₀ \[MPa\].
+        p0: f64,
+        /// a or b \[mm\].
+        a: f64,
+        /// A line contact.
+        line: bool,
+    },
     /// p(0)/√(1 − r²/a²) for r < a (a half-plane's punch: the same with its own p(0)).
-    Punch { p_centre: f64, a: f64, plane: bool },
+    Punch {
+        /// The pressure at the centre \[MPa\].
+        p_centre: f64,
+        /// The punch's radius (half-width) \[mm\].
+        a: f64,
+        /// On a half-plane.
+        plane: bool,
+    },
+}
+
+impl From<Hertz> for ClosedForm {
+    fn from(h: Hertz) -> Self {
+        Self::Hertz {
+            p0: h.p0,
+            a: h.half_width,
+            line: h.line,
+        }
+    }
 }
 
 impl ClosedForm {
-    /// The closed form of the case's gap, bodies and load: Hertz where the plan found it (not
-    /// for a cylinder along a grid or a roller, which have no closed form on a finite length);
-    /// Sneddon for a flat punch pressed by a force, or pushed in on a half-space (a block's or a
-    /// plane's approach depends on its size or datum).
-    fn new(case: &Case, body: Body) -> Option<Self> {
-        let spec = &case.spec;
-        let e_star = case.plan.e_star?;
-        let form = match (&spec.contact.gap, body, spec.contact.load) {
-            (GapSpec::Sphere(_), _, _) | (GapSpec::Cylinder(_), Body::Plane, _) => {
-                let Hertz {
-                    line,
-                    p0,
-                    half_width,
-                } = case.plan.hertz?;
-                Self::Hertz {
-                    p0,
-                    a: half_width,
-                    line,
-                }
-            }
-            (GapSpec::FlatPunch(p), Body::Plane, LoadSpec::ForceN(f)) => Self::Punch {
-                p_centre: f / case.plan.layout.line_length()? / (PI * p.radius_mm),
-                a: p.radius_mm,
-                plane: true,
-            },
-            (GapSpec::FlatPunch(p), Body::Grid | Body::Axisymmetric, load) => {
-                let a = p.radius_mm;
-                let f = match load {
-                    LoadSpec::ForceN(f) => f,
-                    LoadSpec::ApproachMm(delta) if on_half_space(case) => 2.0 * a * e_star * delta,
-                    _ => return None,
-                };
-                Self::Punch {
-                    p_centre: f / (2.0 * PI * a * a),
-                    a,
-                    plane: false,
-                }
-            }
-            _ => return None,
-        };
-        let (p, a) = match form {
+    /// The form, when its pressure and its radius are positive and finite.
+    fn usable(self) -> Option<Self> {
+        let (p, a) = match self {
             Self::Hertz { p0, a, .. } => (p0, a),
             Self::Punch { p_centre, a, .. } => (p_centre, a),
         };
-        (p > 0.0 && p.is_finite() && a > 0.0 && a.is_finite()).then_some(form)
+        (p > 0.0 && p.is_finite() && a > 0.0 && a.is_finite()).then_some(self)
     }
+
     /// The pressure at distance `r` from the axis \[MPa\].
     fn at(&self, r: f64) -> f64 {
         match *self {
@@ -142,11 +194,8 @@ impl ClosedForm {
 
     /// The curve along `row`: [`SAMPLES`] points across its x range, with the contact edge
     /// itself; a punch's stops at the outermost row point under it.
-    fn sample(&self, row: &Row, body: Body) -> Vec<CurvePoint> {
-        let r = |x: f64| match body {
-            Body::Grid => x.hypot(row.y),
-            Body::Axisymmetric | Body::Plane => x.abs(),
-        };
+    fn sample(&self, row: &Row, surface: Surface) -> Vec<CurvePoint> {
+        let r = |x: f64| surface.radius([x, row.y, 0.0]);
         let (lo, hi) = match *self {
             Self::Punch { a, .. } => {
                 let inside = |x: &&f64| r(**x) < a;
@@ -203,9 +252,4 @@ impl Row {
         let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         (lo < hi).then_some(Self { y, xs, lo, hi })
     }
-}
-
-/// Whether the elastic body is a half-space itself (not a block standing in for one).
-fn on_half_space(case: &Case) -> bool {
-    case.spec.body.iter().any(|b| b.is_half_space())
 }

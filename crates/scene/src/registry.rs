@@ -1,5 +1,5 @@
-//! The kinds a scene may name — bodies (`[[body]] kind`), designs (`[optimisation] method`)
-//! and contact solvers (`solver`) — held in a [`Registry`] value. [`Registry::standard`] has
+//! The kinds a scene may name — bodies (`[[body]] kind`), initial gaps (`contact.gap`),
+//! designs (`[optimisation] method`) and contact solvers (`solver`) — held in a [`Registry`] value. [`Registry::standard`] has
 //! the library's own; a crate of one's own adds its kinds by type and name and hands the
 //! registry to the scene reader ([`Registry::load`], [`Registry::parse`]) and to the command
 //! line (`contopt_cli::main_with`), without editing this crate:
@@ -31,6 +31,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use crate::bodies::{BodyKind, FeBase, FeBlock, FeMesh, FePunch, HalfSpaceBody, Rigid, WinklerBed};
+use crate::gap::{Cylinder, Flat, FlatPunch, GapKind, Measured, RollerGap, Sphere};
 use crate::methods::{CircularSearch, Design, EnvelopeSplit, FujiwaraKawaseSearch, Gap};
 
 /// The key of a table that names its kind.
@@ -304,12 +305,30 @@ fn own<K: DeserializeOwned + Serialize>(
         .content
         .deserialize_seed(PhantomData::<K>, &tagged.content_path)?;
     let settings = written(&kind, tagged)?;
-    Ok((kind, serde_json::json!({ name: settings })))
+    Ok((kind, under(name, settings)))
 }
 
-/// The reader of a kind `K` of its own settings, as the trait object `T` (`as_kind` is the
-/// unsizing `|kind| kind`).
-fn single<T, K>(as_kind: fn(Arc<K>) -> Arc<T>) -> Reader<T>
+/// A kind's settings written back under its name, `{ "<name>": { … } }`; a kind without
+/// settings as its bare name, as a scene writes it (`gap = "flat"`).
+fn under(name: &'static str, settings: serde_json::Value) -> serde_json::Value {
+    match settings {
+        serde_json::Value::Object(table) if table.is_empty() => name.into(),
+        settings => serde_json::json!({ name: settings }),
+    }
+}
+
+/// `kind`'s settings as [`own`] writes them back under `name`, for a kind chosen without a
+/// scene's text (a default).
+pub(crate) fn written_under<K: Serialize>(name: &'static str, kind: &K) -> serde_json::Value {
+    under(
+        name,
+        serde_json::to_value(kind).unwrap_or(serde_json::Value::Null),
+    )
+}
+
+/// The reader of a kind `K` from its own settings, chosen as the sort `T` (`upcast` is the
+/// coercion `Arc<K>` → `Arc<T>`).
+fn reader<T, K>(upcast: fn(Arc<K>) -> Arc<T>) -> Reader<T>
 where
     T: ?Sized + 'static,
     K: DeserializeOwned + Serialize + Send + Sync + 'static,
@@ -317,7 +336,7 @@ where
     Arc::new(move |name, tagged| {
         let (kind, written) = own::<K>(name, tagged)?;
         let kind = Arc::new(kind);
-        Ok(Chosen::new(name, written, as_kind(kind.clone()), kind))
+        Ok(Chosen::new(name, written, upcast(kind.clone()), kind))
     })
 }
 
@@ -386,10 +405,11 @@ fn variants<E: DeserializeOwned>() -> &'static [&'static str] {
     names.0.unwrap_or(&[])
 }
 
-/// The kinds a scene may name: bodies, designs and contact solvers.
+/// The kinds a scene may name: bodies, initial gaps, designs and contact solvers.
 #[derive(Clone)]
 pub struct Registry {
     bodies: Kinds<dyn BodyKind>,
+    gaps: Kinds<dyn GapKind>,
     designs: Kinds<dyn Design>,
     solvers: Kinds<dyn SolverKind>,
 }
@@ -398,6 +418,7 @@ impl fmt::Debug for Registry {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Registry")
             .field("bodies", &self.bodies.names().collect::<Vec<_>>())
+            .field("gaps", &self.gaps.names().collect::<Vec<_>>())
             .field("designs", &self.designs.names().collect::<Vec<_>>())
             .field("solvers", &self.solvers.names().collect::<Vec<_>>())
             .finish()
@@ -416,13 +437,15 @@ impl Registry {
     pub fn empty() -> Self {
         Self {
             bodies: Kinds::new("body kind"),
+            gaps: Kinds::new("gap kind"),
             designs: Kinds::new("design method"),
             solvers: Kinds::new("contact solver"),
         }
     }
 
     /// The library's kinds: the bodies `rigid`, `half_space`, `fe_base`, `fe_punch`,
-    /// `fe_block`, `winkler`, `fe_mesh`; the designs of [`OptimisationMethod`] (`given_load`,
+    /// `fe_block`, `winkler`, `fe_mesh`; the gaps `flat`, `sphere`, `cylinder`, `flat_punch`,
+    /// `roller`, `measured`; the designs of [`OptimisationMethod`] (`given_load`,
     /// `given_displacement`, `linear_programme`, `load_split`) and a roller's
     /// `envelope_split`, `profile_search` and `circular_search`; the solvers of
     /// [`SolverSettings`] (`auto`, `qp`, `active_set`, `penalty`, `augmented_lagrangian`,
@@ -436,6 +459,12 @@ impl Registry {
             .with_body::<FeBlock>("fe_block")
             .with_body::<WinklerBed>("winkler")
             .with_body::<FeMesh>("fe_mesh")
+            .with_gap::<Flat>("flat")
+            .with_gap::<Sphere>("sphere")
+            .with_gap::<Cylinder>("cylinder")
+            .with_gap::<FlatPunch>("flat_punch")
+            .with_gap::<RollerGap>("roller")
+            .with_gap::<Measured>("measured")
             .with_design_family::<OptimisationMethod>(|m| Arc::new(Gap(m)))
             .with_design::<EnvelopeSplit>("envelope_split")
             .with_design::<FujiwaraKawaseSearch>("profile_search")
@@ -448,7 +477,17 @@ impl Registry {
     where
         K: BodyKind + DeserializeOwned + Serialize + 'static,
     {
-        self.bodies.add(name, single::<_, K>(|kind| kind));
+        self.bodies
+            .add(name, reader::<dyn BodyKind, K>(|kind| kind));
+        self
+    }
+
+    /// Registers the gap kind `K` as `name` (replacing a kind of that name).
+    pub fn with_gap<K>(mut self, name: &'static str) -> Self
+    where
+        K: GapKind + DeserializeOwned + Serialize + 'static,
+    {
+        self.gaps.add(name, reader::<dyn GapKind, K>(|kind| kind));
         self
     }
 
@@ -457,7 +496,7 @@ impl Registry {
     where
         D: Design + DeserializeOwned + Serialize + 'static,
     {
-        self.designs.add(name, single::<_, D>(|kind| kind));
+        self.designs.add(name, reader::<dyn Design, D>(|kind| kind));
         self
     }
 
@@ -485,7 +524,8 @@ impl Registry {
     where
         S: SolverKind + DeserializeOwned + Serialize + 'static,
     {
-        self.solvers.add(name, single::<_, S>(|kind| kind));
+        self.solvers
+            .add(name, reader::<dyn SolverKind, S>(|kind| kind));
         self
     }
 
@@ -512,6 +552,11 @@ impl Registry {
         self.bodies.names()
     }
 
+    /// The registered gap kinds' names.
+    pub fn gap_kinds(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.gaps.names()
+    }
+
     /// The registered design methods' names.
     pub fn designs(&self) -> impl Iterator<Item = &'static str> + '_ {
         self.designs.names()
@@ -525,6 +570,11 @@ impl Registry {
     /// The body at `node` (path `path` in errors).
     pub(crate) fn body(&self, node: &Node, path: &str) -> Result<Chosen<dyn BodyKind>, InputError> {
         self.bodies.read(node, path)
+    }
+
+    /// The gap at `node`.
+    pub(crate) fn gap(&self, node: &Node, path: &str) -> Result<Chosen<dyn GapKind>, InputError> {
+        self.gaps.read(node, path)
     }
 
     /// The design method at `node`.

@@ -261,11 +261,11 @@ impl Case {
         };
         let open = OPEN_SIZES * built.first().interface().extent();
         let reach = |h: f64| if h.is_finite() { h } else { open };
-        Ok(match (built.pairing(), &contact.gap) {
-            (Some(pairing), crate::GapSpec::Measured) => {
+        Ok(match built.pairing() {
+            Some(pairing) if contact.gap.measured() => {
                 pairing.initial_gap().iter().map(|h| h - approach).collect()
             }
-            (Some(pairing), _) => {
+            Some(pairing) => {
                 let samples = pairing.first_samples().iter();
                 let points: Vec<[f64; 3]> =
                     samples.map(|s| [s.point[0], s.point[1], 0.0]).collect();
@@ -277,7 +277,7 @@ impl Case {
                     .map_err(|e| at.library("contact.gap", e))?;
                 projected.into_iter().map(|h| h - approach).collect()
             }
-            (None, _) => (self.gap_shape(built)?.into_iter())
+            None => (self.gap_shape(built)?.into_iter())
                 .map(|h| reach(h - approach))
                 .collect(),
         })
@@ -298,9 +298,7 @@ impl Case {
             .map(|&x| contact.gap.at(&contact.zone, x, self.plan.roller.as_ref()))
             .collect::<contopt_core::Result<Vec<f64>>>()
             .map_err(|e| at.library("contact.gap", e))?;
-        contact
-            .gap
-            .covers(points, &gap, &self.plan.layout)
+        crate::gap::covers(points, &gap, &self.plan.layout)
             .map_err(|e| at.library("contact.gap", e))?;
         Ok(gap)
     }

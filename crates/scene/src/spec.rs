@@ -6,8 +6,8 @@
 //!
 //! Choices are serde's externally tagged enums, written in a scene either way:
 //! `gap = { kind = "sphere", radius_mm = 10.0 }` or `gap = { sphere = { radius_mm = 10.0 } }`,
-//! and a choice without settings as a bare name, `solver = "auto"`. The bodies, the design
-//! method and the solver are the kinds of the scene's [`Registry`], read by it
+//! and a choice without settings as a bare name, `solver = "auto"`. The bodies, the gap, the
+//! design method and the solver are the kinds of the scene's [`Registry`], read by it
 //! ([`CaseSpec::read`]).
 
 use contopt_input::{InputError, Node, Value};
@@ -72,16 +72,20 @@ pub struct CaseSpec {
 
 /// Where the registry's kinds stand in a case's tree.
 const BODY: &str = "body";
+const GAP: &str = "contact.gap";
 const SOLVER: &str = "solver";
 const METHOD: &str = "optimisation.method";
 
 impl CaseSpec {
-    /// Reads a case's tree: its bodies, design method and solver through `registry`, the rest
-    /// by serde; every error at its key.
+    /// Reads a case's tree: its bodies, gap, design method and solver through `registry`, the
+    /// rest by serde; every error at its key. A case without a gap has the default of its zone
+    /// and bodies ([`crate::gap::default_for`]).
     pub(crate) fn read(tree: &Node, registry: &Registry) -> Result<Self, InputError> {
         let mut rest = tree.clone();
-        let [bodies, solver, method] = [BODY, SOLVER, METHOD].map(|path| rest.remove(path));
+        let [bodies, gap, solver, method] =
+            [BODY, GAP, SOLVER, METHOD].map(|path| rest.remove(path));
         let mut spec: CaseSpec = rest.deserialize()?;
+        let gap = gap.map(|node| registry.gap(&node, GAP)).transpose()?;
         let bodies = bodies.ok_or_else(|| missing(tree, BODY))?;
         let Value::Array(items) = bodies.value() else {
             return Err(InputError::new(
@@ -96,6 +100,8 @@ impl CaseSpec {
         spec.body = (items.iter().enumerate())
             .map(|(k, node)| registry.body(node, &format!("{BODY}[{k}]")))
             .collect::<Result<_, _>>()?;
+        spec.contact.gap =
+            gap.unwrap_or_else(|| crate::gap::default_for(&spec.contact.zone, &spec.body));
         if let Some(node) = solver {
             spec.solver = registry.solver(&node, SOLVER)?;
         }
@@ -136,7 +142,7 @@ impl CaseSpec {
             omega_v: opt.and_then(|o| o.omega_v.as_ref()),
             profile_axis: opt.and_then(|o| o.profile_axis),
             envelope: self.envelope.as_ref(),
-            gap: &self.contact.gap,
+            gap: &*self.contact.gap,
             layout,
             roller,
         }

@@ -142,6 +142,28 @@ impl FacesZone {
     }
 }
 
+/// What a zone says of the surface coordinates a gap is given: on a grid (x, y), on an
+/// axisymmetric line r = x, on a plane line x.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Surface {
+    /// A 3-D grid: (x, y).
+    Grid,
+    /// An axisymmetric line: r = x.
+    Axisymmetric,
+    /// A plane line: x.
+    Plane,
+}
+
+impl Surface {
+    /// The distance of `x` from the gap's axis: √(x² + y²) on a grid, |x| on a line.
+    pub fn radius(self, x: [f64; 3]) -> f64 {
+        match self {
+            Surface::Grid => x[0].hypot(x[1]),
+            Surface::Axisymmetric | Surface::Plane => x[0].abs(),
+        }
+    }
+}
+
 /// A zone with every size known: a grid's cell size resolved from the gap when not given.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Layout {
@@ -215,6 +237,18 @@ impl ZoneSpec {
             ZoneSpec::Strips(s) => analysis_geometry(&s.analysis),
             ZoneSpec::Faces(f) => analysis_geometry(&f.analysis),
             ZoneSpec::Mesh(m) => analysis_geometry(&m.analysis),
+        }
+    }
+
+    /// What it says of a gap's surface coordinates.
+    pub fn surface(&self) -> Surface {
+        match self {
+            ZoneSpec::Grid(_) => Surface::Grid,
+            ZoneSpec::Rings(_) => Surface::Axisymmetric,
+            ZoneSpec::Strips(_) => Surface::Plane,
+            ZoneSpec::Faces(f) if f.analysis == Analysis::Axisymmetric => Surface::Axisymmetric,
+            ZoneSpec::Mesh(m) if m.analysis == Analysis::Axisymmetric => Surface::Axisymmetric,
+            ZoneSpec::Faces(_) | ZoneSpec::Mesh(_) => Surface::Plane,
         }
     }
 

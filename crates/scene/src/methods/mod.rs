@@ -17,7 +17,7 @@ pub use search::{
     Circular, CircularSearch, Family, FujiwaraKawase, FujiwaraKawaseSearch, ProfileSearch,
 };
 
-use crate::gap::GapSpec;
+use crate::gap::GapKind;
 use crate::region::OmegaVSpec;
 use crate::zone::Layout;
 use contopt_contact::{ContactSolver, InterfaceProblem};
@@ -78,7 +78,7 @@ pub struct CaseView<'a> {
     /// A roller's envelope of load cases (`[envelope]`).
     pub envelope: Option<&'a Envelope>,
     /// The initial gap's shape.
-    pub gap: &'a GapSpec,
+    pub gap: &'a dyn GapKind,
     /// The zone with every size known.
     pub layout: &'a Layout,
     /// A roller gap's roller, its crown built.

@@ -14,10 +14,10 @@ pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 use crate::bodies::{BodyKind, Placement, Side};
 use crate::contact::LoadSpec;
 use crate::error::Locator;
-use crate::gap::{GapSpec, Hertz};
 use crate::mesh_surface::MeshSurface;
 use crate::meshes::MeshFiles;
 use crate::methods::Check;
+use crate::reference::Hertz;
 use crate::registry::Chosen;
 use crate::spec::CaseSpec;
 use crate::zone::{Layout, ZoneSpec};
@@ -156,14 +156,14 @@ fn check_measured(
     at: &Locator,
 ) -> Result<(), SceneError> {
     let paired = surveyed.is_some_and(|s| s.paired);
-    match (&spec.contact.gap, paired) {
-        (GapSpec::Measured, false) => Err(at.at(
+    if spec.contact.gap.measured() && !paired {
+        return Err(at.at(
             "contact.gap",
             "the measured gap is the distance between two imported meshes: both bodies of \
              kind \"fe_mesh\" on a zone of kind \"mesh\" (give another gap's shape)",
-        )),
-        _ => Ok(()),
+        ));
     }
+    Ok(())
 }
 
 /// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.
@@ -194,7 +194,7 @@ fn floats(spec: &CaseSpec, layout: &Layout) -> bool {
 
 /// A roller gap's roller: two half-spaces on the grid, the raceway first, pressed by a force.
 fn roller(spec: &CaseSpec, force: Option<f64>, at: &Locator) -> Result<Option<Roller>, SceneError> {
-    let GapSpec::Roller(gap) = &spec.contact.gap else {
+    let Some(gap) = spec.contact.gap.roller_gap() else {
         return Ok(None);
     };
     let materials: Vec<Material> = spec
