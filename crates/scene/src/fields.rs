@@ -21,12 +21,7 @@ pub(crate) fn compute(
     problem: &InterfaceProblem,
     rigid: &[f64],
 ) {
-    // A bearing's composed bodies are half-spaces, without meshes (and its report shows a
-    // contact whose loads are not its bodies' own).
-    if !case.spec.output.fields
-        || report.status == CaseStatus::NotConverged
-        || case.plan.bearing.is_some()
-    {
+    if !case.spec.output.fields || report.status == CaseStatus::NotConverged {
         return;
     }
     let started = std::time::Instant::now();

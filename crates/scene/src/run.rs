@@ -179,32 +179,24 @@ impl Case {
             .load_cases(&problem)
             .map_err(|e| at.library("envelope", e))?;
         let view = self.spec.view(&self.plan.layout, self.plan.roller.as_ref());
-        let (designed, shown) = match &self.plan.bearing {
-            // A bearing reports its worst contact, whose problem the report's checks take.
-            Some(bearing) => crate::bearing::run(
-                self,
-                bearing,
-                &problem,
-                solver.as_ref(),
-                observer,
-                &mut report,
-            )
-            .map_err(|e| at.library("bearing", e))?,
-            None => {
-                let context = Context {
-                    case: view,
-                    problem: &problem,
-                    solver: solver.as_ref(),
-                    observer,
-                    cases: &cases,
-                };
-                let designed = (self.spec.design())
-                    .run(&context, &mut report)
-                    .map_err(|e| at.library("optimisation", e))?;
-                (designed, problem.clone())
-            }
+        let context = Context {
+            case: view,
+            problem: &problem,
+            solver: solver.as_ref(),
+            observer,
+            cases: &cases,
         };
-        let problem = shown;
+        let plan = &self.plan;
+        let designed =
+            (plan.design.run(&context, &mut report)).map_err(|e| at.library(plan.design_at, e))?;
+        // The report's checks take the contact it shows (a bearing's worst roller).
+        let own_contact = designed.shown_gap.is_none();
+        let problem = match &designed.shown_gap {
+            Some(gap) => problem
+                .with_initial_gap(gap)
+                .map_err(|e| at.library(plan.design_at, e))?,
+            None => problem,
+        };
         let context = Context {
             case: view,
             problem: &problem,
@@ -217,7 +209,9 @@ impl Case {
         crate::limits::judge(&mut report, self, &problem);
         crate::report::below_surface(&mut report, self, built)
             .map_err(|e| at.library("output.subsurface", e))?;
-        crate::fields::compute(&mut report, self, built, &problem, &rigid);
+        if own_contact {
+            crate::fields::compute(&mut report, self, built, &problem, &rigid);
+        }
         report.reference = crate::reference::curve(self, &report);
         report.settle();
         Ok(report)

@@ -113,8 +113,8 @@ impl CaseSpec {
     }
 }
 
-/// The method of an `[optimisation]` before the registry has read it (serde's placeholder,
-/// replaced by [`CaseSpec::read`]).
+/// No design: the contact analysed as it is; the method of an `[optimisation]` before the
+/// registry has read it, too (serde's placeholder, replaced by [`CaseSpec::read`]).
 fn unread() -> Chosen<dyn Design> {
     let analysis = Arc::new(Analysis);
     Chosen::new("none", serde_json::Value::Null, analysis.clone(), analysis)
@@ -126,6 +126,14 @@ impl CaseSpec {
         match &self.optimisation {
             Some(opt) => &*opt.method,
             None => &Analysis,
+        }
+    }
+
+    /// [`CaseSpec::design`] as chosen.
+    pub(crate) fn chosen_design(&self) -> Chosen<dyn Design> {
+        match &self.optimisation {
+            Some(opt) => opt.method.clone(),
+            None => unread(),
         }
     }
 

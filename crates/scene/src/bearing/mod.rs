@@ -11,8 +11,6 @@
 
 mod run;
 
-pub(crate) use run::run;
-
 use std::ops::Range;
 
 use contopt_core::{check, Error, Result};
@@ -31,10 +29,16 @@ use crate::methods::BearingCrown;
 use crate::spec::CaseSpec;
 use crate::SceneError;
 
-/// A bearing as its case's check planned it: the bearing with its crowns, the load cases,
-/// the ratings.
+/// A bearing as its case's check planned it — the bearing with its crowns, the load cases,
+/// the ratings — and the design of its case: every loaded roller's contact under each load
+/// case's distribution, the crown designed over them when the scene asks, the lives
+/// ([`run`]).
 #[derive(Debug)]
 pub(crate) struct BearingPlan {
+    /// How the crown is designed over the rollers' envelope (`[optimisation]`), if it is.
+    pub crown: Option<BearingCrown>,
+    /// The grid's cells along and across the roller.
+    pub cells: [usize; 2],
     /// The bearing, the scene's crowns built.
     pub bearing: CylindricalRollerBearing,
     /// The load cases: label, load, time fraction.
@@ -244,6 +248,8 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Option<BearingPlan>,
     }
     check_method(spec, b).map_err(within("optimisation".into()))?;
     Ok(Some(BearingPlan {
+        crown: (spec.optimisation.as_ref()).and_then(|o| o.method.bearing_crown()),
+        cells: b.cells,
         bearing,
         loads: b
             .load

@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_contact::InterfaceProblem;
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
@@ -26,8 +26,7 @@ use contopt_roller::{
 };
 
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
-use crate::methods::{roller_report, BearingCrown, Designed};
-use crate::Case;
+use crate::methods::{roller_report, BearingCrown, Check, Context, Design, Designed};
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
 /// arc-minutes are one contact (a roller and its mirror across the load line: round-off).
@@ -201,41 +200,29 @@ struct Crowned {
 /// the objective's units) is in thousandths of the life's logarithm, whatever its size.
 const LOG_SCALE: f64 = 1000.0;
 
-/// The design of the crown over the envelope `cases` of `first` (the distributions under the
-/// scene's roller), by the scene's method; `None` without `[optimisation]`.
-#[allow(clippy::too_many_arguments)]
-fn design(
-    case: &Case,
-    plan: &BearingPlan,
-    problem: &InterfaceProblem,
-    first: &[LoadDistribution],
-    env: &Envelope,
-    cases: &[LoadCase],
-    at: &Geometry,
-    solver: &dyn ContactSolver,
-    observer: &dyn Observer,
-) -> Result<Option<Crowned>> {
-    let Some(opt) = &case.spec.optimisation else {
-        return Ok(None);
-    };
-    let roller = case
-        .plan
-        .roller
-        .as_ref()
+/// The envelope a bearing's crown is designed over: the distributions under the scene's
+/// roller (`first`), their distinct contacts, those as load cases, and the grid's figures.
+struct Over<'e, 'a> {
+    first: &'e [LoadDistribution],
+    env: &'e Envelope,
+    cases: &'e [LoadCase<'a>],
+    at: &'e Geometry<'e>,
+}
+
+/// The design of the crown over the envelope `over` by `crown`, on the case's contact `c`.
+fn design(plan: &BearingPlan, crown: BearingCrown, c: &Context, over: &Over) -> Result<Crowned> {
+    let Over {
+        first,
+        env,
+        cases,
+        at,
+    } = *over;
+    let (problem, solver, observer) = (c.problem, c.solver, c.observer);
+    let roller = (c.case.roller)
         .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
-    let refused = || {
-        Error::invalid(
-            "method",
-            opt.method.name(),
-            "a bearing's crown is designed by envelope_split, profile_search or \
-             circular_search",
-        )
-    };
-    let family = match opt.method.bearing_crown().ok_or_else(refused)? {
+    let family = match crown {
         BearingCrown::Envelope(settings) => {
-            let controller = opt
-                .controller
-                .as_ref()
+            let controller = (c.case.controller)
                 .ok_or_else(|| Error::invalid("controller", "missing", "the method needs one"))?;
             // For the life, each load case is held to its duty-cycle level.
             let levels = match plan.objective {
@@ -251,7 +238,7 @@ fn design(
                 &settings,
                 observer,
             )?;
-            return Ok(Some(Crowned {
+            return Ok(Crowned {
                 change: crown.drop,
                 method: Method::EnvelopeSplit,
                 termination: crown.termination,
@@ -259,7 +246,7 @@ fn design(
                 tuned: None,
                 levels: levels.map(|l| l.0),
                 omega_nv_excess: crown.omega_nv_excess,
-            }));
+            });
         }
         BearingCrown::Search(family, settings) => (family, settings),
     };
@@ -270,7 +257,7 @@ fn design(
         cases,
         objective: &mut objective,
     };
-    let tuned = match coarse_grid(case, problem, at) {
+    let tuned = match coarse_grid(plan.cells, problem, at) {
         Some((nominal, cell)) => {
             let coarse = env.cases(&nominal, roller, plan.tolerance)?;
             let geometry = Geometry {
@@ -296,7 +283,7 @@ fn design(
             observer,
         )?,
     };
-    Ok(Some(Crowned {
+    Ok(Crowned {
         tuned: Some(crate::methods::search::tuned_profile(&tuned)),
         change: tuned.drop,
         method: Method::ProfileSearch,
@@ -304,7 +291,7 @@ fn design(
         bound_p_max: None,
         levels: None,
         omega_nv_excess: None,
-    }))
+    })
 }
 
 /// The load cases' duty-cycle pressure levels ([`duty_cycle_levels`]) from their heaviest
@@ -354,11 +341,10 @@ const COARSE_POINTS: usize = 2000;
 /// ([`InterfaceProblem::coarsen`]) with its cell \[mm\], for a coarse-to-fine search; `None`
 /// when the grid is small ([`COARSE_POINTS`]) or its bodies offer no coarser grid.
 fn coarse_grid<'a>(
-    case: &Case,
+    [nx, ny]: [usize; 2],
     problem: &InterfaceProblem<'a>,
     at: &Geometry,
 ) -> Option<(InterfaceProblem<'a>, [f64; 2])> {
-    let [nx, ny] = case.spec.bearing.as_ref()?.cells;
     if problem.len() < COARSE_POINTS || nx < 2 || ny < 2 {
         return None;
     }
@@ -387,20 +373,22 @@ fn crown_table(points: &[[f64; 3]], drop: &[f64], dy: f64) -> Result<Crown> {
 /// the distributions, the design, the final contacts and the lives into `report`. Returns the
 /// design's account for the report, with the worst contact's pressure, and that contact's
 /// problem (the one the report's checks take).
-pub(crate) fn run<'a>(
-    case: &Case,
-    plan: &BearingPlan,
-    problem: &InterfaceProblem<'a>,
-    solver: &dyn ContactSolver,
-    observer: &dyn Observer,
-    report: &mut CaseReport,
-) -> Result<(Designed, InterfaceProblem<'a>)> {
-    let roller = case
-        .plan
-        .roller
-        .as_ref()
+impl Design for BearingPlan {
+    /// Its checks are the bearing's plan's ([`super::plan`]).
+    fn check(&self, _c: &Check) -> Result<()> {
+        Ok(())
+    }
+
+    fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
+        run(self, c, report)
+    }
+}
+
+fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Designed> {
+    let (problem, solver, observer) = (c.problem, c.solver, c.observer);
+    let roller = (c.case.roller)
         .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
-    let [dx, dy] = case.plan.layout.edge_cell();
+    let [dx, dy] = c.case.layout.edge_cell();
     let at = Geometry {
         points: problem.interface().points(),
         cell: [dx, dy],
@@ -411,17 +399,21 @@ pub(crate) fn run<'a>(
     let started = Instant::now();
     let first = match distributions(&plan.bearing, plan, observer)? {
         Ok(d) => d,
-        Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
+        Err(why) => return Ok(Designed::unsolved(why, solver.method())),
     };
     report.time("distribution", started);
     let env = Envelope::new(&first, plan.raceway);
     let started = Instant::now();
-    let designed = match case.spec.optimisation {
-        Some(_) => {
+    let designed = match plan.crown {
+        Some(crown) => {
             let cases = env.cases(problem, roller, plan.tolerance)?;
-            design(
-                case, plan, problem, &first, &env, &cases, &at, solver, observer,
-            )?
+            let envelope = Over {
+                first: &first,
+                env: &env,
+                cases: &cases,
+                at: &at,
+            };
+            Some(design(plan, crown, c, &envelope)?)
         }
         None => None,
     };
@@ -430,7 +422,7 @@ pub(crate) fn run<'a>(
         if !d.termination.is_solved() && !matches!(d.termination, Termination::StepLimit { .. }) {
             let mut out = Designed::unsolved(d.termination.clone(), solver.method());
             out.method = Some(d.method);
-            return Ok((out, problem.clone()));
+            return Ok(out);
         }
     }
     // The final state: the distributions under the final crown, every contact at its loads.
@@ -443,7 +435,7 @@ pub(crate) fn run<'a>(
                 .plus(crown_table(at.points, &d.change, dy)?);
             match distributions(&bearing, plan, observer)? {
                 Ok(dists) => dists,
-                Err(why) => return Ok((Designed::unsolved(why, solver.method()), problem.clone())),
+                Err(why) => return Ok(Designed::unsolved(why, solver.method())),
             }
         }
         None => first,
@@ -458,7 +450,7 @@ pub(crate) fn run<'a>(
     report.time("solve", started);
     if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
         let why = s.termination.clone().inside(s.method);
-        return Ok((Designed::unsolved(why, solver.method()), problem.clone()));
+        return Ok(Designed::unsolved(why, solver.method()));
     }
     let started = Instant::now();
     let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
@@ -512,8 +504,9 @@ pub(crate) fn run<'a>(
         omega_nv_excess: designed.as_ref().and_then(|d| d.omega_nv_excess),
         passes: vec![],
         roller: roller_report(&figures, true, tuned),
+        shown_gap: Some(cases[worst].problem.initial_gap().to_vec()),
     };
-    Ok((out, cases[worst].problem.clone()))
+    Ok(out)
 }
 
 /// The bearing's report from the final state.

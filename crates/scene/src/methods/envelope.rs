@@ -84,6 +84,7 @@ impl Design for EnvelopeSplit {
             crown: None,
             passes: vec![],
             roller,
+            shown_gap: None,
         })
     }
 

@@ -78,6 +78,7 @@ impl Design for Gap {
             gap_change: optimum.gap_change.clone(),
             crown: None,
             roller: None,
+            shown_gap: None,
         };
         if c.case.roller.is_some() && optimum.termination.is_solved() {
             let own = contopt_core::ContactState {

@@ -135,6 +135,9 @@ pub struct Designed {
     pub passes: Vec<Pass>,
     /// A roller's figures.
     pub roller: Option<RollerReport>,
+    /// The initial gap of the contact the report shows when it is not the case's own (a
+    /// bearing's worst roller, tilted and loaded as its load case) \[mm\]; `None`: the case's.
+    pub shown_gap: Option<Vec<f64>>,
 }
 
 impl Designed {
@@ -164,6 +167,7 @@ impl Designed {
             omega_nv_excess: None,
             passes: vec![],
             roller: None,
+            shown_gap: None,
         }
     }
 }

@@ -149,6 +149,7 @@ impl Search {
             crown: None,
             passes: vec![],
             roller: figures,
+            shown_gap: None,
         })
     }
 }

@@ -2,6 +2,8 @@
 //! the parts, the memory the case will take — nothing built, nothing solved. What this passes,
 //! the run accepts; what the run would refuse, this refuses, at the key that says so.
 
+use std::sync::Arc;
+
 use contopt_core::Material;
 use contopt_roller::Roller;
 
@@ -16,7 +18,7 @@ use crate::contact::LoadSpec;
 use crate::error::Locator;
 use crate::mesh_surface::MeshSurface;
 use crate::meshes::MeshFiles;
-use crate::methods::Check;
+use crate::methods::{Check, Design};
 use crate::reference::Hertz;
 use crate::registry::Chosen;
 use crate::spec::CaseSpec;
@@ -42,14 +44,29 @@ pub(crate) struct Plan {
     pub memory: budget::Memory,
     /// What the case's bodies are built from: cases with equal keys share one build.
     pub key: BuildKey,
-    /// A bearing's plan (`[bearing]`).
-    pub bearing: Option<crate::bearing::BearingPlan>,
+    /// The case's design: its `[optimisation] method`, the contact analysed as it is, or a
+    /// bearing's (`[bearing]`: its distributions are its load cases, its lives a report).
+    pub design: Chosen<dyn Design>,
+    /// Where the design's errors are placed: `optimisation`, or `bearing`.
+    pub design_at: &'static str,
 }
 
 /// Checks `spec` and plans its run, reading the meshes its bodies name from `meshes`; `at`
 /// places the errors.
 pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<Plan, SceneError> {
     let bearing = crate::bearing::plan(spec, at)?;
+    let design_at = match bearing {
+        Some(_) => "bearing",
+        None => "optimisation",
+    };
+    let design = match bearing {
+        Some(b) => {
+            let b = Arc::new(b);
+            let design: Arc<dyn Design> = b.clone();
+            Chosen::new("bearing", serde_json::Value::Null, design, b)
+        }
+        None => spec.chosen_design(),
+    };
     let contact = &spec.contact;
     check_pair(&spec.body, &contact.zone).map_err(|e| at.library("", e))?;
     contact
@@ -83,12 +100,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         case: spec.view(&layout, roller.as_ref()),
         floating,
     };
-    // A bearing checks its own design over its own envelope.
-    if bearing.is_none() {
-        (spec.design())
-            .check(&check)
-            .map_err(|e| at.library("optimisation", e))?;
-    }
+    design.check(&check).map_err(|e| at.library(design_at, e))?;
     if let Some(envelope) = &spec.envelope {
         if roller.is_none() {
             return Err(at.at(
@@ -117,7 +129,8 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
             bodies: spec.body.clone(),
             load: contact.load,
         },
-        bearing,
+        design,
+        design_at,
     })
 }
 
