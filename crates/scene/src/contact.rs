@@ -1,10 +1,14 @@
 //! How the bodies of a case meet (`[contact]`): the zone, the initial gap and what presses them
 //! together.
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
-use crate::gap::GapKind;
-use crate::registry::Chosen;
+use crate::bodies::BodyKind;
+use crate::gap::{Flat, GapKind, Measured};
+pub use crate::load::LoadSpec;
+use crate::registry::{self, Chosen};
 use crate::zone::ZoneSpec;
 
 /// How the bodies meet (`[contact]`).
@@ -16,22 +20,49 @@ pub struct ContactSpec {
     /// The initial gap h(x) between the bodies: a gap kind of the scene's
     /// [`crate::Registry`], read with the bodies (default: measured between two imported
     /// meshes on a zone of meshes, else flat).
-    #[serde(skip_deserializing, default = "crate::gap::flat")]
+    #[serde(skip_deserializing, default = "flat")]
     pub gap: Chosen<dyn GapKind>,
     /// What presses the bodies together beyond their own loads (default none).
     #[serde(default)]
     pub load: LoadSpec,
 }
 
-/// What presses the bodies together through the contact.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LoadSpec {
-    /// Nothing beyond the bodies' own loads (a finite-element punch's pressure on its top).
-    #[default]
-    None,
-    /// A force \[N\] on the second body, which floats along the contact normal (eq. 2.10).
-    ForceN(f64),
-    /// The second body pushed in by a given approach \[mm\]: it enters the initial gap, h − δ.
-    ApproachMm(f64),
+/// The gap of a scene that gives none: the distance measured between two imported meshes on a
+/// zone of meshes, else flat.
+pub(crate) fn default_for(zone: &ZoneSpec, bodies: &[Chosen<dyn BodyKind>]) -> Chosen<dyn GapKind> {
+    let imported = bodies.iter().filter(|b| b.imported()).count();
+    match zone {
+        ZoneSpec::Mesh(_) if imported == 2 => chosen("measured", Measured {}),
+        _ => flat(),
+    }
+}
+
+/// The flat gap, as the registry would read `gap = "flat"` (serde's placeholder before
+/// [`crate::CaseSpec::read`] reads the gap).
+pub(crate) fn flat() -> Chosen<dyn GapKind> {
+    chosen("flat", Flat {})
+}
+
+/// A gap kind chosen as `name` without a scene's text.
+fn chosen<K: GapKind + Serialize + 'static>(name: &'static str, kind: K) -> Chosen<dyn GapKind> {
+    let kind = Arc::new(kind);
+    let written = registry::written_under(name, &*kind);
+    Chosen::new(name, written, kind.clone(), kind)
+}
+
+#[cfg(test)]
+mod tests {
+    use contopt_input::Node;
+
+    use crate::Registry;
+
+    /// The gap a scene that gives none takes is the one `gap = "flat"` reads.
+    #[test]
+    fn the_default_gap_is_the_flat_one_read() {
+        let node = Node::parse_toml("gap = \"flat\"").unwrap();
+        let read = Registry::standard()
+            .gap(node.get("gap").unwrap(), "gap")
+            .unwrap();
+        assert_eq!(read, super::flat());
+    }
 }

@@ -8,16 +8,13 @@
 
 use std::f64::consts::PI;
 use std::path::Path;
-use std::sync::Arc;
 
 use contopt_core::{check, Error, Result};
 use contopt_roller::{Crown, CrownSettings, Roller};
 use serde::{Deserialize, Serialize};
 
-use crate::bodies::BodyKind;
-use crate::contact::LoadSpec;
+use crate::load::LoadSpec;
 use crate::reference::{ClosedForm, Hertz, ReferenceCase};
-use crate::registry::{self, Chosen};
 use crate::zone::{Layout, Surface, ZoneSpec};
 
 /// A point this far beyond a flat punch's rim, relative to its radius, is under it: the
@@ -94,29 +91,6 @@ pub trait GapKind: Send + Sync {
     fn reference(&self, _case: &ReferenceCase) -> Option<ClosedForm> {
         None
     }
-}
-
-/// The gap of a scene that gives none: the distance measured between two imported meshes on a
-/// zone of meshes, else flat.
-pub(crate) fn default_for(zone: &ZoneSpec, bodies: &[Chosen<dyn BodyKind>]) -> Chosen<dyn GapKind> {
-    let imported = bodies.iter().filter(|b| b.imported()).count();
-    match zone {
-        ZoneSpec::Mesh(_) if imported == 2 => chosen("measured", Measured {}),
-        _ => flat(),
-    }
-}
-
-/// The flat gap, as the registry would read `gap = "flat"` (serde's placeholder before
-/// [`crate::CaseSpec::read`] reads the gap).
-pub(crate) fn flat() -> Chosen<dyn GapKind> {
-    chosen("flat", Flat {})
-}
-
-/// A gap kind chosen as `name` without a scene's text.
-fn chosen<K: GapKind + Serialize + 'static>(name: &'static str, kind: K) -> Chosen<dyn GapKind> {
-    let kind = Arc::new(kind);
-    let written = registry::written_under(name, &*kind);
-    Chosen::new(name, written, kind.clone(), kind)
 }
 
 /// Zero everywhere: the bodies fit (a punch on its base).
@@ -542,7 +516,7 @@ mod tests {
     use contopt_input::{InputError, Node};
 
     use super::*;
-    use crate::{Format, Registry};
+    use crate::{Chosen, Format, Registry};
 
     /// The gap of `text`'s `gap` key, read by `registry` at `contact.gap`.
     fn read_gap(registry: &Registry, text: &str) -> Result<Chosen<dyn GapKind>, InputError> {
@@ -571,7 +545,6 @@ mod tests {
         assert_eq!(bare, read("gap = { kind = \"flat\" }"));
         assert_eq!(bare, read("gap = { flat = {} }"));
         assert_eq!(bare.written(), &serde_json::json!("flat"));
-        assert_eq!(bare, flat());
     }
 
     #[test]

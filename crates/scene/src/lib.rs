@@ -24,6 +24,7 @@ mod error;
 mod fields;
 mod gap;
 mod limits;
+mod load;
 mod mesh_surface;
 mod meshes;
 mod methods;

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 use contopt_results::{CaseReport, CurvePoint, ReferenceCurve};
 
-use crate::contact::LoadSpec;
+use crate::load::LoadSpec;
 use crate::zone::Surface;
 use crate::Case;
 

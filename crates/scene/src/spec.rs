@@ -79,7 +79,7 @@ const METHOD: &str = "optimisation.method";
 impl CaseSpec {
     /// Reads a case's tree: its bodies, gap, design method and solver through `registry`, the
     /// rest by serde; every error at its key. A case without a gap has the default of its zone
-    /// and bodies ([`crate::gap::default_for`]).
+    /// and bodies ([`crate::contact::default_for`]).
     pub(crate) fn read(tree: &Node, registry: &Registry) -> Result<Self, InputError> {
         let mut rest = tree.clone();
         let [bodies, gap, solver, method] =
@@ -101,7 +101,7 @@ impl CaseSpec {
             .map(|(k, node)| registry.body(node, &format!("{BODY}[{k}]")))
             .collect::<Result<_, _>>()?;
         spec.contact.gap =
-            gap.unwrap_or_else(|| crate::gap::default_for(&spec.contact.zone, &spec.body));
+            gap.unwrap_or_else(|| crate::contact::default_for(&spec.contact.zone, &spec.body));
         if let Some(node) = solver {
             spec.solver = registry.solver(&node, SOLVER)?;
         }

@@ -9,7 +9,7 @@ use contopt_greens::{
 use serde::{Deserialize, Serialize};
 
 use super::{misplaced, BodyKind, Placement, Side, Takes};
-use crate::contact::LoadSpec;
+use crate::load::LoadSpec;
 use crate::zone::{Layout, ZoneSpec};
 
 /// The datum of a half-plane's deflections unless the scene sets one \[mm\].

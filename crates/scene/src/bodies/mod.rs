@@ -18,7 +18,7 @@ mod winkler;
 
 use std::path::Path;
 
-use crate::contact::LoadSpec;
+use crate::load::LoadSpec;
 use crate::mesh_surface::MeshPart;
 use crate::meshes::MeshFiles;
 use crate::zone::{Layout, ZoneSpec};

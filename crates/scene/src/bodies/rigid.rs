@@ -4,7 +4,7 @@ use contopt_core::{ElasticBody, Interface, Result, RigidBody};
 use serde::{Deserialize, Serialize};
 
 use super::{own_surface, BodyKind, Placement, Side, Takes};
-use crate::contact::LoadSpec;
+use crate::load::LoadSpec;
 use crate::zone::ZoneSpec;
 
 /// Memory per point of a rigid body's surface \[bytes\]: a point, a weight and a normal.

@@ -14,8 +14,8 @@ pub(crate) mod survey;
 pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 
 use crate::bodies::{BodyKind, Placement, Side};
-use crate::contact::LoadSpec;
 use crate::error::Locator;
+use crate::load::LoadSpec;
 use crate::mesh_surface::MeshSurface;
 use crate::meshes::MeshFiles;
 use crate::methods::{Check, Design};

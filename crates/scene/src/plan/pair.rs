@@ -4,7 +4,7 @@
 use contopt_core::{Error, Result};
 
 use crate::bodies::{BodyKind, Takes};
-use crate::contact::LoadSpec;
+use crate::load::LoadSpec;
 use crate::registry::Chosen;
 use crate::zone::ZoneSpec;
 
