@@ -132,3 +132,67 @@ pub(crate) fn below_surface(
     report.time("subsurface", started);
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use contopt_results::{CaseReport, Point};
+
+    use super::{penetration, PENETRATION_WARNING, UM};
+    use crate::{Format, Registry};
+
+    /// A sphere on a bed on 10 rings: its contact problem (the gap zero at the centre).
+    fn problem() -> contopt_contact::InterfaceProblem<'static> {
+        let text = "name = \"bed\"\n[contact]\nzone = { kind = \"rings\", rings = 10, \
+                    radius_mm = 5.0 }\ngap = { kind = \"sphere\", radius_mm = 20.0 }\nload = { \
+                    force_n = 1000.0 }\n[[body]]\nkind = \"winkler\"\nmodulus_mpa_per_mm = \
+                    50.0\n[[body]]\nkind = \"rigid\"\n";
+        let scene = Registry::standard()
+            .parse(text, Format::Toml, Path::new("bed.toml"))
+            .unwrap();
+        scene.cases()[0].problem().unwrap()
+    }
+
+    /// A report whose interface has the gaps `d` \[mm\].
+    fn report(d: &[f64]) -> CaseReport {
+        let mut report = CaseReport::new("bed", &Default::default(), serde_json::Value::Null);
+        report.interface = d
+            .iter()
+            .map(|&d| Point {
+                x_mm: [0.0; 3],
+                p_mpa: 0.0,
+                d_um: UM * d,
+                dh_um: 0.0,
+                h_um: 0.0,
+            })
+            .collect();
+        report
+    }
+
+    /// The largest penetration is reported; past its share of the largest elastic
+    /// displacement it carries a warning, below it none.
+    #[test]
+    fn a_penetration_is_judged_against_the_elastic_displacement() {
+        let problem = problem();
+        let n = problem.len();
+        // The rigid body sinks by 0.1 mm: the elastic displacement is about that.
+        let sink = [-0.1];
+        let gap_of = |d: f64| {
+            let mut gap = vec![0.0; n];
+            gap[0] = d;
+            gap
+        };
+        let elastic = problem.elastic_displacement(&gap_of(0.0), &sink);
+        assert!(elastic > 0.0);
+        let slight = -0.1 * PENETRATION_WARNING * elastic;
+        let mut r = report(&gap_of(slight));
+        penetration(&mut r, &problem, &gap_of(slight), &sink);
+        assert!((r.penetration_um.unwrap() - UM * -slight).abs() < 1e-9);
+        assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+        let deep = -10.0 * PENETRATION_WARNING * elastic;
+        let mut r = report(&gap_of(deep));
+        penetration(&mut r, &problem, &gap_of(deep), &sink);
+        assert!(r.warnings[0].contains("penetrates"), "{:?}", r.warnings);
+    }
+}
