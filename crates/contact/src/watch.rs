@@ -1,7 +1,8 @@
 //! How a method reports to its observer: each iteration as an [`Event`] of the method, numbered
 //! on across the loops of one solve, and its last event with how it ended.
 
-use contopt_core::observe::{Event, Flow, Method, Observer};
+use contopt_core::drive;
+use contopt_core::observe::{Event, Method, Observer};
 use contopt_core::{ContactState, Termination};
 
 /// Where a method reports its iterations: the observer, the method they carry and how many
@@ -36,10 +37,13 @@ impl<'a> Watch<'a> {
     /// Reports the loop's iteration `k` (from 1) with its convergence `measure` and the
     /// `tolerance` it must reach; [`Termination::Stopped`] when the observer asks to stop.
     pub(crate) fn report(&self, k: usize, measure: f64, tolerance: f64) -> Option<Termination> {
-        let iteration = self.before + k;
-        let event = Event::step(self.method, iteration, measure, tolerance);
-        (self.observer.observe(&event) == Flow::Stop)
-            .then_some(Termination::Stopped { after: iteration })
+        drive::report(
+            self.observer,
+            self.method,
+            self.before + k,
+            measure,
+            tolerance,
+        )
     }
 }
 

@@ -82,6 +82,20 @@ impl Inner {
     }
 }
 
+/// Reports `method`'s iteration `iteration` with its convergence `measure` and the
+/// `tolerance` it must reach to `observer`: [`Termination::Stopped`] when the observer asks to
+/// stop. The one report of a step, for a [`Driver`] and for a loop that numbers its own steps.
+pub fn report(
+    observer: &dyn Observer,
+    method: Method,
+    iteration: usize,
+    measure: f64,
+    tolerance: f64,
+) -> Option<Termination> {
+    let event = Event::step(method, iteration, measure, tolerance);
+    (observer.observe(&event) == Flow::Stop).then_some(Termination::Stopped { after: iteration })
+}
+
 /// Runs the steps of one method: counts them, checks the step limit, reports each to the
 /// observer as an [`Event`] of the method and honours its stop; keeps what the methods it
 /// runs came to ([`Inner`]) to end with.
@@ -155,9 +169,13 @@ impl<'o> Driver<'o> {
     pub fn report(&mut self, measure: f64) -> Option<Termination> {
         self.steps += 1;
         self.measure = measure;
-        let event = Event::step(self.method, self.steps, measure, self.tolerance);
-        (self.observer.observe(&event) == Flow::Stop)
-            .then_some(Termination::Stopped { after: self.steps })
+        report(
+            self.observer,
+            self.method,
+            self.steps,
+            measure,
+            self.tolerance,
+        )
     }
 
     /// Sets the measure the last event carries, for a method whose answer is not its last
