@@ -9,9 +9,18 @@
 //! distinct pair of bodies once, into [`CaseReport`]s, the unit of `result.json`
 //! ([`contopt_results`]).
 //!
-//! The kinds a scene may name — bodies, design methods, contact solvers — are those of a
+//! The kinds a scene may name — bodies, gaps, design methods, contact solvers — are those of a
 //! [`Registry`]: [`Registry::standard`] has the library's, and a crate of one's own adds its
 //! own and reads scenes through it ([`Registry::load`]), without editing this crate.
+//!
+//! A case runs as one pipeline, each stage a module whose input is the previous one's output:
+//! the **plan** (`plan/`: the checks, the zone's layout, the memory budget, the design chosen;
+//! [`Memory`]), the **build** of its bodies ([`Built`], shared by the cases with equal keys,
+//! on any number of threads), the **design** on the contact problem ([`Design`], given a
+//! [`Context`], returning [`Designed`]; a bearing is one of them), and the **report**
+//! ([`CaseReport`]: the figures, the model's limits, the stresses and fields asked for). The
+//! kinds import only the small shared types below them (the zone, the gap, the load); no module
+//! of the crate imports one that imports it.
 
 mod bearing;
 mod bearing_spec;
