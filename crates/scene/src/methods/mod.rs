@@ -480,3 +480,77 @@ fn contacts<'s>(c: &Context, states: &'s [ContactState]) -> Vec<CaseContact<'s>>
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::{Format, Registry};
+
+    /// A sphere on a bed on 20 rings out to 5 mm, with `optimisation` as its `[optimisation]`.
+    fn scene(optimisation: &str) -> crate::Scene {
+        let text = format!(
+            "name = \"design\"\n[contact]\nzone = {{ kind = \"rings\", rings = 20, radius_mm = \
+             5.0 }}\ngap = {{ kind = \"sphere\", radius_mm = 20.0 }}\nload = {{ force_n = \
+             1000.0 }}\n[[body]]\nkind = \"winkler\"\nmodulus_mpa_per_mm = 50.0\n[[body]]\n\
+             kind = \"rigid\"\n[optimisation]\n{optimisation}\n"
+        );
+        Registry::standard()
+            .parse(&text, Format::Toml, Path::new("design.toml"))
+            .unwrap()
+    }
+
+    /// A method's check sees the case through its view: the controller's reach is checked
+    /// against the zone's, and a missing controller is named.
+    #[test]
+    fn a_controller_is_checked_against_the_zone() {
+        let scene = scene(
+            "method = \"given_load\"\ncontroller = { kind = \"cubic\", l1_mm = 1.0, l2_mm = 4.0 }",
+        );
+        let case = &scene.cases()[0];
+        let mut view = case.spec.view(case.layout(), None);
+        let check = |view: CaseView| {
+            check_controller(&Check {
+                case: view,
+                floating: true,
+            })
+        };
+        assert!(check(view).is_ok());
+        view.controller = None;
+        let missing = check(view).unwrap_err().to_string();
+        assert!(missing.contains("controller"), "{missing}");
+        let far: ControllerSettings =
+            contopt_input::Node::parse_toml("c = { kind = \"cubic\", l1_mm = 1.0, l2_mm = 50.0 }")
+                .unwrap()
+                .deserialize_at("c")
+                .unwrap();
+        view.controller = Some(&far);
+        let beyond = check(view).unwrap_err().to_string();
+        assert!(beyond.contains("controller.l2_mm"), "{beyond}");
+    }
+
+    /// Ω_v inside, Ω_nv outside.
+    #[test]
+    fn a_mask_splits_the_regions() {
+        assert_eq!(
+            regions(&[true, false, true]),
+            [Region::OmegaV, Region::OmegaNv, Region::OmegaV]
+        );
+    }
+
+    /// The given load designs the gap on the bed: the pressure is uniform at the controller's
+    /// level v = 1 where it is prescribed, p_max = F / (π a²) over the whole zone.
+    #[test]
+    fn the_given_load_designs_a_uniform_pressure() {
+        let scene =
+            scene("method = \"given_load\"\ncontroller = { kind = \"constant\", level = 1.0 }");
+        let report = scene.cases()[0].run().unwrap();
+        let p_max = 1000.0 / (std::f64::consts::PI * 25.0);
+        let bound = report.bound_p_max_mpa.unwrap();
+        assert!(
+            (bound / p_max - 1.0).abs() < 1e-6,
+            "{bound} MPa against {p_max}"
+        );
+    }
+}
