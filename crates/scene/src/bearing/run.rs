@@ -388,10 +388,9 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     let (problem, solver, observer) = (c.problem, c.solver, c.observer);
     let roller = (c.case.roller)
         .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
-    let [dx, dy] = c.case.layout.edge_cell();
     let at = Geometry {
         points: problem.interface().points(),
-        cell: [dx, dy],
+        cell: c.case.layout.edge_cell(),
         length: roller.length,
         radius: roller.radius()?,
         e_star: roller.e_star(),
@@ -427,17 +426,10 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     }
     // The final state: the distributions under the final crown, every contact at its loads.
     let dists = match &designed {
-        Some(d) => {
-            let mut bearing = plan.bearing.clone();
-            bearing.roller_crown = bearing
-                .roller_crown
-                .clone()
-                .plus(crown_table(at.points, &d.change, dy)?);
-            match distributions(&bearing, plan, observer)? {
-                Ok(dists) => dists,
-                Err(why) => return Ok(Designed::unsolved(why, solver.method())),
-            }
-        }
+        Some(d) => match crowned_distributions(plan, &d.change, &at, observer)? {
+            Ok(dists) => dists,
+            Err(why) => return Ok(Designed::unsolved(why, solver.method())),
+        },
         None => first,
     };
     let env = Envelope::new(&dists, plan.raceway);
@@ -463,6 +455,35 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     report.bearing = Some(bearing_report(
         plan, &dists, &env, &states, worst, &at, per_case, duty, levels,
     ));
+    let last = Final {
+        cases: &cases,
+        states: &states,
+        contacts: env.contacts.len(),
+        worst,
+    };
+    outcome(designed, &last, &at, roller, solver.method())
+}
+
+/// The final state of a bearing's run: every contact's load case and solution (the distinct
+/// contacts first, then a tolerance band's), and the worst of them.
+struct Final<'f, 'a> {
+    cases: &'f [LoadCase<'a>],
+    states: &'f [ContactState],
+    contacts: usize,
+    worst: usize,
+}
+
+/// The design's outcome from the final state: the worst contact's pressure and gap (its
+/// initial gap the one the report shows), the crown designed (or the scene's, shown as Δh),
+/// and the roller's figures over every distinct contact, the worst first.
+fn outcome(
+    designed: Option<Crowned>,
+    last: &Final,
+    at: &Geometry,
+    roller: &Roller,
+    solver: Method,
+) -> Result<Designed> {
+    let (cases, states, worst) = (last.cases, last.states, last.worst);
     let drop: Vec<f64> = match &designed {
         Some(d) => d.change.clone(),
         None => at
@@ -471,9 +492,8 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
             .map(|x| roller.crown.drop(x[0], roller.length))
             .collect::<Result<Vec<f64>>>()?,
     };
-    let n = env.contacts.len();
     let contacts: Vec<CaseContact> = std::iter::once(worst)
-        .chain((0..n).filter(|&k| k != worst))
+        .chain((0..last.contacts).filter(|&k| k != worst))
         .map(|k| CaseContact {
             load_n: cases[k].load_n,
             tilt_arcmin: cases[k].tilt_arcmin,
@@ -481,12 +501,12 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
             approach_mm: states[k].approach().unwrap_or(0.0),
         })
         .collect();
-    let figures = RollerFigures::new(&contacts, at.points, &drop, dy);
+    let figures = RollerFigures::new(&contacts, at.points, &drop, at.cell[1]);
     let state = &states[worst];
     let tuned = designed.as_ref().and_then(|d| d.tuned.clone());
-    let out = Designed {
+    Ok(Designed {
         method: designed.as_ref().map(|d| d.method),
-        solver: Some(solver.method()),
+        solver: Some(solver),
         termination: designed
             .as_ref()
             .map_or(Termination::Converged, |d| d.termination.clone()),
@@ -505,8 +525,21 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         passes: vec![],
         roller: roller_report(&figures, true, tuned),
         shown_gap: Some(cases[worst].problem.initial_gap().to_vec()),
-    };
-    Ok(out)
+    })
+}
+
+/// Each load case's distribution with the designed crown `change` (per point \[mm\]) on the
+/// plan's roller, as [`distributions`] gives them.
+fn crowned_distributions(
+    plan: &BearingPlan,
+    change: &[f64],
+    at: &Geometry,
+    observer: &dyn Observer,
+) -> Result<std::result::Result<Vec<LoadDistribution>, Termination>> {
+    let mut bearing = plan.bearing.clone();
+    bearing.roller_crown =
+        (bearing.roller_crown.clone()).plus(crown_table(at.points, change, at.cell[1])?);
+    distributions(&bearing, plan, observer)
 }
 
 /// The bearing's report from the final state.
