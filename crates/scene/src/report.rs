@@ -5,7 +5,7 @@ use contopt_contact::InterfaceProblem;
 use contopt_core::observe::Method;
 use contopt_results::{CaseReport, CaseStatus, Pass, Point};
 
-use crate::methods::{Context, Designed};
+use crate::methods::Designed;
 use crate::{Built, Case};
 
 /// The penetration, as a fraction of the largest elastic displacement, above which a solution
@@ -15,8 +15,8 @@ pub const PENETRATION_WARNING: f64 = 1e-3;
 /// Micrometres per millimetre: displacements, gaps and gap changes are reported in µm.
 const UM: f64 = 1e3;
 
-/// Fills `report` from the design's outcome.
-pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
+/// Fills `report` from the design's outcome on the contact `problem` it shows.
+pub(crate) fn fill(report: &mut CaseReport, problem: &InterfaceProblem, d: Designed) {
     report.method = d.method;
     report.solver = d.solver;
     report.status = if d.termination.is_solved() {
@@ -41,7 +41,7 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
             iterd: r.iterd,
         })
         .collect();
-    let points = c.problem.interface().points();
+    let points = problem.interface().points();
     let change = |i: usize| d.gap_change.get(i).copied().unwrap_or(0.0);
     let shown = |i: usize| {
         d.crown
@@ -50,7 +50,7 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
             .copied()
             .unwrap_or(change(i))
     };
-    let initial = c.problem.initial_gap();
+    let initial = problem.initial_gap();
     report.interface = (0..points.len().min(d.pressure.len()))
         .map(|i| Point {
             x_mm: points[i],
@@ -61,7 +61,7 @@ pub(crate) fn fill(report: &mut CaseReport, c: &Context, d: Designed) {
         })
         .collect();
     let elastic_gap: Vec<f64> = (0..d.gap.len()).map(|i| d.gap[i] - change(i)).collect();
-    penetration(report, c.problem, &elastic_gap, &d.rigid);
+    penetration(report, problem, &elastic_gap, &d.rigid);
     report.roller = d.roller;
 }
 

@@ -197,15 +197,8 @@ impl Case {
                 .map_err(|e| at.library(plan.design_at, e))?,
             None => problem,
         };
-        let context = Context {
-            case: view,
-            problem: &problem,
-            solver: solver.as_ref(),
-            observer,
-            cases: &cases,
-        };
         let rigid = designed.rigid.clone();
-        crate::report::fill(&mut report, &context, designed);
+        crate::report::fill(&mut report, &problem, designed);
         crate::limits::judge(&mut report, self, &problem);
         crate::report::below_surface(&mut report, self, built)
             .map_err(|e| at.library("output.subsurface", e))?;
