@@ -5,14 +5,16 @@ use serde::{Deserialize, Serialize};
 
 use crate::gap::GapKind;
 use crate::registry::Chosen;
-use crate::zone::ZoneSpec;
+use crate::zone::ZoneKind;
 
 /// How the bodies meet (`[contact]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// The proposed contact zone Ω and its discretisation, shared by both bodies.
-    pub zone: ZoneSpec,
+    /// The proposed contact zone Ω and its discretisation, shared by both bodies: a zone kind
+    /// of the scene's [`crate::Registry`].
+    #[serde(skip_deserializing, default = "crate::zone::unread")]
+    pub zone: Chosen<dyn ZoneKind>,
     /// The initial gap h(x) between the bodies: a gap kind of the scene's
     /// [`crate::Registry`], read with the bodies (default: measured between two imported
     /// meshes on a zone of meshes, else flat).

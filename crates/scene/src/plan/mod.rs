@@ -20,7 +20,7 @@ use crate::methods::Check;
 use crate::reference::Hertz;
 use crate::registry::Chosen;
 use crate::spec::CaseSpec;
-use crate::zone::{Layout, ZoneSpec};
+use crate::zone::{Layout, ZoneKind};
 use crate::SceneError;
 use pair::{check_load, check_pair};
 
@@ -65,7 +65,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
     let layout = contact
         .zone
         .layout(
-            |cells| contact.gap.natural_cell(cells, rough, roller.as_ref()),
+            &|cells| contact.gap.natural_cell(cells, rough, roller.as_ref()),
             surveyed,
         )
         .map_err(|e| at.library("contact.zone", e))?;
@@ -125,7 +125,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
 /// the contact's load — compared as values: cases with equal keys share one build.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct BuildKey {
-    zone: ZoneSpec,
+    zone: Chosen<dyn ZoneKind>,
     bodies: Vec<Chosen<dyn BodyKind>>,
     load: LoadSpec,
 }
@@ -167,7 +167,7 @@ fn check_measured(
 }
 
 /// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.
-fn pair_modulus(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Option<f64> {
+fn pair_modulus(bodies: &[Chosen<dyn BodyKind>], zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
     let total: f64 = bodies
         .iter()
         .map(|b| b.compliance(zone))
