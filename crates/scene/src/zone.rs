@@ -444,3 +444,130 @@ pub(crate) fn unread() -> Chosen<dyn ZoneKind> {
     Chosen::new("none", serde_json::Value::Null, grid.clone(), grid)
 }
 
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use contopt_input::{InputError, Node};
+
+    use super::*;
+    use crate::{Format, Registry};
+
+    /// The zone of `text`'s `zone` key, read by `registry` at `contact.zone`.
+    fn read_zone(
+        registry: &Registry,
+        text: &str,
+    ) -> std::result::Result<Chosen<dyn ZoneKind>, InputError> {
+        let node = Node::parse_toml(text).unwrap();
+        registry.zone(node.get("zone").unwrap(), "contact.zone")
+    }
+
+    #[test]
+    fn spellings_read_alike() {
+        let standard = Registry::standard();
+        let read = |text| read_zone(&standard, text).unwrap();
+        let a = read("zone = { kind = \"rings\", rings = 4, radius_mm = 1.0 }");
+        let b = read("zone = { rings = { rings = 4, radius_mm = 1.0 } }");
+        assert_eq!(a, b);
+        assert_eq!(a.name(), "rings");
+        assert_eq!(
+            a.written(),
+            &serde_json::json!({ "rings": { "rings": 4, "radius_mm": 1.0 } })
+        );
+        let rings = RingsZone {
+            rings: 4,
+            radius_mm: 1.0,
+        };
+        assert_eq!(b.downcast::<RingsZone>(), Some(&rings));
+        assert_eq!(b.surface(), Surface::Axisymmetric);
+        let grid = read("zone = { kind = \"grid\", cells = [3, 5], cell_mm = [0.1, 0.2] }");
+        assert_eq!(
+            grid,
+            read("zone.grid = { cells = [3, 5], cell_mm = [0.1, 0.2] }")
+        );
+        assert_eq!(grid.surface(), Surface::Grid);
+    }
+
+    #[test]
+    fn an_unknown_zone_kind_lists_the_registered_ones() {
+        let text = "zone = { kind = \"hexagons\", cells = 7 }";
+        let e = read_zone(&Registry::standard(), text).unwrap_err();
+        assert_eq!(e.path, "contact.zone.kind");
+        assert_eq!(
+            e.message,
+            "unknown variant `hexagons`, expected one of `grid`, `rings`, `strips`, `faces`, \
+             `mesh`"
+        );
+        let names: Vec<_> = Registry::standard().zone_kinds().collect();
+        assert_eq!(names, ["grid", "rings", "strips", "faces", "mesh"]);
+    }
+
+    /// A zone of one's own: `strips` equal strips across −a…a of a plane body.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct EvenStrips {
+        strips: usize,
+        half_width_mm: f64,
+        analysis: Analysis,
+    }
+
+    impl ZoneKind for EvenStrips {
+        fn layout(&self, _natural: &Natural, _surveyed: Option<MeshSurface>) -> Result<Layout> {
+            let n = check::count("strips", self.strips, 1, MAX_LINE_CELLS)?;
+            let a = check::positive("half_width_mm", self.half_width_mm)?;
+            Ok(Layout::Strips {
+                edges: (0..=n)
+                    .map(|k| a * (2.0 * k as f64 / n as f64 - 1.0))
+                    .collect(),
+                thickness: plane_thickness(&self.analysis)?,
+            })
+        }
+
+        fn analysis(&self) -> Option<Analysis> {
+            Some(self.analysis)
+        }
+    }
+
+    /// A rigid flat punch as wide as the zone (its rim the zone's edge) pressed by F into a
+    /// Winkler bed of modulus k: p = k·δ uniform, F = p·2a·t.
+    #[test]
+    fn a_zone_of_ones_own_is_read_and_carries_the_contact() {
+        let (k, force, a, t) = (50.0, 600.0, 2.0, 3.0);
+        let text = format!(
+            "name = \"even\"\n\
+             [contact]\n\
+             zone = {{ kind = \"even_strips\", strips = 10, half_width_mm = {a}, \
+             analysis = {{ plane_strain = {{ thickness_mm = {t} }} }} }}\n\
+             gap = {{ flat_punch = {{ radius_mm = {a} }} }}\n\
+             load = {{ force_n = {force} }}\n\
+             [[body]]\n\
+             kind = \"winkler\"\n\
+             modulus_mpa_per_mm = {k}\n\
+             [[body]]\n\
+             kind = \"rigid\"\n"
+        );
+        let registry = Registry::standard().with_zone::<EvenStrips>("even_strips");
+        let scene = registry
+            .parse(&text, Format::Toml, Path::new("even.toml"))
+            .unwrap();
+        let case = &scene.cases()[0];
+        assert_eq!(case.spec.contact.zone.name(), "even_strips");
+        let report = case.run().unwrap();
+        assert!(report.is_solved(), "{:?}", report.termination);
+        let p = force / (2.0 * a * t);
+        assert_eq!(report.interface.len(), 10);
+        for q in &report.interface {
+            assert!((q.p_mpa - p).abs() < 1e-9 * p, "{} against {p}", q.p_mpa);
+        }
+        let delta_um = report.approach_um.unwrap();
+        assert!(
+            (delta_um - 1e3 * p / k).abs() < 1e-9 * delta_um,
+            "δ = {delta_um} µm"
+        );
+        let unknown = Registry::standard().parse(&text, Format::Toml, Path::new("even.toml"));
+        assert!(unknown
+            .unwrap_err()
+            .to_string()
+            .contains("unknown variant `even_strips`"));
+    }
+}
