@@ -1,7 +1,8 @@
 //! The kinds a scene may name — bodies (`[[body]] kind`), contact zones (`contact.zone`),
-//! initial gaps (`contact.gap`), designs (`[optimisation] method`) and contact solvers (`solver`) — held in a [`Registry`] value. [`Registry::standard`] has
-//! the library's own; a crate of one's own adds its kinds by type and name and hands the
-//! registry to the scene reader ([`Registry::load`], [`Registry::parse`]) and to the command
+//! initial gaps (`contact.gap`), designs (`[optimisation] method`) and contact solvers
+//! (`solver`) — held in a [`Registry`] value. [`Registry::standard`] has the library's own; a
+//! crate of one's own adds its kinds by type and name and hands the registry to the scene
+//! reader ([`Registry::load`], [`Registry::parse`]) and to the command
 //! line (`contopt_cli::main_with`), without editing this crate:
 //!
 //! ```
