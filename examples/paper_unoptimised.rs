@@ -7,7 +7,7 @@
 //! `cargo run --release --example paper_unoptimised`
 
 use contopt::prelude::*;
-use contopt::scene::ZoneSpec;
+use contopt::scene::FacesZone;
 
 /// The paper's penalty parameter c = E·10⁴ \[MPa/mm\] (E = 2·10⁵ MPa), here the augmented
 /// Lagrangian's.
@@ -36,9 +36,9 @@ fn solve(name: &str, elements: usize) -> std::result::Result<Solved, Box<dyn std
         ],
     )?;
     let case = &scene.cases()[0];
-    let edge = match &case.spec.contact.zone {
-        ZoneSpec::Faces(faces) => faces.edge_size()?,
-        _ => f64::NAN,
+    let edge = match case.spec.contact.zone.downcast::<FacesZone>() {
+        Some(faces) => faces.edge_size()?,
+        None => f64::NAN,
     };
     let problem = case.problem()?;
     let state = AugmentedLagrangian::new(AugmentedLagrangianSettings::new(C))?.solve(&problem)?;

@@ -7,7 +7,7 @@ use contopt::core::FullSystem;
 use contopt::fem::coupled::JointSystem;
 use contopt::fem::{Analysis, Component, ElementKind, FeBody, FeModel, Mesh, Spacing};
 use contopt::prelude::*;
-use contopt::scene::{FacesZone, FeBase, FePunch, Format, PunchLoad, Support, ZoneSpec};
+use contopt::scene::{FacesZone, FeBase, FePunch, Format, PunchLoad, Support};
 use contopt_validation::closed_form::{contact_modulus, FlatPunch, HertzSphere};
 use contopt_validation::fixtures::hertz_on_block;
 
@@ -286,8 +286,8 @@ fn paper_punch(zone: &FacesZone, punch: &FePunch, layers: usize) -> FeModel {
 fn paper_fe_bodies(name: &str, elements: usize) -> (Analysis, f64, FeBody, FeBody) {
     let scene = contopt_validation::paper::scene(name, elements, &[("sweep", None)]).unwrap();
     let spec = &scene.cases()[0].spec;
-    let (ZoneSpec::Faces(zone), Some(base), Some(punch)) = (
-        &spec.contact.zone,
+    let (Some(zone), Some(base), Some(punch)) = (
+        spec.contact.zone.downcast::<FacesZone>(),
         spec.body[0].downcast::<FeBase>(),
         spec.body[1].downcast::<FePunch>(),
     ) else {

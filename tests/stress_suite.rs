@@ -35,7 +35,7 @@ use contopt::fem::{
 };
 use contopt::greens::HalfSpace;
 use contopt::prelude::*;
-use contopt::scene::{FacesZone, FeBase, FePunch, ZoneSpec};
+use contopt::scene::{FacesZone, FeBase, FePunch};
 use contopt_validation::closed_form::{contact_modulus, HertzSphere, ThickCylinder};
 
 /// Young's modulus of every case \[MPa\] (steel, as in the paper).
@@ -59,12 +59,13 @@ fn paper(edits: &[(&str, Option<&str>)]) -> Scene {
 
 /// The contact zone of a punch-on-base scene: the punch's face.
 fn faces(scene: &Scene) -> FacesZone {
-    match &scene.cases()[0].spec.contact.zone {
-        ZoneSpec::Faces(zone) => zone.clone(),
-        other => panic!(
+    let zone = &scene.cases()[0].spec.contact.zone;
+    match zone.downcast::<FacesZone>() {
+        Some(faces) => faces.clone(),
+        None => panic!(
             "{}: a zone of {} is not a punch's face",
             scene.name,
-            other.kind()
+            zone.name()
         ),
     }
 }

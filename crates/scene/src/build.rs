@@ -141,7 +141,7 @@ impl Case {
     pub(crate) fn build_pair(&self) -> Result<Option<Built>, SceneError> {
         let start = std::time::Instant::now();
         let (spec, at) = (&self.spec, &self.locator);
-        let crate::zone::ZoneSpec::Mesh(zone) = &spec.contact.zone else {
+        let Some(zone) = spec.contact.zone.downcast::<crate::zone::MeshZone>() else {
             return Ok(None);
         };
         let [Some(first), Some(second)] =

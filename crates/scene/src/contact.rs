@@ -6,17 +6,20 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::bodies::BodyKind;
+use crate::chosen::Chosen;
 use crate::gap::{Flat, GapKind, Measured};
 pub use crate::load::LoadSpec;
-use crate::registry::{self, Chosen};
-use crate::zone::ZoneSpec;
+use crate::registry;
+use crate::zone::{MeshZone, ZoneKind};
 
 /// How the bodies meet (`[contact]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// The proposed contact zone Ω and its discretisation, shared by both bodies.
-    pub zone: ZoneSpec,
+    /// The proposed contact zone Ω and its discretisation, shared by both bodies: a zone kind
+    /// of the scene's [`crate::Registry`].
+    #[serde(skip_deserializing, default = "crate::zone::unread")]
+    pub zone: Chosen<dyn ZoneKind>,
     /// The initial gap h(x) between the bodies: a gap kind of the scene's
     /// [`crate::Registry`], read with the bodies (default: measured between two imported
     /// meshes on a zone of meshes, else flat).
@@ -29,11 +32,15 @@ pub struct ContactSpec {
 
 /// The gap of a scene that gives none: the distance measured between two imported meshes on a
 /// zone of meshes, else flat.
-pub(crate) fn default_for(zone: &ZoneSpec, bodies: &[Chosen<dyn BodyKind>]) -> Chosen<dyn GapKind> {
+pub(crate) fn default_for(
+    zone: &Chosen<dyn ZoneKind>,
+    bodies: &[Chosen<dyn BodyKind>],
+) -> Chosen<dyn GapKind> {
     let imported = bodies.iter().filter(|b| b.imported()).count();
-    match zone {
-        ZoneSpec::Mesh(_) if imported == 2 => chosen("measured", Measured {}),
-        _ => flat(),
+    if zone.downcast::<MeshZone>().is_some() && imported == 2 {
+        chosen("measured", Measured {})
+    } else {
+        flat()
     }
 }
 

@@ -13,9 +13,10 @@ use contopt_core::{check, Error, Result};
 use contopt_roller::{Crown, CrownSettings, Roller};
 use serde::{Deserialize, Serialize};
 
+use crate::chosen::Chosen;
 use crate::load::LoadSpec;
 use crate::reference::{ClosedForm, Hertz, ReferenceCase};
-use crate::zone::{Layout, Surface, ZoneSpec};
+use crate::zone::{GridZone, Layout, MeshZone, Surface, ZoneKind};
 
 /// A point this far beyond a flat punch's rim, relative to its radius, is under it: the
 /// round-off of the points' coordinates.
@@ -28,11 +29,11 @@ const SPHERE_REACH: f64 = 1.5;
 /// of a gap. Its name is the one it is registered under ([`crate::Registry::with_gap`]).
 pub trait GapKind: Send + Sync {
     /// Refuses a gap the zone cannot carry, and sizes that are not positive and finite.
-    fn check(&self, zone: &ZoneSpec) -> Result<()>;
+    fn check(&self, zone: &Chosen<dyn ZoneKind>) -> Result<()>;
 
     /// The gap h(x) at interface point `x` of `zone` \[mm\]; infinite where the gap is open
     /// for good. `roller` is a roller gap's roller, its crown built.
-    fn at(&self, zone: &ZoneSpec, x: [f64; 3], roller: Option<&Roller>) -> Result<f64>;
+    fn at(&self, zone: &Chosen<dyn ZoneKind>, x: [f64; 3], roller: Option<&Roller>) -> Result<f64>;
 
     /// The cell size of a grid of `cells` that the gap spans by itself, for a zone without
     /// `cell_mm`, given Hertz's contact and a roller gap's roller; `None` (the default) for a
@@ -51,7 +52,7 @@ pub trait GapKind: Send + Sync {
     /// or plane thickness is `length` \[mm\]; `None` (the default) where Hertz does not apply.
     fn hertz(
         &self,
-        _zone: &ZoneSpec,
+        _zone: &Chosen<dyn ZoneKind>,
         _e_star: f64,
         _force: Option<f64>,
         _approach: Option<f64>,
@@ -64,14 +65,20 @@ pub trait GapKind: Send + Sync {
     /// the edge point `x`, one `cell` further out: then contact could go on beyond the zone,
     /// and contact at its edge means the zone is too small. Yes by default; a gap's own edges
     /// (a flat punch's rim, a roller's ends) say no.
-    fn goes_on(&self, _zone: &ZoneSpec, _x: [f64; 3], _axis: usize, _cell: f64) -> bool {
+    fn goes_on(
+        &self,
+        _zone: &Chosen<dyn ZoneKind>,
+        _x: [f64; 3],
+        _axis: usize,
+        _cell: f64,
+    ) -> bool {
         true
     }
 
     /// Whether the gap is finite at `x`, a point past the end of an imported body's contact
     /// faces: then contact could go on beyond them. By default, where [`GapKind::at`] is
     /// finite without a roller (or has no value).
-    fn finite_at(&self, zone: &ZoneSpec, x: [f64; 3]) -> bool {
+    fn finite_at(&self, zone: &Chosen<dyn ZoneKind>, x: [f64; 3]) -> bool {
         self.at(zone, x, None).map_or(true, f64::is_finite)
     }
 
@@ -100,11 +107,16 @@ pub struct Flat {}
 
 impl GapKind for Flat {
     /// Any zone.
-    fn check(&self, _zone: &ZoneSpec) -> Result<()> {
+    fn check(&self, _zone: &Chosen<dyn ZoneKind>) -> Result<()> {
         Ok(())
     }
 
-    fn at(&self, _zone: &ZoneSpec, _x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+    fn at(
+        &self,
+        _zone: &Chosen<dyn ZoneKind>,
+        _x: [f64; 3],
+        _roller: Option<&Roller>,
+    ) -> Result<f64> {
         Ok(0.0)
     }
 }
@@ -119,7 +131,7 @@ pub struct Sphere {
 
 impl GapKind for Sphere {
     /// A grid or an axisymmetric zone; a plane one meets a cylinder.
-    fn check(&self, zone: &ZoneSpec) -> Result<()> {
+    fn check(&self, zone: &Chosen<dyn ZoneKind>) -> Result<()> {
         match zone.surface() {
             Surface::Grid | Surface::Axisymmetric => positive_radius(self.radius_mm),
             Surface::Plane => Err(Error::invalid(
@@ -130,7 +142,12 @@ impl GapKind for Sphere {
         }
     }
 
-    fn at(&self, zone: &ZoneSpec, x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+    fn at(
+        &self,
+        zone: &Chosen<dyn ZoneKind>,
+        x: [f64; 3],
+        _roller: Option<&Roller>,
+    ) -> Result<f64> {
         let r = zone.surface().radius(x);
         Ok(r * r / (2.0 * self.radius_mm))
     }
@@ -151,7 +168,7 @@ impl GapKind for Sphere {
     /// Johnson, eqs. 3.39–3.41, under a force or an approach.
     fn hertz(
         &self,
-        zone: &ZoneSpec,
+        zone: &Chosen<dyn ZoneKind>,
         e_star: f64,
         force: Option<f64>,
         approach: Option<f64>,
@@ -184,7 +201,7 @@ pub struct Cylinder {
 
 impl GapKind for Cylinder {
     /// A grid or a plane zone; an axisymmetric one meets a sphere.
-    fn check(&self, zone: &ZoneSpec) -> Result<()> {
+    fn check(&self, zone: &Chosen<dyn ZoneKind>) -> Result<()> {
         match zone.surface() {
             Surface::Grid | Surface::Plane => positive_radius(self.radius_mm),
             Surface::Axisymmetric => Err(Error::invalid(
@@ -195,7 +212,12 @@ impl GapKind for Cylinder {
         }
     }
 
-    fn at(&self, zone: &ZoneSpec, x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+    fn at(
+        &self,
+        zone: &Chosen<dyn ZoneKind>,
+        x: [f64; 3],
+        _roller: Option<&Roller>,
+    ) -> Result<f64> {
         let across = if zone.surface() == Surface::Grid {
             x[1]
         } else {
@@ -207,7 +229,7 @@ impl GapKind for Cylinder {
     /// Johnson, eqs. 4.43–4.45, under a force spread over `length`.
     fn hertz(
         &self,
-        zone: &ZoneSpec,
+        zone: &Chosen<dyn ZoneKind>,
         e_star: f64,
         force: Option<f64>,
         _approach: Option<f64>,
@@ -220,8 +242,8 @@ impl GapKind for Cylinder {
     }
 
     /// Its ends along a grid (the grid is its length) are the gap's own.
-    fn goes_on(&self, zone: &ZoneSpec, _x: [f64; 3], axis: usize, _cell: f64) -> bool {
-        !(matches!(zone, ZoneSpec::Grid(_)) && axis == 0)
+    fn goes_on(&self, zone: &Chosen<dyn ZoneKind>, _x: [f64; 3], axis: usize, _cell: f64) -> bool {
+        !(zone.surface() == Surface::Grid && axis == 0)
     }
 
     /// Hertz's line contact on a plane zone, where the plan found it (a cylinder along a grid
@@ -243,18 +265,23 @@ pub struct FlatPunch {
 
 impl FlatPunch {
     /// Whether `x` lies under the punch, its rim's round-off included.
-    fn under(&self, zone: &ZoneSpec, x: [f64; 3]) -> bool {
+    fn under(&self, zone: &Chosen<dyn ZoneKind>, x: [f64; 3]) -> bool {
         zone.surface().radius(x) <= self.radius_mm * (1.0 + RIM_ROUND_OFF)
     }
 }
 
 impl GapKind for FlatPunch {
     /// Any zone; its radius positive and finite.
-    fn check(&self, _zone: &ZoneSpec) -> Result<()> {
+    fn check(&self, _zone: &Chosen<dyn ZoneKind>) -> Result<()> {
         positive_radius(self.radius_mm)
     }
 
-    fn at(&self, zone: &ZoneSpec, x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+    fn at(
+        &self,
+        zone: &Chosen<dyn ZoneKind>,
+        x: [f64; 3],
+        _roller: Option<&Roller>,
+    ) -> Result<f64> {
         Ok(if self.under(zone, x) {
             0.0
         } else {
@@ -264,7 +291,7 @@ impl GapKind for FlatPunch {
 
     /// Its rim is the gap's own edge: contact goes on only while the point one cell further
     /// out is under the punch.
-    fn goes_on(&self, zone: &ZoneSpec, x: [f64; 3], axis: usize, cell: f64) -> bool {
+    fn goes_on(&self, zone: &Chosen<dyn ZoneKind>, x: [f64; 3], axis: usize, cell: f64) -> bool {
         let mut beyond = x;
         beyond[axis] += cell * x[axis].signum();
         self.under(zone, beyond)
@@ -308,10 +335,10 @@ pub struct Measured {}
 
 impl GapKind for Measured {
     /// A zone of imported meshes only.
-    fn check(&self, zone: &ZoneSpec) -> Result<()> {
-        match zone {
-            ZoneSpec::Mesh(_) => Ok(()),
-            _ => Err(Error::invalid(
+    fn check(&self, zone: &Chosen<dyn ZoneKind>) -> Result<()> {
+        match zone.downcast::<MeshZone>() {
+            Some(_) => Ok(()),
+            None => Err(Error::invalid(
                 "kind",
                 "measured",
                 "is the distance between two imported meshes: a zone of kind \"mesh\"",
@@ -320,7 +347,12 @@ impl GapKind for Measured {
     }
 
     /// No formula: the pairing measures it.
-    fn at(&self, _zone: &ZoneSpec, _x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+    fn at(
+        &self,
+        _zone: &Chosen<dyn ZoneKind>,
+        _x: [f64; 3],
+        _roller: Option<&Roller>,
+    ) -> Result<f64> {
         Err(Error::invalid(
             "kind",
             "measured",
@@ -329,7 +361,7 @@ impl GapKind for Measured {
     }
 
     /// It goes on wherever the meshes do.
-    fn finite_at(&self, _zone: &ZoneSpec, _x: [f64; 3]) -> bool {
+    fn finite_at(&self, _zone: &Chosen<dyn ZoneKind>, _x: [f64; 3]) -> bool {
         true
     }
 
@@ -415,14 +447,14 @@ impl RollerGap {
 
 impl GapKind for RollerGap {
     /// A grid of an odd number of cells across, at least 3; its sizes positive and finite.
-    fn check(&self, zone: &ZoneSpec) -> Result<()> {
-        let ZoneSpec::Grid(grid) = zone else {
+    fn check(&self, zone: &Chosen<dyn ZoneKind>) -> Result<()> {
+        let Some(grid) = zone.downcast::<GridZone>() else {
             return Err(Error::invalid(
                 "kind",
                 "roller",
                 format!(
                     "a roller lies on a grid of cells (zone kind \"grid\"), not on {}",
-                    zone.kind()
+                    zone.name()
                 ),
             ));
         };
@@ -442,7 +474,12 @@ impl GapKind for RollerGap {
 
     /// Across the contact the two curvatures, along the axis the crown's drop and the tilt;
     /// open past the roller's ends.
-    fn at(&self, _zone: &ZoneSpec, x: [f64; 3], roller: Option<&Roller>) -> Result<f64> {
+    fn at(
+        &self,
+        _zone: &Chosen<dyn ZoneKind>,
+        x: [f64; 3],
+        roller: Option<&Roller>,
+    ) -> Result<f64> {
         let roller = roller
             .ok_or_else(|| Error::invalid("kind", "roller", "a roller gap needs its roller"))?;
         if x[0].abs() > 0.5 * self.length_mm {
@@ -469,7 +506,7 @@ impl GapKind for RollerGap {
     /// Hertz's line contact of its effective radius under the force over its length.
     fn hertz(
         &self,
-        _zone: &ZoneSpec,
+        _zone: &Chosen<dyn ZoneKind>,
         e_star: f64,
         force: Option<f64>,
         _approach: Option<f64>,
@@ -479,7 +516,7 @@ impl GapKind for RollerGap {
     }
 
     /// Its ends are the gap's own.
-    fn goes_on(&self, _zone: &ZoneSpec, _x: [f64; 3], axis: usize, _cell: f64) -> bool {
+    fn goes_on(&self, _zone: &Chosen<dyn ZoneKind>, _x: [f64; 3], axis: usize, _cell: f64) -> bool {
         axis != 0
     }
 
@@ -536,10 +573,8 @@ mod tests {
             a.written(),
             &serde_json::json!({ "sphere": { "radius_mm": 10.0 } })
         );
-        let zone = ZoneSpec::Rings(crate::RingsZone {
-            rings: 4,
-            radius_mm: 1.0,
-        });
+        let zone = Node::parse_toml("zone = { rings = { rings = 4, radius_mm = 1.0 } }").unwrap();
+        let zone = (standard.zone(zone.get("zone").unwrap(), "contact.zone")).unwrap();
         assert_eq!(b.at(&zone, [2.0, 0.0, 0.0], None).unwrap(), 0.2);
         let bare = read("gap = \"flat\"");
         assert_eq!(bare, read("gap = { kind = \"flat\" }"));
@@ -579,11 +614,16 @@ mod tests {
     }
 
     impl GapKind for Wedge {
-        fn check(&self, _zone: &ZoneSpec) -> Result<()> {
+        fn check(&self, _zone: &Chosen<dyn ZoneKind>) -> Result<()> {
             check::positive("slope", self.slope).map(|_| ())
         }
 
-        fn at(&self, zone: &ZoneSpec, x: [f64; 3], _roller: Option<&Roller>) -> Result<f64> {
+        fn at(
+            &self,
+            zone: &Chosen<dyn ZoneKind>,
+            x: [f64; 3],
+            _roller: Option<&Roller>,
+        ) -> Result<f64> {
             Ok(self.slope * zone.surface().radius(x))
         }
     }

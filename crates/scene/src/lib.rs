@@ -28,6 +28,7 @@ mod bodies;
 mod build;
 mod bundled;
 mod cases;
+mod chosen;
 mod contact;
 mod error;
 mod fields;
@@ -80,7 +81,9 @@ pub use report::PENETRATION_WARNING;
 pub use run::Run;
 pub use spec::{CaseSpec, ContactSpec, LoadSpec, OptimisationSpec, OutputSpec};
 pub use subsurface::{SectionSpec, SubsurfaceSpec};
-pub use zone::{FacesZone, GridZone, Layout, MeshZone, RingsZone, StripsZone, Surface, ZoneSpec};
+pub use zone::{
+    FacesZone, GridZone, Layout, MeshZone, Natural, RingsZone, StripsZone, Surface, ZoneKind,
+};
 
 pub use contopt_results::{CaseReport, Report};
 

@@ -1,7 +1,8 @@
-//! The kinds a scene may name — bodies (`[[body]] kind`), initial gaps (`contact.gap`),
-//! designs (`[optimisation] method`) and contact solvers (`solver`) — held in a [`Registry`] value. [`Registry::standard`] has
-//! the library's own; a crate of one's own adds its kinds by type and name and hands the
-//! registry to the scene reader ([`Registry::load`], [`Registry::parse`]) and to the command
+//! The kinds a scene may name — bodies (`[[body]] kind`), contact zones (`contact.zone`),
+//! initial gaps (`contact.gap`), designs (`[optimisation] method`) and contact solvers
+//! (`solver`) — held in a [`Registry`] value. [`Registry::standard`] has the library's own; a
+//! crate of one's own adds its kinds by type and name and hands the registry to the scene
+//! reader ([`Registry::load`], [`Registry::parse`]) and to the command
 //! line (`contopt_cli::main_with`), without editing this crate:
 //!
 //! ```
@@ -18,10 +19,8 @@
 //! names. A kind is read from its settings with serde (its own `Deserialize`, with its own
 //! defaults), and written back into `result.json` with its `Serialize`.
 
-use std::any::Any;
 use std::fmt;
 use std::marker::PhantomData;
-use std::ops::Deref;
 use std::sync::Arc;
 
 use contopt_contact::{ContactSolver, SolverSettings};
@@ -31,8 +30,10 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use crate::bodies::{BodyKind, FeBase, FeBlock, FeMesh, FePunch, HalfSpaceBody, Rigid, WinklerBed};
+pub use crate::chosen::Chosen;
 use crate::gap::{Cylinder, Flat, FlatPunch, GapKind, Measured, RollerGap, Sphere};
 use crate::methods::{CircularSearch, Design, EnvelopeSplit, FujiwaraKawaseSearch, Gap};
+use crate::zone::{FacesZone, GridZone, MeshZone, RingsZone, StripsZone, ZoneKind};
 
 /// The key of a table that names its kind.
 const KIND_KEY: &str = "kind";
@@ -46,87 +47,6 @@ pub trait SolverKind: Send + Sync {
 impl SolverKind for SolverSettings {
     fn build(&self) -> contopt_core::Result<Box<dyn ContactSolver>> {
         SolverSettings::build(self)
-    }
-}
-
-/// A kind a scene chose: its registered name, its settings as they are written back, and the
-/// kind itself. Two choices are the same when their names and settings are: the identity of
-/// a kind is a value, not its text.
-pub struct Chosen<T: ?Sized> {
-    name: &'static str,
-    written: serde_json::Value,
-    kind: Arc<T>,
-    /// The settings as their own type, for [`Chosen::downcast`].
-    settings: Arc<dyn Any + Send + Sync>,
-}
-
-impl<T: ?Sized> Chosen<T> {
-    /// A kind chosen as `name`, written back as `written`.
-    pub(crate) fn new<S: Any + Send + Sync>(
-        name: &'static str,
-        written: serde_json::Value,
-        kind: Arc<T>,
-        settings: Arc<S>,
-    ) -> Self {
-        Self {
-            name,
-            written,
-            kind,
-            settings,
-        }
-    }
-
-    /// The settings as the type `S` they were read into (the kind's own type, or the enum of a
-    /// family of kinds); `None` when they are of another type.
-    pub fn downcast<S: Any>(&self) -> Option<&S> {
-        self.settings.downcast_ref()
-    }
-
-    /// The kind's registered name.
-    pub fn name(&self) -> &'static str {
-        self.name
-    }
-
-    /// Its settings as `result.json` writes them (`{ "<name>": { … } }`).
-    pub fn written(&self) -> &serde_json::Value {
-        &self.written
-    }
-}
-
-impl<T: ?Sized> Deref for Chosen<T> {
-    type Target = T;
-
-    fn deref(&self) -> &T {
-        &self.kind
-    }
-}
-
-impl<T: ?Sized> Clone for Chosen<T> {
-    fn clone(&self) -> Self {
-        Self {
-            name: self.name,
-            written: self.written.clone(),
-            kind: self.kind.clone(),
-            settings: self.settings.clone(),
-        }
-    }
-}
-
-impl<T: ?Sized> PartialEq for Chosen<T> {
-    fn eq(&self, other: &Self) -> bool {
-        self.name == other.name && self.written == other.written
-    }
-}
-
-impl<T: ?Sized> fmt::Debug for Chosen<T> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.written)
-    }
-}
-
-impl<T: ?Sized> Serialize for Chosen<T> {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        self.written.serialize(serializer)
     }
 }
 
@@ -405,10 +325,12 @@ fn variants<E: DeserializeOwned>() -> &'static [&'static str] {
     names.0.unwrap_or(&[])
 }
 
-/// The kinds a scene may name: bodies, initial gaps, designs and contact solvers.
+/// The kinds a scene may name: bodies, contact zones, initial gaps, designs and contact
+/// solvers.
 #[derive(Clone)]
 pub struct Registry {
     bodies: Kinds<dyn BodyKind>,
+    zones: Kinds<dyn ZoneKind>,
     gaps: Kinds<dyn GapKind>,
     designs: Kinds<dyn Design>,
     solvers: Kinds<dyn SolverKind>,
@@ -418,6 +340,7 @@ impl fmt::Debug for Registry {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Registry")
             .field("bodies", &self.bodies.names().collect::<Vec<_>>())
+            .field("zones", &self.zones.names().collect::<Vec<_>>())
             .field("gaps", &self.gaps.names().collect::<Vec<_>>())
             .field("designs", &self.designs.names().collect::<Vec<_>>())
             .field("solvers", &self.solvers.names().collect::<Vec<_>>())
@@ -437,6 +360,7 @@ impl Registry {
     pub fn empty() -> Self {
         Self {
             bodies: Kinds::new("body kind"),
+            zones: Kinds::new("zone kind"),
             gaps: Kinds::new("gap kind"),
             designs: Kinds::new("design method"),
             solvers: Kinds::new("contact solver"),
@@ -444,7 +368,8 @@ impl Registry {
     }
 
     /// The library's kinds: the bodies `rigid`, `half_space`, `fe_base`, `fe_punch`,
-    /// `fe_block`, `winkler`, `fe_mesh`; the gaps `flat`, `sphere`, `cylinder`, `flat_punch`,
+    /// `fe_block`, `winkler`, `fe_mesh`; the zones `grid`, `rings`, `strips`, `faces`, `mesh`;
+    /// the gaps `flat`, `sphere`, `cylinder`, `flat_punch`,
     /// `roller`, `measured`; the designs of [`OptimisationMethod`] (`given_load`,
     /// `given_displacement`, `linear_programme`, `load_split`) and a roller's
     /// `envelope_split`, `profile_search` and `circular_search`; the solvers of
@@ -459,6 +384,11 @@ impl Registry {
             .with_body::<FeBlock>("fe_block")
             .with_body::<WinklerBed>("winkler")
             .with_body::<FeMesh>("fe_mesh")
+            .with_zone::<GridZone>("grid")
+            .with_zone::<RingsZone>("rings")
+            .with_zone::<StripsZone>("strips")
+            .with_zone::<FacesZone>("faces")
+            .with_zone::<MeshZone>("mesh")
             .with_gap::<Flat>("flat")
             .with_gap::<Sphere>("sphere")
             .with_gap::<Cylinder>("cylinder")
@@ -479,6 +409,15 @@ impl Registry {
     {
         self.bodies
             .add(name, reader::<dyn BodyKind, K>(|kind| kind));
+        self
+    }
+
+    /// Registers the zone kind `K` as `name` (replacing a kind of that name).
+    pub fn with_zone<K>(mut self, name: &'static str) -> Self
+    where
+        K: ZoneKind + DeserializeOwned + Serialize + 'static,
+    {
+        self.zones.add(name, reader::<dyn ZoneKind, K>(|kind| kind));
         self
     }
 
@@ -552,6 +491,11 @@ impl Registry {
         self.bodies.names()
     }
 
+    /// The registered zone kinds' names.
+    pub fn zone_kinds(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.zones.names()
+    }
+
     /// The registered gap kinds' names.
     pub fn gap_kinds(&self) -> impl Iterator<Item = &'static str> + '_ {
         self.gaps.names()
@@ -570,6 +514,11 @@ impl Registry {
     /// The body at `node` (path `path` in errors).
     pub(crate) fn body(&self, node: &Node, path: &str) -> Result<Chosen<dyn BodyKind>, InputError> {
         self.bodies.read(node, path)
+    }
+
+    /// The contact zone at `node`.
+    pub(crate) fn zone(&self, node: &Node, path: &str) -> Result<Chosen<dyn ZoneKind>, InputError> {
+        self.zones.read(node, path)
     }
 
     /// The gap at `node`.

@@ -6,8 +6,8 @@
 //!
 //! Choices are serde's externally tagged enums, written in a scene either way:
 //! `gap = { kind = "sphere", radius_mm = 10.0 }` or `gap = { sphere = { radius_mm = 10.0 } }`,
-//! and a choice without settings as a bare name, `solver = "auto"`. The bodies, the gap, the
-//! design method and the solver are the kinds of the scene's [`Registry`], read by it
+//! and a choice without settings as a bare name, `solver = "auto"`. The bodies, the zone, the
+//! gap, the design method and the solver are the kinds of the scene's [`Registry`], read by it
 //! ([`CaseSpec::read`]).
 
 use contopt_input::{InputError, Node, Value};
@@ -72,19 +72,22 @@ pub struct CaseSpec {
 
 /// Where the registry's kinds stand in a case's tree.
 const BODY: &str = "body";
+const ZONE: &str = "contact.zone";
 const GAP: &str = "contact.gap";
 const SOLVER: &str = "solver";
 const METHOD: &str = "optimisation.method";
 
 impl CaseSpec {
-    /// Reads a case's tree: its bodies, gap, design method and solver through `registry`, the
-    /// rest by serde; every error at its key. A case without a gap has the default of its zone
-    /// and bodies ([`crate::contact::default_for`]).
+    /// Reads a case's tree: its bodies, zone, gap, design method and solver through
+    /// `registry`, the rest by serde; every error at its key. A case without a gap has the
+    /// default of its zone and bodies ([`crate::contact::default_for`]).
     pub(crate) fn read(tree: &Node, registry: &Registry) -> Result<Self, InputError> {
         let mut rest = tree.clone();
-        let [bodies, gap, solver, method] =
-            [BODY, GAP, SOLVER, METHOD].map(|path| rest.remove(path));
+        let [bodies, zone, gap, solver, method] =
+            [BODY, ZONE, GAP, SOLVER, METHOD].map(|path| rest.remove(path));
         let mut spec: CaseSpec = rest.deserialize()?;
+        let zone = zone.ok_or_else(|| missing(tree, ZONE))?;
+        spec.contact.zone = registry.zone(&zone, ZONE)?;
         let gap = gap.map(|node| registry.gap(&node, GAP)).transpose()?;
         let bodies = bodies.ok_or_else(|| missing(tree, BODY))?;
         let Value::Array(items) = bodies.value() else {

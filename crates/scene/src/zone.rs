@@ -2,39 +2,49 @@
 //! both bodies, so that their points pair one to one. A grid of cells on a half-space
 //! surface, rings of an axisymmetric surface, strips of a plane one, the element faces of
 //! finite-element bodies along r (or x), or the contact faces of imported meshes
-//! ([`MeshSurface`]).
+//! ([`MeshSurface`]). Each kind is a type that implements [`ZoneKind`], registered by its name
+//! in a [`crate::Registry`] ([`crate::Registry::with_zone`]).
 
 use std::f64::consts::PI;
+use std::sync::Arc;
 
-use contopt_core::{check, Error, Geometry, Interface, Result};
+use contopt_core::{check, Error, Interface, Result};
 use contopt_fem::{Analysis, ElementKind, Spacing, MAX_AXIS_ELEMENTS};
 use contopt_greens::{AxisymmetricHalfSpace, HalfPlane, HalfSpace};
 
+use crate::chosen::Chosen;
 use crate::mesh_surface::MeshSurface;
 use serde::{Deserialize, Serialize};
 
 /// The most rings or strips of a zone: their dense surface matrix grows with the square.
 pub const MAX_LINE_CELLS: usize = 100_000;
 
-/// The contact zone and its discretisation.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ZoneSpec {
-    /// A grid of cells on a flat surface, centred on the origin: x and y along the surface,
-    /// z into the body below.
-    Grid(GridZone),
-    /// Rings of an axisymmetric surface out to a radius, narrowing towards the rim.
-    Rings(RingsZone),
-    /// Strips across the edge of a plane body, narrowing towards both ends.
-    Strips(StripsZone),
-    /// The element faces of finite-element bodies along r (or x) from the axis (or the plane
-    /// of symmetry): the punch's face, which both bodies mesh alike.
-    Faces(FacesZone),
-    /// The contact faces of bodies meshed apart (`fe_mesh`): the first body's contact faces
-    /// paired with the second's, or sampled at their Gauss points for a partner that stands
-    /// on them.
-    Mesh(MeshZone),
+/// What a zone kind says of itself: its layout with every size known, the analysis of the
+/// bodies on it and what it says of a gap's surface coordinates. Its name is the one it is
+/// registered under ([`crate::Registry::with_zone`]); a body that needs a particular zone asks
+/// for it by type ([`crate::Chosen::downcast`]).
+pub trait ZoneKind: Send + Sync {
+    /// The zone with its sizes resolved; `natural` gives the cell size of a grid of so many
+    /// cells that the gap spans by itself (for a grid without `cell_mm`); `surveyed` is a mesh
+    /// zone's survey of its bodies' meshes ([`MeshSurface`]), which the caller makes first.
+    fn layout(&self, natural: &Natural, surveyed: Option<MeshSurface>) -> Result<Layout>;
+
+    /// The analysis of the bodies on it: `None` on a grid (3-D), axisymmetric on rings.
+    fn analysis(&self) -> Option<Analysis>;
+
+    /// What it says of a gap's surface coordinates: a grid without an analysis, else as its
+    /// analysis.
+    fn surface(&self) -> Surface {
+        match self.analysis() {
+            None => Surface::Grid,
+            Some(Analysis::Axisymmetric) => Surface::Axisymmetric,
+            Some(_) => Surface::Plane,
+        }
+    }
 }
+
+/// The cell size of a grid of so many cells that the gap spans by itself, if it does.
+pub type Natural<'a> = dyn Fn([usize; 2]) -> Result<Option<[f64; 2]>> + 'a;
 
 /// A zone of imported meshes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -185,85 +195,6 @@ pub enum Layout {
     Mesh(MeshSurface),
 }
 
-impl ZoneSpec {
-    /// The zone with its sizes resolved; `natural` gives the cell size of a grid of so many
-    /// cells that the gap spans by itself (for a grid without `cell_mm`); `surveyed` is a mesh
-    /// zone's survey of its bodies' meshes ([`MeshSurface`]), which the caller makes first.
-    pub fn layout(
-        &self,
-        natural: impl FnOnce([usize; 2]) -> Result<Option<[f64; 2]>>,
-        surveyed: Option<MeshSurface>,
-    ) -> Result<Layout> {
-        Ok(match self {
-            ZoneSpec::Grid(g) => grid_layout(g, natural)?,
-            ZoneSpec::Rings(r) => {
-                check::positive("radius_mm", r.radius_mm)?;
-                let count = check::count("rings", r.rings, 1, MAX_LINE_CELLS)?;
-                Layout::Rings(clustered(count, r.radius_mm, |t| t.sin(), 0.5))
-            }
-            ZoneSpec::Strips(s) => {
-                check::positive("half_width_mm", s.half_width_mm)?;
-                let count = check::count("strips", s.strips, 1, MAX_LINE_CELLS)?;
-                let thickness = plane_thickness(&s.analysis)?;
-                Layout::Strips {
-                    edges: clustered(count, s.half_width_mm, |t| -t.cos(), 1.0),
-                    thickness,
-                }
-            }
-            ZoneSpec::Faces(f) => {
-                f.spacing()?;
-                check_analysis(&f.analysis)?;
-                Layout::Faces(f.clone())
-            }
-            ZoneSpec::Mesh(m) => {
-                check_analysis(&m.analysis)?;
-                Layout::Mesh(surveyed.ok_or_else(|| {
-                    Error::invalid(
-                        "kind",
-                        "mesh",
-                        "a zone of imported meshes is laid out from its bodies' meshes: give \
-                         an fe_mesh body",
-                    )
-                })?)
-            }
-        })
-    }
-
-    /// How the surface measure is formed.
-    pub fn geometry(&self) -> Geometry {
-        match self {
-            ZoneSpec::Grid(_) => Geometry::Surface,
-            ZoneSpec::Rings(_) => Geometry::Axisymmetric,
-            ZoneSpec::Strips(s) => analysis_geometry(&s.analysis),
-            ZoneSpec::Faces(f) => analysis_geometry(&f.analysis),
-            ZoneSpec::Mesh(m) => analysis_geometry(&m.analysis),
-        }
-    }
-
-    /// What it says of a gap's surface coordinates.
-    pub fn surface(&self) -> Surface {
-        match self {
-            ZoneSpec::Grid(_) => Surface::Grid,
-            ZoneSpec::Rings(_) => Surface::Axisymmetric,
-            ZoneSpec::Strips(_) => Surface::Plane,
-            ZoneSpec::Faces(f) if f.analysis == Analysis::Axisymmetric => Surface::Axisymmetric,
-            ZoneSpec::Mesh(m) if m.analysis == Analysis::Axisymmetric => Surface::Axisymmetric,
-            ZoneSpec::Faces(_) | ZoneSpec::Mesh(_) => Surface::Plane,
-        }
-    }
-
-    /// Its name in messages.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            ZoneSpec::Grid(_) => "grid",
-            ZoneSpec::Rings(_) => "rings",
-            ZoneSpec::Strips(_) => "strips",
-            ZoneSpec::Faces(_) => "faces",
-            ZoneSpec::Mesh(_) => "mesh",
-        }
-    }
-}
-
 impl Layout {
     /// The surface of the body below, when the zone alone defines it (a grid, rings, strips);
     /// `None` for finite-element faces, whose body meshes them.
@@ -363,37 +294,114 @@ impl Layout {
     }
 }
 
-/// A grid's layout: the cell size given, or the gap's own extent over the cells.
-fn grid_layout(
-    g: &GridZone,
-    natural: impl FnOnce([usize; 2]) -> Result<Option<[f64; 2]>>,
-) -> Result<Layout> {
-    let [nx, ny] = g.cells;
-    check::count("cells[0]", nx, 1, usize::MAX)?;
-    check::count("cells[1]", ny, 1, usize::MAX)?;
-    let cell = match g.cell_mm {
-        Some([dx, dy]) => [
-            check::positive("cell_mm[0]", dx)?,
-            check::positive("cell_mm[1]", dy)?,
-        ],
-        None => natural([nx, ny])?.ok_or_else(|| {
+impl ZoneKind for GridZone {
+    /// The cell size given, or the gap's own extent over the cells.
+    fn layout(&self, natural: &Natural, _surveyed: Option<MeshSurface>) -> Result<Layout> {
+        let [nx, ny] = self.cells;
+        check::count("cells[0]", nx, 1, usize::MAX)?;
+        check::count("cells[1]", ny, 1, usize::MAX)?;
+        let cell = match self.cell_mm {
+            Some([dx, dy]) => [
+                check::positive("cell_mm[0]", dx)?,
+                check::positive("cell_mm[1]", dy)?,
+            ],
+            None => natural([nx, ny])?.ok_or_else(|| {
+                Error::invalid(
+                    "cell_mm",
+                    "missing",
+                    "give the cell size: this gap has no extent of its own to span",
+                )
+            })?,
+        };
+        Ok(Layout::Grid {
+            nx,
+            ny,
+            dx: cell[0],
+            dy: cell[1],
+            origin: [
+                -0.5 * (nx as f64 - 1.0) * cell[0],
+                -0.5 * (ny as f64 - 1.0) * cell[1],
+            ],
+        })
+    }
+
+    /// A 3-D grid.
+    fn analysis(&self) -> Option<Analysis> {
+        None
+    }
+}
+
+impl ZoneKind for RingsZone {
+    /// `rings` + 1 radii a·sin(πk/2n), narrowing towards the rim.
+    fn layout(&self, _natural: &Natural, _surveyed: Option<MeshSurface>) -> Result<Layout> {
+        check::positive("radius_mm", self.radius_mm)?;
+        let count = check::count("rings", self.rings, 1, MAX_LINE_CELLS)?;
+        Ok(Layout::Rings(clustered(
+            count,
+            self.radius_mm,
+            |t| t.sin(),
+            0.5,
+        )))
+    }
+
+    fn analysis(&self) -> Option<Analysis> {
+        Some(Analysis::Axisymmetric)
+    }
+}
+
+impl ZoneKind for StripsZone {
+    /// `strips` + 1 edges −a·cos(πk/n), narrowing towards both ends.
+    fn layout(&self, _natural: &Natural, _surveyed: Option<MeshSurface>) -> Result<Layout> {
+        check::positive("half_width_mm", self.half_width_mm)?;
+        let count = check::count("strips", self.strips, 1, MAX_LINE_CELLS)?;
+        let thickness = plane_thickness(&self.analysis)?;
+        Ok(Layout::Strips {
+            edges: clustered(count, self.half_width_mm, |t| -t.cos(), 1.0),
+            thickness,
+        })
+    }
+
+    fn analysis(&self) -> Option<Analysis> {
+        Some(self.analysis)
+    }
+
+    /// A plane line, whatever its analysis says (an axisymmetric one is refused by the
+    /// layout).
+    fn surface(&self) -> Surface {
+        Surface::Plane
+    }
+}
+
+impl ZoneKind for FacesZone {
+    /// The faces themselves, their spacing and analysis checked.
+    fn layout(&self, _natural: &Natural, _surveyed: Option<MeshSurface>) -> Result<Layout> {
+        self.spacing()?;
+        check_analysis(&self.analysis)?;
+        Ok(Layout::Faces(self.clone()))
+    }
+
+    fn analysis(&self) -> Option<Analysis> {
+        Some(self.analysis)
+    }
+}
+
+impl ZoneKind for MeshZone {
+    /// The survey of its bodies' meshes, which it needs.
+    fn layout(&self, _natural: &Natural, surveyed: Option<MeshSurface>) -> Result<Layout> {
+        check_analysis(&self.analysis)?;
+        Ok(Layout::Mesh(surveyed.ok_or_else(|| {
             Error::invalid(
-                "cell_mm",
-                "missing",
-                "give the cell size: this gap has no extent of its own to span",
+                "kind",
+                "mesh",
+                "a zone of imported meshes is laid out from its bodies' meshes: give an \
+                 fe_mesh body",
             )
-        })?,
-    };
-    Ok(Layout::Grid {
-        nx,
-        ny,
-        dx: cell[0],
-        dy: cell[1],
-        origin: [
-            -0.5 * (nx as f64 - 1.0) * cell[0],
-            -0.5 * (ny as f64 - 1.0) * cell[1],
-        ],
-    })
+        })?))
+    }
+
+    fn analysis(&self) -> Option<Analysis> {
+        Some(self.analysis)
+    }
 }
 
 /// `count` + 1 edges a·f(π k / (2 count) · span), narrowing towards the rim.
@@ -426,12 +434,140 @@ fn check_analysis(analysis: &Analysis) -> Result<()> {
     }
 }
 
-/// The geometry of the surface measure under an analysis.
-fn analysis_geometry(analysis: &Analysis) -> Geometry {
-    match *analysis {
-        Analysis::Axisymmetric => Geometry::Axisymmetric,
-        Analysis::PlaneStress { thickness } | Analysis::PlaneStrain { thickness } => {
-            Geometry::Plane { thickness }
+/// The zone of a `[contact]` before the registry has read it (serde's placeholder, replaced by
+/// [`crate::CaseSpec::read`]): a grid of no cells, which no layout accepts.
+pub(crate) fn unread() -> Chosen<dyn ZoneKind> {
+    let grid = Arc::new(GridZone {
+        cells: [0, 0],
+        cell_mm: None,
+    });
+    Chosen::new("none", serde_json::Value::Null, grid.clone(), grid)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use contopt_input::{InputError, Node};
+
+    use super::*;
+    use crate::{Format, Registry};
+
+    /// The zone of `text`'s `zone` key, read by `registry` at `contact.zone`.
+    fn read_zone(
+        registry: &Registry,
+        text: &str,
+    ) -> std::result::Result<Chosen<dyn ZoneKind>, InputError> {
+        let node = Node::parse_toml(text).unwrap();
+        registry.zone(node.get("zone").unwrap(), "contact.zone")
+    }
+
+    #[test]
+    fn spellings_read_alike() {
+        let standard = Registry::standard();
+        let read = |text| read_zone(&standard, text).unwrap();
+        let a = read("zone = { kind = \"rings\", rings = 4, radius_mm = 1.0 }");
+        let b = read("zone = { rings = { rings = 4, radius_mm = 1.0 } }");
+        assert_eq!(a, b);
+        assert_eq!(a.name(), "rings");
+        assert_eq!(
+            a.written(),
+            &serde_json::json!({ "rings": { "rings": 4, "radius_mm": 1.0 } })
+        );
+        let rings = RingsZone {
+            rings: 4,
+            radius_mm: 1.0,
+        };
+        assert_eq!(b.downcast::<RingsZone>(), Some(&rings));
+        assert_eq!(b.surface(), Surface::Axisymmetric);
+        let grid = read("zone = { kind = \"grid\", cells = [3, 5], cell_mm = [0.1, 0.2] }");
+        assert_eq!(
+            grid,
+            read("zone.grid = { cells = [3, 5], cell_mm = [0.1, 0.2] }")
+        );
+        assert_eq!(grid.surface(), Surface::Grid);
+    }
+
+    #[test]
+    fn an_unknown_zone_kind_lists_the_registered_ones() {
+        let text = "zone = { kind = \"hexagons\", cells = 7 }";
+        let e = read_zone(&Registry::standard(), text).unwrap_err();
+        assert_eq!(e.path, "contact.zone.kind");
+        assert_eq!(
+            e.message,
+            "unknown variant `hexagons`, expected one of `grid`, `rings`, `strips`, `faces`, \
+             `mesh`"
+        );
+        let names: Vec<_> = Registry::standard().zone_kinds().collect();
+        assert_eq!(names, ["grid", "rings", "strips", "faces", "mesh"]);
+    }
+
+    /// A zone of one's own: `strips` equal strips across −a…a of a plane body.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct EvenStrips {
+        strips: usize,
+        half_width_mm: f64,
+        analysis: Analysis,
+    }
+
+    impl ZoneKind for EvenStrips {
+        fn layout(&self, _natural: &Natural, _surveyed: Option<MeshSurface>) -> Result<Layout> {
+            let n = check::count("strips", self.strips, 1, MAX_LINE_CELLS)?;
+            let a = check::positive("half_width_mm", self.half_width_mm)?;
+            Ok(Layout::Strips {
+                edges: (0..=n)
+                    .map(|k| a * (2.0 * k as f64 / n as f64 - 1.0))
+                    .collect(),
+                thickness: plane_thickness(&self.analysis)?,
+            })
         }
+
+        fn analysis(&self) -> Option<Analysis> {
+            Some(self.analysis)
+        }
+    }
+
+    /// A rigid flat punch as wide as the zone (its rim the zone's edge) pressed by F into a
+    /// Winkler bed of modulus k: p = k·δ uniform, F = p·2a·t.
+    #[test]
+    fn a_zone_of_ones_own_is_read_and_carries_the_contact() {
+        let (k, force, a, t) = (50.0, 600.0, 2.0, 3.0);
+        let text = format!(
+            "name = \"even\"\n\
+             [contact]\n\
+             zone = {{ kind = \"even_strips\", strips = 10, half_width_mm = {a}, \
+             analysis = {{ plane_strain = {{ thickness_mm = {t} }} }} }}\n\
+             gap = {{ flat_punch = {{ radius_mm = {a} }} }}\n\
+             load = {{ force_n = {force} }}\n\
+             [[body]]\n\
+             kind = \"winkler\"\n\
+             modulus_mpa_per_mm = {k}\n\
+             [[body]]\n\
+             kind = \"rigid\"\n"
+        );
+        let registry = Registry::standard().with_zone::<EvenStrips>("even_strips");
+        let scene = registry
+            .parse(&text, Format::Toml, Path::new("even.toml"))
+            .unwrap();
+        let case = &scene.cases()[0];
+        assert_eq!(case.spec.contact.zone.name(), "even_strips");
+        let report = case.run().unwrap();
+        assert!(report.is_solved(), "{:?}", report.termination);
+        let p = force / (2.0 * a * t);
+        assert_eq!(report.interface.len(), 10);
+        for q in &report.interface {
+            assert!((q.p_mpa - p).abs() < 1e-9 * p, "{} against {p}", q.p_mpa);
+        }
+        let delta_um = report.approach_um.unwrap();
+        assert!(
+            (delta_um - 1e3 * p / k).abs() < 1e-9 * delta_um,
+            "δ = {delta_um} µm"
+        );
+        let unknown = Registry::standard().parse(&text, Format::Toml, Path::new("even.toml"));
+        assert!(unknown
+            .unwrap_err()
+            .to_string()
+            .contains("unknown variant `even_strips`"));
     }
 }

@@ -21,8 +21,8 @@ use contopt_core::{ElasticBody, Interface, Result};
 use contopt_greens::Pasternak;
 use contopt_results::CaseReport;
 use contopt_scene::{
-    misplaced, own_surface, BodyKind, Check, Context, Design, Designed, Placement, Registry, Takes,
-    ZoneSpec,
+    misplaced, own_surface, BodyKind, Check, Chosen, Context, Design, Designed, Placement,
+    Registry, StripsZone, Takes, ZoneKind,
 };
 use serde::{Deserialize, Serialize};
 
@@ -62,7 +62,7 @@ impl BodyKind for PasternakBed {
     /// Strips only (the layer ties neighbours along x); the moduli checked as the library
     /// checks them.
     fn check(&self, at: &Placement) -> Result<()> {
-        if !matches!(at.zone, ZoneSpec::Strips(_)) {
+        if at.zone.downcast::<StripsZone>().is_none() {
             return Err(misplaced(
                 at,
                 "a Pasternak bed lies under strips (zone kind \"strips\")",
@@ -85,7 +85,7 @@ impl BodyKind for PasternakBed {
     }
 
     /// The ground holds it.
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         Takes::Nothing
     }
 

@@ -9,8 +9,9 @@ use contopt_core::{check, ElasticBody, Error, Interface, Material, Result};
 use contopt_fem::{body_bytes, Analysis, Component, FeBody, FeModel, Mesh, Spacing};
 use serde::{Deserialize, Serialize};
 
-use super::{misplaced, BodyKind, Placement, Side, Takes};
-use crate::zone::{FacesZone, ZoneSpec};
+use super::{half_space_compliance, misplaced, BodyKind, Placement, Side, Takes};
+use crate::chosen::Chosen;
+use crate::zone::{FacesZone, ZoneKind};
 
 /// The fewest elements of a base outside the zone.
 const MIN_OUTER_ELEMENTS: usize = 4;
@@ -105,16 +106,16 @@ pub struct FeBlock {
 
 /// The faces zone of a finite-element body on its side, or why it cannot stand there.
 fn faces<'z>(at: &Placement<'z>, side: Side) -> Result<&'z FacesZone> {
-    match (at.zone, at.side == side) {
-        (ZoneSpec::Faces(f), true) => Ok(f),
-        (ZoneSpec::Faces(_), false) => Err(misplaced(
+    match (at.zone.downcast::<FacesZone>(), at.side == side) {
+        (Some(f), true) => Ok(f),
+        (Some(_), false) => Err(misplaced(
             at,
             match side {
                 Side::Below => "a base or a block lies below the zone (the first body)",
                 Side::Above => "a punch stands on the zone (the second body)",
             },
         )),
-        _ => Err(misplaced(
+        (None, _) => Err(misplaced(
             at,
             "a finite-element body meshes a zone of faces (zone kind \"faces\")",
         )),
@@ -251,9 +252,7 @@ impl BodyKind for FeBase {
     }
 
     fn memory(&self, at: &Placement) -> Option<u64> {
-        let ZoneSpec::Faces(zone) = at.zone else {
-            return None;
-        };
+        let zone = at.zone.downcast::<FacesZone>()?;
         let across = zone.elements.checked_add(MAX_OUTER_ELEMENTS)?;
         body_bytes(across, self.layers.unwrap_or(zone.elements))
     }
@@ -262,7 +261,7 @@ impl BodyKind for FeBase {
         true
     }
 
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         Takes::Nothing
     }
 
@@ -277,7 +276,7 @@ impl BodyKind for FeBase {
         Some(self.material)
     }
 
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
+    fn compliance(&self, _zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
         None
     }
 }
@@ -339,9 +338,7 @@ impl BodyKind for FePunch {
     }
 
     fn memory(&self, at: &Placement) -> Option<u64> {
-        let ZoneSpec::Faces(zone) = at.zone else {
-            return None;
-        };
+        let zone = at.zone.downcast::<FacesZone>()?;
         body_bytes(zone.elements, self.layers.unwrap_or(zone.elements))
     }
 
@@ -349,7 +346,7 @@ impl BodyKind for FePunch {
         true
     }
 
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         Takes::OwnLoad
     }
 
@@ -364,7 +361,7 @@ impl BodyKind for FePunch {
         Some(self.material)
     }
 
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
+    fn compliance(&self, _zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
         None
     }
 
@@ -430,9 +427,7 @@ impl BodyKind for FeBlock {
     }
 
     fn memory(&self, at: &Placement) -> Option<u64> {
-        let ZoneSpec::Faces(zone) = at.zone else {
-            return None;
-        };
+        let zone = at.zone.downcast::<FacesZone>()?;
         let across = zone.elements.checked_add(BLOCK_OUTER_ELEMENTS)?;
         let depth = zone.elements.min(BLOCK_OUTER_ELEMENTS) * 2 + BLOCK_DEPTH_ELEMENTS;
         body_bytes(across, depth)
@@ -442,7 +437,7 @@ impl BodyKind for FeBlock {
         true
     }
 
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         Takes::Nothing
     }
 
@@ -467,11 +462,7 @@ impl BodyKind for FeBlock {
     }
 
     /// A half-space's (1 − ν²)/E (plane stress: 1/E), which the block stands in for.
-    fn compliance(&self, zone: &ZoneSpec) -> Option<f64> {
-        let m = self.material;
-        Some(match zone {
-            ZoneSpec::Faces(f) if matches!(f.analysis, Analysis::PlaneStress { .. }) => 1.0 / m.e(),
-            _ => m.contact_compliance(),
-        })
+    fn compliance(&self, zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
+        Some(half_space_compliance(self.material, &**zone))
     }
 }

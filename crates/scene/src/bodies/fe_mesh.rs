@@ -18,9 +18,10 @@ use contopt_fem::{mesh_bytes, pairing::mortar_bytes, Analysis, Component, FeBody
 use serde::{Deserialize, Serialize};
 
 use super::{misplaced, BodyKind, Placement, Side, Takes};
+use crate::chosen::Chosen;
 use crate::mesh_surface::MeshPart;
 use crate::meshes::{Imported, MeshFiles};
-use crate::zone::{Layout, ZoneSpec};
+use crate::zone::{Layout, MeshZone, ZoneKind};
 
 /// The mesh's bounding box must agree with the extent the scene states to this fraction: a
 /// units check (metres, inches, centimetres are off by 10 or more) that allows a rounded size.
@@ -111,14 +112,14 @@ pub struct FeMesh {
 impl FeMesh {
     /// The zone's analysis, or why the body cannot stand on the zone.
     fn analysis(&self, at: &Placement) -> Result<Analysis> {
-        match at.zone {
-            ZoneSpec::Mesh(m) => Ok(m.analysis),
-            _ => Err(misplaced(
+        let mesh = at.zone.downcast::<MeshZone>().ok_or_else(|| {
+            misplaced(
                 at,
                 "an imported body stands on a zone of imported meshes: contact.zone = { kind = \
                  \"mesh\", analysis = … }",
-            )),
-        }
+            )
+        })?;
+        Ok(mesh.analysis)
     }
 
     /// The model and contact faces, every named group checked.
@@ -396,7 +397,7 @@ impl BodyKind for FeMesh {
 
     /// Its own loads, or nothing: a finite-element body takes no contact force, which would
     /// need a place to act.
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         match self.loads.is_empty() {
             true => Takes::Nothing,
             false => Takes::OwnLoad,
@@ -417,7 +418,7 @@ impl BodyKind for FeMesh {
     /// None: Hertz's nominal contact needs the load of the whole contact, which a mesh of a
     /// half model (symmetric about x = 0) carries only half of, and nothing says which a
     /// mesh is.
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
+    fn compliance(&self, _zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
         None
     }
 

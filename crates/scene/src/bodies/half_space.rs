@@ -8,9 +8,10 @@ use contopt_greens::{
 };
 use serde::{Deserialize, Serialize};
 
-use super::{misplaced, BodyKind, Placement, Side, Takes};
+use super::{half_space_compliance, misplaced, BodyKind, Placement, Side, Takes};
+use crate::chosen::Chosen;
 use crate::load::LoadSpec;
-use crate::zone::{Layout, ZoneSpec};
+use crate::zone::{GridZone, Layout, RingsZone, StripsZone, ZoneKind};
 
 /// The datum of a half-plane's deflections unless the scene sets one \[mm\].
 const DEFAULT_DATUM_MM: f64 = 100.0;
@@ -70,6 +71,11 @@ impl HalfSpaceBody {
     }
 }
 
+/// The zone's strips, when it is a zone of strips.
+fn strips<'z>(at: &Placement<'z>) -> Option<&'z StripsZone> {
+    at.zone.downcast::<StripsZone>()
+}
+
 impl BodyKind for HalfSpaceBody {
     fn name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "half-space".into())
@@ -78,17 +84,21 @@ impl BodyKind for HalfSpaceBody {
     /// A grid on either side; rings and strips below only (their bodies do not float); not on
     /// finite-element faces, whose Gauss points no Green's body shares.
     fn check(&self, at: &Placement) -> Result<()> {
-        match (at.zone, at.side) {
-            (ZoneSpec::Grid(_), _) | (ZoneSpec::Rings(_) | ZoneSpec::Strips(_), Side::Below) => {}
-            (ZoneSpec::Faces(_) | ZoneSpec::Mesh(_), _) => {
+        let grid = at.zone.downcast::<GridZone>().is_some();
+        let line = at.zone.downcast::<RingsZone>().is_some() || strips(at).is_some();
+        match (grid, line, at.side) {
+            (true, _, _) | (_, true, Side::Below) => {}
+            (_, true, Side::Above) => {
+                return Err(misplaced(at, "rings and strips lie under the zone"))
+            }
+            (false, false, _) => {
                 return Err(misplaced(
                     at,
                     "finite-element faces are met by a finite-element body, a rigid body or a bed",
                 ))
             }
-            _ => return Err(misplaced(at, "rings and strips lie under the zone")),
         }
-        if let (Some(_), false) = (self.free_ends, matches!(at.zone, ZoneSpec::Grid(_))) {
+        if let (Some(_), false) = (self.free_ends, grid) {
             return Err(Error::invalid(
                 "free_ends",
                 "given",
@@ -120,7 +130,7 @@ impl BodyKind for HalfSpaceBody {
                 2.0 + f64::EPSILON,
             )?;
         }
-        if let (Some(d), false) = (self.datum_mm, matches!(at.zone, ZoneSpec::Strips(_))) {
+        if let (Some(d), None) = (self.datum_mm, strips(at)) {
             return Err(Error::invalid(
                 "datum_mm",
                 d,
@@ -131,12 +141,10 @@ impl BodyKind for HalfSpaceBody {
     }
 
     fn memory(&self, at: &Placement) -> Option<u64> {
-        match at.zone {
-            ZoneSpec::Grid(g) if self.free_ends.is_some() => {
-                FreeEnds::grid_bytes(g.cells[0], g.cells[1])
-            }
-            ZoneSpec::Grid(g) => HalfSpace::grid_bytes(g.cells[0], g.cells[1]),
-            _ => at.layout.points().and_then(dense_surface_bytes),
+        match at.zone.downcast::<GridZone>() {
+            Some(g) if self.free_ends.is_some() => FreeEnds::grid_bytes(g.cells[0], g.cells[1]),
+            Some(g) => HalfSpace::grid_bytes(g.cells[0], g.cells[1]),
+            None => at.layout.points().and_then(dense_surface_bytes),
         }
     }
 
@@ -144,10 +152,10 @@ impl BodyKind for HalfSpaceBody {
         true
     }
 
-    fn takes(&self, zone: &ZoneSpec) -> Takes {
-        match zone {
-            ZoneSpec::Grid(_) => Takes::Force,
-            _ => Takes::Nothing,
+    fn takes(&self, zone: &Chosen<dyn ZoneKind>) -> Takes {
+        match zone.downcast::<GridZone>() {
+            Some(_) => Takes::Force,
+            None => Takes::Nothing,
         }
     }
 
@@ -195,9 +203,7 @@ impl BodyKind for HalfSpaceBody {
             },
             Layout::Rings(edges) => Box::new(AxisymmetricHalfSpace::new(name, material, edges)?),
             Layout::Strips { edges, thickness } => {
-                let ZoneSpec::Strips(strips) = at.zone else {
-                    return Err(misplaced(at, "strips need a strip zone"));
-                };
+                let strips = strips(at).ok_or_else(|| misplaced(at, "strips need a strip zone"))?;
                 let (state, _) = Self::plane(&strips.analysis)?;
                 let datum = self.datum_mm.unwrap_or(DEFAULT_DATUM_MM);
                 Box::new(HalfPlane::new(
@@ -213,14 +219,8 @@ impl BodyKind for HalfSpaceBody {
     }
 
     /// (1 − ν²)/E, or 1/E for a half-plane in plane stress.
-    fn compliance(&self, zone: &ZoneSpec) -> Option<f64> {
-        let m = self.material;
-        Some(match zone {
-            ZoneSpec::Strips(s) if matches!(s.analysis, Analysis::PlaneStress { .. }) => {
-                1.0 / m.e()
-            }
-            _ => m.contact_compliance(),
-        })
+    fn compliance(&self, zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
+        Some(half_space_compliance(self.material, &**zone))
     }
 
     fn is_half_space(&self) -> bool {

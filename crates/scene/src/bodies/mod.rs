@@ -18,10 +18,11 @@ mod winkler;
 
 use std::path::Path;
 
+use crate::chosen::Chosen;
 use crate::load::LoadSpec;
 use crate::mesh_surface::MeshPart;
 use crate::meshes::MeshFiles;
-use crate::zone::{Layout, ZoneSpec};
+use crate::zone::{Layout, ZoneKind};
 use contopt_core::{ElasticBody, Error, Interface, Material, Result};
 use contopt_fem::Analysis;
 
@@ -56,8 +57,9 @@ pub enum Takes {
 pub struct Placement<'a> {
     /// The body's kind, as the scene named it (for messages).
     pub kind: &'a str,
-    /// The zone as the scene writes it.
-    pub zone: &'a ZoneSpec,
+    /// The zone as the scene chose it: a body that needs a particular zone asks for it by
+    /// type ([`Chosen::downcast`]).
+    pub zone: &'a Chosen<dyn ZoneKind>,
     /// The zone with every size known.
     pub layout: &'a Layout,
     /// The side of the zone.
@@ -88,7 +90,7 @@ pub trait BodyKind: Send + Sync {
     fn owns_surface(&self) -> bool;
 
     /// How it takes the contact's load on `zone`.
-    fn takes(&self, zone: &ZoneSpec) -> Takes;
+    fn takes(&self, zone: &Chosen<dyn ZoneKind>) -> Takes;
 
     /// Builds the body. A kind that does not own its surface is built on `surface`: the zone's
     /// surface as the body below sees it (outward normal n¹), which a body above mirrors.
@@ -103,7 +105,7 @@ pub trait BodyKind: Send + Sync {
     /// a half-space or a block standing in for one, 1/E for a half-plane in plane stress, 0 for
     /// a rigid body; `None` (the default) for a body whose compliance Hertz does not describe
     /// (a punch, a bed).
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
+    fn compliance(&self, _zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
         None
     }
 
@@ -162,9 +164,18 @@ pub fn misplaced(at: &Placement, needs: &str) -> Error {
         format!(
             "cannot be {} on {}: {needs}",
             side_name(at.side),
-            at.zone.kind()
+            at.zone.name()
         ),
     )
+}
+
+/// A half-space's share of the pair's compliance on `zone` (or a block's standing in for one):
+/// 1/E in plane stress, else (1 − ν²)/E.
+fn half_space_compliance(material: Material, zone: &dyn ZoneKind) -> f64 {
+    match zone.analysis() {
+        Some(Analysis::PlaneStress { .. }) => 1.0 / material.e(),
+        _ => material.contact_compliance(),
+    }
 }
 
 /// The surface a body that does not own one stands on: `surface` (the zone's, as the body

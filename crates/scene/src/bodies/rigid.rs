@@ -4,8 +4,9 @@ use contopt_core::{ElasticBody, Interface, Result, RigidBody};
 use serde::{Deserialize, Serialize};
 
 use super::{own_surface, BodyKind, Placement, Side, Takes};
+use crate::chosen::Chosen;
 use crate::load::LoadSpec;
-use crate::zone::ZoneSpec;
+use crate::zone::ZoneKind;
 
 /// Memory per point of a rigid body's surface \[bytes\]: a point, a weight and a normal.
 const POINT_BYTES: u64 = 64;
@@ -38,7 +39,7 @@ impl BodyKind for Rigid {
         false
     }
 
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         Takes::Force
     }
 
@@ -56,7 +57,7 @@ impl BodyKind for Rigid {
         }))
     }
 
-    fn compliance(&self, _zone: &ZoneSpec) -> Option<f64> {
+    fn compliance(&self, _zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
         Some(0.0)
     }
 }

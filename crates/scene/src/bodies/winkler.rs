@@ -6,7 +6,8 @@ use contopt_greens::Winkler;
 use serde::{Deserialize, Serialize};
 
 use super::{own_surface, BodyKind, Placement, Takes};
-use crate::zone::ZoneSpec;
+use crate::chosen::Chosen;
+use crate::zone::ZoneKind;
 
 /// Memory per point of a bed \[bytes\]: its surface.
 const POINT_BYTES: u64 = 64;
@@ -45,7 +46,7 @@ impl BodyKind for WinklerBed {
     }
 
     /// The ground holds it.
-    fn takes(&self, _zone: &ZoneSpec) -> Takes {
+    fn takes(&self, _zone: &Chosen<dyn ZoneKind>) -> Takes {
         Takes::Nothing
     }
 

@@ -14,15 +14,15 @@ pub(crate) mod survey;
 pub use budget::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 
 use crate::bodies::{BodyKind, Placement, Side};
+use crate::chosen::Chosen;
 use crate::error::Locator;
 use crate::load::LoadSpec;
 use crate::mesh_surface::MeshSurface;
 use crate::meshes::MeshFiles;
 use crate::methods::{Check, Design};
 use crate::reference::Hertz;
-use crate::registry::Chosen;
 use crate::spec::CaseSpec;
-use crate::zone::{Layout, ZoneSpec};
+use crate::zone::{Layout, ZoneKind};
 use crate::SceneError;
 use pair::{check_load, check_pair};
 
@@ -82,7 +82,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
     let layout = contact
         .zone
         .layout(
-            |cells| contact.gap.natural_cell(cells, rough, roller.as_ref()),
+            &|cells| contact.gap.natural_cell(cells, rough, roller.as_ref()),
             surveyed,
         )
         .map_err(|e| at.library("contact.zone", e))?;
@@ -138,7 +138,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
 /// the contact's load — compared as values: cases with equal keys share one build.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct BuildKey {
-    zone: ZoneSpec,
+    zone: Chosen<dyn ZoneKind>,
     bodies: Vec<Chosen<dyn BodyKind>>,
     load: LoadSpec,
 }
@@ -180,7 +180,7 @@ fn check_measured(
 }
 
 /// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.
-fn pair_modulus(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Option<f64> {
+fn pair_modulus(bodies: &[Chosen<dyn BodyKind>], zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
     let total: f64 = bodies
         .iter()
         .map(|b| b.compliance(zone))

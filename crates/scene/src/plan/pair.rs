@@ -4,13 +4,13 @@
 use contopt_core::{Error, Result};
 
 use crate::bodies::{BodyKind, Takes};
+use crate::chosen::Chosen;
 use crate::load::LoadSpec;
-use crate::registry::Chosen;
-use crate::zone::ZoneSpec;
+use crate::zone::{FacesZone, MeshZone, ZoneKind};
 
 /// The pair's checks: two bodies, not both rigid, and the finite-element faces meshed by a
 /// finite-element body.
-pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Result<()> {
+pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &Chosen<dyn ZoneKind>) -> Result<()> {
     let [below, above] = bodies else {
         return Err(Error::invalid(
             "body",
@@ -25,7 +25,7 @@ pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Result<()
             "two rigid bodies have no compliance to share a load",
         ));
     }
-    if matches!(zone, ZoneSpec::Faces(_)) && !(below.owns_surface() || above.owns_surface()) {
+    if zone.downcast::<FacesZone>().is_some() && !(below.owns_surface() || above.owns_surface()) {
         return Err(Error::invalid(
             "contact.zone.kind",
             "faces",
@@ -33,7 +33,7 @@ pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Result<()
              fe_punch); give one, or a grid, rings or strips",
         ));
     }
-    if matches!(zone, ZoneSpec::Mesh(_)) && !(below.imported() || above.imported()) {
+    if zone.downcast::<MeshZone>().is_some() && !(below.imported() || above.imported()) {
         return Err(Error::invalid(
             "contact.zone.kind",
             "mesh",
@@ -47,7 +47,7 @@ pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &ZoneSpec) -> Result<()
 /// The contact's load fits the body above; without one, a body carries its own load.
 pub fn check_load(
     bodies: [&Chosen<dyn BodyKind>; 2],
-    zone: &ZoneSpec,
+    zone: &Chosen<dyn ZoneKind>,
     load: LoadSpec,
 ) -> Result<()> {
     let [below, above] = bodies;
@@ -90,7 +90,7 @@ mod tests {
     use crate::Registry;
 
     /// The bodies and zone of a scene's text.
-    fn pair(bodies: &str, zone: &str) -> (Vec<Chosen<dyn BodyKind>>, ZoneSpec) {
+    fn pair(bodies: &str, zone: &str) -> (Vec<Chosen<dyn BodyKind>>, Chosen<dyn ZoneKind>) {
         let text = format!("body = [{bodies}]\nzone = {zone}\n");
         let node = Node::parse_toml(&text).unwrap();
         let registry = Registry::standard();
@@ -100,7 +100,8 @@ mod tests {
         let bodies = (items.iter().enumerate())
             .map(|(k, b)| registry.body(b, &format!("body[{k}]")).unwrap())
             .collect();
-        (bodies, node.deserialize_at("zone").unwrap())
+        let zone = registry.zone(node.get("zone").unwrap(), "contact.zone");
+        (bodies, zone.unwrap())
     }
 
     const RINGS: &str = "{ kind = \"rings\", rings = 10, radius_mm = 5.0 }";

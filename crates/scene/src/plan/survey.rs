@@ -7,22 +7,22 @@ use contopt_core::{check, Error, Result};
 use contopt_fem::{ContactPairing, Face, FaceSample, PairingSettings};
 
 use crate::bodies::BodyKind;
+use crate::chosen::Chosen;
 use crate::error::Locator;
 use crate::mesh_surface::{MeshPart, MeshSurface};
 use crate::meshes::MeshFiles;
-use crate::registry::Chosen;
-use crate::zone::MeshZone;
+use crate::zone::{MeshZone, ZoneKind};
 use crate::SceneError;
 
 /// The mesh zone of `spec`, surveyed from its bodies' meshes (`None` for other zones);
 /// errors placed at the body or the zone's key.
 pub(crate) fn survey(
     bodies: &[Chosen<dyn BodyKind>],
-    zone: &crate::zone::ZoneSpec,
+    zone: &Chosen<dyn ZoneKind>,
     meshes: &MeshFiles,
     at: &Locator,
 ) -> Result<Option<MeshSurface>, SceneError> {
-    let crate::zone::ZoneSpec::Mesh(zone) = zone else {
+    let Some(zone) = zone.downcast::<MeshZone>() else {
         return Ok(None);
     };
     let settings = settings(zone).map_err(|e| at.library("contact.zone", e))?;
