@@ -9,7 +9,7 @@
 //! distinct pair of bodies once, into [`CaseReport`]s, the unit of `result.json`
 //! ([`contopt_results`]).
 //!
-//! The kinds a scene may name — bodies, gaps, design methods, contact solvers — are those of a
+//! The kinds a scene may name — bodies, zones, gaps, design methods, contact solvers — are those of a
 //! [`Registry`]: [`Registry::standard`] has the library's, and a crate of one's own adds its
 //! own and reads scenes through it ([`Registry::load`]), without editing this crate.
 //!
