@@ -9,9 +9,9 @@
 //! distinct pair of bodies once, into [`CaseReport`]s, the unit of `result.json`
 //! ([`contopt_results`]).
 //!
-//! The kinds a scene may name — bodies, zones, gaps, design methods, contact solvers — are those of a
-//! [`Registry`]: [`Registry::standard`] has the library's, and a crate of one's own adds its
-//! own and reads scenes through it ([`Registry::load`]), without editing this crate.
+//! The kinds a scene may name — bodies, zones, gaps, design methods, contact solvers — are
+//! those of a [`Registry`]: [`Registry::standard`] has the library's, and a crate of one's own
+//! adds its own and reads scenes through it ([`Registry::load`]), without editing this crate.
 //!
 //! A case runs as one pipeline, each stage a module whose input is the previous one's output:
 //! the **plan** (`plan/`: the checks, the zone's layout, the memory budget, the design chosen;
