@@ -18,7 +18,8 @@
 //! [`Memory`]), the **build** of its bodies ([`Built`], shared by the cases with equal keys,
 //! on any number of threads), the **design** on the contact problem ([`Design`], given a
 //! [`Context`], returning [`Designed`]; a bearing is one of them), and the **report**
-//! ([`CaseReport`]: the figures, the model's limits, the stresses and fields asked for). The
+//! (`report/`: from what the design found to the [`CaseReport`] — the figures, the model's
+//! limits, the stresses and fields asked for). The
 //! kinds import only the small shared types below them (the zone, the gap, the load); no module
 //! of the crate imports one that imports it.
 
@@ -31,9 +32,7 @@ mod cases;
 mod chosen;
 mod contact;
 mod error;
-mod fields;
 mod gap;
-mod limits;
 mod load;
 mod mesh_surface;
 mod meshes;

@@ -11,6 +11,7 @@ use contopt_roller::LoadCase;
 use crate::build::Built;
 use crate::methods::Context;
 use crate::plan::BuildKey;
+use crate::report::Found;
 use crate::{Case, Scene, SceneError};
 
 /// The initial gap of a point where the gap is open for good (beyond a flat punch's rim), in
@@ -189,24 +190,13 @@ impl Case {
         let plan = &self.plan;
         let designed =
             (plan.design.run(&context, &mut report)).map_err(|e| at.library(plan.design_at, e))?;
-        // The report's checks take the contact it shows (a bearing's worst roller).
-        let own_contact = designed.shown_gap.is_none();
-        let problem = match &designed.shown_gap {
-            Some(gap) => problem
-                .with_initial_gap(gap)
-                .map_err(|e| at.library(plan.design_at, e))?,
-            None => problem,
+        let found = Found {
+            case: self,
+            built,
+            problem,
+            designed,
         };
-        let rigid = designed.rigid.clone();
-        crate::report::fill(&mut report, &problem, designed);
-        crate::limits::judge(&mut report, self, &problem);
-        crate::report::below_surface(&mut report, self, built)
-            .map_err(|e| at.library("output.subsurface", e))?;
-        if own_contact {
-            crate::fields::compute(&mut report, self, built, &problem, &rigid);
-        }
-        report.reference = crate::reference::curve(self, &report);
-        report.settle();
+        crate::report::complete(&mut report, found)?;
         Ok(report)
     }
 

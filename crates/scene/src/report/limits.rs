@@ -323,3 +323,104 @@ fn resolution(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use contopt_contact::InterfaceProblem;
+    use contopt_results::{CaseReport, CaseStatus, Point};
+
+    use super::{judge, MIN_CELLS_ACROSS};
+    use crate::{Case, Format, Registry, Scene};
+
+    /// A sphere (R = 20 mm) on a Winkler bed, on `rings` rings over r < 5 mm.
+    fn scene(rings: usize) -> Scene {
+        let text = format!(
+            "name = \"bed\"\n[contact]\nzone = {{ kind = \"rings\", rings = {rings}, radius_mm = \
+             5.0 }}\ngap = {{ kind = \"sphere\", radius_mm = 20.0 }}\nload = {{ force_n = \
+             1000.0 }}\n[[body]]\nkind = \"winkler\"\nmodulus_mpa_per_mm = 50.0\n[[body]]\nkind \
+             = \"rigid\"\n"
+        );
+        Registry::standard()
+            .parse(&text, Format::Toml, Path::new("bed.toml"))
+            .unwrap()
+    }
+
+    /// A report of `case` in `status` whose first `carrying` points carry 100 MPa, the rest
+    /// nothing, with the case's contact problem.
+    fn report(
+        case: &Case,
+        carrying: usize,
+        status: CaseStatus,
+    ) -> (CaseReport, InterfaceProblem<'static>) {
+        let problem = case.problem().unwrap();
+        let mut report = CaseReport::new("bed", &Default::default(), serde_json::Value::Null);
+        report.status = status;
+        report.interface = (problem.interface().points().iter().enumerate())
+            .map(|(i, &x_mm)| Point {
+                x_mm,
+                p_mpa: if i < carrying { 100.0 } else { 0.0 },
+                d_um: 0.0,
+                dh_um: 0.0,
+                h_um: 0.0,
+            })
+            .collect();
+        (report, problem)
+    }
+
+    /// A contact that carries pressure at the zone's rim, where the sphere's gap goes on, is
+    /// outside the model: the case says which edge, and that the zone must grow past it.
+    #[test]
+    fn a_contact_at_the_rim_is_outside_the_model() {
+        let scene = scene(20);
+        let case = &scene.cases()[0];
+        let (mut r, problem) = report(case, 20, CaseStatus::Solved);
+        judge(&mut r, case, &problem);
+        assert_eq!(r.status, CaseStatus::OutsideModel);
+        let limit = r.limit.expect("the rim is reached");
+        assert!((limit.extent_mm - 5.0).abs() < 0.2, "{limit:?}");
+        assert!(limit.needed_mm > limit.extent_mm, "{limit:?}");
+        assert!(r.resolution.is_none());
+    }
+
+    /// A contact on fewer than [`MIN_CELLS_ACROSS`] rings carries a warning with its count; one
+    /// on more carries none; both stay solved.
+    #[test]
+    fn a_contact_on_few_cells_is_named_with_their_count() {
+        let scene = scene(40);
+        let case = &scene.cases()[0];
+        let (mut few, problem) = report(case, 3, CaseStatus::Solved);
+        judge(&mut few, case, &problem);
+        assert_eq!(few.status, CaseStatus::Solved);
+        let cells = few.resolution.as_ref().unwrap().cells;
+        assert!((cells - 3.0).abs() < 1e-12, "{cells}");
+        assert!(cells < MIN_CELLS_ACROSS);
+        assert_eq!(few.warnings.len(), 1, "{:?}", few.warnings);
+        assert!(few.warnings[0].contains("3.0 cells"), "{:?}", few.warnings);
+        let (mut many, _) = report(case, 12, CaseStatus::Solved);
+        judge(&mut many, case, &problem);
+        assert_eq!(many.resolution.as_ref().unwrap().cells, 12.0);
+        assert!(many.warnings.is_empty(), "{:?}", many.warnings);
+    }
+
+    /// A zone that carries nothing says the bodies do not touch; a case that did not converge
+    /// is not judged (its pressure is not an answer), though Hertz's nominal contact is shown.
+    #[test]
+    fn nothing_carried_is_said_and_an_unconverged_case_is_not_judged() {
+        let scene = scene(20);
+        let case = &scene.cases()[0];
+        let (mut none, problem) = report(case, 0, CaseStatus::Solved);
+        judge(&mut none, case, &problem);
+        assert!(
+            none.warnings[0].contains("do not touch"),
+            "{:?}",
+            none.warnings
+        );
+        let (mut short, _) = report(case, 20, CaseStatus::NotConverged);
+        judge(&mut short, case, &problem);
+        assert_eq!(short.status, CaseStatus::NotConverged);
+        assert!(short.limit.is_none() && short.resolution.is_none());
+        assert!(short.warnings.is_empty(), "{:?}", short.warnings);
+    }
+}

@@ -1,12 +1,12 @@
-//! A case's report from what its design found: the figures in the results' units, the
-//! penetration and its warning, a roller's figures, and the stresses below the surface.
+//! A case's figures from what its design found, in the results' units: the method's passes,
+//! the interface's pressure, gap and gap change, the penetration and its warning, a roller's
+//! figures.
 
 use contopt_contact::InterfaceProblem;
 use contopt_core::observe::Method;
 use contopt_results::{CaseReport, CaseStatus, Pass, Point};
 
 use crate::methods::Designed;
-use crate::{Built, Case};
 
 /// The penetration, as a fraction of the largest elastic displacement, above which a solution
 /// carries a warning: the paper's c = E·10⁴ penetrates by about 10⁻⁶ of it.
@@ -99,38 +99,6 @@ fn penetration(report: &mut CaseReport, problem: &InterfaceProblem, gap: &[f64],
              displacement ({elastic:.3e} mm): {remedy}"
         ));
     }
-}
-
-/// The stresses below the surface of the case's bodies, when the scene asks for them and the
-/// case converged.
-pub(crate) fn below_surface(
-    report: &mut CaseReport,
-    case: &Case,
-    built: &Built,
-) -> contopt_core::Result<()> {
-    let (Some(spec), true) = (&case.spec.output.subsurface, report.is_solved()) else {
-        return Ok(());
-    };
-    let started = std::time::Instant::now();
-    let pressure: Vec<f64> = report.interface.iter().map(|q| q.p_mpa).collect();
-    let roller = case.plan.roller.is_some();
-    // A roller with free ends has its own field, not the raceway's.
-    let free_ends = case.spec.body.iter().any(|b| b.free_ends());
-    let shared = !free_ends
-        && case
-            .plan
-            .roller
-            .as_ref()
-            .is_some_and(|r| r.roller.nu() == r.raceway.nu());
-    report.subsurface = crate::subsurface::compute(
-        spec,
-        [built.first(), built.second()],
-        shared,
-        &pressure,
-        roller,
-    )?;
-    report.time("subsurface", started);
-    Ok(())
 }
 
 #[cfg(test)]

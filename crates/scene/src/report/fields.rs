@@ -46,7 +46,7 @@ fn of_bodies(
     let bodies: [&dyn ElasticBody; 2] = [built.first(), built.second()];
     let mut found = vec![];
     for (k, body) in bodies.iter().enumerate() {
-        let own = crate::subsurface::own_order(bodies, k, &pressure)?;
+        let own = super::subsurface::own_order(bodies, k, &pressure)?;
         if let Some(fields) = body.fields(&own, &own_rigid[k])? {
             found.push(MeshFields {
                 body: k + 1,
