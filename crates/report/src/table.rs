@@ -285,7 +285,11 @@ fn envelope_table(report: &Report, width: usize) -> String {
         "case"
     );
     for e in &first.envelope {
-        let head = format!("{:.1}Q {:+.0}′", e.load_n / nominal, e.tilt_arcmin);
+        let head = format!(
+            "{}Q {:+.0}′",
+            load_factor(e.load_n / nominal),
+            e.tilt_arcmin
+        );
         let _ = write!(s, " {head:>10}");
     }
     let _ = writeln!(s, " {:>10}", "worst");
@@ -361,6 +365,17 @@ fn subsurface_table(report: &Report) -> String {
         }
     }
     s
+}
+
+/// A load as a multiple of the nominal: one decimal where that is exact (0.5, 1.0, 1.5), else
+/// three significant digits (0.01, 0.125), so that a light case never reads as 0.0Q.
+fn load_factor(f: f64) -> String {
+    if ((10.0 * f).round() - 10.0 * f).abs() < 1e-9 {
+        return format!("{f:.1}");
+    }
+    let digits = (2 - f.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    let text = format!("{f:.digits$}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 #[cfg(test)]
@@ -504,6 +519,18 @@ mod tests {
         assert_eq!(lines.len(), 6, "{text}");
     }
 
+    /// Load factors read as written: one decimal where exact, else three significant digits.
+    #[test]
+    fn load_factors_keep_a_light_case_apart() {
+        let shown: Vec<String> = [0.5, 1.0, 1.5, 0.01, 0.125, 0.0333, 12.34]
+            .map(super::load_factor)
+            .into();
+        assert_eq!(
+            shown,
+            ["0.5", "1.0", "1.5", "0.01", "0.125", "0.0333", "12.3"]
+        );
+    }
+
     /// A roller study: its own columns, Hertz's figures and a case that did not converge
     /// under their rows, the envelope in MPa and the tuned profile's drop in µm.
     #[test]
@@ -515,6 +542,7 @@ mod tests {
             p_max_at_mm: [0.0, 0.0],
             edge_loading: edge,
             approach_um: 5.0,
+            cells_across: 20.0,
             centre_line: vec![],
         };
         let mut roller = case("ISO/TS 16281", Some(1500.0));

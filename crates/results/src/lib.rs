@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 6;
+pub const SCHEMA_VERSION: u32 = 7;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -321,6 +321,9 @@ pub struct EnvelopeCase {
     pub edge_loading: bool,
     /// The roller's approach \[µm\].
     pub approach_um: f64,
+    /// Cells across the contact's half-width through its peak: below the report's least
+    /// (`MIN_CELLS_ACROSS` of the scene crate, 8) the case carries a warning.
+    pub cells_across: f64,
     /// The pressure along the centre row.
     pub centre_line: Vec<CurvePoint>,
 }

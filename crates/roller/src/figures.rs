@@ -86,6 +86,10 @@ pub struct CaseFigures {
     /// The contact half-width at mid-length and the mean of the two ends' \[mm\]: half the
     /// cells in contact across times the cell size.
     pub half_width_mm: [f64; 2],
+    /// Cells across the contact's half-width through its peak: half the cells that carry
+    /// pressure in the peak's column (a case far lighter than the load the grid was sized for
+    /// spans few).
+    pub cells_across: f64,
     /// The crown's largest drop at the end columns \[µm\].
     pub crown_drop_end_um: f64,
     /// The roller's approach \[µm\].
@@ -113,14 +117,13 @@ impl CaseFigures {
     pub fn new(contact: &CaseContact, points: &[[f64; 3]], drop: &[f64], dy: f64) -> Self {
         let pressure = contact.pressure;
         let columns = Columns::new(points);
-        let half_width =
-            |c: f64| 0.5 * dy * columns.column(c).filter(|&i| pressure[i] > 0.0).count() as f64;
         let end_drop = columns
             .column(columns.first)
             .chain(columns.column(columns.last))
             .map(|i| drop.get(i).copied().unwrap_or(0.0))
             .fold(0.0, f64::max);
         let top = peak_index(pressure).unwrap_or(0);
+        let carrying = |c: f64| columns.column(c).filter(|&i| pressure[i] > 0.0).count() as f64;
         let end_ratio = columns.end_ratio(pressure);
         Self {
             load_n: contact.load_n,
@@ -130,9 +133,10 @@ impl CaseFigures {
             end_ratio,
             edge_loading: end_ratio > EDGE_LOADING,
             half_width_mm: [
-                half_width(columns.middle),
-                0.5 * (half_width(columns.first) + half_width(columns.last)),
+                0.5 * dy * carrying(columns.middle),
+                0.25 * dy * (carrying(columns.first) + carrying(columns.last)),
             ],
+            cells_across: 0.5 * carrying(points[top][0]),
             crown_drop_end_um: 1e3 * end_drop,
             approach_um: 1e3 * contact.approach_mm,
             centre_line: (0..points.len())
@@ -190,6 +194,8 @@ mod tests {
         assert!(f.edge_loading);
         assert!((f.half_width_mm[0] - 0.15).abs() < 1e-15 && f.half_width_mm[1] == 0.05);
         assert!((f.crown_drop_end_um - 2.0).abs() < 1e-12);
+        // The peak's column x = −1 carries one cell of three.
+        assert_eq!(f.cells_across, 0.5);
         assert_eq!(f.centre_line, vec![[-1.0, 3.0], [0.0, 2.0], [1.0, 1.0]]);
         let all = RollerFigures::new(&[contact], &points, &drop, 0.1);
         assert_eq!(all.worst_p_max, 3.0);

@@ -416,6 +416,7 @@ pub(crate) fn roller_report(
                 p_max_at_mm: f.p_max_at_mm,
                 edge_loading: f.edge_loading,
                 approach_um: f.approach_um,
+                cells_across: f.cells_across,
                 centre_line: f
                     .centre_line
                     .iter()

@@ -75,6 +75,36 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
             ));
         }
     }
+    report.warnings.extend(light_cases(report));
+}
+
+/// A warning for each of an envelope's load cases past its first (the case's own, judged
+/// above) whose contact spans fewer than [`MIN_CELLS_ACROSS`] cells across: a case far lighter
+/// than the load the grid was sized for is solved on cells too coarse for it. A bearing's
+/// rollers are judged by its design, which names the roller and the load case.
+fn light_cases(report: &CaseReport) -> Vec<String> {
+    let Some(roller) = report.roller.as_ref().filter(|_| report.bearing.is_none()) else {
+        return vec![];
+    };
+    let Some(own) = roller.envelope.first() else {
+        return vec![];
+    };
+    (roller.envelope.iter().skip(1))
+        .filter(|e| e.p_max_mpa > 0.0 && e.cells_across < MIN_CELLS_ACROSS)
+        .map(|e| {
+            format!(
+                "the envelope's case of {:.1} N ({:.3} of the load the grid is sized for) at \
+                 {:+.1}′ spans {:.1} cells across its contact's half-width, fewer than \
+                 {MIN_CELLS_ACROSS}: its p_max {:.1} MPa is not resolved; give the grid more \
+                 cells across (cells[1]) or solve it as a scene of its own",
+                e.load_n,
+                e.load_n / own.load_n,
+                e.tilt_arcmin,
+                e.cells_across,
+                e.p_max_mpa
+            )
+        })
+        .collect()
 }
 
 /// The warning of a case whose zone carries no pressure: the bodies do not touch, or touch
@@ -329,9 +359,9 @@ mod tests {
     use std::path::Path;
 
     use contopt_contact::InterfaceProblem;
-    use contopt_results::{CaseReport, CaseStatus, Point};
+    use contopt_results::{CaseReport, CaseStatus, EnvelopeCase, Point, RollerReport};
 
-    use super::{judge, MIN_CELLS_ACROSS};
+    use super::{judge, light_cases, MIN_CELLS_ACROSS};
     use crate::{Case, Format, Registry, Scene};
 
     /// A sphere (R = 20 mm) on a Winkler bed, on `rings` rings over r < 5 mm.
@@ -422,5 +452,41 @@ mod tests {
         assert_eq!(short.status, CaseStatus::NotConverged);
         assert!(short.limit.is_none() && short.resolution.is_none());
         assert!(short.warnings.is_empty(), "{:?}", short.warnings);
+    }
+
+    /// An envelope's case past the first that spans fewer than [`MIN_CELLS_ACROSS`] cells
+    /// across is named with its load, share of the nominal and tilt; the first (the case's own,
+    /// judged by its resolution) and one that carries nothing are not.
+    #[test]
+    fn a_light_envelope_case_is_named() {
+        let case = |load_n: f64, cells_across: f64, p_max_mpa: f64| EnvelopeCase {
+            load_n,
+            tilt_arcmin: 2.0,
+            p_max_mpa,
+            p_max_at_mm: [0.0, 0.0],
+            edge_loading: false,
+            approach_um: 1.0,
+            cells_across,
+            centre_line: vec![],
+        };
+        let mut report = CaseReport::new("roller", &Default::default(), serde_json::Value::Null);
+        report.roller = Some(RollerReport {
+            p_max_at_mm: [0.0, 0.0],
+            edge_loading: false,
+            half_width_mm: [0.1, 0.1],
+            crown_drop_end_um: 10.0,
+            envelope: vec![
+                case(5000.0, 3.0, 2000.0),
+                case(50.0, 4.5, 400.0),
+                case(2500.0, 14.0, 1400.0),
+                case(10.0, 0.0, 0.0),
+            ],
+            worst_p_max_mpa: Some(2000.0),
+            tuned: None,
+        });
+        let said = light_cases(&report);
+        assert_eq!(said.len(), 1, "{said:?}");
+        assert!(said[0].contains("50.0 N (0.010 of"), "{said:?}");
+        assert!(said[0].contains("+2.0′ spans 4.5 cells"), "{said:?}");
     }
 }
