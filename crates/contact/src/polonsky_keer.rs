@@ -5,6 +5,7 @@
 // The iteration walks several parallel per-point arrays at once; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
+use contopt_core::drive::Step;
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, Quantity, Residuals, Result, Stall, Termination};
 use serde::{Deserialize, Serialize};
@@ -339,46 +340,30 @@ impl PolonskyKeer {
         ws: &mut PolonskyKeerWorkspace,
     ) -> Result<()> {
         let mut cg = Descent::new(problem, warm, ws)?;
-        let (tolerance, max_steps) = (self.settings.tolerance, self.settings.max_steps);
-        let (mut steps, mut change, mut halt) = (0, f64::INFINITY, None);
-        while steps < max_steps && halt.is_none() {
-            steps += 1;
+        let tolerance = self.settings.tolerance;
+        let mut driver = watch.driver(tolerance, self.settings.max_steps);
+        let end = driver.run(|_, _| {
             let entered = match cg.step(problem) {
                 Ok(entered) => entered,
                 Err(cause) => {
-                    halt = Some(Termination::Stalled { cause });
-                    false
+                    return Ok::<_, Error>(Step::Last(f64::NAN, Termination::Stalled { cause }))
                 }
             };
-            change = if halt.is_none() {
-                cg.change(problem)
-            } else {
-                f64::NAN
-            };
-            if halt.is_none() && !change.is_finite() {
+            let change = cg.change(problem);
+            Ok(if !change.is_finite() {
                 // The last finite iterate is kept; the step that overflowed is undone.
                 cg.undo();
-                halt = Some(Termination::NonFinite {
-                    quantity: Quantity::Pressure,
-                });
-            }
-            let stop = watch.report(steps, change, tolerance);
-            if halt.is_none() && change < tolerance && !entered {
-                break;
-            }
-            halt = halt.or(stop);
-        }
-        // A NaN change is not converged either.
-        if halt.is_none() && (change.is_nan() || change >= tolerance) {
-            halt = Some(Termination::StepLimit {
-                steps,
-                measure: change,
-                tolerance,
-            });
-        }
-        settle(problem, steps, ws);
-        if let Some(halt) = halt {
-            watch::end(&mut ws.state, halt);
+                let quantity = Quantity::Pressure;
+                Step::Last(change, Termination::NonFinite { quantity })
+            } else if change < tolerance && !entered {
+                Step::Last(change, Termination::Converged)
+            } else {
+                Step::Next(change)
+            })
+        })?;
+        settle(problem, driver.steps(), ws);
+        if !end.is_converged() {
+            watch::end(&mut ws.state, end);
         }
         Ok(())
     }
