@@ -3,7 +3,7 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use contopt_contact::{ContactSolver, InterfaceProblem, PolonskyKeer};
+use contopt_contact::{ContactSolver, InterfaceProblem, PolonskyKeer, Workspace};
 use contopt_core::observe::{Method, Observer};
 use contopt_core::{ContactState, Result};
 use contopt_fem::{Analysis, Component, ElementKind, FeBody, FeModel, Material, Mesh, Spacing};
@@ -115,6 +115,16 @@ impl ContactSolver for Exact {
 
     fn dense_copies(&self, points: usize) -> u64 {
         self.0.dense_copies(points)
+    }
+
+    fn solve_in(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState> {
+        self.0.solve_in(problem, start, observer, workspace)
     }
 
     fn solve_observed(

@@ -50,15 +50,7 @@ impl ContactSolver for ActiveSet {
     /// Reports each of Kalker's solves (`iterp`: the penalty solve's, then the exact ones)
     /// with the number of points that break a sign condition as the measure (tolerance 0).
     /// Solves from scratch: a `start` is not used.
-    fn solve_observed(
-        &self,
-        problem: &InterfaceProblem,
-        start: Option<&[f64]>,
-        observer: &dyn Observer,
-    ) -> Result<ContactState> {
-        self.solve_in(problem, start, observer, &mut Workspace::default())
-    }
-
+    ///
     /// In the workspace's [`KalkerWorkspace`](crate::KalkerWorkspace).
     fn solve_in(
         &self,

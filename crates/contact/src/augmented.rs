@@ -1,6 +1,7 @@
 //! The augmented Lagrangian technique (§2.2, eqs. 2.18–2.20): Uzawa's updates, each step one
 //! Kalker iteration.
 
+use contopt_core::drive::{Driver, Step};
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Result, Termination};
 use serde::{Deserialize, Serialize};
@@ -98,15 +99,7 @@ impl ContactSolver for AugmentedLagrangian {
     /// p_max as the measure and `tolerance`; and, one level deeper, each inner Kalker solve
     /// (`iterp`) as [`Method::Kalker`], measured by the number of points that break a sign
     /// condition (tolerance 0). Solves from scratch: a `start` is not used.
-    fn solve_observed(
-        &self,
-        problem: &InterfaceProblem,
-        start: Option<&[f64]>,
-        observer: &dyn Observer,
-    ) -> Result<ContactState> {
-        self.solve_in(problem, start, observer, &mut Workspace::default())
-    }
-
+    ///
     /// In the workspace's [`KalkerWorkspace`].
     fn solve_in(
         &self,
@@ -133,7 +126,6 @@ fn uzawa(
 ) -> Result<ContactState> {
     let method = Method::AugmentedLagrangian;
     let c = al.c_mpa_per_mm;
-    let steps = Watch::new(observer, method);
     let nested = Nested(observer);
     let inner_watch = Watch::new(&nested, Method::Kalker);
     let (n, m) = (problem.len(), problem.modes().len());
@@ -157,63 +149,68 @@ fn uzawa(
         ));
     }
     let spectral = c > kalker::stiff_penalty(problem)?;
-    let mut relative = f64::INFINITY;
     let mut shift = vec![0.0; n];
-    for step in 1..=al.max_steps {
+    let mut driver = Driver::new(method, observer, al.tolerance, al.max_steps);
+    // An inner solve that ended the iteration short, or, with `accelerate`, a step that left
+    // the contact set unchanged: then the rest of Uzawa's iteration is linear.
+    let (mut stopped, mut linear) = (None, false);
+    let end = driver.run(|_, _| {
         shift.copy_from_slice(&current.pressure);
         let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current, ws)?
             .solve(&mut active, inner_watch.after(counts[0]))?;
-        if inner.stopped.is_some() {
-            return Ok(kalker::finish(
-                problem, method, inner, ws, active, step, counts,
-            ));
+        if let Some(halt) = inner.stopped.clone() {
+            stopped = Some(inner);
+            return Ok::<_, contopt_core::Error>(Step::Ended(halt));
         }
         counts[0] += inner.iterp;
         counts[1] += inner.iterd;
         let pressure = &ws.solution().pressure;
         let p_max = pressure.iter().fold(0.0f64, |s, v| s.max(*v));
-        let change = largest_difference(pressure, &shift);
-        relative = change / p_max.max(f64::MIN_POSITIVE);
+        let relative = largest_difference(pressure, &shift) / p_max.max(f64::MIN_POSITIVE);
         // Converged when the pressure settles, or when the gap on the contact set is at
         // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
         // directions that do not move the interface.
         let converged = relative <= al.tolerance || ws.open_on_contact(&active) <= inner.gap_floor;
-        let halt = steps.report(step, relative, al.tolerance);
-        let unchanged = inner.unchanged();
+        linear = al.accelerate && inner.unchanged();
         ws.swap_solution(&mut current);
-        if al.accelerate && unchanged && halt.is_none() {
-            // The step left the contact set unchanged: the rest of Uzawa's iteration is linear,
-            // and its fixed point is the exact solve on this set from the current iterate
-            // (which keeps the iterate's components along directions that do not move the
-            // interface, as the iteration would).
-            let jump = kalker::solve_exact(
-                problem,
-                &current,
-                &mut active,
-                inner_watch.after(counts[0]),
-                ws,
-            )?;
-            return Ok(kalker::finish(
-                problem, method, jump, ws, active, step, counts,
-            ));
-        }
-        if converged || halt.is_some() {
-            let counted = [step, counts[0], counts[1]];
-            let mut state = problem.state(method, current.pressure, current.rigid, active, counted);
-            if let Some(halt) = halt.filter(|_| !converged) {
-                watch::end(&mut state, halt);
-            }
-            return Ok(state);
-        }
+        Ok(match converged || linear {
+            true => Step::Last(relative, Termination::Converged),
+            false => Step::Next(relative),
+        })
+    })?;
+    let steps = driver.steps();
+    if let Some(inner) = stopped {
+        return Ok(kalker::finish(
+            problem,
+            method,
+            inner,
+            ws,
+            active,
+            steps + 1,
+            counts,
+        ));
     }
-    let counted = [al.max_steps, counts[0], counts[1]];
+    if linear {
+        // The step left the contact set unchanged: the fixed point of the rest of Uzawa's
+        // iteration is the exact solve on this set from the current iterate (which keeps the
+        // iterate's components along directions that do not move the interface, as the
+        // iteration would).
+        let jump = kalker::solve_exact(
+            problem,
+            &current,
+            &mut active,
+            inner_watch.after(counts[0]),
+            ws,
+        )?;
+        return Ok(kalker::finish(
+            problem, method, jump, ws, active, steps, counts,
+        ));
+    }
+    let counted = [steps, counts[0], counts[1]];
     let mut state = problem.state(method, current.pressure, current.rigid, active, counted);
-    let limit = Termination::StepLimit {
-        steps: al.max_steps,
-        measure: relative,
-        tolerance: al.tolerance,
-    };
-    watch::end(&mut state, limit);
+    if !end.is_converged() {
+        watch::end(&mut state, end);
+    }
     Ok(state)
 }
 

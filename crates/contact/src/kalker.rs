@@ -3,8 +3,9 @@
 //! Uzawa step of the augmented Lagrangian, and the penalty method on the full finite-element
 //! system (2.22, [`FullPenalty`](crate::FullPenalty)).
 
+use contopt_core::drive::Step;
 use contopt_core::observe::Method;
-use contopt_core::{ContactState, Result, Stall, Termination};
+use contopt_core::{ContactState, Error, Result, Stall, Termination};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt;
 use faer::linalg::evd::{self, ComputeEigenvectors as Eigenvectors};
@@ -86,55 +87,44 @@ pub(crate) fn iterate(
     lists: &mut Infeasible,
 ) -> Result<Sweep> {
     let max_solves = SOLVES_PER_POINT * system.points() + SOLVES_EXTRA;
+    let mut driver = watch.driver(0.0, max_solves);
     let mut pivot = PivotRule::new();
     let Infeasible {
         negative,
         penetrating,
     } = lists;
-    let mut sweep = Sweep {
-        iterp: 0,
-        iterd: 0,
-        halt: None,
-    };
-    loop {
+    let mut iterd = 0;
+    let end = driver.run(|solve, _| {
+        if solve > 1 {
+            // The last solve left points that break a sign condition, and the iteration goes
+            // on: change the set.
+            match pivot.next(negative, penetrating) {
+                Pivot::Drop(points) => points.iter().for_each(|&i| active[i] = false),
+                Pivot::Add(points) => points.iter().for_each(|&i| active[i] = true),
+            }
+        }
         if !active.contains(&true) {
             if let Some(i) = system.anchor() {
                 active[i] = true;
             }
         }
         if let Err(cause) = system.solve_on(active)? {
-            sweep.halt = Some(Termination::Stalled { cause });
-            return Ok(sweep);
+            return Ok(Step::Ended(Termination::Stalled { cause }));
         }
-        sweep.iterp += 1;
         infeasible(system, active, negative, penetrating);
         if negative.is_empty() {
-            sweep.iterd += 1;
+            iterd += 1;
         }
+        // The measure: the points that still break a sign condition (negative pressure or
+        // penetration).
         let infeasible = negative.len() + penetrating.len();
-        let stop = watch.report(sweep.iterp, infeasible as f64, 0.0);
-        if infeasible == 0 {
-            return Ok(sweep);
-        }
-        if stop.is_some() {
-            sweep.halt = stop;
-            return Ok(sweep);
-        }
-        if sweep.iterp >= max_solves {
-            // The contact set kept changing: the measure is the points that still break a
-            // sign condition (negative pressure or penetration).
-            sweep.halt = Some(Termination::StepLimit {
-                steps: sweep.iterp,
-                measure: infeasible as f64,
-                tolerance: 0.0,
-            });
-            return Ok(sweep);
-        }
-        match pivot.next(negative, penetrating) {
-            Pivot::Drop(points) => points.iter().for_each(|&i| active[i] = false),
-            Pivot::Add(points) => points.iter().for_each(|&i| active[i] = true),
-        }
-    }
+        Ok::<_, Error>(Step::converged_below(infeasible as f64, 0.0))
+    })?;
+    Ok(Sweep {
+        iterp: driver.steps(),
+        iterd,
+        halt: (end != Termination::Converged).then_some(end),
+    })
 }
 
 /// The points of C in tension and the points outside C that penetrate, after the last solve.

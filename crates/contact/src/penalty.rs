@@ -51,15 +51,7 @@ impl ContactSolver for Penalty {
     /// Reports each of Kalker's solves (`iterp`, the one at c_stiff that starts a large c
     /// included) with the number of points that break a sign condition as the measure
     /// (tolerance 0). Solves from scratch: a `start` is not used.
-    fn solve_observed(
-        &self,
-        problem: &InterfaceProblem,
-        start: Option<&[f64]>,
-        observer: &dyn Observer,
-    ) -> Result<ContactState> {
-        self.solve_in(problem, start, observer, &mut Workspace::default())
-    }
-
+    ///
     /// In the workspace's [`KalkerWorkspace`](crate::KalkerWorkspace).
     fn solve_in(
         &self,

@@ -5,10 +5,12 @@
 // The iteration walks several parallel per-point arrays at once; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
+use contopt_core::drive::Step;
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, Quantity, Residuals, Result, Stall, Termination};
 use serde::{Deserialize, Serialize};
 
+use crate::problem::Derived;
 use crate::watch::{self, Watch};
 use crate::workspace::refill;
 use crate::{problem, ContactSolver, InterfaceProblem, Workspace};
@@ -127,7 +129,7 @@ impl ContactSolver for PolonskyKeer {
         start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        let mut workspace = PolonskyKeerWorkspace::default();
+        let mut workspace = PolonskyKeerWorkspace::one_off();
         self.solve_with(problem, start, observer, &mut workspace)?;
         Ok(workspace.into_state())
     }
@@ -149,13 +151,19 @@ impl ContactSolver for PolonskyKeer {
 /// The vectors of Polonsky–Keer solves, which a caller keeps across the solves of a design
 /// loop (faer's explicit scratch): sized for a number of points ([`PolonskyKeerWorkspace::new`])
 /// and grown when a problem is larger, they hold the conjugate-gradient buffers, the modes'
-/// form, the iterate and the last solve's [`ContactState`]. A solve in a workspace that has
-/// held a problem as large allocates nothing of its own; what the problem builds for it does
-/// (a restricted part of a grid, [`InterfaceProblem::restrict`], or its coarser version for a
-/// cold start, [`InterfaceProblem::coarsen`]: bodies with their own FFT plans).
+/// form, the iterate and the last solve's [`ContactState`]; and the problems a solve derives
+/// from the one it solves (the parts of a grid it works on, [`InterfaceProblem::restrict`],
+/// and the coarser grids of a cold start, [`InterfaceProblem::coarsen`]: bodies with their own
+/// FFT plans and spectra), for the next solves of the same bodies, which refill only their
+/// gaps. A solve in a workspace that has held a problem as large, and derived the same parts
+/// and coarser problems from bodies of the same influence shapes and scales, allocates
+/// nothing. What it keeps costs memory: the coarser grids of a problem hold about a third of
+/// its grid's, and its parts up to three quarters each.
 pub struct PolonskyKeerWorkspace {
     cg: Buffers,
     groups: Groups,
+    /// The parts and coarser problems derived by earlier solves.
+    derived: Derived,
     /// The iterate; on entry to a solve on a problem (or a part), its start when one is given.
     p: Vec<f64>,
     /// The pressure before the last step; also the spare vector of the steps that need one.
@@ -191,10 +199,20 @@ impl PolonskyKeerWorkspace {
         Self {
             cg: Buffers::new(points),
             groups: Groups::new(points),
+            derived: Derived::keeping(),
             p: Vec::with_capacity(points),
             previous: Vec::with_capacity(points),
             keep: Vec::with_capacity(points),
             state,
+        }
+    }
+
+    /// A workspace for one solve, which keeps no derived problem: each is dropped once used,
+    /// as the solve's peak memory asks.
+    fn one_off() -> Self {
+        Self {
+            derived: Derived::default(),
+            ..Self::new(0)
         }
     }
 
@@ -212,8 +230,9 @@ impl PolonskyKeerWorkspace {
 impl PolonskyKeer {
     /// [`ContactSolver::solve_observed`] in the caller's `workspace`, which holds the returned
     /// state until its next solve: kept across the solves of a design loop, a solve of a
-    /// problem no larger than an earlier one allocates nothing of its own (see
-    /// [`PolonskyKeerWorkspace`]).
+    /// problem no larger than an earlier one, on bodies of the same shapes, allocates nothing
+    /// (see [`PolonskyKeerWorkspace`]; on a free grid, once an earlier solve derived the same
+    /// parts and coarser grids).
     pub fn solve_with<'w>(
         &self,
         problem: &InterfaceProblem,
@@ -257,7 +276,7 @@ impl PolonskyKeer {
         if !cold || problem.len() < NESTED_POINTS {
             return self.solve_cropped(problem, warm, watch, ws);
         }
-        let Some((coarse, parent)) = problem.coarsen() else {
+        let Some(coarse) = ws.derived.coarse(problem) else {
             return self.solve_cropped(problem, warm, watch, ws);
         };
         let nested = PolonskyKeer {
@@ -268,9 +287,9 @@ impl PolonskyKeer {
         };
         let deeper = Nested(watch.observer());
         let coarse_watch = Watch::new(&deeper, self.method());
-        let solved = nested.solve_nested(&coarse, false, coarse_watch, ws);
-        drop(coarse);
+        let solved = nested.solve_nested(coarse.problem(), false, coarse_watch, ws);
         if solved.is_err() || !ws.state.is_converged() {
+            ws.derived.give_back(coarse);
             // A start without pressure starts as zero pressure does.
             if warm {
                 refill(&mut ws.p, problem.len(), 0.0);
@@ -278,10 +297,11 @@ impl PolonskyKeer {
             return self.solve_cropped(problem, warm, watch, ws);
         }
         ws.p.clear();
-        ws.p.extend(parent.iter().map(|&c| ws.state.pressure[c]));
-        // The parent index (a usize per point) is not held through the fine solve: at 2048²
-        // cells it is 32 MiB of its peak.
-        drop(parent);
+        ws.p.extend(coarse.map().iter().map(|&c| ws.state.pressure[c]));
+        // Unless the workspace keeps it, the coarse problem with its parent index (a usize per
+        // point) is not held through the fine solve: at 2048² cells the index is 32 MiB of its
+        // peak.
+        ws.derived.give_back(coarse);
         let coarse_steps = ws.state.iterations;
         self.solve_cropped(problem, true, watch.after(coarse_steps), ws)?;
         ws.state.iterations += coarse_steps;
@@ -300,14 +320,14 @@ impl PolonskyKeer {
         let n = problem.len();
         seed(problem, warm, ws);
         let mut steps = 0;
-        while let Some((part, index)) = problem.restrict(&ws.keep) {
+        while let Some(part) = ws.derived.part(problem, &ws.keep) {
+            let index = part.map();
             if warm {
                 ws.previous.clear();
                 ws.previous.extend(index.iter().map(|&k| ws.p[k]));
                 std::mem::swap(&mut ws.p, &mut ws.previous);
             }
-            self.solve_whole(&part, warm, watch.after(steps), ws)?;
-            drop(part);
+            self.solve_whole(part.problem(), warm, watch.after(steps), ws)?;
             steps += ws.state.iterations;
             let part_end = ws.state.termination.clone();
             refill(&mut ws.p, n, 0.0);
@@ -317,7 +337,8 @@ impl PolonskyKeer {
             ws.groups.prepare(problem)?;
             ws.cg.prepare(problem);
             settle(problem, steps, ws);
-            let grown = penetrating(problem, &index, ws);
+            let grown = penetrating(problem, index, ws);
+            ws.derived.give_back(part);
             if !grown || !part_end.is_converged() {
                 watch::end(&mut ws.state, part_end);
                 return Ok(());
@@ -339,46 +360,30 @@ impl PolonskyKeer {
         ws: &mut PolonskyKeerWorkspace,
     ) -> Result<()> {
         let mut cg = Descent::new(problem, warm, ws)?;
-        let (tolerance, max_steps) = (self.settings.tolerance, self.settings.max_steps);
-        let (mut steps, mut change, mut halt) = (0, f64::INFINITY, None);
-        while steps < max_steps && halt.is_none() {
-            steps += 1;
+        let tolerance = self.settings.tolerance;
+        let mut driver = watch.driver(tolerance, self.settings.max_steps);
+        let end = driver.run(|_, _| {
             let entered = match cg.step(problem) {
                 Ok(entered) => entered,
                 Err(cause) => {
-                    halt = Some(Termination::Stalled { cause });
-                    false
+                    return Ok::<_, Error>(Step::Last(f64::NAN, Termination::Stalled { cause }))
                 }
             };
-            change = if halt.is_none() {
-                cg.change(problem)
-            } else {
-                f64::NAN
-            };
-            if halt.is_none() && !change.is_finite() {
+            let change = cg.change(problem);
+            Ok(if !change.is_finite() {
                 // The last finite iterate is kept; the step that overflowed is undone.
                 cg.undo();
-                halt = Some(Termination::NonFinite {
-                    quantity: Quantity::Pressure,
-                });
-            }
-            let stop = watch.report(steps, change, tolerance);
-            if halt.is_none() && change < tolerance && !entered {
-                break;
-            }
-            halt = halt.or(stop);
-        }
-        // A NaN change is not converged either.
-        if halt.is_none() && (change.is_nan() || change >= tolerance) {
-            halt = Some(Termination::StepLimit {
-                steps,
-                measure: change,
-                tolerance,
-            });
-        }
-        settle(problem, steps, ws);
-        if let Some(halt) = halt {
-            watch::end(&mut ws.state, halt);
+                let quantity = Quantity::Pressure;
+                Step::Last(change, Termination::NonFinite { quantity })
+            } else if change < tolerance && !entered {
+                Step::Last(change, Termination::Converged)
+            } else {
+                Step::Next(change)
+            })
+        })?;
+        settle(problem, driver.steps(), ws);
+        if !end.is_converged() {
+            watch::end(&mut ws.state, end);
         }
         Ok(())
     }

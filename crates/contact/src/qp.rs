@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::conic::{self, CscMatrix, Outcome, Solution};
 use crate::watch;
-use crate::{kalker, problem, ContactSolver, InterfaceProblem};
+use crate::{kalker, problem, ContactSolver, InterfaceProblem, Workspace};
 
 /// The n × n arrays of a solve held at once: the upper triangle as triplets and CSC (three
 /// n²/2 arrays) and the factor's fill.
@@ -77,11 +77,12 @@ impl ContactSolver for Qp {
 
     /// clarabel reports nothing per iteration (its only hook, a termination callback, cannot
     /// hold a borrowed observer): the observer sees the solve's end alone. Solves from scratch.
-    fn solve_observed(
+    fn solve_in(
         &self,
         problem: &InterfaceProblem,
         _start: Option<&[f64]>,
         observer: &dyn Observer,
+        _workspace: &mut Workspace,
     ) -> Result<ContactState> {
         let state = self.interior_point(problem)?;
         watch::announce(observer, &state);

@@ -119,6 +119,8 @@ impl ContactSolver for Auto {
         }))
     }
 
+    /// The choice's own solve in a workspace of its own (Polonsky–Keer's keeps its state
+    /// there).
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,

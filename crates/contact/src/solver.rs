@@ -33,29 +33,30 @@ pub trait ContactSolver: Send + Sync {
     fn dense_copies(&self, points: usize) -> u64;
 
     /// Solves `problem` (from the pressure `start` when given: a warm start, one value per
-    /// point), reporting each iteration to `observer` as an event of [`ContactSolver::method`]
-    /// and the last with how it ended. The observer may stop the method early
-    /// ([`Flow::Stop`](contopt_core::observe::Flow)): it then returns its last iterate, finite,
-    /// with [`Termination::Stopped`](contopt_core::Termination). Solvers that cannot use a
-    /// start solve from scratch.
-    fn solve_observed(
-        &self,
-        problem: &InterfaceProblem,
-        start: Option<&[f64]>,
-        observer: &dyn Observer,
-    ) -> Result<ContactState>;
-
-    /// [`ContactSolver::solve_observed`] in the caller's `workspace`, which a design loop
-    /// keeps across its solves so that the solver sizes its buffers once (faer's explicit
-    /// scratch); solvers that keep none ignore it.
+    /// point) in the caller's `workspace`, reporting each iteration to `observer` as an event
+    /// of [`ContactSolver::method`] and the last with how it ended. The observer may stop the
+    /// method early ([`Flow::Stop`](contopt_core::observe::Flow)): it then returns its last
+    /// iterate, finite, with [`Termination::Stopped`](contopt_core::Termination). Solvers that
+    /// cannot use a start solve from scratch.
+    ///
+    /// A design loop keeps the `workspace` across its solves, so that the solver sizes its
+    /// buffers once (faer's explicit scratch); a solver that keeps none ignores it.
     fn solve_in(
         &self,
         problem: &InterfaceProblem,
         start: Option<&[f64]>,
         observer: &dyn Observer,
-        _workspace: &mut Workspace,
+        workspace: &mut Workspace,
+    ) -> Result<ContactState>;
+
+    /// [`ContactSolver::solve_in`] in a workspace of its own, dropped after the solve.
+    fn solve_observed(
+        &self,
+        problem: &InterfaceProblem,
+        start: Option<&[f64]>,
+        observer: &dyn Observer,
     ) -> Result<ContactState> {
-        self.solve_observed(problem, start, observer)
+        self.solve_in(problem, start, observer, &mut Workspace::default())
     }
 
     /// The same solver stopping at the looser `tolerance` (in the measure of its own), for an

@@ -1,7 +1,7 @@
 //! How a method reports to its observer: each iteration as an [`Event`] of the method, numbered
 //! on across the loops of one solve, and its last event with how it ended.
 
-use contopt_core::drive;
+use contopt_core::drive::Driver;
 use contopt_core::observe::{Event, Method, Observer};
 use contopt_core::{ContactState, Termination};
 
@@ -34,16 +34,10 @@ impl<'a> Watch<'a> {
         Self { before, ..self }
     }
 
-    /// Reports the loop's iteration `k` (from 1) with its convergence `measure` and the
-    /// `tolerance` it must reach; [`Termination::Stopped`] when the observer asks to stop.
-    pub(crate) fn report(&self, k: usize, measure: f64, tolerance: f64) -> Option<Termination> {
-        drive::report(
-            self.observer,
-            self.method,
-            self.before + k,
-            measure,
-            tolerance,
-        )
+    /// The driver of a loop of the watched method that follows the iterations before it,
+    /// whose measure must reach `tolerance` in at most `max_steps` steps.
+    pub(crate) fn driver(&self, tolerance: f64, max_steps: usize) -> Driver<'a> {
+        Driver::new(self.method, self.observer, tolerance, max_steps).after(self.before)
     }
 }
 

@@ -326,3 +326,62 @@ fn polonsky_keer_allocates_nothing_in_a_kept_workspace() {
     assert!(counts[0] > 0, "the first solve sizes the workspace");
     assert_eq!(counts[1..], [0, 0], "solves in a sized workspace allocate");
 }
+
+/// A rigid sphere of radius 10 mm pressed by 100 N into a steel half-space under a free
+/// (zero-padded) `side` × `side` grid over 2 mm × 2 mm: the contact (radius about 0.15 mm)
+/// covers a small part of the grid, so a solve restricts itself to a box about it and starts
+/// from the coarser grids' solutions (nested iteration).
+fn free_hertz(side: usize) -> (HalfSpace, RigidBody, Vec<f64>) {
+    let dx = 2.0 / side as f64;
+    let origin = -1.0 + dx / 2.0;
+    let steel = Material::new(2e5, 0.3).unwrap();
+    let body = HalfSpace::grid("half-space", steel, side, side, dx, dx, [origin; 2])
+        .unwrap()
+        .pressed(100.0)
+        .unwrap();
+    let sphere = RigidBody::fixed("sphere", body.interface());
+    let gap = body
+        .interface()
+        .points()
+        .iter()
+        .map(|x| (x[0] * x[0] + x[1] * x[1]) / 20.0)
+        .collect();
+    (body, sphere, gap)
+}
+
+/// On a free grid a Polonsky–Keer solve works on parts of the interface and on coarser grids,
+/// whose bodies (with their FFT plans and spectra) the kept workspace keeps: after the first
+/// cold solve, cold solves of the same problem allocate nothing, and give the state a fresh
+/// workspace gives; so do warm solves after the first, which derives the part about the
+/// start's contact.
+#[test]
+fn polonsky_keer_on_free_grids_allocates_nothing_in_a_kept_workspace() {
+    for side in [64, 256] {
+        let (body, sphere, gap) = free_hertz(side);
+        let problem = InterfaceProblem::new(&body, &sphere, &gap).unwrap();
+        let solver = PolonskyKeer::new(PolonskyKeerSettings::default()).unwrap();
+        let fresh = solver.solve(&problem).unwrap();
+        assert!(fresh.is_converged(), "{}", fresh.termination);
+        let mut workspace = PolonskyKeerWorkspace::default();
+        let mut counts = vec![];
+        let warm = Some(fresh.pressure.as_slice());
+        for start in [None, None, warm, warm] {
+            let before = allocations();
+            let state = solver
+                .solve_with(&problem, start, &Silent, &mut workspace)
+                .unwrap();
+            counts.push(allocations() - before);
+            assert!(state.is_converged(), "{}", state.termination);
+            if start.is_none() {
+                assert_eq!(*state, fresh);
+            }
+        }
+        println!("Polonsky–Keer on a free {side}² grid: allocations per solve {counts:?}");
+        assert!(counts[0] > 0, "the first solve sizes the workspace");
+        assert_eq!(
+            [counts[1], counts[3]],
+            [0, 0],
+            "solves in a sized workspace allocate"
+        );
+    }
+}

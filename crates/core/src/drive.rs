@@ -104,6 +104,8 @@ pub struct Driver<'o> {
     method: Method,
     tolerance: f64,
     max_steps: usize,
+    /// Steps of the same solve before this driver's, which its events number on from.
+    before: usize,
     steps: usize,
     measure: f64,
     inner: Inner,
@@ -123,10 +125,19 @@ impl<'o> Driver<'o> {
             method,
             tolerance,
             max_steps,
+            before: 0,
             steps: 0,
             measure: f64::NAN,
             inner: Inner::default(),
         }
+    }
+
+    /// The same driver for a loop that follows `before` steps of the same solve (the parts of
+    /// a solve on a growing part of the interface, a penalty solve's start and its main solve):
+    /// its events, and the step an observer stops it after, number on from there; its own
+    /// steps, and its step limit, count from 0.
+    pub fn after(self, before: usize) -> Self {
+        Self { before, ..self }
     }
 
     /// The method it drives.
@@ -137,6 +148,12 @@ impl<'o> Driver<'o> {
     /// Steps reported so far.
     pub fn steps(&self) -> usize {
         self.steps
+    }
+
+    /// Whether the steps so far reach the step limit, for a method whose steps
+    /// [`Driver::report`]s.
+    pub fn exhausted(&self) -> bool {
+        self.steps >= self.max_steps
     }
 
     /// Runs `step` (given the step's number, from 1, and where to note how the inner methods
@@ -172,7 +189,7 @@ impl<'o> Driver<'o> {
         report(
             self.observer,
             self.method,
-            self.steps,
+            self.before + self.steps,
             measure,
             self.tolerance,
         )
@@ -193,6 +210,12 @@ impl<'o> Driver<'o> {
         }
     }
 
+    /// Where a method whose steps [`Driver::report`]s notes how the inner methods it runs
+    /// ended, as [`Driver::run`] gives its steps.
+    pub fn inner(&mut self) -> &mut Inner {
+        &mut self.inner
+    }
+
     /// Notes how an inner method the driven one goes on from ended, for a method whose steps
     /// [`Driver::report`]s ([`Inner::note`]).
     pub fn note(&mut self, method: Method, termination: &Termination) {
@@ -208,7 +231,8 @@ impl<'o> Driver<'o> {
     /// Reports the method's last event: the steps so far, the last measure and how it
     /// ended, `termination`.
     pub fn announce(&self, termination: &Termination) {
-        let event = Event::step(self.method, self.steps, self.measure, self.tolerance);
+        let iteration = self.before + self.steps;
+        let event = Event::step(self.method, iteration, self.measure, self.tolerance);
         let _ = self.observer.observe(&event.ending(termination));
     }
 }
@@ -257,5 +281,28 @@ mod tests {
             driver.end(Termination::Converged),
             reduced.inside(Method::Qp)
         );
+        // A driver after 7 steps of the same solve numbers its events and its stop on from
+        // there; its own steps and step limit count from 0.
+        let numbers = RefCell::new(vec![]);
+        let stop_at_9 = |e: &Event| {
+            numbers.borrow_mut().push(Recorded::of(e).iteration);
+            if Recorded::of(e).iteration == 9 {
+                Flow::Stop
+            } else {
+                Flow::Continue
+            }
+        };
+        let mut driver = Driver::new(Method::Other("t"), &stop_at_9, 0.0, 5).after(7);
+        let end = driver.run(|_, _| Ok::<_, ()>(Step::Next(1.0)));
+        assert_eq!(end, Ok(Termination::Stopped { after: 9 }));
+        assert_eq!((driver.steps(), numbers.borrow().clone()), (2, vec![8, 9]));
+        let mut driver = Driver::new(Method::Other("t"), &record, 0.0, 2).after(7);
+        let end = driver.run(|_, _| Ok::<_, ()>(Step::Next(1.0)));
+        let limit = Termination::StepLimit {
+            steps: 2,
+            measure: 1.0,
+            tolerance: 0.0,
+        };
+        assert_eq!(end, Ok(limit));
     }
 }

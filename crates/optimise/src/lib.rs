@@ -71,7 +71,7 @@ pub use load_split::EnvelopeOptimum;
 pub use settings::{
     IterationSettings, LinearProgrammeSettings, LoadSplitSettings, OptimisationMethod,
 };
-pub use simplex::{nelder_mead, Minimum, SearchSettings};
+pub use simplex::{nelder_mead, nelder_mead_observed, Minimum, SearchSettings};
 
 use std::borrow::Cow;
 use std::sync::Mutex;

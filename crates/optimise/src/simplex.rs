@@ -7,6 +7,8 @@
 
 use std::ops::ControlFlow;
 
+use contopt_core::drive::{Driver, Inner};
+use contopt_core::observe::{Method, Observer, Silent};
 use contopt_core::{check, Error, Result, Termination};
 use serde::{Deserialize, Serialize};
 
@@ -64,15 +66,18 @@ pub struct Minimum {
     /// coordinate; empty when no simplex was made): how finely the search placed the minimum,
     /// the steps of a search that goes on from it.
     pub extent: Vec<f64>,
-    /// [`Termination::Converged`] when the spread fell to the tolerance,
-    /// [`Termination::StepLimit`] when the budget ran out (its steps are evaluations, its
-    /// measure the last spread), or the termination the objective stopped it with.
+    /// [`Termination::Converged`] when the spread fell to the tolerance (or the first reduced
+    /// accuracy the objective noted, [`Inner`]), [`Termination::StepLimit`] when the budget
+    /// ran out (its steps are evaluations, its measure the last spread), the observer's
+    /// [`Termination::Stopped`], or the termination the objective stopped it with.
     pub termination: Termination,
 }
 
 /// The simplex and the objective's bookkeeping.
-struct Search<F> {
+struct Search<'o, F> {
     objective: F,
+    /// Counts the evaluations, each one step of the search, and reports them.
+    driver: Driver<'o>,
     evaluations: usize,
     /// Vertices with their values, best first after [`Search::sort`].
     simplex: Vec<(Vec<f64>, f64)>,
@@ -80,18 +85,23 @@ struct Search<F> {
     stop: Option<Termination>,
 }
 
-impl<F: FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>> Search<F> {
-    /// The objective at `x` (NaN counts as +∞); `None` when the objective stopped the search.
+impl<'o, F: FnMut(&[f64], &mut Inner) -> Result<ControlFlow<Termination, f64>>> Search<'o, F> {
+    /// The objective at `x` (NaN counts as +∞), reported as a step with its value as the
+    /// measure; `None` when the objective or the observer stopped the search.
     fn eval(&mut self, x: &[f64]) -> Result<Option<f64>> {
         self.evaluations += 1;
-        Ok(match (self.objective)(x)? {
-            ControlFlow::Continue(f) if f.is_nan() => Some(f64::INFINITY),
-            ControlFlow::Continue(f) => Some(f),
+        let f = match (self.objective)(x, self.driver.inner())? {
+            ControlFlow::Continue(f) => f,
             ControlFlow::Break(end) => {
                 self.stop = Some(end);
-                None
+                return Ok(None);
             }
-        })
+        };
+        if let Some(stopped) = self.driver.report(f) {
+            self.stop = Some(stopped);
+            return Ok(None);
+        }
+        Ok(Some(if f.is_nan() { f64::INFINITY } else { f }))
     }
 
     fn sort(&mut self) {
@@ -155,8 +165,9 @@ impl<F: FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>> Search<F> {
         Ok(true)
     }
 
-    /// The best vertex, ended as `termination` (the start when there is no vertex).
-    fn minimum(mut self, start: &[f64], termination: Termination) -> Minimum {
+    /// The best vertex, ended as `termination` (the start when there is no vertex), and the
+    /// driver.
+    fn minimum(mut self, start: &[f64], termination: Termination) -> (Minimum, Driver<'o>) {
         self.sort();
         let extent = (0..start.len())
             .map(|k| {
@@ -170,13 +181,22 @@ impl<F: FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>> Search<F> {
             Some(best) => best,
             None => (start.to_vec(), f64::INFINITY),
         };
-        Minimum {
+        let minimum = Minimum {
             x,
             value,
             evaluations: self.evaluations,
             extent,
-            termination,
-        }
+            termination: self.driver.end(termination),
+        };
+        (minimum, self.driver)
+    }
+
+    /// The best vertex of a search the objective or the observer stopped.
+    fn stopped(mut self, start: &[f64]) -> (Minimum, Driver<'o>) {
+        let end = self.stop.take().unwrap_or(Termination::Stopped {
+            after: self.evaluations,
+        });
+        self.minimum(start, end)
     }
 }
 
@@ -190,14 +210,41 @@ fn along(from: &[f64], to: &[f64], t: f64) -> Vec<f64> {
 /// [`SearchSettings::tolerance`] ([`Termination::Converged`]) or
 /// [`SearchSettings::max_evaluations`] is used up ([`Termination::StepLimit`]): the best vertex
 /// either way. The objective returns `ControlFlow::Continue(value)`, or
-/// `ControlFlow::Break(termination)` to end the search there (an observer's stop, an inner
-/// method that did not converge); an error of the objective is returned as it is.
+/// `ControlFlow::Break(termination)` to end the search there (an inner method that did not
+/// converge); an error of the objective is returned as it is. Unobserved:
+/// [`nelder_mead_observed`] reports each evaluation.
 pub fn nelder_mead(
-    objective: impl FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>,
+    mut objective: impl FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>,
     start: &[f64],
     step: &[f64],
     settings: &SearchSettings,
 ) -> Result<Minimum> {
+    let objective = |x: &[f64], _: &mut Inner| objective(x);
+    let (minimum, _) = nelder_mead_observed(
+        objective,
+        start,
+        step,
+        settings,
+        Method::ProfileSearch,
+        &Silent,
+    )?;
+    Ok(minimum)
+}
+
+/// [`nelder_mead`] on a [`Driver`] of `method` reporting to `observer`: each evaluation is a
+/// step, reported with the objective's value as its measure, the budget its step limit; the
+/// observer may stop the search ([`Termination::Stopped`]). The objective may note how the
+/// inner methods it ran ended ([`Inner::note`]): a converged search ends with the first reduced
+/// accuracy noted. Returns the driver with the minimum, for the search's last event
+/// ([`Driver::announce`]) after any check of the caller's own.
+pub fn nelder_mead_observed<'o>(
+    objective: impl FnMut(&[f64], &mut Inner) -> Result<ControlFlow<Termination, f64>>,
+    start: &[f64],
+    step: &[f64],
+    settings: &SearchSettings,
+    method: Method,
+    observer: &'o dyn Observer,
+) -> Result<(Minimum, Driver<'o>)> {
     settings.check()?;
     if start.is_empty() || step.len() != start.len() {
         return Err(Error::invalid(
@@ -206,8 +253,15 @@ pub fn nelder_mead(
             "one step per parameter, at least one parameter",
         ));
     }
+    let driver = Driver::new(
+        method,
+        observer,
+        settings.tolerance,
+        settings.max_evaluations,
+    );
     let mut search = Search {
         objective,
+        driver,
         evaluations: 0,
         simplex: Vec::with_capacity(start.len() + 1),
         stop: None,
@@ -228,27 +282,14 @@ pub fn nelder_mead(
         if spread <= settings.tolerance {
             return Ok(search.minimum(start, Termination::Converged));
         }
-        if search.evaluations >= settings.max_evaluations {
-            let end = Termination::StepLimit {
-                steps: search.evaluations,
-                measure: spread,
-                tolerance: settings.tolerance,
-            };
+        if search.driver.exhausted() {
+            search.driver.settle(spread);
+            let end = search.driver.step_limit();
             return Ok(search.minimum(start, end));
         }
         if !search.step()? {
             return Ok(search.stopped(start));
         }
-    }
-}
-
-impl<F: FnMut(&[f64]) -> Result<ControlFlow<Termination, f64>>> Search<F> {
-    /// The best vertex of a search the objective stopped.
-    fn stopped(mut self, start: &[f64]) -> Minimum {
-        let end = self.stop.take().unwrap_or(Termination::Stopped {
-            after: self.evaluations,
-        });
-        self.minimum(start, end)
     }
 }
 

@@ -7,7 +7,7 @@ use std::f64::consts::PI;
 
 use contopt_contact::{
     ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem, PolonskyKeer,
-    PolonskyKeerSettings,
+    PolonskyKeerSettings, Workspace,
 };
 use contopt_core::observe::{Event, Flow, Method, Observer, Recorded};
 use contopt_core::{ElasticBody, GapShape, Material, RigidBody, Termination};
@@ -163,13 +163,14 @@ impl ContactSolver for Failing {
         active_set().dense_copies(points)
     }
 
-    fn solve_observed(
+    fn solve_in(
         &self,
         problem: &InterfaceProblem,
         start: Option<&[f64]>,
         observer: &dyn Observer,
+        workspace: &mut Workspace,
     ) -> contopt_core::Result<contopt_core::ContactState> {
-        let mut state = active_set().solve_observed(problem, start, observer)?;
+        let mut state = active_set().solve_in(problem, start, observer, workspace)?;
         state.termination = Termination::StepLimit {
             steps: state.iterp,
             measure: 1.0,

@@ -6,11 +6,11 @@
 use std::ops::ControlFlow;
 
 use contopt_contact::{parallel, ContactSolver, InterfaceProblem};
-use contopt_core::drive::Driver;
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{check, ContactState, Error, GapShape, Result, Termination};
 use contopt_optimise::{
-    nelder_mead, Controller, LoadSplitSettings, Minimum, Optimisation, Region, SearchSettings,
+    nelder_mead_observed, Controller, LoadSplitSettings, Minimum, Optimisation, Region,
+    SearchSettings,
 };
 use serde::{Deserialize, Serialize};
 
@@ -505,7 +505,7 @@ type Best = (Vec<f64>, f64, Vec<ContactState>);
 pub type Objective<'o> = dyn FnMut(&[ContactState]) -> Result<f64> + 'o;
 
 /// Tunes the Fujiwara–Kawase profile (NTN Technical Review 75, 2007: K1, K2, z_m) of
-/// `roller` for every case of `cases` by a Nelder–Mead search ([`nelder_mead`]) of the least
+/// `roller` for every case of `cases` by a Nelder–Mead search ([`nelder_mead_observed`]) of the least
 /// [`penalised_worst`], from K1 = 1, K2 = ½, z_m = 5·Q/(π l E*): [`tune_profile`] of
 /// [`ProfileFamily::FujiwaraKawase`].
 pub fn tune_fujiwara_kawase(
@@ -534,7 +534,7 @@ fn first_points<'c>(cases: &'c [LoadCase]) -> Result<&'c [[f64; 3]]> {
 }
 
 /// Tunes a crown of `family` for `roller` over every case of `cases` by a Nelder–Mead search
-/// ([`nelder_mead`], as Fujiwara and Kawase tuned theirs by Rosenbrock's method) of the least
+/// ([`nelder_mead_observed`], as Fujiwara and Kawase tuned theirs by Rosenbrock's method) of the least
 /// `objective`, from a crowned fraction of ½ and an end drop of 5·Q/(π l E*) (Fujiwara–Kawase
 /// also K1 = 1). Each crown is reported to `observer` as an event of
 /// [`Method::ProfileSearch`] at level 0 (its objective against the search's tolerance), the
@@ -656,14 +656,8 @@ impl<'r> Run<'r> {
         let points = first_points(cases)?;
         let mut best: Option<Best> = None;
         let mut warm: Option<Vec<ContactState>> = None;
-        let mut driver = Driver::new(
-            Method::ProfileSearch,
-            observer,
-            settings.tolerance,
-            settings.max_evaluations,
-        );
-        let minimum = nelder_mead(
-            |u| {
+        let (minimum, mut driver) = nelder_mead_observed(
+            |u, inner| {
                 let states = solve_cases(
                     cases,
                     &parameters.drops(u, points)?,
@@ -676,23 +670,22 @@ impl<'r> Run<'r> {
                 }
                 states
                     .iter()
-                    .for_each(|s| driver.note(s.method, &s.termination));
+                    .for_each(|s| inner.note(s.method, &s.termination));
                 let value = objective(&states)?;
                 if best.as_ref().is_none_or(|b| value < b.1) {
                     best = Some((u.to_vec(), value, states.clone()));
                 }
                 warm = Some(states);
-                Ok(match driver.report(value) {
-                    None => ControlFlow::Continue(value),
-                    Some(stopped) => ControlFlow::Break(stopped),
-                })
+                Ok(ControlFlow::Continue(value))
             },
             start,
             step,
             settings,
+            Method::ProfileSearch,
+            observer,
         )?;
         let (u, worst, states) = best.unwrap_or_else(|| (start.to_vec(), f64::INFINITY, vec![]));
-        let termination = driver.end(minimum.termination.clone());
+        let termination = minimum.termination.clone();
         driver.settle(worst);
         driver.announce(&termination);
         let (k1, k2, z_m_mm) = parameters.values(&u);

@@ -1,7 +1,7 @@
 //! A contact solver of one's own: projected Gauss–Seidel on the dense influence matrix
 //! (`solver = { kind = "projected_gauss_seidel" }`), on the library's iteration driver.
 
-use contopt_contact::{ContactSolver, InterfaceProblem};
+use contopt_contact::{ContactSolver, InterfaceProblem, Workspace};
 use contopt_core::drive::{Driver, Step};
 use contopt_core::observe::{Method, Observer};
 use contopt_core::{check, ContactState, Error, Result};
@@ -64,11 +64,12 @@ impl ContactSolver for ProjectedGaussSeidel {
         1
     }
 
-    fn solve_observed(
+    fn solve_in(
         &self,
         problem: &InterfaceProblem,
         _start: Option<&[f64]>,
         observer: &dyn Observer,
+        _workspace: &mut Workspace,
     ) -> Result<ContactState> {
         let sweeps = Sweeps::new(problem, self)?;
         let mut driver = Driver::new(METHOD, observer, self.equilibrium, self.max_steps);

@@ -5,6 +5,7 @@
 //! states of its solutions, and its restriction and coarsening.
 
 mod dense;
+mod derived;
 mod modes;
 mod operator;
 
@@ -20,7 +21,10 @@ use faer::{Mat, Side};
 pub use dense::DEFAULT_DENSE_LIMIT_BYTES;
 pub use modes::FreeMode;
 
+pub(crate) use derived::Derived;
+
 use dense::Dense;
+use derived::Mapping;
 use modes::Modes;
 use operator::{Body, Operator};
 
@@ -486,11 +490,12 @@ impl<'a> InterfaceProblem<'a> {
     /// this problem's; `None` when a body offers no such part, when the two bodies' parts differ,
     /// or when a loaded mode would lose all its points. Modes keep their loads: the points left
     /// out carry no pressure.
-    pub fn restrict(&self, keep: &[bool]) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
+    pub fn restrict(&self, keep: &[bool]) -> Option<(InterfaceProblem<'static>, Vec<usize>)> {
         let (operator, index) = self.operator.restrict(keep)?;
         let modes = self.modes.on(&index)?;
-        let gaps = self.gaps_mapped(|v| index.iter().map(|&i| v[i]).collect());
-        let part = Self::assemble(operator, modes, gaps, Dense::new(self.dense_limit())).ok()?;
+        let gaps = self.gaps_mapped(Mapping::Part(&index));
+        let dense = Dense::new(self.dense_limit());
+        let part = InterfaceProblem::assemble(operator, modes, gaps, dense).ok()?;
         Some((part, index))
     }
 
@@ -501,7 +506,12 @@ impl<'a> InterfaceProblem<'a> {
     /// by their mean and keeps its load (modes that share a coarse point are joined). `None`
     /// when a body offers no coarser version, the two group differently, or a mode moves only
     /// part of a coarse point.
-    pub fn coarsen(&self) -> Option<(InterfaceProblem<'a>, Vec<usize>)> {
+    pub fn coarsen(&self) -> Option<(InterfaceProblem<'static>, Vec<usize>)> {
+        self.coarsened().map(|(coarse, parent, _)| (coarse, parent))
+    }
+
+    /// [`InterfaceProblem::coarsen`], with the total weight of each coarse point's points.
+    fn coarsened(&self) -> Option<(InterfaceProblem<'static>, Vec<usize>, Vec<f64>)> {
         let (operator, parent) = self.operator.coarsen()?;
         let m = operator.body(0).interface().len();
         let w = self.weights();
@@ -509,22 +519,25 @@ impl<'a> InterfaceProblem<'a> {
         for (i, &c) in parent.iter().enumerate() {
             total[c] += w[i];
         }
-        let mean = |v: &[f64]| -> Vec<f64> {
-            let mut sum = vec![0.0; m];
-            for (i, &c) in parent.iter().enumerate() {
-                sum[c] += w[i] * v[i];
-            }
-            sum.iter().zip(&total).map(|(s, t)| s / t).collect()
-        };
         let modes = self.modes.coarse(&parent, &total, w)?;
-        let gaps = self.gaps_mapped(mean);
-        let coarse = Self::assemble(operator, modes, gaps, Dense::new(self.dense_limit())).ok()?;
-        Some((coarse, parent))
+        let gaps = self.gaps_mapped(Mapping::Coarse {
+            parent: &parent,
+            total: &total,
+        });
+        let dense = Dense::new(self.dense_limit());
+        let coarse = InterfaceProblem::assemble(operator, modes, gaps, dense).ok()?;
+        Some((coarse, parent, total))
     }
 
-    /// Its gaps h and f¹ + f² at the points of another numbering, each given by `map` (a
+    /// Its gaps h and f¹ + f² at the points of another numbering, given by `mapping` (a
     /// part's, or a coarser one's means).
-    fn gaps_mapped(&self, map: impl Fn(&[f64]) -> Vec<f64>) -> Gaps {
+    fn gaps_mapped(&self, mapping: Mapping) -> Gaps {
+        let w = self.weights();
+        let map = |v: &[f64]| {
+            let mut out = vec![];
+            mapping.apply(v, w, &mut out);
+            out
+        };
         Gaps {
             initial: map(&self.initial_gap),
             load: self.load_gap.as_ref().map(|f| Arc::new(map(f))),

@@ -132,6 +132,13 @@ impl Modes {
         }
     }
 
+    /// Whether `other` is these very modes (one list shared, as problems derived by
+    /// [`InterfaceProblem::with_initial_gap`](super::InterfaceProblem::with_initial_gap)
+    /// share it): then their points, displacements and loads are these.
+    pub(super) fn same(&self, other: &Modes) -> bool {
+        Arc::ptr_eq(&self.list, &other.list)
+    }
+
     /// The modes.
     pub(super) fn list(&self) -> &[FreeMode] {
         &self.list

@@ -145,6 +145,11 @@ impl<'a> Operator<'a> {
         self.bodies[k].get()
     }
 
+    /// Whether the second body's points are the first's, in the same order.
+    pub(super) fn pairs_in_order(&self) -> bool {
+        self.pair.is_none()
+    }
+
     /// The index among the second body's points of the first's point i.
     pub(super) fn to_second(&self, i: usize) -> usize {
         self.pair.as_ref().map_or(i, |p| p[i])
@@ -310,7 +315,7 @@ impl<'a> Operator<'a> {
     /// and whose products are cheaper (the first body's [`ElasticBody::restrict`]), with the
     /// indices of its points; `None` when a body offers no such part or the two bodies' parts
     /// differ.
-    pub(super) fn restrict(&self, keep: &[bool]) -> Option<(Operator<'a>, Vec<usize>)> {
+    pub(super) fn restrict(&self, keep: &[bool]) -> Option<(Operator<'static>, Vec<usize>)> {
         let (part1, index) = self.body(0).restrict(keep)?;
         let part2 = self.second_part(part1.interface(), &index)?;
         let pair = part1
@@ -318,7 +323,7 @@ impl<'a> Operator<'a> {
             .partners(part2.interface(), part1.name(), part2.name())
             .ok()?;
         Some((
-            Self::new([Body::Owned(part1), Body::Owned(part2)], pair),
+            Operator::new([Body::Owned(part1), Body::Owned(part2)], pair),
             index,
         ))
     }
@@ -326,11 +331,7 @@ impl<'a> Operator<'a> {
     /// The second body over the points `index` of the first (whose part has the surface
     /// `surface`): a body without compliance is held there, on that surface (its modes are
     /// the problem's); another restricts itself to the same points, or `None`.
-    fn second_part(
-        &self,
-        surface: &Interface,
-        index: &[usize],
-    ) -> Option<Box<dyn ElasticBody + 'a>> {
+    fn second_part(&self, surface: &Interface, index: &[usize]) -> Option<Box<dyn ElasticBody>> {
         let second = self.body(1);
         if self.second_is_rigid() {
             return Some(Box::new(RigidBody::fixed(second.name(), surface)));
@@ -350,10 +351,10 @@ impl<'a> Operator<'a> {
     /// of each point (`parent`): the first body coarsens itself, the second too (grouped
     /// alike) or, without compliance, is held on the coarse surface. `None` when a body offers
     /// no coarser version or the two group differently.
-    pub(super) fn coarsen(&self) -> Option<(Operator<'a>, Vec<usize>)> {
+    pub(super) fn coarsen(&self) -> Option<(Operator<'static>, Vec<usize>)> {
         let (coarse1, parent) = self.body(0).coarsen()?;
         let second = self.body(1);
-        let coarse2: Box<dyn ElasticBody + 'a> = if self.second_is_rigid() {
+        let coarse2: Box<dyn ElasticBody> = if self.second_is_rigid() {
             Box::new(RigidBody::fixed(second.name(), coarse1.interface()))
         } else {
             let (coarse2, parent2) = second.coarsen()?;
@@ -363,7 +364,7 @@ impl<'a> Operator<'a> {
             .interface()
             .partners(coarse2.interface(), coarse1.name(), coarse2.name())
             .ok()?;
-        let coarse = Self::new([Body::Owned(coarse1), Body::Owned(coarse2)], pair);
+        let coarse = Operator::new([Body::Owned(coarse1), Body::Owned(coarse2)], pair);
         Some((coarse, parent))
     }
 }
