@@ -156,6 +156,16 @@ fn the_bundled_bearing_on_a_coarse_grid() {
     assert!((b.worst.p_max_mpa - worst).abs() < 1e-9 * worst);
     assert!((report.p_max_mpa.unwrap() - worst).abs() < 1e-9 * worst);
     assert_eq!(b.contacts_solved % 3, 0, "the band's three crowns");
+    // 2.3 cells across the design load's half-width: every contact is named as coarse.
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("fewer than 4 cells")
+                && w.contains("load case 0 (\"8.9 kN, aligned\") roller 0")),
+        "{:?}",
+        report.warnings
+    );
     let sub = report.subsurface.as_ref().unwrap();
     let shear = sub.bodies[0].peaks.shear_yz.value_mpa;
     assert!(
@@ -231,4 +241,54 @@ fn the_robust_crown_for_the_life_lives_as_long_as_the_tuned_profile() {
         worst(&p_max),
         worst(&life)
     );
+}
+
+/// A scene of the bundled bearing, zero clearance, ISO's crown, on `cells`, under `loads`
+/// (label, F_r \[N\]) of equal time fractions, no design.
+fn duty_cycle(cells: &str, loads: &[(&str, f64)]) -> Scene {
+    let mut text = format!(
+        "name = \"duty\"\n[bearing]\nrollers = 14\nroller_diameter_mm = 10.0\n\
+         roller_length_mm = 10.0\nchamfer_mm = 0.2\npitch_diameter_mm = 65.0\n\
+         material = {{ e_mpa = 2.1e5, nu = 0.3 }}\ncells = {cells}\nroller_profile = \"iso\"\n"
+    );
+    for (label, radial) in loads {
+        text.push_str(&format!(
+            "[[bearing.load]]\nlabel = \"{label}\"\nradial_n = {radial}\nfraction = {}\n",
+            1.0 / loads.len() as f64
+        ));
+    }
+    text.push_str("[solver]\nkind = \"polonsky_keer\"\n");
+    Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap()
+}
+
+/// The bearing report of a scene's only case.
+fn bearing_of(scene: &Scene) -> contopt_results::BearingReport {
+    let report = scene.cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    report.bearing.unwrap()
+}
+
+/// The new user's duty cycles (issue 35, point 1): a light case beside a far heavier one is
+/// solved on cells sized for its own contact, so that its p_max and lives are those of the
+/// light case run alone (on its own design load's grid). On 40 × 25 cells (4 cells across
+/// the design load's half-width), before the grids of its own, the 10 kN case of a 2 MN /
+/// 10 kN cycle (the typo) had p_max −52.8 % and the half-space life −6.5 % against the case
+/// alone, and the 2 kN case of a 30 kN / 2 kN cycle p_max +2.0 % and the peak-pressure life
+/// −24 %, without a word; now they agree within 0.2 % (p_max) and 1.8 % (lives).
+#[test]
+fn a_light_load_case_is_solved_on_cells_of_its_own() {
+    for (heavy, light) in [(30e3, 2e3), (2e6, 10e3)] {
+        let both = bearing_of(&duty_cycle("[40, 25]", &[("A", heavy), ("B", light)]));
+        let alone = bearing_of(&duty_cycle("[40, 25]", &[("B", light)]));
+        let (b, own) = (&both.load_cases[1], &alone.load_cases[0]);
+        let p = b.p_max_mpa / own.p_max_mpa - 1.0;
+        assert!(p.abs() < 5e-3, "{heavy}/{light}: p_max {p:+.4}");
+        for (got, want) in [
+            (b.lives.half_space_mrev, own.lives.half_space_mrev),
+            (b.lives.peak_pressure_mrev, own.lives.peak_pressure_mrev),
+        ] {
+            let life = got / want - 1.0;
+            assert!(life.abs() < 0.03, "{heavy}/{light}: life {life:+.4}");
+        }
+    }
 }

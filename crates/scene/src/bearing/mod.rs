@@ -9,6 +9,7 @@
 //! The envelope of the design is the bearing's own: every loaded roller of every load case,
 //! and the crown's tolerance band. The run is in [`run`].
 
+mod grids;
 mod run;
 
 use std::ops::Range;
@@ -39,6 +40,8 @@ pub(crate) struct BearingPlan {
     pub crown: Option<BearingCrown>,
     /// The grid's cells along and across the roller.
     pub cells: [usize; 2],
+    /// How far the grid reaches across, in Hertz half-widths of its load.
+    pub reach: f64,
     /// The bearing, the scene's crowns built.
     pub bearing: CylindricalRollerBearing,
     /// The load cases: label, load, time fraction.
@@ -250,6 +253,7 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Option<BearingPlan>,
     Ok(Some(BearingPlan {
         crown: (spec.optimisation.as_ref()).and_then(|o| o.method.bearing_crown()),
         cells: b.cells,
+        reach: b.reach_b,
         bearing,
         loads: b
             .load

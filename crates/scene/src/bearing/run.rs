@@ -22,10 +22,12 @@ use contopt_roller::{
     reference_rating_life, robust_crown, slice_loads_from_pressure, slice_peaks_from_pressure,
     solve_cases, tolerance_band, tune_profile, tune_profile_coarse_to_fine, BearingSettings,
     CaseContact, Crown, CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, Raceway,
-    Roller, RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
+    Roller, RollerCase, RollerEnds, SliceLoads, EDGE_LOADING,
 };
 
+use super::grids::{self, Grids, Solved};
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
+use crate::limits::MIN_CELLS_ACROSS;
 use crate::methods::{roller_report, BearingCrown, Check, Context, Design, Designed};
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
@@ -123,12 +125,13 @@ fn distributions(
 
 /// The lives of every load case and over the duty cycle, the half-space's from `states` (the
 /// envelope's contacts, band after band: the worst band per load case).
-fn lives(
+fn lives<'g>(
     plan: &BearingPlan,
     distributions: &[LoadDistribution],
     env: &Envelope,
     pressures: &[&[f64]],
     at: &Geometry,
+    grid: &dyn Fn(usize) -> (&'g [[f64; 3]], [f64; 2]),
 ) -> Result<(Vec<Lives>, Lives)> {
     let n = env.contacts.len();
     let slices = plan.bearing.slices;
@@ -145,8 +148,9 @@ fn lives(
             for (j, contact) in env.index[i].iter().enumerate() {
                 let Some(k) = contact else { continue };
                 let p = pressures[band * n + k];
-                let q = slice_loads_from_pressure(at.points, p, at.cell, at.length, slices)?;
-                let peaks = slice_peaks_from_pressure(at.points, p, at.cell, at.length, slices)?;
+                let (points, cell) = grid(*k);
+                let q = slice_loads_from_pressure(points, p, cell, at.length, slices)?;
+                let peaks = slice_peaks_from_pressure(points, p, cell, at.length, slices)?;
                 let hertz: Vec<f64> = q
                     .iter()
                     .zip(&peaks)
@@ -326,7 +330,7 @@ fn search_objective<'o>(
             BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
             BearingObjective::Life => {
                 let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-                let (_, duty) = lives(plan, first, env, &pressures, at)?;
+                let (_, duty) = lives(plan, first, env, &pressures, at, &|_| (at.points, at.cell))?;
                 Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
             }
         }
@@ -433,49 +437,74 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         None => first,
     };
     let env = Envelope::new(&dists, plan.raceway);
-    let cases = env.cases(problem, roller, plan.tolerance)?;
+    let layout = grids::Layout {
+        cells: plan.cells,
+        reach: plan.reach,
+        ends: plan.free_ends.map(|weight| RollerEnds {
+            chamfer_mm: plan.bearing.chamfer,
+            weight,
+        }),
+    };
+    let grids = Grids::new(problem, roller, at.cell, &layout, &env.contacts)?;
     let started = Instant::now();
     let change = designed
         .as_ref()
         .map_or_else(|| vec![0.0; problem.len()], |d| d.change.clone());
-    let states = solve_cases(&cases, &change, solver, None, &Nested(observer))?;
+    let solve = |cases: &[LoadCase], change: &[f64]| {
+        solve_cases(cases, change, solver, None, &Nested(observer))
+    };
+    let solved = grids.solve(&env.contacts, plan.tolerance, &change, solve)?;
     report.time("solve", started);
-    if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
+    if let Some(s) = solved.states.iter().find(|s| !s.termination.is_solved()) {
         let why = s.termination.clone().inside(s.method);
         return Ok(Designed::unsolved(why, solver.method()));
     }
+    let states = &solved.states;
     let started = Instant::now();
     let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-    let (per_case, duty) = lives(plan, &dists, &env, &pressures, &at)?;
+    let n = env.contacts.len();
+    let on_grid = |k: usize| (grids.of(k).points(), grids.of(k).cell);
+    let (per_case, duty) = lives(plan, &dists, &env, &pressures, &at, &on_grid)?;
     report.time("lives", started);
     let worst = (0..states.len())
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(0);
+    // The report's fields lie on the design grid: they show its worst contact.
+    let shown = (0..states.len())
+        .filter(|&s| grids.of[s % n] == 0)
+        .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
+        .unwrap_or(worst);
+    report
+        .warnings
+        .extend(resolution_warnings(plan, &env, &grids, designed.is_some())?);
+    if shown != worst {
+        report.warnings.push(elsewhere(plan, &env, worst % n));
+    }
     let levels = designed.as_ref().and_then(|d| d.levels.clone());
     report.bearing = Some(bearing_report(
-        plan, &dists, &env, &states, worst, &at, per_case, duty, levels,
+        plan, &dists, &env, states, worst, &grids, per_case, duty, levels,
     ));
     let last = Final {
-        cases: &cases,
-        states: &states,
-        contacts: env.contacts.len(),
-        worst,
+        solved: &solved,
+        env: &env,
+        grids: &grids,
+        shown,
     };
     outcome(designed, &last, &at, roller, solver.method())
 }
 
-/// The final state of a bearing's run: every contact's load case and solution (the distinct
-/// contacts first, then a tolerance band's), and the worst of them.
+/// The final state of a bearing's run: every contact's solution on its grid (the distinct
+/// contacts first, then a tolerance band's), and the contact the report shows.
 struct Final<'f, 'a> {
-    cases: &'f [LoadCase<'a>],
-    states: &'f [ContactState],
-    contacts: usize,
-    worst: usize,
+    solved: &'f Solved,
+    env: &'f Envelope,
+    grids: &'f Grids<'a>,
+    shown: usize,
 }
 
-/// The design's outcome from the final state: the worst contact's pressure and gap (its
+/// The design's outcome from the final state: the shown contact's pressure and gap (its
 /// initial gap the one the report shows), the crown designed (or the scene's, shown as Δh),
-/// and the roller's figures over every distinct contact, the worst first.
+/// and the roller's figures over every distinct contact, the shown one first.
 fn outcome(
     designed: Option<Crowned>,
     last: &Final,
@@ -483,7 +512,8 @@ fn outcome(
     roller: &Roller,
     solver: Method,
 ) -> Result<Designed> {
-    let (cases, states, worst) = (last.cases, last.states, last.worst);
+    let (states, shown) = (&last.solved.states, last.shown);
+    let n = last.env.contacts.len();
     let drop: Vec<f64> = match &designed {
         Some(d) => d.change.clone(),
         None => at
@@ -492,17 +522,23 @@ fn outcome(
             .map(|x| roller.crown.drop(x[0], roller.length))
             .collect::<Result<Vec<f64>>>()?,
     };
-    let contacts: Vec<CaseContact> = std::iter::once(worst)
-        .chain((0..last.contacts).filter(|&k| k != worst))
-        .map(|k| CaseContact {
-            load_n: cases[k].load_n,
-            tilt_arcmin: cases[k].tilt_arcmin,
-            pressure: &states[k].pressure,
-            approach_mm: states[k].approach().unwrap_or(0.0),
+    // The shown state first (a band's when the band holds the worst), then every contact's
+    // nominal state.
+    let contacts: Vec<(usize, CaseContact)> = std::iter::once(shown)
+        .chain((0..n).filter(|&s| s != shown))
+        .map(|s| {
+            let k = s % n;
+            let contact = CaseContact {
+                load_n: last.env.contacts[k].load_n,
+                tilt_arcmin: last.env.contacts[k].tilt_arcmin,
+                pressure: &states[s].pressure,
+                approach_mm: states[s].approach().unwrap_or(0.0),
+            };
+            (k, contact)
         })
         .collect();
-    let figures = RollerFigures::new(&contacts, at.points, &drop, at.cell[1]);
-    let state = &states[worst];
+    let figures = last.grids.figures(&contacts, &drop);
+    let state = &states[shown];
     let tuned = designed.as_ref().and_then(|d| d.tuned.clone());
     Ok(Designed {
         method: designed.as_ref().map(|d| d.method),
@@ -524,8 +560,100 @@ fn outcome(
         omega_nv_excess: designed.as_ref().and_then(|d| d.omega_nv_excess),
         passes: vec![],
         roller: roller_report(&figures, true, tuned),
-        shown_gap: Some(cases[worst].problem.initial_gap().to_vec()),
+        shown_gap: Some(last.solved.initial_gaps[shown].clone()),
     })
+}
+
+/// A contact named as tables name it: its load case (label) and roller, and its load.
+fn named(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
+    let (i, j) = env.origin[k];
+    format!(
+        "load case {i} (\"{}\") roller {j} (Q = {:.4e} N)",
+        plan.loads[i].0, env.contacts[k].load_n
+    )
+}
+
+/// The warning of a worst contact solved off the design grid: the report's fields show the
+/// design grid's worst instead.
+fn elsewhere(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
+    format!(
+        "the worst contact, {}, is solved on cells sized for its own load, not on the design \
+         load's (bearing.design_load_n = {:.4e} N): its figures are in the bearing's report, \
+         while the case's pressure field shows the worst contact on the design load's cells; \
+         set bearing.design_load_n near its load to see its field",
+        named(plan, env, k),
+        plan.design_load
+    )
+}
+
+/// The warnings of contacts whose half-width spans few cells: on their own grids, fewer
+/// than half of [`MIN_CELLS_ACROSS`]; and, when the crown was designed (on the design grid,
+/// for all contacts at once), the load cases whose heaviest roller the design saw on the
+/// design load's cells though it is far lighter (the final figures are solved on its own
+/// grid, not the design's; a light roller at the edge of a loaded zone, which carries little
+/// of the life, is not named).
+fn resolution_warnings(
+    plan: &BearingPlan,
+    env: &Envelope,
+    grids: &Grids,
+    designed: bool,
+) -> Result<Vec<String>> {
+    let mut coarse = vec![];
+    for k in 0..env.contacts.len() {
+        let cells = grids.of(k).cells_across(env.contacts[k].load_n)?;
+        if cells < 0.5 * MIN_CELLS_ACROSS {
+            coarse.push(format!("{} with {cells:.1} cells", named(plan, env, k)));
+        }
+    }
+    let mut off_design = vec![];
+    for index in env.index.iter().filter(|_| designed) {
+        let heaviest = index
+            .iter()
+            .flatten()
+            .copied()
+            .max_by(|&a, &b| env.contacts[a].load_n.total_cmp(&env.contacts[b].load_n));
+        if let Some(k) = heaviest.filter(|&k| grids.of[k] != 0) {
+            let on_design = grids.grids[0].cells_across(env.contacts[k].load_n)?;
+            off_design.push(format!("{} with {on_design:.1} cells", named(plan, env, k)));
+        }
+    }
+    let mut warnings = vec![];
+    if !coarse.is_empty() {
+        warnings.push(format!(
+            "{} of the bearing's {} contacts span fewer than {} cells across their own Hertz \
+             half-width, so their peaks and lives are coarse: {}; add cells across \
+             (bearing.cells[1]) or narrow the grid (bearing.reach_b)",
+            coarse.len(),
+            env.contacts.len(),
+            0.5 * MIN_CELLS_ACROSS,
+            listed(&coarse)
+        ));
+    }
+    if !off_design.is_empty() {
+        warnings.push(format!(
+            "the crown was designed over every loaded roller on the design load's cells \
+             (bearing.design_load_n = {:.4e} N), where the heaviest roller of a far lighter \
+             load case spans fewer than half of its cells across its half-width: {}; the \
+             final figures are solved on cells sized for each roller's own load, but the \
+             crown was shaped on coarse ones: set bearing.design_load_n nearer their loads if \
+             those load cases matter to the design",
+            plan.design_load,
+            listed(&off_design)
+        ));
+    }
+    Ok(warnings)
+}
+
+/// At most this many contacts are named in a warning; the rest are counted.
+const NAMED: usize = 6;
+
+/// `items` joined, the first [`NAMED`] of them and a count of the rest.
+fn listed(items: &[String]) -> String {
+    let mut text = items[..items.len().min(NAMED)].join("; ");
+    if items.len() > NAMED {
+        text.push_str(&format!("; and {} more", items.len() - NAMED));
+    }
+    text
 }
 
 /// Each load case's distribution with the designed crown `change` (per point \[mm\]) on the
@@ -550,7 +678,7 @@ fn bearing_report(
     env: &Envelope,
     states: &[ContactState],
     worst: usize,
-    at: &Geometry,
+    grids: &Grids,
     per_case: Vec<Lives>,
     duty: Lives,
     levels: Option<Vec<f64>>,
@@ -604,6 +732,7 @@ fn bearing_report(
     let (i, j) = env.origin[k];
     let pressure = &states[worst].pressure;
     let top = peak_index(pressure).unwrap_or(0);
+    let points = grids.of(k).points();
     let deviation = [0.0, 1.0, -1.0][band.min(2)] * 1e3 * plan.tolerance;
     BearingReport {
         dynamic_load_rating_n: plan.rating,
@@ -624,8 +753,8 @@ fn bearing_report(
             tilt_arcmin: env.contacts[k].tilt_arcmin,
             deviation_um: deviation,
             p_max_mpa: states[worst].p_max(),
-            p_max_at_mm: [at.points[top][0], at.points[top][1]],
-            edge_loading: end_ratio(at.points, pressure) > EDGE_LOADING,
+            p_max_at_mm: [points[top][0], points[top][1]],
+            edge_loading: end_ratio(points, pressure) > EDGE_LOADING,
         },
     }
 }
