@@ -26,6 +26,11 @@ pub(crate) const MAX_MISALIGNMENT_ARCMIN: f64 = 600.0;
 /// The largest tolerance band \[µm\]: a millimetre.
 pub(crate) const MAX_TOLERANCE_UM: f64 = 1000.0;
 
+/// The largest diametral clearance or preload, as a fraction of the roller's diameter: a
+/// tenth of it, far past a bearing's internal clearances (micrometres to tenths of a
+/// millimetre) and short of the thousandfold slip of typing micrometres as millimetres.
+pub(crate) const MAX_CLEARANCE: f64 = 0.1;
+
 /// Stribeck's factor of the design load: Q₀ = 5·F_r/Z for the heaviest load case.
 pub(crate) const STRIBECK: f64 = 5.0;
 
@@ -251,6 +256,7 @@ impl BearingSpec {
     /// The bearing without crowns, checked (its dimensions).
     pub(crate) fn bearing(&self) -> Result<CylindricalRollerBearing> {
         check::finite("bearing.first_roller_deg", self.first_roller_deg)?;
+        self.check_clearance()?;
         let b = CylindricalRollerBearing {
             rollers: self.rollers,
             roller_diameter: self.roller_diameter_mm,
@@ -266,6 +272,27 @@ impl BearingSpec {
         };
         b.check()?;
         Ok(b)
+    }
+
+    /// A clearance (or preload) of the bearing's size: at most [`MAX_CLEARANCE`] of the
+    /// roller's diameter either way; one far past it is a slip of units, named with them.
+    fn check_clearance(&self) -> Result<()> {
+        let (c, d) = (self.clearance_mm, self.roller_diameter_mm);
+        check::finite("bearing.clearance_mm", c)?;
+        if d > 0.0 && c.abs() > MAX_CLEARANCE * d {
+            return Err(Error::invalid(
+                "bearing.clearance_mm",
+                format!("{c} mm ({:.0} µm)", 1e3 * c),
+                format!(
+                    "is {:.0} % of the roller's diameter ({d} mm): a diametral clearance (or, \
+                     negative, a preload) is some micrometres to tenths of a millimetre, and \
+                     the key is in millimetres (20 µm is 0.02); at most {} mm is taken",
+                    100.0 * c.abs() / d,
+                    MAX_CLEARANCE * d
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The roller on the solved raceway under the design load, its crown straight.

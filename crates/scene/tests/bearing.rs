@@ -78,6 +78,15 @@ fn a_bearing_is_checked_at_its_keys() {
     );
     let e = refused("clearance_mm = 0.0406", "clearance_mm = nan");
     assert!(e.contains("bearing.clearance_mm"), "{e}");
+    // A clearance typed in micrometres is named with its units (issue 35, point 5).
+    let e = refused("clearance_mm = 0.0406", "clearance_mm = 20.0");
+    assert!(
+        e.contains(&format!("bearing.toml:{}:", line_of("clearance_mm")))
+            && e.contains("bearing.clearance_mm")
+            && e.contains("20 mm (20000 µm)")
+            && e.contains("millimetres"),
+        "{e}"
+    );
     let e = refused(
         "{ kind = \"envelope_split\", tolerance = 1e-7 }, controller = { kind = \"cubic\", l1_mm = 4.8, l2_mm = 4.8 } } }\n\n[[case]]",
         "{ kind = \"envelope_split\", tolerance = 1e-7 } } }\n\n[[case]]",
@@ -240,6 +249,61 @@ fn the_robust_crown_for_the_life_lives_as_long_as_the_tuned_profile() {
         "{} vs {}",
         worst(&p_max),
         worst(&life)
+    );
+}
+
+/// A clearance wide enough to leave one roller loaded (0.3 mm under 2 kN) is solved (the
+/// rings' equilibrium used to stall, their stiffness across the load vanishing), its one
+/// roller carrying F_r, and the case says so, naming the clearance with its units.
+#[test]
+fn a_wide_clearance_loads_one_roller_and_says_so() {
+    let text = bundled_text()
+        .replace("clearance_mm = 0.0406", "clearance_mm = 0.3")
+        .replace("[80, 49]", "[16, 9]");
+    let scene = Scene::parse_with(
+        &text,
+        Format::Toml,
+        Path::new("bearing.toml"),
+        &[
+            ("case", None),
+            ("bearing.load", Some("[{ radial_n = 2000.0 }]")),
+        ],
+    )
+    .unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    let rollers = &report.bearing.as_ref().unwrap().load_cases[0].rollers;
+    assert!((rollers[0].load_n - 2000.0).abs() < 1e-6 * 2000.0);
+    assert!(rollers[1..].iter().all(|r| r.load_n == 0.0));
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("0.3 mm (300 µm)") && w.contains("roller 0 alone loaded")),
+        "{:?}",
+        report.warnings
+    );
+}
+
+/// A grid too narrow across for its contacts names the key that widens it: the shown
+/// contact's limit and the warning of every contact that reaches its grid's edge say
+/// `bearing.reach_b` (issue 35, point 5), not "more or larger cells".
+#[test]
+fn a_grid_too_narrow_names_reach_b() {
+    let scene = coarse("[16, 9]", &[("bearing.reach_b", Some("0.6"))]);
+    let report = scene.cases()[0].run().unwrap();
+    let limit = report.limit.as_ref().expect("outside the model");
+    assert!(
+        limit.message.contains("bearing.reach_b"),
+        "{}",
+        limit.message
+    );
+    assert!(
+        report.warnings.iter().any(|w| w.contains("outer rows")
+            && w.contains("load case 0 (\"8.9 kN, aligned\") roller 0")
+            && w.contains("bearing.reach_b")),
+        "{:?}",
+        report.warnings
     );
 }
 

@@ -405,6 +405,7 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         Err(why) => return Ok(Designed::unsolved(why, solver.method())),
     };
     report.time("distribution", started);
+    report.warnings.extend(lone_rollers(plan, &first));
     let env = Envelope::new(&first, plan.raceway);
     let started = Instant::now();
     let designed = match plan.crown {
@@ -477,6 +478,9 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     report
         .warnings
         .extend(resolution_warnings(plan, &env, &grids, designed.is_some())?);
+    report
+        .warnings
+        .extend(edge_warning(plan, &env, &grids, states));
     if shown != worst {
         report.warnings.push(elsewhere(plan, &env, worst % n));
     }
@@ -564,6 +568,28 @@ fn outcome(
     })
 }
 
+/// The warnings of load cases whose clearance leaves one roller alone loaded: the bearing
+/// then carries its load on a single roller, whatever its rating assumes.
+fn lone_rollers(plan: &BearingPlan, dists: &[LoadDistribution]) -> Vec<String> {
+    let clearance = plan.bearing.clearance;
+    (dists.iter().enumerate())
+        .filter_map(|(i, d)| {
+            let mut loaded = (0..d.rollers.len()).filter(|&j| d.rollers[j].load_n > 0.0);
+            let j = loaded.next()?;
+            loaded.next().is_none().then(|| {
+                format!(
+                    "load case {i} (\"{}\"): the diametral clearance {clearance} mm ({:.0} µm) \
+                     leaves roller {j} alone loaded, carrying all of F_r = {} N; check \
+                     bearing.clearance_mm (in millimetres)",
+                    plan.loads[i].0,
+                    1e3 * clearance,
+                    plan.loads[i].1.radial_n
+                )
+            })
+        })
+        .collect()
+}
+
 /// A contact named as tables name it: its load case (label) and roller, and its load.
 fn named(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
     let (i, j) = env.origin[k];
@@ -642,6 +668,43 @@ fn resolution_warnings(
         ));
     }
     Ok(warnings)
+}
+
+/// A point carries pressure when it holds more than this fraction of its contact's p_max.
+const CARRIES: f64 = 1e-6;
+
+/// The warning of contacts whose pressure reaches their grid's outer rows across: the grid
+/// ends inside them, and `bearing.reach_b` widens it.
+fn edge_warning(
+    plan: &BearingPlan,
+    env: &Envelope,
+    grids: &Grids,
+    states: &[ContactState],
+) -> Option<String> {
+    let n = env.contacts.len().max(1);
+    let mut reached: Vec<String> = vec![];
+    for (s, state) in states.iter().enumerate() {
+        let k = s % n;
+        let grid = grids.of(k);
+        let points = grid.points();
+        let outer = points.iter().fold(0.0f64, |m, x| m.max(x[1].abs()));
+        let limit = CARRIES * state.p_max();
+        let edge = (points.iter().zip(&state.pressure))
+            .any(|(x, p)| x[1].abs() > outer - 0.5 * grid.cell[1] && *p > limit);
+        let name = named(plan, env, k);
+        if edge && !reached.contains(&name) {
+            reached.push(name);
+        }
+    }
+    (!reached.is_empty()).then(|| {
+        format!(
+            "the pressure of {} reaches the outer rows of its grid across (±{} Hertz \
+             half-widths of its grid's load): the grid ends inside the contact, so its pressure \
+             and lives are wrong; raise bearing.reach_b",
+            listed(&reached),
+            plan.reach
+        )
+    })
 }
 
 /// At most this many contacts are named in a warning; the rest are counted.
