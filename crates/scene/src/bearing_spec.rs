@@ -189,8 +189,50 @@ pub struct BearingSpec {
     /// line).
     #[serde(default)]
     pub first_roller_deg: f64,
+    /// The rotating ring's speed against the other \[min⁻¹\] (default none: lives in
+    /// revolutions only); with it, every life in hours too.
+    #[serde(default)]
+    pub speed_rpm: Option<f64>,
+    /// The lubricant and the contamination, for ISO 281's modified lives
+    /// (`[bearing.lubrication]`; needs `speed_rpm`).
+    #[serde(default)]
+    pub lubrication: Option<LubricationSpec>,
     /// The load cases of the duty cycle (`[[bearing.load]]`).
     pub load: Vec<BearingLoadSpec>,
+}
+
+/// A bearing's lubrication for ISO 281's life modification factor a_ISO
+/// (`[bearing.lubrication]`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LubricationSpec {
+    /// The lubricant's kinematic viscosity at the operating temperature ν \[mm²/s\] (an ISO
+    /// VG grade is its viscosity at 40 °C: VG 68 is 68 mm²/s there, less when warmer).
+    pub viscosity_mm2_s: f64,
+    /// ISO 281's contamination factor e_C, 0 to 1 (1: extremely clean; about 0.5 to 0.3 for
+    /// normal cleanliness; ISO 281 Table 13).
+    pub contamination: f64,
+    /// The fatigue load limit C_u \[N\] (default ISO 281's from ISO 76's C_0r: C_0r/8.2,
+    /// smaller past D_pw = 100 mm); a catalogue's P_u where it gives one.
+    #[serde(default)]
+    pub fatigue_load_limit_n: Option<f64>,
+}
+
+impl LubricationSpec {
+    /// Checks its numbers; fields are named from the bearing.
+    pub(crate) fn check(&self) -> Result<()> {
+        check::positive("lubrication.viscosity_mm2_s", self.viscosity_mm2_s)?;
+        check::between(
+            "lubrication.contamination",
+            self.contamination,
+            -f64::EPSILON,
+            1.0 + f64::EPSILON,
+        )?;
+        if let Some(c) = self.fatigue_load_limit_n {
+            check::positive("lubrication.fatigue_load_limit_n", c)?;
+        }
+        Ok(())
+    }
 }
 
 /// One load case of a bearing's duty cycle (`[[bearing.load]]`).

@@ -34,6 +34,7 @@ mod error;
 mod fields;
 mod gap;
 mod limits;
+mod lives;
 mod load;
 mod mesh_surface;
 mod meshes;

@@ -76,6 +76,16 @@ fn a_bearing_is_checked_at_its_keys() {
         e.contains("bearing.roller_diameter_mm") && e.contains("fit"),
         "{e}"
     );
+    // Lubrication needs a speed; a lubricant far too thin for it is refused (κ < 0.1).
+    let e = refused("speed_rpm = 2000.0\n", "");
+    assert!(e.contains("speed_rpm") && e.contains("ν₁"), "{e}");
+    let e = refused("viscosity_mm2_s = 20.0", "viscosity_mm2_s = 0.5");
+    assert!(
+        e.contains("lubrication.viscosity_mm2_s") && e.contains("below 0.1"),
+        "{e}"
+    );
+    let e = refused("contamination = 0.5", "contamination = 1.5");
+    assert!(e.contains("lubrication.contamination"), "{e}");
     let e = refused("clearance_mm = 0.0406", "clearance_mm = nan");
     assert!(e.contains("bearing.clearance_mm"), "{e}");
     // A clearance typed in micrometres is named with its units (issue 35, point 5).
@@ -160,6 +170,25 @@ fn the_bundled_bearing_on_a_coarse_grid() {
     };
     let duty = &b.duty_cycle;
     assert!((duty.slice_model_mrev / miner(|l| l.slice_model_mrev) - 1.0).abs() < 1e-12);
+    // Hours at 2000 rpm, and the modified lives: κ = 20/ν₁, ν₁ = 4500·2000^(−1/2)·65^(−1/2)
+    // = 12.48 mm²/s; C_u = C_0r/8.2, C_0r = 44·(1 − 10/65)·14·9.6·10 N.
+    let lub = b.lubrication.as_ref().unwrap();
+    let nu1 = 4500.0 / (2000.0f64 * 65.0).sqrt();
+    assert!((lub.rated_viscosity_mm2_s / nu1 - 1.0).abs() < 1e-12);
+    assert!((lub.kappa - 20.0 / nu1).abs() < 1e-12);
+    let c0 = 44.0 * (55.0 / 65.0) * 14.0 * 9.6 * 10.0;
+    assert!((lub.fatigue_load_limit_n / (c0 / 8.2) - 1.0).abs() < 1e-12);
+    let hours = b.duty_cycle_hours.unwrap();
+    assert!((hours.iso_281_h / (duty.iso_281_mrev * 1e6 / 120_000.0) - 1.0).abs() < 1e-12);
+    let m = duty.modified.unwrap();
+    assert!(
+        m.a_iso > 1.0 && m.modified_mrev > duty.iso_281_mrev,
+        "{m:?}"
+    );
+    assert!(
+        (hours.modified_reference_h.unwrap() / (m.modified_reference_mrev / 0.12) - 1.0).abs()
+            < 1e-9
+    );
     assert!((duty.peak_pressure_mrev / miner(|l| l.peak_pressure_mrev) - 1.0).abs() < 1e-12);
     let worst = b.load_cases.iter().map(|c| c.p_max_mpa).fold(0.0, f64::max);
     assert!((b.worst.p_max_mpa - worst).abs() < 1e-9 * worst);

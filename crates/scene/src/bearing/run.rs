@@ -15,19 +15,20 @@ use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
 
 use contopt_results::{
-    BearingLoadCase, BearingReport, BearingRoller, CaseReport, Lives, TunedProfile, WorstContact,
+    BearingLoadCase, BearingReport, BearingRoller, CaseReport, TunedProfile, WorstContact,
 };
 use contopt_roller::{
-    basic_rating_life, bearing_cases, end_ratio, hertz_slice_load, miner, penalised_worst,
-    reference_rating_life, robust_crown, slice_loads_from_pressure, slice_peaks_from_pressure,
-    solve_cases, tolerance_band, tune_profile, tune_profile_coarse_to_fine, BearingSettings,
-    CaseContact, Crown, CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, Raceway,
-    Roller, RollerCase, RollerEnds, SliceLoads, EDGE_LOADING,
+    bearing_cases, end_ratio, hertz_slice_load, penalised_worst, robust_crown,
+    slice_loads_from_pressure, slice_peaks_from_pressure, solve_cases, tolerance_band,
+    tune_profile, tune_profile_coarse_to_fine, BearingSettings, CaseContact, Crown,
+    CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, Raceway, Roller, RollerCase,
+    RollerEnds, SliceLoads, EDGE_LOADING,
 };
 
 use super::grids::{self, Grids, Solved};
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
 use crate::limits::MIN_CELLS_ACROSS;
+use crate::lives::{CaseSlices, LivesInput, LivesOutput};
 use crate::methods::{roller_report, BearingCrown, Check, Context, Design, Designed};
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
@@ -123,26 +124,25 @@ fn distributions(
     Ok(Ok(all))
 }
 
-/// The lives of every load case and over the duty cycle, the half-space's from `states` (the
-/// envelope's contacts, band after band: the worst band per load case).
-fn lives<'g>(
+/// Every load case's slice loads for the lives stage ([`crate::lives`]): the slice model's,
+/// and per crown of the band the solved raceway's replaced by the half-space contacts'
+/// (`pressures`, the envelope's contacts band after band, contact k on the grid `grid(k)`)
+/// and by the Hertzian loads of their slices' peaks.
+fn slices<'g>(
     plan: &BearingPlan,
     distributions: &[LoadDistribution],
     env: &Envelope,
     pressures: &[&[f64]],
     at: &Geometry,
     grid: &dyn Fn(usize) -> (&'g [[f64; 3]], [f64; 2]),
-) -> Result<(Vec<Lives>, Lives)> {
+) -> Result<Vec<CaseSlices>> {
     let n = env.contacts.len();
     let slices = plan.bearing.slices;
     let width = at.length / slices as f64;
-    let mut per_case = Vec::with_capacity(distributions.len());
+    let mut all = Vec::with_capacity(distributions.len());
     for (i, d) in distributions.iter().enumerate() {
         let base = SliceLoads::from_distribution(d)?;
-        let life = |loads: &SliceLoads| -> Result<f64> {
-            Ok(reference_rating_life(&plan.ratings, loads, plan.rotating)?.bearing)
-        };
-        let (mut half_space, mut peak) = (f64::INFINITY, f64::INFINITY);
+        let mut bands = vec![];
         for band in 0..env.bands(pressures.len()) {
             let (mut loads, mut raised) = (base.clone(), base.clone());
             for (j, contact) in env.index[i].iter().enumerate() {
@@ -159,32 +159,29 @@ fn lives<'g>(
                 loads.set(plan.raceway, j, &q)?;
                 raised.set(plan.raceway, j, &hertz)?;
             }
-            half_space = half_space.min(life(&loads)?);
-            peak = peak.min(life(&raised)?);
+            bands.push([loads, raised]);
         }
-        per_case.push(Lives {
-            iso_281_mrev: basic_rating_life(plan.rating, plan.loads[i].1.radial_n)?,
-            slice_model_mrev: life(&base)?,
-            half_space_mrev: half_space,
-            peak_pressure_mrev: peak,
+        let (_, load, fraction) = &plan.loads[i];
+        all.push(CaseSlices {
+            radial_n: load.radial_n,
+            fraction: *fraction,
+            slice_model: base,
+            bands,
         });
     }
-    let cycle = |f: fn(&Lives) -> f64| -> Result<f64> {
-        let cases: Vec<(f64, f64)> = plan
-            .loads
-            .iter()
-            .zip(&per_case)
-            .map(|((_, _, t), l)| (*t, f(l)))
-            .collect();
-        miner(&cases)
-    };
-    let duty = Lives {
-        iso_281_mrev: cycle(|l| l.iso_281_mrev)?,
-        slice_model_mrev: cycle(|l| l.slice_model_mrev)?,
-        half_space_mrev: cycle(|l| l.half_space_mrev)?,
-        peak_pressure_mrev: cycle(|l| l.peak_pressure_mrev)?,
-    };
-    Ok((per_case, duty))
+    Ok(all)
+}
+
+/// The lives stage's input for `cases` under `plan`.
+fn lives_input<'a>(plan: &'a BearingPlan, cases: &'a [CaseSlices]) -> LivesInput<'a> {
+    LivesInput {
+        rating: plan.rating,
+        ratings: &plan.ratings,
+        rotating: plan.rotating,
+        cases,
+        speed_rpm: plan.speed_rpm,
+        lubrication: plan.lubrication.map(|l| l.figures),
+    }
 }
 
 /// What a design of the crown found: the gap change per point \[mm\] and its account.
@@ -330,7 +327,9 @@ fn search_objective<'o>(
             BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
             BearingObjective::Life => {
                 let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-                let (_, duty) = lives(plan, first, env, &pressures, at, &|_| (at.points, at.cell))?;
+                let on_grid = |_| (at.points, at.cell);
+                let cases = slices(plan, first, env, &pressures, at, &on_grid)?;
+                let duty = crate::lives::lives(&lives_input(plan, &cases))?.duty;
                 Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
             }
         }
@@ -465,7 +464,8 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
     let n = env.contacts.len();
     let on_grid = |k: usize| (grids.of(k).points(), grids.of(k).cell);
-    let (per_case, duty) = lives(plan, &dists, &env, &pressures, &at, &on_grid)?;
+    let cases = slices(plan, &dists, &env, &pressures, &at, &on_grid)?;
+    let lives = crate::lives::lives(&lives_input(plan, &cases))?;
     report.time("lives", started);
     let worst = (0..states.len())
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
@@ -486,7 +486,7 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     }
     let levels = designed.as_ref().and_then(|d| d.levels.clone());
     report.bearing = Some(bearing_report(
-        plan, &dists, &env, states, worst, &grids, per_case, duty, levels,
+        plan, &dists, &env, states, worst, &grids, lives, levels,
     ));
     let last = Final {
         solved: &solved,
@@ -742,8 +742,7 @@ fn bearing_report(
     states: &[ContactState],
     worst: usize,
     grids: &Grids,
-    per_case: Vec<Lives>,
-    duty: Lives,
+    lives: LivesOutput,
     levels: Option<Vec<f64>>,
 ) -> BearingReport {
     let n = env.contacts.len();
@@ -757,9 +756,9 @@ fn bearing_report(
     let arcmin = |rad: f64| 60.0 * rad.to_degrees();
     let load_cases = dists
         .iter()
-        .zip(per_case)
+        .zip(lives.per_case.into_iter().zip(lives.per_case_hours))
         .enumerate()
-        .map(|(i, (d, lives))| {
+        .map(|(i, (d, (lives, hours)))| {
             let rollers: Vec<BearingRoller> = d
                 .rollers
                 .iter()
@@ -788,6 +787,7 @@ fn bearing_report(
                     .fold(0.0, f64::max),
                 rollers,
                 lives,
+                hours,
             }
         })
         .collect();
@@ -808,7 +808,10 @@ fn bearing_report(
         pressure_levels: levels,
         contacts_solved: states.len(),
         load_cases,
-        duty_cycle: duty,
+        duty_cycle: lives.duty,
+        speed_rpm: plan.speed_rpm,
+        duty_cycle_hours: lives.duty_hours,
+        lubrication: plan.lubrication.map(|l| l.report),
         worst: WorstContact {
             load_case: i,
             roller: j,
