@@ -152,6 +152,7 @@ every_bundled_scene!(
     winkler_bed: "winkler-bed",
     cylinder_on_block: "cylinder-on-block",
     filleted_punch: "filleted-punch",
+    shrink_fit: "shrink-fit",
 );
 
 /// The first field of a CSV row (RFC 4180: quoted when it holds a comma or a quote, quotes

@@ -381,6 +381,66 @@ pub struct BearingReport {
     pub duty_cycle: Lives,
     /// The contact with the largest pressure over every load case and the band.
     pub worst: WorstContact,
+    /// The rotating ring's speed against the other \[min⁻¹\]; null when the scene gives none
+    /// (lives then in revolutions only).
+    pub speed_rpm: Option<f64>,
+    /// The duty cycle's lives in hours at that speed; null without one.
+    pub duty_cycle_hours: Option<LifeHours>,
+    /// ISO 281's lubrication and fatigue limit figures behind the modified lives; null
+    /// without `[bearing.lubrication]`.
+    pub lubrication: Option<LubricationReport>,
+}
+
+/// ISO 281's figures of a bearing's lubrication and fatigue limit.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct LubricationReport {
+    /// The lubricant's kinematic viscosity at the operating temperature ν \[mm²/s\].
+    pub viscosity_mm2_s: f64,
+    /// ISO 281's rated viscosity ν₁ at the speed and pitch diameter \[mm²/s\].
+    pub rated_viscosity_mm2_s: f64,
+    /// The viscosity ratio κ = ν/ν₁ (a_ISO takes κ > 4 as 4).
+    pub kappa: f64,
+    /// The contamination factor e_C.
+    pub contamination: f64,
+    /// ISO 76's basic static radial load rating C_0r \[N\].
+    pub static_load_rating_n: f64,
+    /// The fatigue load limit C_u \[N\]: the scene's, or ISO 281's C_0r/8.2 (smaller past
+    /// D_pw = 100 mm).
+    pub fatigue_load_limit_n: f64,
+}
+
+/// Lives in hours at the bearing's speed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct LifeHours {
+    /// ISO 281's basic rating life L₁₀h \[h\].
+    pub iso_281_h: f64,
+    /// ISO/TS 16281's reference rating life from the half-space contacts, L₁₀rh \[h\].
+    pub half_space_h: f64,
+    /// ISO 281's modified rating life L_nmh \[h\]; null without lubrication.
+    pub modified_h: Option<f64>,
+    /// ISO/TS 16281's modified reference rating life L_nmrh \[h\]; null without lubrication.
+    pub modified_reference_h: Option<f64>,
+}
+
+/// Modified lives (ISO 281's a_ISO applied).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct ModifiedLives {
+    /// a_ISO at P = F_r (over a duty cycle: L_nm/L₁₀).
+    pub a_iso: f64,
+    /// ISO 281's modified rating life L_nm = a_ISO·L₁₀ \[10⁶ revolutions\].
+    pub modified_mrev: f64,
+    /// a_ISO at the reference life's equivalent load P_ref = C_r·L₁₀r^(−3/10) (over a duty
+    /// cycle: L_nmr/L₁₀r).
+    pub a_iso_reference: f64,
+    /// ISO/TS 16281's modified reference rating life L_nmr = a_ISO(P_ref)·L₁₀r, L₁₀r the
+    /// half-space contacts' \[10⁶ revolutions\].
+    pub modified_reference_mrev: f64,
 }
 
 /// One load case of a bearing.
@@ -413,6 +473,8 @@ pub struct BearingLoadCase {
     pub p_max_mpa: f64,
     /// Its rating lives.
     pub lives: Lives,
+    /// Its lives in hours at the bearing's speed; null without one.
+    pub hours: Option<LifeHours>,
 }
 
 /// One roller of a load case.
@@ -447,6 +509,11 @@ pub struct Lives {
     /// pressure, π·R·w·p²/E* (the edge stresses of the contact, which a slice load alone
     /// does not see; the band's worst).
     pub peak_pressure_mrev: f64,
+    /// The half-space life's rings alone, inner and outer: each raceway's L₁₀r, which
+    /// `half_space_mrev` combines as (L_i^(−9/8) + L_e^(−9/8))^(−8/9) (ISO/TS 16281).
+    pub rings_mrev: [f64; 2],
+    /// The modified lives; null without `[bearing.lubrication]`.
+    pub modified: Option<ModifiedLives>,
 }
 
 /// The contact with the largest pressure of a bearing case.

@@ -76,6 +76,10 @@ fn decreased(trial: f64, current: f64, expected: f64) -> bool {
 /// The most halvings of a line search's step before it stalls.
 const MAX_HALVINGS: usize = 60;
 
+/// A singular Hessian of the rings is shifted by this fraction of its largest diagonal term
+/// ([`Model::factor`]).
+const SINGULAR: f64 = 1e-12;
+
 /// The most Newton steps of one roller's equilibrium.
 const ROLLER_STEPS: usize = 100;
 
@@ -738,8 +742,8 @@ impl Model {
     ) -> Option<Rings> {
         let n = u.len();
         let rhs = Mat::from_fn(n, 1, |r, _| -rings.gradient[r]);
-        let direction: Vec<f64> = match Llt::new(rings.hessian.as_ref(), Side::Lower) {
-            Ok(llt) if rings.loaded > 0 => {
+        let direction: Vec<f64> = match self.factor(&rings.hessian) {
+            Some(llt) if rings.loaded > 0 => {
                 let d = llt.solve(&rhs);
                 (0..n).map(|r| d[(r, 0)]).collect()
             }
@@ -771,6 +775,24 @@ impl Model {
             alpha *= 0.5;
         }
         None
+    }
+
+    /// The Cholesky factor of the rings' Hessian; where it is singular (a wide clearance
+    /// leaves the rollers on the load line alone loaded, and the rings have no stiffness
+    /// across the load), of the Hessian with [`SINGULAR`] times its largest diagonal term
+    /// added to the diagonal: the step is then Newton's in the directions the rollers hold
+    /// and none across them, where the gradient vanishes too.
+    fn factor(&self, hessian: &Mat<f64>) -> Option<Llt<f64>> {
+        if let Ok(llt) = Llt::new(hessian.as_ref(), Side::Lower) {
+            return Some(llt);
+        }
+        let n = hessian.nrows();
+        let largest = (0..n).map(|r| hessian[(r, r)].abs()).fold(0.0, f64::max);
+        let mut shifted = hessian.clone();
+        for r in 0..n {
+            shifted[(r, r)] += SINGULAR * largest;
+        }
+        Llt::new(shifted.as_ref(), Side::Lower).ok()
     }
 
     /// The result at `u`: every roller's slice loads and tilts.

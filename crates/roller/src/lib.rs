@@ -7,7 +7,8 @@
 //! over a cylindrical roller bearing's rollers by ISO/TS 16281's slice model
 //! ([`CylindricalRollerBearing::solve`]), its rollers' loads and tilts as load cases
 //! ([`bearing_cases`]), and its rating lives after ISO 281 and ISO/TS 16281
-//! ([`dynamic_load_rating`], [`reference_rating_life`], [`miner`]).
+//! ([`dynamic_load_rating`], [`reference_rating_life`], [`miner`]), in hours and modified by
+//! ISO 281's a_ISO ([`hours`], [`life_modification_factor`]).
 //!
 //! Coordinates: x along the roller axis (|x| ≤ l/2), y across the contact, z into the raceway.
 //! Units: N, mm, MPa.
@@ -18,6 +19,7 @@ mod design;
 mod figures;
 mod geometry;
 mod life;
+mod modified;
 
 pub use bearing::{
     BearingLoad, BearingSettings, CylindricalRollerBearing, LoadDistribution, Raceway, RollerCase,
@@ -35,4 +37,8 @@ pub use life::{
     basic_rating_life, dynamic_load_rating, f_c, hertz_slice_load, miner, reference_rating_life,
     slice_loads_from_pressure, slice_peaks_from_pressure, slice_ratings, ReferenceLife, SliceLoads,
     SliceRatings, B_M, REDUCTION, ROLLER_LIFE_EXPONENT,
+};
+pub use modified::{
+    fatigue_load_limit, hours, life_modification_factor, rated_viscosity, static_load_rating,
+    A_ISO_MAX, KAPPA_MAX, KAPPA_MIN,
 };

@@ -26,6 +26,11 @@ pub(crate) const MAX_MISALIGNMENT_ARCMIN: f64 = 600.0;
 /// The largest tolerance band \[µm\]: a millimetre.
 pub(crate) const MAX_TOLERANCE_UM: f64 = 1000.0;
 
+/// The largest diametral clearance or preload, as a fraction of the roller's diameter: a
+/// tenth of it, far past a bearing's internal clearances (micrometres to tenths of a
+/// millimetre) and short of the thousandfold slip of typing micrometres as millimetres.
+pub(crate) const MAX_CLEARANCE: f64 = 0.1;
+
 /// Stribeck's factor of the design load: Q₀ = 5·F_r/Z for the heaviest load case.
 pub(crate) const STRIBECK: f64 = 5.0;
 
@@ -184,8 +189,50 @@ pub struct BearingSpec {
     /// line).
     #[serde(default)]
     pub first_roller_deg: f64,
+    /// The rotating ring's speed against the other \[min⁻¹\] (default none: lives in
+    /// revolutions only); with it, every life in hours too.
+    #[serde(default)]
+    pub speed_rpm: Option<f64>,
+    /// The lubricant and the contamination, for ISO 281's modified lives
+    /// (`[bearing.lubrication]`; needs `speed_rpm`).
+    #[serde(default)]
+    pub lubrication: Option<LubricationSpec>,
     /// The load cases of the duty cycle (`[[bearing.load]]`).
     pub load: Vec<BearingLoadSpec>,
+}
+
+/// A bearing's lubrication for ISO 281's life modification factor a_ISO
+/// (`[bearing.lubrication]`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LubricationSpec {
+    /// The lubricant's kinematic viscosity at the operating temperature ν \[mm²/s\] (an ISO
+    /// VG grade is its viscosity at 40 °C: VG 68 is 68 mm²/s there, less when warmer).
+    pub viscosity_mm2_s: f64,
+    /// ISO 281's contamination factor e_C, 0 to 1 (1: extremely clean; about 0.5 to 0.3 for
+    /// normal cleanliness; ISO 281 Table 13).
+    pub contamination: f64,
+    /// The fatigue load limit C_u \[N\] (default ISO 281's from ISO 76's C_0r: C_0r/8.2,
+    /// smaller past D_pw = 100 mm); a catalogue's P_u where it gives one.
+    #[serde(default)]
+    pub fatigue_load_limit_n: Option<f64>,
+}
+
+impl LubricationSpec {
+    /// Checks its numbers; fields are named from the bearing.
+    pub(crate) fn check(&self) -> Result<()> {
+        check::positive("lubrication.viscosity_mm2_s", self.viscosity_mm2_s)?;
+        check::between(
+            "lubrication.contamination",
+            self.contamination,
+            -f64::EPSILON,
+            1.0 + f64::EPSILON,
+        )?;
+        if let Some(c) = self.fatigue_load_limit_n {
+            check::positive("lubrication.fatigue_load_limit_n", c)?;
+        }
+        Ok(())
+    }
 }
 
 /// One load case of a bearing's duty cycle (`[[bearing.load]]`).
@@ -251,6 +298,7 @@ impl BearingSpec {
     /// The bearing without crowns, checked (its dimensions).
     pub(crate) fn bearing(&self) -> Result<CylindricalRollerBearing> {
         check::finite("bearing.first_roller_deg", self.first_roller_deg)?;
+        self.check_clearance()?;
         let b = CylindricalRollerBearing {
             rollers: self.rollers,
             roller_diameter: self.roller_diameter_mm,
@@ -266,6 +314,27 @@ impl BearingSpec {
         };
         b.check()?;
         Ok(b)
+    }
+
+    /// A clearance (or preload) of the bearing's size: at most [`MAX_CLEARANCE`] of the
+    /// roller's diameter either way; one far past it is a slip of units, named with them.
+    fn check_clearance(&self) -> Result<()> {
+        let (c, d) = (self.clearance_mm, self.roller_diameter_mm);
+        check::finite("bearing.clearance_mm", c)?;
+        if d > 0.0 && c.abs() > MAX_CLEARANCE * d {
+            return Err(Error::invalid(
+                "bearing.clearance_mm",
+                format!("{c} mm ({:.0} µm)", 1e3 * c),
+                format!(
+                    "is {:.0} % of the roller's diameter ({d} mm): a diametral clearance (or, \
+                     negative, a preload) is some micrometres to tenths of a millimetre, and \
+                     the key is in millimetres (20 µm is 0.02); at most {} mm is taken",
+                    100.0 * c.abs() / d,
+                    MAX_CLEARANCE * d
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The roller on the solved raceway under the design load, its crown straight.

@@ -44,6 +44,7 @@ bundled!(
     "winkler-bed",
     "cylinder-on-block"["../meshes/cylinder-on-block-b8.msh"],
     "filleted-punch"["../meshes/filleted-punch.msh"],
+    "shrink-fit"["../meshes/shrink-fit.msh"],
 );
 
 /// The bundled scene `name`.

@@ -33,6 +33,7 @@ mod chosen;
 mod contact;
 mod error;
 mod gap;
+mod lives;
 mod load;
 mod mesh_surface;
 mod meshes;

@@ -76,8 +76,27 @@ fn a_bearing_is_checked_at_its_keys() {
         e.contains("bearing.roller_diameter_mm") && e.contains("fit"),
         "{e}"
     );
+    // Lubrication needs a speed; a lubricant far too thin for it is refused (κ < 0.1).
+    let e = refused("speed_rpm = 2000.0\n", "");
+    assert!(e.contains("speed_rpm") && e.contains("ν₁"), "{e}");
+    let e = refused("viscosity_mm2_s = 20.0", "viscosity_mm2_s = 0.5");
+    assert!(
+        e.contains("lubrication.viscosity_mm2_s") && e.contains("below 0.1"),
+        "{e}"
+    );
+    let e = refused("contamination = 0.5", "contamination = 1.5");
+    assert!(e.contains("lubrication.contamination"), "{e}");
     let e = refused("clearance_mm = 0.0406", "clearance_mm = nan");
     assert!(e.contains("bearing.clearance_mm"), "{e}");
+    // A clearance typed in micrometres is named with its units (issue 35, point 5).
+    let e = refused("clearance_mm = 0.0406", "clearance_mm = 20.0");
+    assert!(
+        e.contains(&format!("bearing.toml:{}:", line_of("clearance_mm")))
+            && e.contains("bearing.clearance_mm")
+            && e.contains("20 mm (20000 µm)")
+            && e.contains("millimetres"),
+        "{e}"
+    );
     let e = refused(
         "{ kind = \"envelope_split\", tolerance = 1e-7 }, controller = { kind = \"cubic\", l1_mm = 4.8, l2_mm = 4.8 } } }\n\n[[case]]",
         "{ kind = \"envelope_split\", tolerance = 1e-7 } } }\n\n[[case]]",
@@ -151,11 +170,40 @@ fn the_bundled_bearing_on_a_coarse_grid() {
     };
     let duty = &b.duty_cycle;
     assert!((duty.slice_model_mrev / miner(|l| l.slice_model_mrev) - 1.0).abs() < 1e-12);
+    // Hours at 2000 rpm, and the modified lives: κ = 20/ν₁, ν₁ = 4500·2000^(−1/2)·65^(−1/2)
+    // = 12.48 mm²/s; C_u = C_0r/8.2, C_0r = 44·(1 − 10/65)·14·9.6·10 N.
+    let lub = b.lubrication.as_ref().unwrap();
+    let nu1 = 4500.0 / (2000.0f64 * 65.0).sqrt();
+    assert!((lub.rated_viscosity_mm2_s / nu1 - 1.0).abs() < 1e-12);
+    assert!((lub.kappa - 20.0 / nu1).abs() < 1e-12);
+    let c0 = 44.0 * (55.0 / 65.0) * 14.0 * 9.6 * 10.0;
+    assert!((lub.fatigue_load_limit_n / (c0 / 8.2) - 1.0).abs() < 1e-12);
+    let hours = b.duty_cycle_hours.unwrap();
+    assert!((hours.iso_281_h / (duty.iso_281_mrev * 1e6 / 120_000.0) - 1.0).abs() < 1e-12);
+    let m = duty.modified.unwrap();
+    assert!(
+        m.a_iso > 1.0 && m.modified_mrev > duty.iso_281_mrev,
+        "{m:?}"
+    );
+    assert!(
+        (hours.modified_reference_h.unwrap() / (m.modified_reference_mrev / 0.12) - 1.0).abs()
+            < 1e-9
+    );
     assert!((duty.peak_pressure_mrev / miner(|l| l.peak_pressure_mrev) - 1.0).abs() < 1e-12);
     let worst = b.load_cases.iter().map(|c| c.p_max_mpa).fold(0.0, f64::max);
     assert!((b.worst.p_max_mpa - worst).abs() < 1e-9 * worst);
     assert!((report.p_max_mpa.unwrap() - worst).abs() < 1e-9 * worst);
     assert_eq!(b.contacts_solved % 3, 0, "the band's three crowns");
+    // 2.3 cells across the design load's half-width: every contact is named as coarse.
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("fewer than 4 cells")
+                && w.contains("load case 0 (\"8.9 kN, aligned\") roller 0")),
+        "{:?}",
+        report.warnings
+    );
     let sub = report.subsurface.as_ref().unwrap();
     let shear = sub.bodies[0].peaks.shear_yz.value_mpa;
     assert!(
@@ -231,4 +279,109 @@ fn the_robust_crown_for_the_life_lives_as_long_as_the_tuned_profile() {
         worst(&p_max),
         worst(&life)
     );
+}
+
+/// A clearance wide enough to leave one roller loaded (0.3 mm under 2 kN) is solved (the
+/// rings' equilibrium used to stall, their stiffness across the load vanishing), its one
+/// roller carrying F_r, and the case says so, naming the clearance with its units.
+#[test]
+fn a_wide_clearance_loads_one_roller_and_says_so() {
+    let text = bundled_text()
+        .replace("clearance_mm = 0.0406", "clearance_mm = 0.3")
+        .replace("[80, 49]", "[16, 9]");
+    let scene = Scene::parse_with(
+        &text,
+        Format::Toml,
+        Path::new("bearing.toml"),
+        &[
+            ("case", None),
+            ("bearing.load", Some("[{ radial_n = 2000.0 }]")),
+        ],
+    )
+    .unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    let rollers = &report.bearing.as_ref().unwrap().load_cases[0].rollers;
+    assert!((rollers[0].load_n - 2000.0).abs() < 1e-6 * 2000.0);
+    assert!(rollers[1..].iter().all(|r| r.load_n == 0.0));
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("0.3 mm (300 µm)") && w.contains("roller 0 alone loaded")),
+        "{:?}",
+        report.warnings
+    );
+}
+
+/// A grid too narrow across for its contacts names the key that widens it: the shown
+/// contact's limit and the warning of every contact that reaches its grid's edge say
+/// `bearing.reach_b` (issue 35, point 5), not "more or larger cells".
+#[test]
+fn a_grid_too_narrow_names_reach_b() {
+    let scene = coarse("[16, 9]", &[("bearing.reach_b", Some("0.6"))]);
+    let report = scene.cases()[0].run().unwrap();
+    let limit = report.limit.as_ref().expect("outside the model");
+    assert!(
+        limit.message.contains("bearing.reach_b"),
+        "{}",
+        limit.message
+    );
+    assert!(
+        report.warnings.iter().any(|w| w.contains("outer rows")
+            && w.contains("load case 0 (\"8.9 kN, aligned\") roller 0")
+            && w.contains("bearing.reach_b")),
+        "{:?}",
+        report.warnings
+    );
+}
+
+/// A scene of the bundled bearing, zero clearance, ISO's crown, on `cells`, under `loads`
+/// (label, F_r \[N\]) of equal time fractions, no design.
+fn duty_cycle(cells: &str, loads: &[(&str, f64)]) -> Scene {
+    let mut text = format!(
+        "name = \"duty\"\n[bearing]\nrollers = 14\nroller_diameter_mm = 10.0\n\
+         roller_length_mm = 10.0\nchamfer_mm = 0.2\npitch_diameter_mm = 65.0\n\
+         material = {{ e_mpa = 2.1e5, nu = 0.3 }}\ncells = {cells}\nroller_profile = \"iso\"\n"
+    );
+    for (label, radial) in loads {
+        text.push_str(&format!(
+            "[[bearing.load]]\nlabel = \"{label}\"\nradial_n = {radial}\nfraction = {}\n",
+            1.0 / loads.len() as f64
+        ));
+    }
+    text.push_str("[solver]\nkind = \"polonsky_keer\"\n");
+    Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap()
+}
+
+/// The bearing report of a scene's only case.
+fn bearing_of(scene: &Scene) -> contopt_results::BearingReport {
+    let report = scene.cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    report.bearing.unwrap()
+}
+
+/// The new user's duty cycles (issue 35, point 1): a light case beside a far heavier one is
+/// solved on cells sized for its own contact, so that its p_max and lives are those of the
+/// light case run alone (on its own design load's grid). On 40 × 25 cells (4 cells across
+/// the design load's half-width), before the grids of its own, the 10 kN case of a 2 MN /
+/// 10 kN cycle (the typo) had p_max −52.8 % and the half-space life −6.5 % against the case
+/// alone, and the 2 kN case of a 30 kN / 2 kN cycle p_max +2.0 % and the peak-pressure life
+/// −24 %, without a word; now they agree within 0.2 % (p_max) and 1.8 % (lives).
+#[test]
+fn a_light_load_case_is_solved_on_cells_of_its_own() {
+    for (heavy, light) in [(30e3, 2e3), (2e6, 10e3)] {
+        let both = bearing_of(&duty_cycle("[40, 25]", &[("A", heavy), ("B", light)]));
+        let alone = bearing_of(&duty_cycle("[40, 25]", &[("B", light)]));
+        let (b, own) = (&both.load_cases[1], &alone.load_cases[0]);
+        let p = b.p_max_mpa / own.p_max_mpa - 1.0;
+        assert!(p.abs() < 5e-3, "{heavy}/{light}: p_max {p:+.4}");
+        for (got, want) in [
+            (b.lives.half_space_mrev, own.lives.half_space_mrev),
+            (b.lives.peak_pressure_mrev, own.lives.peak_pressure_mrev),
+        ] {
+            let life = got / want - 1.0;
+            assert!(life.abs() < 0.03, "{heavy}/{light}: life {life:+.4}");
+        }
+    }
 }

@@ -204,6 +204,22 @@ fn errors_of_the_model_name_the_key() {
             "body[1].supports",
             vec!["x translation", "cannot hold", "symmetry line"],
         ),
+        // A pulling pressure on a part free along y names the load, the motion along y and
+        // a support along y (issue 35, point 5), not one along x.
+        (
+            vec![(
+                "body.1.loads",
+                Some(r#"[{ group = "cylinder_top", pressure_mpa = -40.0 }]"#),
+            )],
+            "body[1].loads",
+            vec![
+                "{ group = \"cylinder_top\", pressure_mpa = -40 }",
+                "pull the body away",
+                "y translation",
+                "fix = [\"y\"]",
+                "turn the load round",
+            ],
+        ),
         (
             vec![
                 ("body", Some(&*rigid_on_block)),
@@ -305,4 +321,47 @@ fn a_contact_on_few_faces_is_warned() {
     assert!(report.warnings.iter().any(|w| w.contains("not resolved")));
     let fine = cylinder(&[]).unwrap().cases()[0].run().unwrap();
     assert!(fine.resolution.unwrap().cells >= 8.0);
+}
+
+/// Lamé's shrink-fit pressure on a solid shaft of radius `bs` in a hub of bore `bh` and outer
+/// radius `c` \[mm\], in plane strain (Timoshenko & Goodier ch. 4: the hub's bore moves out by
+/// b_h·p_h·(K_h + ν'_h)/E'_h under p_h = p·b_s/b_h, K_h = (c² + b_h²)/(c² − b_h²), the solid
+/// shaft's surface in by b_s·p·(1 − ν'_s)/E'_s; E' = E/(1 − ν²), ν' = ν/(1 − ν)), with
+/// (E, ν) of the shaft and of the hub.
+fn lame(bs: f64, bh: f64, c: f64, shaft: (f64, f64), hub: (f64, f64)) -> f64 {
+    let plane = |(e, nu): (f64, f64)| (e / (1.0 - nu * nu), nu / (1.0 - nu));
+    let ((es, nus), (eh, nuh)) = (plane(shaft), plane(hub));
+    let kh = (c * c + bh * bh) / (c * c - bh * bh);
+    (bs - bh) / (bs * ((kh + nuh) / eh + (1.0 - nus) / es))
+}
+
+/// A shrink fit held only by its interference (issue 35, point 4): the bundled steel shaft
+/// in an aluminium hub, two `fe_mesh` bodies each held on its symmetry lines, no load. The
+/// measured gap is −0.05 mm, the interference, at every node; the contact closes it and the
+/// pressure at every node of the shaft's arc is Lamé's 66.62 MPa within 1 % (measured
+/// 66.25–66.80 MPa, 16 faces on the arc). An approach of 0 is the same scene.
+#[test]
+fn a_shrink_fit_is_pressed_by_its_interference_alone() {
+    let text = BUNDLED
+        .iter()
+        .find(|b| b.name == "shrink-fit")
+        .unwrap()
+        .text;
+    let file = scene_file().with_file_name("shrink-fit.toml");
+    let want = lame(25.05, 25.0, 50.0, (2.1e5, 0.3), (7.0e4, 0.33));
+    assert!((want - 66.62).abs() < 5e-3, "{want}");
+    for edits in [
+        vec![],
+        vec![("contact.load", Some("{ approach_mm = 0.0 }"))],
+    ] {
+        let scene = Scene::parse_with(text, Format::Toml, &file, &edits).unwrap();
+        let report = scene.cases()[0].run().unwrap();
+        assert!(report.is_solved(), "{:?}", report.termination);
+        assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+        for q in &report.interface {
+            assert!((q.h_um + 50.0).abs() < 0.05, "h = {} µm", q.h_um);
+            assert!(q.d_um.abs() < 1e-3, "d = {} µm", q.d_um);
+            assert!((q.p_mpa / want - 1.0).abs() < 0.01, "{} vs {want}", q.p_mpa);
+        }
+    }
 }

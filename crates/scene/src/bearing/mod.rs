@@ -9,14 +9,17 @@
 //! The envelope of the design is the bearing's own: every loaded roller of every load case,
 //! and the crown's tolerance band. The run is in [`run`].
 
+mod grids;
 mod run;
 
 use std::ops::Range;
 
 use contopt_core::{check, Error, Result};
 use contopt_input::{Node, Value};
+use contopt_results::LubricationReport;
 use contopt_roller::{
-    dynamic_load_rating, slice_ratings, BearingLoad, CrownSettings, CylindricalRollerBearing,
+    dynamic_load_rating, fatigue_load_limit, life_modification_factor, rated_viscosity,
+    slice_ratings, static_load_rating, BearingLoad, CrownSettings, CylindricalRollerBearing,
     Raceway, SliceRatings,
 };
 
@@ -25,6 +28,7 @@ use crate::bearing_spec::{
     BearingObjective, BearingSpec, RacewaySpec, FRACTIONS, MAX_TOLERANCE_UM,
 };
 use crate::error::Locator;
+use crate::lives::Lubrication;
 use crate::methods::BearingCrown;
 use crate::spec::CaseSpec;
 use crate::SceneError;
@@ -39,6 +43,8 @@ pub(crate) struct BearingPlan {
     pub crown: Option<BearingCrown>,
     /// The grid's cells along and across the roller.
     pub cells: [usize; 2],
+    /// How far the grid reaches across, in Hertz half-widths of its load.
+    pub reach: f64,
     /// The bearing, the scene's crowns built.
     pub bearing: CylindricalRollerBearing,
     /// The load cases: label, load, time fraction.
@@ -56,6 +62,67 @@ pub(crate) struct BearingPlan {
     /// The tolerance band \[mm\].
     pub tolerance: f64,
     pub objective: BearingObjective,
+    /// The rotating ring's speed \[min⁻¹\], for lives in hours.
+    pub speed_rpm: Option<f64>,
+    /// The lubrication's figures for ISO 281's a_ISO.
+    pub lubrication: Option<Lubricated>,
+}
+
+/// A bearing's lubrication as the lives take it and the report shows it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lubricated {
+    pub figures: Lubrication,
+    pub report: LubricationReport,
+}
+
+/// The lubrication of `b` turning at `speed` \[min⁻¹\]: ν₁ and κ = ν/ν₁, C_0r and C_u (the
+/// scene's or ISO 281's), e_C·C_u; fields named from the bearing.
+fn lubricated(
+    b: &BearingSpec,
+    bearing: &CylindricalRollerBearing,
+    speed: Option<f64>,
+) -> Result<Option<Lubricated>> {
+    let Some(lub) = &b.lubrication else {
+        return Ok(None);
+    };
+    lub.check()?;
+    let speed = speed.ok_or_else(|| {
+        Error::invalid(
+            "speed_rpm",
+            "missing",
+            "ISO 281's rated viscosity ν₁ of [bearing.lubrication] needs the speed: give \
+             bearing.speed_rpm",
+        )
+    })?;
+    let rated = rated_viscosity(speed, bearing.pitch_diameter)?;
+    let kappa = lub.viscosity_mm2_s / rated;
+    let static_rating = static_load_rating(bearing)?;
+    let limit = match lub.fatigue_load_limit_n {
+        Some(c) => c,
+        None => fatigue_load_limit(bearing)?,
+    };
+    // Refuses a κ below the formula's range here, before anything is solved.
+    life_modification_factor(kappa, 0.0).map_err(|e| {
+        Error::invalid(
+            "lubrication.viscosity_mm2_s",
+            lub.viscosity_mm2_s,
+            e.to_string(),
+        )
+    })?;
+    Ok(Some(Lubricated {
+        figures: Lubrication {
+            kappa,
+            contaminated_limit_n: lub.contamination * limit,
+        },
+        report: LubricationReport {
+            viscosity_mm2_s: lub.viscosity_mm2_s,
+            rated_viscosity_mm2_s: rated,
+            kappa,
+            contamination: lub.contamination,
+            static_load_rating_n: static_rating,
+            fatigue_load_limit_n: limit,
+        },
+    }))
 }
 
 /// The span of the key at `path` of `tree`.
@@ -247,9 +314,14 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Option<BearingPlan>,
         check::positive("design_load_n", q).map_err(within("bearing".into()))?;
     }
     check_method(spec, b).map_err(within("optimisation".into()))?;
+    if let Some(n) = b.speed_rpm {
+        check::positive("speed_rpm", n).map_err(within("bearing".into()))?;
+    }
+    let lubrication = lubricated(b, &bearing, b.speed_rpm).map_err(within("bearing".into()))?;
     Ok(Some(BearingPlan {
         crown: (spec.optimisation.as_ref()).and_then(|o| o.method.bearing_crown()),
         cells: b.cells,
+        reach: b.reach_b,
         bearing,
         loads: b
             .load
@@ -264,6 +336,8 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Option<BearingPlan>,
         free_ends: weight,
         tolerance: 1e-3 * b.tolerance_um,
         objective: b.objective,
+        speed_rpm: b.speed_rpm,
+        lubrication,
     }))
 }
 

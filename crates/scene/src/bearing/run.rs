@@ -15,17 +15,20 @@ use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
 
 use contopt_results::{
-    BearingLoadCase, BearingReport, BearingRoller, CaseReport, Lives, TunedProfile, WorstContact,
+    BearingLoadCase, BearingReport, BearingRoller, CaseReport, TunedProfile, WorstContact,
 };
 use contopt_roller::{
-    basic_rating_life, bearing_cases, end_ratio, hertz_slice_load, miner, penalised_worst,
-    reference_rating_life, robust_crown, slice_loads_from_pressure, slice_peaks_from_pressure,
-    solve_cases, tolerance_band, tune_profile, tune_profile_coarse_to_fine, BearingSettings,
-    CaseContact, Crown, CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, Raceway,
-    Roller, RollerCase, RollerFigures, SliceLoads, EDGE_LOADING,
+    bearing_cases, end_ratio, hertz_slice_load, penalised_worst, robust_crown,
+    slice_loads_from_pressure, slice_peaks_from_pressure, solve_cases, tolerance_band,
+    tune_profile, tune_profile_coarse_to_fine, BearingSettings, CaseContact, Crown,
+    CylindricalRollerBearing, Grid, LoadCase, LoadDistribution, Raceway, Roller, RollerCase,
+    RollerEnds, SliceLoads, EDGE_LOADING,
 };
 
+use super::grids::{self, Grids, Solved};
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
+use crate::report::MIN_CELLS_ACROSS;
+use crate::lives::{CaseSlices, LivesInput, LivesOutput};
 use crate::methods::{roller_report, BearingCrown, Check, Context, Design, Designed};
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
@@ -121,32 +124,33 @@ fn distributions(
     Ok(Ok(all))
 }
 
-/// The lives of every load case and over the duty cycle, the half-space's from `states` (the
-/// envelope's contacts, band after band: the worst band per load case).
-fn lives(
+/// Every load case's slice loads for the lives stage ([`crate::lives`]): the slice model's,
+/// and per crown of the band the solved raceway's replaced by the half-space contacts'
+/// (`pressures`, the envelope's contacts band after band, contact k on the grid `grid(k)`)
+/// and by the Hertzian loads of their slices' peaks.
+fn slices<'g>(
     plan: &BearingPlan,
     distributions: &[LoadDistribution],
     env: &Envelope,
     pressures: &[&[f64]],
     at: &Geometry,
-) -> Result<(Vec<Lives>, Lives)> {
+    grid: &dyn Fn(usize) -> (&'g [[f64; 3]], [f64; 2]),
+) -> Result<Vec<CaseSlices>> {
     let n = env.contacts.len();
     let slices = plan.bearing.slices;
     let width = at.length / slices as f64;
-    let mut per_case = Vec::with_capacity(distributions.len());
+    let mut all = Vec::with_capacity(distributions.len());
     for (i, d) in distributions.iter().enumerate() {
         let base = SliceLoads::from_distribution(d)?;
-        let life = |loads: &SliceLoads| -> Result<f64> {
-            Ok(reference_rating_life(&plan.ratings, loads, plan.rotating)?.bearing)
-        };
-        let (mut half_space, mut peak) = (f64::INFINITY, f64::INFINITY);
+        let mut bands = vec![];
         for band in 0..env.bands(pressures.len()) {
             let (mut loads, mut raised) = (base.clone(), base.clone());
             for (j, contact) in env.index[i].iter().enumerate() {
                 let Some(k) = contact else { continue };
                 let p = pressures[band * n + k];
-                let q = slice_loads_from_pressure(at.points, p, at.cell, at.length, slices)?;
-                let peaks = slice_peaks_from_pressure(at.points, p, at.cell, at.length, slices)?;
+                let (points, cell) = grid(*k);
+                let q = slice_loads_from_pressure(points, p, cell, at.length, slices)?;
+                let peaks = slice_peaks_from_pressure(points, p, cell, at.length, slices)?;
                 let hertz: Vec<f64> = q
                     .iter()
                     .zip(&peaks)
@@ -155,32 +159,29 @@ fn lives(
                 loads.set(plan.raceway, j, &q)?;
                 raised.set(plan.raceway, j, &hertz)?;
             }
-            half_space = half_space.min(life(&loads)?);
-            peak = peak.min(life(&raised)?);
+            bands.push([loads, raised]);
         }
-        per_case.push(Lives {
-            iso_281_mrev: basic_rating_life(plan.rating, plan.loads[i].1.radial_n)?,
-            slice_model_mrev: life(&base)?,
-            half_space_mrev: half_space,
-            peak_pressure_mrev: peak,
+        let (_, load, fraction) = &plan.loads[i];
+        all.push(CaseSlices {
+            radial_n: load.radial_n,
+            fraction: *fraction,
+            slice_model: base,
+            bands,
         });
     }
-    let cycle = |f: fn(&Lives) -> f64| -> Result<f64> {
-        let cases: Vec<(f64, f64)> = plan
-            .loads
-            .iter()
-            .zip(&per_case)
-            .map(|((_, _, t), l)| (*t, f(l)))
-            .collect();
-        miner(&cases)
-    };
-    let duty = Lives {
-        iso_281_mrev: cycle(|l| l.iso_281_mrev)?,
-        slice_model_mrev: cycle(|l| l.slice_model_mrev)?,
-        half_space_mrev: cycle(|l| l.half_space_mrev)?,
-        peak_pressure_mrev: cycle(|l| l.peak_pressure_mrev)?,
-    };
-    Ok((per_case, duty))
+    Ok(all)
+}
+
+/// The lives stage's input for `cases` under `plan`.
+fn lives_input<'a>(plan: &'a BearingPlan, cases: &'a [CaseSlices]) -> LivesInput<'a> {
+    LivesInput {
+        rating: plan.rating,
+        ratings: &plan.ratings,
+        rotating: plan.rotating,
+        cases,
+        speed_rpm: plan.speed_rpm,
+        lubrication: plan.lubrication.map(|l| l.figures),
+    }
 }
 
 /// What a design of the crown found: the gap change per point \[mm\] and its account.
@@ -326,7 +327,9 @@ fn search_objective<'o>(
             BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
             BearingObjective::Life => {
                 let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-                let (_, duty) = lives(plan, first, env, &pressures, at)?;
+                let on_grid = |_| (at.points, at.cell);
+                let cases = slices(plan, first, env, &pressures, at, &on_grid)?;
+                let duty = crate::lives::lives(&lives_input(plan, &cases))?.duty;
                 Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
             }
         }
@@ -401,6 +404,7 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         Err(why) => return Ok(Designed::unsolved(why, solver.method())),
     };
     report.time("distribution", started);
+    report.warnings.extend(lone_rollers(plan, &first));
     let env = Envelope::new(&first, plan.raceway);
     let started = Instant::now();
     let designed = match plan.crown {
@@ -433,49 +437,78 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         None => first,
     };
     let env = Envelope::new(&dists, plan.raceway);
-    let cases = env.cases(problem, roller, plan.tolerance)?;
+    let layout = grids::Layout {
+        cells: plan.cells,
+        reach: plan.reach,
+        ends: plan.free_ends.map(|weight| RollerEnds {
+            chamfer_mm: plan.bearing.chamfer,
+            weight,
+        }),
+    };
+    let grids = Grids::new(problem, roller, at.cell, &layout, &env.contacts)?;
     let started = Instant::now();
     let change = designed
         .as_ref()
         .map_or_else(|| vec![0.0; problem.len()], |d| d.change.clone());
-    let states = solve_cases(&cases, &change, solver, None, &Nested(observer))?;
+    let solve = |cases: &[LoadCase], change: &[f64]| {
+        solve_cases(cases, change, solver, None, &Nested(observer))
+    };
+    let solved = grids.solve(&env.contacts, plan.tolerance, &change, solve)?;
     report.time("solve", started);
-    if let Some(s) = states.iter().find(|s| !s.termination.is_solved()) {
+    if let Some(s) = solved.states.iter().find(|s| !s.termination.is_solved()) {
         let why = s.termination.clone().inside(s.method);
         return Ok(Designed::unsolved(why, solver.method()));
     }
+    let states = &solved.states;
     let started = Instant::now();
     let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-    let (per_case, duty) = lives(plan, &dists, &env, &pressures, &at)?;
+    let n = env.contacts.len();
+    let on_grid = |k: usize| (grids.of(k).points(), grids.of(k).cell);
+    let cases = slices(plan, &dists, &env, &pressures, &at, &on_grid)?;
+    let lives = crate::lives::lives(&lives_input(plan, &cases))?;
     report.time("lives", started);
     let worst = (0..states.len())
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(0);
+    // The report's fields lie on the design grid: they show its worst contact.
+    let shown = (0..states.len())
+        .filter(|&s| grids.of[s % n] == 0)
+        .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
+        .unwrap_or(worst);
+    report
+        .warnings
+        .extend(resolution_warnings(plan, &env, &grids, designed.is_some())?);
+    report
+        .warnings
+        .extend(edge_warning(plan, &env, &grids, states));
+    if shown != worst {
+        report.warnings.push(elsewhere(plan, &env, worst % n));
+    }
     let levels = designed.as_ref().and_then(|d| d.levels.clone());
     report.bearing = Some(bearing_report(
-        plan, &dists, &env, &states, worst, &at, per_case, duty, levels,
+        plan, &dists, &env, states, worst, &grids, lives, levels,
     ));
     let last = Final {
-        cases: &cases,
-        states: &states,
-        contacts: env.contacts.len(),
-        worst,
+        solved: &solved,
+        env: &env,
+        grids: &grids,
+        shown,
     };
     outcome(designed, &last, &at, roller, solver.method())
 }
 
-/// The final state of a bearing's run: every contact's load case and solution (the distinct
-/// contacts first, then a tolerance band's), and the worst of them.
+/// The final state of a bearing's run: every contact's solution on its grid (the distinct
+/// contacts first, then a tolerance band's), and the contact the report shows.
 struct Final<'f, 'a> {
-    cases: &'f [LoadCase<'a>],
-    states: &'f [ContactState],
-    contacts: usize,
-    worst: usize,
+    solved: &'f Solved,
+    env: &'f Envelope,
+    grids: &'f Grids<'a>,
+    shown: usize,
 }
 
-/// The design's outcome from the final state: the worst contact's pressure and gap (its
+/// The design's outcome from the final state: the shown contact's pressure and gap (its
 /// initial gap the one the report shows), the crown designed (or the scene's, shown as Δh),
-/// and the roller's figures over every distinct contact, the worst first.
+/// and the roller's figures over every distinct contact, the shown one first.
 fn outcome(
     designed: Option<Crowned>,
     last: &Final,
@@ -483,7 +516,8 @@ fn outcome(
     roller: &Roller,
     solver: Method,
 ) -> Result<Designed> {
-    let (cases, states, worst) = (last.cases, last.states, last.worst);
+    let (states, shown) = (&last.solved.states, last.shown);
+    let n = last.env.contacts.len();
     let drop: Vec<f64> = match &designed {
         Some(d) => d.change.clone(),
         None => at
@@ -492,17 +526,23 @@ fn outcome(
             .map(|x| roller.crown.drop(x[0], roller.length))
             .collect::<Result<Vec<f64>>>()?,
     };
-    let contacts: Vec<CaseContact> = std::iter::once(worst)
-        .chain((0..last.contacts).filter(|&k| k != worst))
-        .map(|k| CaseContact {
-            load_n: cases[k].load_n,
-            tilt_arcmin: cases[k].tilt_arcmin,
-            pressure: &states[k].pressure,
-            approach_mm: states[k].approach().unwrap_or(0.0),
+    // The shown state first (a band's when the band holds the worst), then every contact's
+    // nominal state.
+    let contacts: Vec<(usize, CaseContact)> = std::iter::once(shown)
+        .chain((0..n).filter(|&s| s != shown))
+        .map(|s| {
+            let k = s % n;
+            let contact = CaseContact {
+                load_n: last.env.contacts[k].load_n,
+                tilt_arcmin: last.env.contacts[k].tilt_arcmin,
+                pressure: &states[s].pressure,
+                approach_mm: states[s].approach().unwrap_or(0.0),
+            };
+            (k, contact)
         })
         .collect();
-    let figures = RollerFigures::new(&contacts, at.points, &drop, at.cell[1]);
-    let state = &states[worst];
+    let figures = last.grids.figures(&contacts, &drop);
+    let state = &states[shown];
     let tuned = designed.as_ref().and_then(|d| d.tuned.clone());
     Ok(Designed {
         method: designed.as_ref().map(|d| d.method),
@@ -524,8 +564,159 @@ fn outcome(
         omega_nv_excess: designed.as_ref().and_then(|d| d.omega_nv_excess),
         passes: vec![],
         roller: roller_report(&figures, true, tuned),
-        shown_gap: Some(cases[worst].problem.initial_gap().to_vec()),
+        shown_gap: Some(last.solved.initial_gaps[shown].clone()),
     })
+}
+
+/// The warnings of load cases whose clearance leaves one roller alone loaded: the bearing
+/// then carries its load on a single roller, whatever its rating assumes.
+fn lone_rollers(plan: &BearingPlan, dists: &[LoadDistribution]) -> Vec<String> {
+    let clearance = plan.bearing.clearance;
+    (dists.iter().enumerate())
+        .filter_map(|(i, d)| {
+            let mut loaded = (0..d.rollers.len()).filter(|&j| d.rollers[j].load_n > 0.0);
+            let j = loaded.next()?;
+            loaded.next().is_none().then(|| {
+                format!(
+                    "load case {i} (\"{}\"): the diametral clearance {clearance} mm ({:.0} µm) \
+                     leaves roller {j} alone loaded, carrying all of F_r = {} N; check \
+                     bearing.clearance_mm (in millimetres)",
+                    plan.loads[i].0,
+                    1e3 * clearance,
+                    plan.loads[i].1.radial_n
+                )
+            })
+        })
+        .collect()
+}
+
+/// A contact named as tables name it: its load case (label) and roller, and its load.
+fn named(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
+    let (i, j) = env.origin[k];
+    format!(
+        "load case {i} (\"{}\") roller {j} (Q = {:.4e} N)",
+        plan.loads[i].0, env.contacts[k].load_n
+    )
+}
+
+/// The warning of a worst contact solved off the design grid: the report's fields show the
+/// design grid's worst instead.
+fn elsewhere(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
+    format!(
+        "the worst contact, {}, is solved on cells sized for its own load, not on the design \
+         load's (bearing.design_load_n = {:.4e} N): its figures are in the bearing's report, \
+         while the case's pressure field shows the worst contact on the design load's cells; \
+         set bearing.design_load_n near its load to see its field",
+        named(plan, env, k),
+        plan.design_load
+    )
+}
+
+/// The warnings of contacts whose half-width spans few cells: on their own grids, fewer
+/// than half of [`MIN_CELLS_ACROSS`]; and, when the crown was designed (on the design grid,
+/// for all contacts at once), the load cases whose heaviest roller the design saw on the
+/// design load's cells though it is far lighter (the final figures are solved on its own
+/// grid, not the design's; a light roller at the edge of a loaded zone, which carries little
+/// of the life, is not named).
+fn resolution_warnings(
+    plan: &BearingPlan,
+    env: &Envelope,
+    grids: &Grids,
+    designed: bool,
+) -> Result<Vec<String>> {
+    let mut coarse = vec![];
+    for k in 0..env.contacts.len() {
+        let cells = grids.of(k).cells_across(env.contacts[k].load_n)?;
+        if cells < 0.5 * MIN_CELLS_ACROSS {
+            coarse.push(format!("{} with {cells:.1} cells", named(plan, env, k)));
+        }
+    }
+    let mut off_design = vec![];
+    for index in env.index.iter().filter(|_| designed) {
+        let heaviest = index
+            .iter()
+            .flatten()
+            .copied()
+            .max_by(|&a, &b| env.contacts[a].load_n.total_cmp(&env.contacts[b].load_n));
+        if let Some(k) = heaviest.filter(|&k| grids.of[k] != 0) {
+            let on_design = grids.grids[0].cells_across(env.contacts[k].load_n)?;
+            off_design.push(format!("{} with {on_design:.1} cells", named(plan, env, k)));
+        }
+    }
+    let mut warnings = vec![];
+    if !coarse.is_empty() {
+        warnings.push(format!(
+            "{} of the bearing's {} contacts span fewer than {} cells across their own Hertz \
+             half-width, so their peaks and lives are coarse: {}; add cells across \
+             (bearing.cells[1]) or narrow the grid (bearing.reach_b)",
+            coarse.len(),
+            env.contacts.len(),
+            0.5 * MIN_CELLS_ACROSS,
+            listed(&coarse)
+        ));
+    }
+    if !off_design.is_empty() {
+        warnings.push(format!(
+            "the crown was designed over every loaded roller on the design load's cells \
+             (bearing.design_load_n = {:.4e} N), where the heaviest roller of a far lighter \
+             load case spans fewer than half of its cells across its half-width: {}; the \
+             final figures are solved on cells sized for each roller's own load, but the \
+             crown was shaped on coarse ones: set bearing.design_load_n nearer their loads if \
+             those load cases matter to the design",
+            plan.design_load,
+            listed(&off_design)
+        ));
+    }
+    Ok(warnings)
+}
+
+/// A point carries pressure when it holds more than this fraction of its contact's p_max.
+const CARRIES: f64 = 1e-6;
+
+/// The warning of contacts whose pressure reaches their grid's outer rows across: the grid
+/// ends inside them, and `bearing.reach_b` widens it.
+fn edge_warning(
+    plan: &BearingPlan,
+    env: &Envelope,
+    grids: &Grids,
+    states: &[ContactState],
+) -> Option<String> {
+    let n = env.contacts.len().max(1);
+    let mut reached: Vec<String> = vec![];
+    for (s, state) in states.iter().enumerate() {
+        let k = s % n;
+        let grid = grids.of(k);
+        let points = grid.points();
+        let outer = points.iter().fold(0.0f64, |m, x| m.max(x[1].abs()));
+        let limit = CARRIES * state.p_max();
+        let edge = (points.iter().zip(&state.pressure))
+            .any(|(x, p)| x[1].abs() > outer - 0.5 * grid.cell[1] && *p > limit);
+        let name = named(plan, env, k);
+        if edge && !reached.contains(&name) {
+            reached.push(name);
+        }
+    }
+    (!reached.is_empty()).then(|| {
+        format!(
+            "the pressure of {} reaches the outer rows of its grid across (±{} Hertz \
+             half-widths of its grid's load): the grid ends inside the contact, so its pressure \
+             and lives are wrong; raise bearing.reach_b",
+            listed(&reached),
+            plan.reach
+        )
+    })
+}
+
+/// At most this many contacts are named in a warning; the rest are counted.
+const NAMED: usize = 6;
+
+/// `items` joined, the first [`NAMED`] of them and a count of the rest.
+fn listed(items: &[String]) -> String {
+    let mut text = items[..items.len().min(NAMED)].join("; ");
+    if items.len() > NAMED {
+        text.push_str(&format!("; and {} more", items.len() - NAMED));
+    }
+    text
 }
 
 /// Each load case's distribution with the designed crown `change` (per point \[mm\]) on the
@@ -550,9 +741,8 @@ fn bearing_report(
     env: &Envelope,
     states: &[ContactState],
     worst: usize,
-    at: &Geometry,
-    per_case: Vec<Lives>,
-    duty: Lives,
+    grids: &Grids,
+    lives: LivesOutput,
     levels: Option<Vec<f64>>,
 ) -> BearingReport {
     let n = env.contacts.len();
@@ -566,9 +756,9 @@ fn bearing_report(
     let arcmin = |rad: f64| 60.0 * rad.to_degrees();
     let load_cases = dists
         .iter()
-        .zip(per_case)
+        .zip(lives.per_case.into_iter().zip(lives.per_case_hours))
         .enumerate()
-        .map(|(i, (d, lives))| {
+        .map(|(i, (d, (lives, hours)))| {
             let rollers: Vec<BearingRoller> = d
                 .rollers
                 .iter()
@@ -597,6 +787,7 @@ fn bearing_report(
                     .fold(0.0, f64::max),
                 rollers,
                 lives,
+                hours,
             }
         })
         .collect();
@@ -604,6 +795,7 @@ fn bearing_report(
     let (i, j) = env.origin[k];
     let pressure = &states[worst].pressure;
     let top = peak_index(pressure).unwrap_or(0);
+    let points = grids.of(k).points();
     let deviation = [0.0, 1.0, -1.0][band.min(2)] * 1e3 * plan.tolerance;
     BearingReport {
         dynamic_load_rating_n: plan.rating,
@@ -616,7 +808,10 @@ fn bearing_report(
         pressure_levels: levels,
         contacts_solved: states.len(),
         load_cases,
-        duty_cycle: duty,
+        duty_cycle: lives.duty,
+        speed_rpm: plan.speed_rpm,
+        duty_cycle_hours: lives.duty_hours,
+        lubrication: plan.lubrication.map(|l| l.report),
         worst: WorstContact {
             load_case: i,
             roller: j,
@@ -624,8 +819,8 @@ fn bearing_report(
             tilt_arcmin: env.contacts[k].tilt_arcmin,
             deviation_um: deviation,
             p_max_mpa: states[worst].p_max(),
-            p_max_at_mm: [at.points[top][0], at.points[top][1]],
-            edge_loading: end_ratio(at.points, pressure) > EDGE_LOADING,
+            p_max_at_mm: [points[top][0], points[top][1]],
+            edge_loading: end_ratio(points, pressure) > EDGE_LOADING,
         },
     }
 }

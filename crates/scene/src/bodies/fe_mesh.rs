@@ -110,6 +110,22 @@ pub struct FeMesh {
 }
 
 impl FeMesh {
+    /// Its loads as a scene writes them, for messages: each group and its value.
+    fn loads_named(&self) -> String {
+        let named: Vec<String> = (self.loads.iter())
+            .map(|l| {
+                let value = match (l.pressure_mpa, l.traction_mpa, l.displacement_mm) {
+                    (Some(p), _, _) => format!("pressure_mpa = {p}"),
+                    (_, Some([tx, ty]), _) => format!("traction_mpa = [{tx}, {ty}]"),
+                    (_, _, Some(d)) => format!("displacement_mm = {d}"),
+                    _ => "no value".into(),
+                };
+                format!("{{ group = \"{}\", {value} }}", l.group)
+            })
+            .collect();
+        format!("[{}]", named.join(", "))
+    }
+
     /// The zone's analysis, or why the body cannot stand on the zone.
     fn analysis(&self, at: &Placement) -> Result<Analysis> {
         let mesh = at.zone.downcast::<MeshZone>().ok_or_else(|| {
@@ -234,25 +250,46 @@ impl FeMesh {
             let towards = free.along.iter().all(|v| *v >= -ONE_WAY * span);
             let away = free.along.iter().all(|v| *v <= ONE_WAY * span);
             let pulled = (away && free.load > 0.0) || (towards && free.load < 0.0);
-            if pulled || ((towards || away) && free.load == 0.0) {
-                let why = if pulled {
-                    "its loads pull it away from its partner, which a contact cannot hold"
-                } else {
-                    "no load presses it onto its partner along it"
-                };
+            if pulled {
+                return Err(Error::invalid(
+                    "loads",
+                    self.loads_named(),
+                    format!(
+                        "pull the body away from its partner along its free {name} (it moves \
+                         its contact faces \"{}\" off their partner), which a contact cannot \
+                         hold: turn the load round (a pressure_mpa positive presses into the \
+                         body), or hold the body in its {name}{}",
+                        self.contact,
+                        hold_hint(name)
+                    ),
+                ));
+            }
+            if (towards || away) && free.load == 0.0 {
                 return Err(Error::invalid(
                     "supports",
                     supports(),
                     format!(
-                        "leave the body free in its {name}, and {why}: hold it (a symmetry line \
-                         x = 0: {{ group = …, fix = [\"x\"] }}) or press it (loads = [{{ group = \
-                         …, pressure_mpa = … }}])"
+                        "leave the body free in its {name}, and no load presses it onto its \
+                         partner along it: hold it{} or press it (loads = [{{ group = …, \
+                         pressure_mpa = … }}])",
+                        hold_hint(name)
                     ),
                 ));
             }
         }
         Ok(())
     }
+}
+
+/// How to hold a body in its free motion `name` (`"y translation"`, `"rotation"`): a group
+/// fixed along that axis, or, for a rotation, two groups.
+fn hold_hint(name: &str) -> String {
+    let axis = match name {
+        "x translation" => "x",
+        "y translation" | "axial translation" => "y",
+        _ => return " (fix a second group, away from the first, across the motion)".into(),
+    };
+    format!(" ({{ group = …, fix = [\"{axis}\"] }})")
 }
 
 /// A Gmsh error about `value` placed at `key`.

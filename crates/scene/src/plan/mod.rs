@@ -93,8 +93,13 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         body.check(&place)
             .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
-    check_load([&spec.body[0], &spec.body[1]], &contact.zone, contact.load)
-        .map_err(|e| at.library("", e))?;
+    check_load(
+        [&spec.body[0], &spec.body[1]],
+        &contact.zone,
+        contact.load,
+        contact.gap.measured(),
+    )
+    .map_err(|e| at.library("", e))?;
     let floating = floats(spec, &layout);
     let check = Check {
         case: spec.view(&layout, roller.as_ref()),

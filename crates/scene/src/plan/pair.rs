@@ -44,15 +44,33 @@ pub fn check_pair(bodies: &[Chosen<dyn BodyKind>], zone: &Chosen<dyn ZoneKind>) 
     Ok(())
 }
 
-/// The contact's load fits the body above; without one, a body carries its own load.
+/// The contact's load fits the body above; without one, a body carries its own load, or,
+/// when the gap is `measured` between two held bodies, their interference presses them (a
+/// shrink fit: the load is the interference, and an approach of 0 is the same).
 pub fn check_load(
     bodies: [&Chosen<dyn BodyKind>; 2],
     zone: &Chosen<dyn ZoneKind>,
     load: LoadSpec,
+    measured: bool,
 ) -> Result<()> {
     let [below, above] = bodies;
     if load == LoadSpec::None && below.takes(zone) == Takes::OwnLoad {
         return Ok(());
+    }
+    let held = [below, above].map(|b| b.takes(zone)) == [Takes::Nothing; 2];
+    if measured && held {
+        return match load {
+            LoadSpec::ApproachMm(a) => {
+                contopt_core::check::non_negative("contact.load.approach_mm", a).map(|_| ())
+            }
+            LoadSpec::ForceN(_) => Err(Error::invalid(
+                "contact.load.force_n",
+                above.name(),
+                "is held and cannot float under a force: its interference with its partner \
+                 (the measured gap) presses them, or an approach",
+            )),
+            LoadSpec::None => Ok(()),
+        };
     }
     match (load, above.takes(zone)) {
         (LoadSpec::ForceN(f), Takes::Force) => {
@@ -77,7 +95,8 @@ pub fn check_load(
             "contact.load",
             "none",
             "nothing presses the bodies together: give { force_n } or { approach_mm }, or a \
-             load of a finite-element body",
+             load of a finite-element body (two imported bodies held by their supports are \
+             pressed by their measured interference alone)",
         )),
     }
 }
@@ -140,18 +159,43 @@ mod tests {
     fn the_load_fits_the_body_above() {
         let (bodies, zone) = pair(&format!("{BED}, \"rigid\""), RINGS);
         let both = [&bodies[0], &bodies[1]];
-        assert!(check_load(both, &zone, LoadSpec::ForceN(10.0)).is_ok());
-        assert!(refusal(check_load(both, &zone, LoadSpec::ForceN(-1.0))).contains("force_n"));
-        assert!(refusal(check_load(both, &zone, LoadSpec::None)).contains("nothing presses"));
-        assert!(check_load(both, &zone, LoadSpec::ApproachMm(0.1)).is_ok());
+        assert!(check_load(both, &zone, LoadSpec::ForceN(10.0), false).is_ok());
+        assert!(
+            refusal(check_load(both, &zone, LoadSpec::ForceN(-1.0), false)).contains("force_n")
+        );
+        assert!(refusal(check_load(both, &zone, LoadSpec::None, false)).contains("nothing presses"));
+        assert!(check_load(both, &zone, LoadSpec::ApproachMm(0.1), false).is_ok());
         // A bed above is held by the ground: a force cannot press it.
         let (upside, zone) = pair(&format!("\"rigid\", {BED}"), RINGS);
         let held = refusal(check_load(
             [&upside[0], &upside[1]],
             &zone,
             LoadSpec::ForceN(1.0),
+            false,
         ));
         assert!(held.contains("is held and cannot float"), "{held}");
         assert!(held.contains("winkler"), "{held}");
+    }
+
+    /// Two held bodies with a measured gap (a shrink fit) are pressed by their interference:
+    /// no load, or an approach of 0, is accepted, a negative approach or a force is not;
+    /// without a measured gap, nothing presses them.
+    #[test]
+    fn an_interference_presses_two_held_bodies() {
+        let (beds, zone) = pair(&format!("{BED}, {BED}"), RINGS);
+        let both = [&beds[0], &beds[1]];
+        assert!(check_load(both, &zone, LoadSpec::None, true).is_ok());
+        assert!(check_load(both, &zone, LoadSpec::ApproachMm(0.0), true).is_ok());
+        let e = refusal(check_load(both, &zone, LoadSpec::ApproachMm(-1e-3), true));
+        assert!(e.contains("approach_mm"), "{e}");
+        let e = refusal(check_load(both, &zone, LoadSpec::ForceN(1.0), true));
+        assert!(e.contains("interference"), "{e}");
+        let e = refusal(check_load(both, &zone, LoadSpec::None, false));
+        assert!(
+            e.contains("nothing presses") && e.contains("interference"),
+            "{e}"
+        );
+        let e = refusal(check_load(both, &zone, LoadSpec::ApproachMm(0.0), false));
+        assert!(e.contains("approach_mm"), "{e}");
     }
 }

@@ -228,16 +228,31 @@ fn limit(case: &Case, edge: &Edge, p: f64, p_max: f64) -> ModelLimit {
     let message = format!(
         "the contact reaches the zone's edge {} (p = {p:.4e} MPa there, {:.0} % of p_max): the \
          zone ends inside the contact, so the pressure and all that follows from it are wrong; \
-         the zone must reach at least {needed:.4} mm from its centre{why}: give it more or \
-         larger cells",
+         the zone must reach at least {needed:.4} mm from its centre{why}: {}",
         edge.name,
-        100.0 * p / p_max
+        100.0 * p / p_max,
+        widen(case, edge.axis)
     );
     ModelLimit {
         edge: edge.name.clone(),
         extent_mm: edge.extent,
         needed_mm: needed,
         message,
+    }
+}
+
+/// What widens a zone along `axis`: a roller's grid across is ±`reach_b`·b (the bearing's
+/// key for a bearing's), any other zone's cells.
+fn widen(case: &Case, axis: usize) -> String {
+    let roller = case.spec.contact.gap.roller_gap().is_some();
+    match (roller && axis == 1, case.spec.bearing.is_some()) {
+        (true, true) => "raise bearing.reach_b (the grid's reach across, in Hertz half-widths \
+                         of the design load)"
+            .into(),
+        (true, false) => "raise contact.gap.reach_b (the grid's reach across, in Hertz \
+                          half-widths)"
+            .into(),
+        _ => "give it more or larger cells".into(),
     }
 }
 

@@ -22,6 +22,7 @@ use contopt_contact::InterfaceProblem;
 use contopt_results::CaseReport;
 
 pub use figures::PENETRATION_WARNING;
+pub use limits::MIN_CELLS_ACROSS;
 
 use crate::methods::Designed;
 use crate::{Built, Case, SceneError};
