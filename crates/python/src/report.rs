@@ -74,7 +74,7 @@ impl Report {
 
     /// Writes the files `contopt run` writes into `out/<scene>/` (`result.json`,
     /// `interface.csv`, the charts, each case's fields) and returns that folder.
-    #[pyo3(signature = (out=PathBuf::from("results")))]
+    #[pyo3(signature = (out=PathBuf::from("results")), text_signature = "(self, /, out='results')")]
     fn write(&self, py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
         let report = &self.report;
         let written = py.detach(|| contopt_cli::write_results(report, &out));

@@ -60,7 +60,10 @@ impl Scene {
     /// None removes a top-level key) made first; `file` names it in messages and its folder is
     /// where the files it names are read.
     #[staticmethod]
-    #[pyo3(signature = (text, *, edits=None, file=PathBuf::from("scene.toml")))]
+    #[pyo3(
+        signature = (text, *, edits=None, file=PathBuf::from("scene.toml")),
+        text_signature = "(text, *, edits=None, file='scene.toml')"
+    )]
     fn from_toml(
         py: Python<'_>,
         text: &str,
@@ -77,7 +80,10 @@ impl Scene {
     /// Reads and checks a scene given as a dict (the tables of a scene file as dicts, its
     /// arrays of tables as lists); `file` names it in messages.
     #[staticmethod]
-    #[pyo3(signature = (data, *, file=PathBuf::from("<dict>")))]
+    #[pyo3(
+        signature = (data, *, file=PathBuf::from("<dict>")),
+        text_signature = "(data, *, file='<dict>')"
+    )]
     fn from_dict(py: Python<'_>, data: &Bound<'_, PyDict>, file: PathBuf) -> PyResult<Self> {
         let json = from_python(data.as_any(), "data")?;
         let text = serde_json::to_string_pretty(&json)
