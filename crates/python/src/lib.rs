@@ -11,6 +11,7 @@
 mod convert;
 mod errors;
 mod library;
+mod optimise;
 mod report;
 mod scene;
 mod termination;
@@ -31,6 +32,8 @@ fn contopt_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<library::Contact>()?;
     m.add_class::<library::Solver>()?;
     m.add_class::<library::Solution>()?;
+    m.add_class::<optimise::Optimum>()?;
+    m.add_function(wrap_pyfunction!(optimise::optimise, m)?)?;
     m.add_class::<termination::Termination>()?;
     m.add_class::<watch::Progress>()?;
     m.add_class::<scene::Scene>()?;

@@ -160,8 +160,43 @@ impl HalfSpace {
 pub struct Contact {
     problem: InterfaceProblem<'static>,
     shape: [usize; 2],
+    /// The first cell's centre and the cell's sides [mm].
+    origin: [f64; 2],
+    cell: [f64; 2],
     area: Vec<f64>,
     approach: Option<f64>,
+}
+
+impl Contact {
+    /// The contact problem.
+    pub(crate) fn problem(&self) -> &InterfaceProblem<'static> {
+        &self.problem
+    }
+
+    /// The grid's shape (ny, nx).
+    pub(crate) fn grid(&self) -> [usize; 2] {
+        self.shape
+    }
+
+    /// The cells' centres, C order.
+    pub(crate) fn points(&self) -> &[[f64; 3]] {
+        self.problem.interface().points()
+    }
+
+    /// The index of the cell whose centre is nearest the point `x` of the grid.
+    pub(crate) fn indexer(&self) -> impl Fn([f64; 3]) -> usize + '_ {
+        let [ny, nx] = self.shape;
+        let (origin, cell) = (self.origin, self.cell);
+        move |x: [f64; 3]| {
+            let i = ((x[0] - origin[0]) / cell[0])
+                .round()
+                .clamp(0.0, (nx - 1) as f64) as usize;
+            let j = ((x[1] - origin[1]) / cell[1])
+                .round()
+                .clamp(0.0, (ny - 1) as f64) as usize;
+            j * nx + i
+        }
+    }
 }
 
 #[pymethods]
@@ -211,6 +246,8 @@ impl Contact {
             area: surface.weights().to_vec(),
             problem,
             shape,
+            origin: body.origin,
+            cell: [body.dx, body.dy],
             approach,
         })
     }
@@ -280,6 +317,13 @@ fn kind_and_settings(settings: &SolverSettings) -> (String, serde_json::Value) {
             None => (String::new(), serde_json::Value::Null),
         },
         _ => (String::new(), serde_json::Value::Null),
+    }
+}
+
+impl Solver {
+    /// The library's solver.
+    pub(crate) fn solver(&self) -> &dyn ContactSolver {
+        self.solver.as_ref()
     }
 }
 

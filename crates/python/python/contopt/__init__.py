@@ -12,6 +12,7 @@ from ._contopt import (
     Contact,
     HalfSpace,
     InputError,
+    Optimum,
     Progress,
     Report,
     Scene,
@@ -20,6 +21,7 @@ from ._contopt import (
     Solver,
     Termination,
     __version__,
+    optimise,
 )
 
 __all__ = [
@@ -27,6 +29,7 @@ __all__ = [
     "Contact",
     "HalfSpace",
     "InputError",
+    "Optimum",
     "Progress",
     "Report",
     "Scene",
@@ -35,4 +38,5 @@ __all__ = [
     "Solver",
     "Termination",
     "__version__",
+    "optimise",
 ]

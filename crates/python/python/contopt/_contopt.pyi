@@ -16,6 +16,7 @@ __all__ = [
     "Contact",
     "HalfSpace",
     "InputError",
+    "Optimum",
     "Progress",
     "Report",
     "Scene",
@@ -24,6 +25,7 @@ __all__ = [
     "Solver",
     "Termination",
     "__version__",
+    "optimise",
 ]
 
 _FloatArray = npt.NDArray[np.float64]
@@ -244,3 +246,43 @@ class Scene:
     def run(
         self, *, threads: int = 1, progress: Optional[Callable[[Progress], object]] = None
     ) -> Report: ...
+
+@final
+class Optimum:
+    """An optimisation's answer; arrays of shape (ny, nx), ``dh_mm`` per design node."""
+
+    @property
+    def p_max_mpa(self) -> float: ...
+    @property
+    def dh_mm(self) -> _FloatArray: ...
+    @property
+    def dh_max_mm(self) -> float: ...
+    @property
+    def gap_change_mm(self) -> _FloatArray: ...
+    @property
+    def pressure_mpa(self) -> _FloatArray: ...
+    @property
+    def gap_mm(self) -> _FloatArray: ...
+    @property
+    def passes(self) -> int: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def termination(self) -> Termination: ...
+    @property
+    def converged(self) -> bool: ...
+    @staticmethod
+    def defaults(kind: str) -> dict[str, Any]: ...
+
+def optimise(
+    contact: Contact,
+    v: _ArrayLike,
+    *,
+    method: str = "load_split",
+    solver: Optional[Solver] = None,
+    gap_shape: Union[None, str, _ArrayLike] = None,
+    omega_v: Optional[_ArrayLike] = None,
+    omega_opt: Optional[_ArrayLike] = None,
+    **settings: Any,
+) -> Optimum:
+    """The optimum initial gap of ``contact`` under the controller's values ``v`` (ny, nx)."""
