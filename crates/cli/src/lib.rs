@@ -46,7 +46,7 @@ use clap::{Parser, Subcommand};
 use contopt_results::shard::{Partial, Shard};
 use contopt_results::{CaseReport, Report, SCHEMA_VERSION};
 use contopt_scene::{Registry, Scene, BUNDLED};
-pub use files::ResultsDir;
+use files::ResultsDir;
 use progress::Progress;
 
 /// A bad scene: unreadable, unknown or missing keys, values out of range, too large.
@@ -286,7 +286,7 @@ fn run(scene: &Scene, print: Print, out: &Path, shard: Option<Shard>, jobs: usiz
         cases,
     };
     let written = match shard {
-        None => write_results(&report, out),
+        None => write_folder(&report, out),
         Some(shard) => {
             let partial = Partial {
                 contopt_version: env!("CARGO_PKG_VERSION").to_string(),
@@ -304,9 +304,14 @@ fn run(scene: &Scene, print: Print, out: &Path, shard: Option<Shard>, jobs: usiz
 
 /// Writes the files of `contopt run` for `report` into `out/<scene>/` (`result.json`,
 /// `interface.csv`, the charts, each case's fields), never through a symbolic link, and
-/// removes the files an earlier run wrote there that this one did not: the folder, with the
-/// files written. Used by `run` and by the Python package's `Report.write`.
-pub fn write_results(report: &Report, out: &Path) -> std::io::Result<ResultsDir> {
+/// removes the files an earlier run wrote there that this one did not: the folder. What
+/// `run` writes, for the Python package's `Report.write`.
+pub fn write_results(report: &Report, out: &Path) -> std::io::Result<PathBuf> {
+    write_folder(report, out).map(|dir| dir.path().to_path_buf())
+}
+
+/// [`write_results`], the folder with the names of the files written.
+fn write_folder(report: &Report, out: &Path) -> std::io::Result<ResultsDir> {
     files::check_out(out)?;
     let mut dir = ResultsDir::create(out, &report.scene)?;
     contopt_report::write(report, &mut dir)?;

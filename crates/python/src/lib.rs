@@ -1,10 +1,11 @@
 //! contopt from Python: the extension module `contopt._contopt` of the package `contopt`
 //! (pyo3, maturin, the stable ABI from CPython 3.9). Scenes from a file, TOML text, a dict or a
 //! bundled name, run with the GIL released into results with `result.json`'s names and units
-//! ([`scene`], [`report`]); below them the half-space grid, a rigid indenter from a numpy
-//! gap, every contact solver and its typed termination ([`library`]). Errors are `ValueError`s
-//! that say where and what ([`errors`]); long work runs off the calling thread, which keeps
-//! Ctrl-C and the progress callback ([`watch`]).
+//! (modules `scene`, `report`); below them the half-space grid, a rigid indenter from a numpy
+//! gap, every contact solver and its typed termination (`library`), and the optimisation of
+//! the initial gap (`optimise`). Errors are `ValueError`s that say where and what (`errors`);
+//! long work runs off the calling thread, which keeps Ctrl-C and the progress callback
+//! (`watch`).
 //!
 //! Build and test: `bash crates/python/check.sh` (a venv, maturin, pytest).
 

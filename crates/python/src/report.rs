@@ -79,7 +79,7 @@ impl Report {
         let report = &self.report;
         let written = py.detach(|| contopt_cli::write_results(report, &out));
         match written {
-            Ok(dir) => Ok(dir.path().to_path_buf()),
+            Ok(dir) => Ok(dir),
             Err(e) => Err(PyOSError::new_err(format!(
                 "could not write the results to {}: {e}",
                 out.join(&report.scene).display()
