@@ -286,10 +286,7 @@ fn run(scene: &Scene, print: Print, out: &Path, shard: Option<Shard>, jobs: usiz
         cases,
     };
     let written = match shard {
-        None => ResultsDir::create(out, &scene.name).and_then(|mut dir| {
-            contopt_report::write(&report, &mut dir)?;
-            dir.finish()
-        }),
+        None => write_folder(&report, out),
         Some(shard) => {
             let partial = Partial {
                 contopt_version: env!("CARGO_PKG_VERSION").to_string(),
@@ -303,6 +300,22 @@ fn run(scene: &Scene, print: Print, out: &Path, shard: Option<Shard>, jobs: usiz
         }
     };
     finish(&report, print, written, &out.join(&scene.name))
+}
+
+/// Writes the files of `contopt run` for `report` into `out/<scene>/` (`result.json`,
+/// `interface.csv`, the charts, each case's fields), never through a symbolic link, and
+/// removes the files an earlier run wrote there that this one did not: the folder. What
+/// `run` writes, for the Python package's `Report.write`.
+pub fn write_results(report: &Report, out: &Path) -> std::io::Result<PathBuf> {
+    write_folder(report, out).map(|dir| dir.path().to_path_buf())
+}
+
+/// [`write_results`], the folder with the names of the files written.
+fn write_folder(report: &Report, out: &Path) -> std::io::Result<ResultsDir> {
+    files::check_out(out)?;
+    let mut dir = ResultsDir::create(out, &report.scene)?;
+    contopt_report::write(report, &mut dir)?;
+    dir.finish()
 }
 
 /// Writes a shard's `partial.json` and the files of its cases, numbered from `first`, to

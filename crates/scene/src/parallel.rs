@@ -28,7 +28,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use std::time::Duration;
 
-use contopt_core::observe::Silent;
+use contopt_core::observe::{Observer, Silent};
 use contopt_results::CaseReport;
 
 use crate::build::Built;
@@ -64,6 +64,19 @@ impl Scene {
         jobs: usize,
         done: &(dyn Fn() + Sync),
     ) -> Result<Ran, SceneError> {
+        self.run_parallel_observed(range, jobs, &Silent, done)
+    }
+
+    /// [`Scene::run_parallel`], reporting each iteration of every case's methods to
+    /// `observer` from the thread that runs it, which may stop them early (each case then
+    /// reports how it was stopped): a caller's progress and its Ctrl-C.
+    pub fn run_parallel_observed(
+        &self,
+        range: Range<usize>,
+        jobs: usize,
+        observer: &(dyn Observer + Sync),
+        done: &(dyn Fn() + Sync),
+    ) -> Result<Ran, SceneError> {
         let all = self.cases();
         let cases = &all[range.start.min(all.len())..range.end.min(all.len())];
         let groups = split(groups(cases), jobs);
@@ -92,7 +105,7 @@ impl Scene {
                     .map(|&k| cases[k].plan.memory.estimate_bytes)
                     .max();
                 let _held = gate.hold(need.unwrap_or(0));
-                ran.extend(pool.install(|| run_group(cases, group, &builds, done)));
+                ran.extend(pool.install(|| run_group(cases, group, &builds, observer, done)));
             }
             ran
         };
@@ -154,6 +167,7 @@ fn run_group(
     cases: &[Case],
     group: &[usize],
     builds: &Builds,
+    observer: &(dyn Observer + Sync),
     done: &(dyn Fn() + Sync),
 ) -> Vec<(usize, CaseResult)> {
     let ran = group
@@ -162,7 +176,7 @@ fn run_group(
             let case = &cases[k];
             let result = builds
                 .bodies(cases, k)
-                .and_then(|(built, took)| case.run_built(&built, took, &Silent));
+                .and_then(|(built, took)| case.run_built(&built, took, observer));
             done();
             (k, result)
         })

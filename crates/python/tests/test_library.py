@@ -1,0 +1,210 @@
+"""The library below the scenes from numpy: Hertz against the closed form, the arrays' shapes
+and order, equilibrium Σp·A = F, every solver, stops that are returned, and bad input."""
+
+import math
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import contopt
+
+E, NU = 210e3, 0.3
+ESTAR = E / (1 - NU**2)
+R = 100.0  # sphere radius [mm]
+
+
+def hertz(n=128, side=4.0, a=1.0):
+    """A rigid sphere on the half-space, the force that gives the contact radius a [mm]."""
+    h = side / n
+    body = contopt.HalfSpace(nx=n, ny=n, dx_mm=h, dy_mm=h, e_mpa=E, nu=NU)
+    gap = (body.x_mm**2 + body.y_mm**2) / (2 * R)
+    force = 4 * ESTAR * a**3 / (3 * R)
+    return body, gap, force
+
+
+def test_hertz_from_numpy_against_the_closed_form():
+    body, gap, force = hertz()
+    solution = contopt.Solver("polonsky_keer", tolerance=1e-10).solve(
+        contopt.Contact(body, gap, force_n=force)
+    )
+    assert solution.converged and solution.termination.kind == "converged"
+    a = (3 * force * R / (4 * ESTAR)) ** (1 / 3)
+    p0 = 3 * force / (2 * math.pi * a**2)
+    # 32 cells per contact radius: the peak within 0.5 %, the approach a²/R within 0.5 %,
+    # the contact area within 3 % (a ring of cells either way is 1/16 of πa²).
+    assert solution.p_max_mpa == pytest.approx(p0, rel=5e-3)
+    assert solution.approach_mm == pytest.approx(a**2 / R, rel=5e-3)
+    assert solution.contact_area_mm2 == pytest.approx(math.pi * a**2, rel=3e-2)
+    # The pressure along the centre row against p0·√(1 − r²/a²).
+    row = solution.pressure_mpa[body.shape[0] // 2]
+    x = body.x_mm[body.shape[0] // 2]
+    y = body.y_mm[body.shape[0] // 2, 0]
+    r2 = (x**2 + y**2) / a**2
+    closed = p0 * np.sqrt(np.clip(1 - r2, 0, None))
+    assert np.max(np.abs(row - closed)) < 0.03 * p0
+
+
+def test_equilibrium_units_and_shapes():
+    nx, ny, dx, dy = 48, 32, 0.05, 0.04
+    body = contopt.HalfSpace(nx=nx, ny=ny, dx_mm=dx, dy_mm=dy, e_mpa=E, nu=NU)
+    assert body.shape == (ny, nx) and body.cell_area_mm2 == pytest.approx(dx * dy)
+    # Rows are y, columns x: a sphere off the centre towards +x.
+    centre = (0.3, -0.1)
+    gap = ((body.x_mm - centre[0]) ** 2 + (body.y_mm - centre[1]) ** 2) / (2 * R)
+    assert np.allclose(body.x_mm[:, 1] - body.x_mm[:, 0], dx)
+    assert np.allclose(body.y_mm[1, :] - body.y_mm[0, :], dy)
+    force = 50.0
+    solution = contopt.Solver().solve(contopt.Contact(body, gap, force_n=force))
+    p = solution.pressure_mpa
+    assert p.shape == (ny, nx) and solution.gap_mm.shape == (ny, nx)
+    assert p.dtype == np.float64 and solution.contact.dtype == np.bool_
+    # Σ p·A = F [MPa·mm² = N].
+    assert np.sum(p) * dx * dy == pytest.approx(force, rel=1e-9)
+    assert solution.force_n == pytest.approx(force, rel=1e-9)
+    j, i = np.unravel_index(np.argmax(p), p.shape)
+    assert abs(body.x_mm[j, i] - centre[0]) <= dx and abs(body.y_mm[j, i] - centre[1]) <= dy
+    # Complementarity: no gap where pressed, no pressure where open.
+    assert np.all(solution.gap_mm[solution.contact] < 1e-9)
+    assert np.all(p[~solution.contact] == 0)
+    assert solution.method == "polonsky_keer"  # what auto chose for a grid
+
+
+def test_approach_control_gives_the_hertz_force():
+    body, gap, force = hertz(n=64, a=1.0)
+    solution = contopt.Solver("polonsky_keer", tolerance=1e-10).solve(
+        contopt.Contact(body, gap, approach_mm=1.0**2 / R)
+    )
+    assert solution.approach_mm == 1.0**2 / R
+    assert solution.force_n == pytest.approx(force, rel=2e-2)
+
+
+def test_every_solver_with_its_defaults_agrees():
+    body, gap, force = hertz(n=16, side=4.0, a=1.2)
+    contact = contopt.Contact(body, gap, force_n=force)
+    reference = contopt.Solver("qp").solve(contact)
+    assert reference.converged
+    for kind in contopt.Solver.kinds():
+        defaults = contopt.Solver.defaults(kind)
+        settings = {k: v for k, v in defaults.items() if v is not None}
+        if kind == "penalty":
+            settings["c_mpa_per_mm"] = 1e9
+        if kind == "augmented_lagrangian":
+            settings["c_mpa_per_mm"] = 1e7
+        solver = contopt.Solver(kind, **settings)
+        assert solver.kind == kind
+        solution = solver.solve(contact)
+        assert solution.converged, (kind, solution.termination)
+        # The penalty is exact only as c → ∞: p to 1e-3 of p_max at c = 1e9 MPa/mm.
+        tolerance = 1e-3 if kind == "penalty" else 1e-5
+        error = np.max(np.abs(solution.pressure_mpa - reference.pressure_mpa))
+        assert error < tolerance * reference.p_max_mpa, kind
+        assert solution.force_n == pytest.approx(force, rel=1e-6)
+
+
+def test_settings_and_defaults():
+    assert contopt.Solver.defaults("polonsky_keer")["tolerance"] > 0
+    assert contopt.Solver.defaults("penalty") == {"c_mpa_per_mm": None}
+    solver = contopt.Solver("polonsky_keer", max_steps=7)
+    assert solver.settings["max_steps"] == 7
+    assert solver.settings["tolerance"] == contopt.Solver.defaults("polonsky_keer")["tolerance"]
+
+
+def test_a_solve_that_stops_short_is_returned_with_its_termination():
+    body, gap, force = hertz(n=64)
+    solution = contopt.Solver("polonsky_keer", max_steps=3).solve(
+        contopt.Contact(body, gap, force_n=force)
+    )
+    termination = solution.termination
+    assert not solution.converged and termination.kind == "step_limit"
+    assert termination.details["steps"] == 3
+    assert termination.details["measure"] > termination.details["tolerance"]
+    assert np.all(np.isfinite(solution.pressure_mpa))
+
+
+@pytest.mark.parametrize(
+    "make, key",
+    [
+        (lambda b, g: contopt.Contact(b, np.where(g > 0.001, np.nan, g), force_n=1.0), "gap_mm"),
+        (lambda b, g: contopt.Contact(b, g[:, :-1], force_n=1.0), "gap_mm"),
+        (lambda b, g: contopt.Contact(b, g), "force_n"),
+        (lambda b, g: contopt.Contact(b, g, force_n=1.0, approach_mm=0.1), "force_n"),
+        (lambda b, g: contopt.Contact(b, g, force_n=-1.0), "force_n"),
+        (lambda b, g: contopt.Contact(b, g, approach_mm=math.inf), "approach_mm"),
+        (lambda b, g: contopt.Contact(b, "not an array", force_n=1.0), "gap_mm"),
+    ],
+)
+def test_bad_arrays_and_loads(make, key):
+    body, gap, _ = hertz(n=16)
+    with pytest.raises(contopt.InputError) as raised:
+        make(body, gap)
+    assert raised.value.key.startswith(key)
+    assert isinstance(raised.value, ValueError)
+
+
+def test_nan_is_located():
+    body, gap, _ = hertz(n=16)
+    gap[3, 5] = np.nan
+    with pytest.raises(contopt.InputError) as raised:
+        contopt.Contact(body, gap, force_n=1.0)
+    assert raised.value.key == "gap_mm[3, 5]" and raised.value.value == "NaN"
+
+
+@pytest.mark.parametrize(
+    "settings, key",
+    [
+        (dict(e_mpa=-210e3, nu=0.3), "e_mpa"),
+        (dict(e_mpa=math.nan, nu=0.3), "e_mpa"),
+        (dict(e_mpa=210e3, nu=0.5), "nu"),
+    ],
+)
+def test_bad_moduli(settings, key):
+    with pytest.raises(contopt.InputError) as raised:
+        contopt.HalfSpace(nx=8, ny=8, dx_mm=0.1, dy_mm=0.1, **settings)
+    assert raised.value.key == key and raised.value.allowed
+
+
+def test_bad_grids_and_solvers():
+    with pytest.raises(contopt.InputError):
+        contopt.HalfSpace(nx=0, ny=8, dx_mm=0.1, dy_mm=0.1, e_mpa=E, nu=NU)
+    with pytest.raises(contopt.InputError):
+        contopt.HalfSpace(nx=8, ny=8, dx_mm=-0.1, dy_mm=0.1, e_mpa=E, nu=NU)
+    with pytest.raises(contopt.InputError) as raised:
+        contopt.Solver("newton")
+    assert "polonsky_keer" in raised.value.allowed
+    with pytest.raises(contopt.InputError):
+        contopt.Solver("polonsky_keer", tolerence=1e-9)
+    with pytest.raises(contopt.InputError):
+        contopt.Solver("polonsky_keer", tolerance=-1.0)
+    with pytest.raises(contopt.InputError):
+        contopt.Solver("penalty")
+
+
+def test_the_gil_is_released_during_a_solve():
+    body, gap, force = hertz(n=256)
+    contact = contopt.Contact(body, gap, force_n=force)
+    solver = contopt.Solver("polonsky_keer", tolerance=1e-12)
+    ticks = []
+    running = threading.Event()
+
+    def count():
+        running.set()
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    done = threading.Event()
+    other = threading.Thread(target=count)
+    other.start()
+    running.wait()
+    start = time.perf_counter()
+    solver.solve(contact)
+    end = time.perf_counter()
+    done.set()
+    other.join()
+    during = [t for t in ticks if start < t < end]
+    # A solve that held the GIL would leave the other thread at most a tick or two
+    # (sys.getswitchinterval); released, it ticks about every millisecond.
+    assert end - start > 0.05
+    assert len(during) > 0.2 * (end - start) / 0.001
