@@ -191,4 +191,5 @@ def test_no_thread_pool_is_left_behind():
         if threads_of_this_process() <= before:
             break
         time.sleep(0.01)
-    assert threads_of_this_process() == before
+    # At most as many: a thread of an earlier test (a timer, a GIL probe) may end meanwhile.
+    assert threads_of_this_process() <= before
