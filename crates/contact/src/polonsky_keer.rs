@@ -212,7 +212,7 @@ impl PolonskyKeerWorkspace {
 
     /// A workspace for one solve, which keeps no derived problem: each is dropped once used,
     /// as the solve's peak memory asks.
-    fn one_off() -> Self {
+    pub(crate) fn one_off() -> Self {
         Self {
             derived: Derived::default(),
             ..Self::new(0)

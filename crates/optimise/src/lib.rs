@@ -421,7 +421,7 @@ impl<'a> Optimisation<'a> {
         };
         match self.workspace.try_lock() {
             Ok(mut kept) => solve(&mut kept),
-            Err(_) => solve(&mut Workspace::default()),
+            Err(_) => solve(&mut Workspace::one_off()),
         }
     }
 
