@@ -4,8 +4,12 @@
 //! is a fresh process. Sizes and, optionally, the cases (`hertz`, `punch`) are arguments:
 //!
 //! `cargo run --release --example halfspace_peers -- 256 512 hertz` (`--table`: a markdown
-//! table of time, steps, memory and errors instead of JSON)
+//! table of time, steps, memory and errors instead of JSON). Besides the peers' fields, each
+//! row counts the steps on the N × N grid apart from those on the coarser grids of the nested
+//! start, and times one influence product on the N × N grid (one padded FFT pair), measured
+//! in the same process as the solve, with the solve's time as a multiple of it.
 
+use std::cell::Cell;
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -68,8 +72,19 @@ fn run(case: &str, n: usize) -> Row {
     let indenter =
         RigidBody::pressed("indenter", body.interface(), [0.0, 0.0, 1.0], force).unwrap();
     let problem = InterfaceProblem::new(&body, &indenter, &gap).unwrap();
-    let state = solver.solve(&problem).unwrap();
+    // The steps on each grid: the fine one (level 0), and each coarser grid of the nested
+    // start one level deeper (its solve runs inside the finer one's).
+    let steps: [Cell<usize>; LEVELS] = Default::default();
+    let count = |e: &Event| {
+        if e.end.is_none() {
+            let level = &steps[e.level.min(LEVELS - 1)];
+            level.set(level.get() + 1);
+        }
+        Flow::Continue
+    };
+    let state = solver.solve_observed(&problem, None, &count).unwrap();
     let seconds = t.elapsed().as_secs_f64();
+    let pair = fft_pair_seconds(&body);
     let p = if case == "hertz" {
         state.p_max()
     } else {
@@ -84,6 +99,8 @@ fn run(case: &str, n: usize) -> Row {
         seconds,
         setup,
         iterations: state.iterations,
+        levels: steps.iter().map(Cell::get).collect(),
+        pair,
         converged: state.is_converged(),
         rss: contopt_validation::fixtures::peak_resident_mib(),
         err_force: carried / force - 1.0,
@@ -95,6 +112,37 @@ fn run(case: &str, n: usize) -> Row {
     }
 }
 
+/// Grid levels whose steps are counted apart (the last counts any deeper too): 4096² coarsens
+/// nine times down to 16².
+const LEVELS: usize = 12;
+
+/// The steps of each level, finest first, as `18 + 20 + 14`, the empty coarsest left out.
+fn per_level(levels: &[usize]) -> String {
+    let used = levels.iter().rposition(|&k| k > 0).map_or(1, |k| k + 1);
+    let parts: Vec<String> = levels[..used].iter().map(usize::to_string).collect();
+    parts.join(" + ")
+}
+
+/// Repetitions of the product whose fastest is the FFT pair's cost.
+const PAIR_RUNS: usize = 5;
+
+/// The fastest of [`PAIR_RUNS`] influence products on the whole grid \[s\]: one padded FFT
+/// pair (forward and inverse over the 2N × 2N grid) with the spectrum's product, the unit of a
+/// Polonsky–Keer step (which applies three such on its part of the grid: the residual's
+/// product, the preconditioner and the direction's product).
+fn fft_pair_seconds(body: &HalfSpace) -> f64 {
+    let n = body.interface().len();
+    let force: Vec<f64> = (0..n).map(|i| (i % 7) as f64).collect();
+    let mut out = vec![0.0; n];
+    (0..PAIR_RUNS)
+        .map(|_| {
+            let t = Instant::now();
+            body.apply_influence(&force, &mut out);
+            t.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// A run's figures as a JSON row in the peers' fields, or a markdown table row when `table`.
 fn format_row(case: &str, n: usize, row: &Row, table: bool) -> String {
     let (h, force, p_ref) = (row.h, row.force, row.p_ref);
@@ -104,8 +152,11 @@ fn format_row(case: &str, n: usize, row: &Row, table: bool) -> String {
             false => format!("{} (not converged)", row.iterations),
         };
         format!(
-            "| {case} | {n} | {:.3} s | {steps} | {:.0} MiB | {:+.3} % | {:+.3} % |",
+            "| {case} | {n} | {:.3} s | {steps} | {} | {:.2} ms | {:.0} | {:.0} MiB | {:+.3} % | {:+.3} % |",
             row.seconds,
+            per_level(&row.levels),
+            1e3 * row.pair,
+            row.seconds / row.pair,
             row.rss,
             100.0 * row.err_p0,
             100.0 * row.err_radius
@@ -113,13 +164,15 @@ fn format_row(case: &str, n: usize, row: &Row, table: bool) -> String {
     } else {
         format!(
             "{{\"tool\": \"contopt\", \"version\": \"{}\", \"case\": \"{case}\", \"bc\": \"free (non-periodic)\", \"N\": {n}, \"threads\": 1, \
-             \"seconds\": {:.6}, \"setup_s\": {:.6}, \"iterations\": {}, \"converged\": {}, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
+             \"seconds\": {:.6}, \"setup_s\": {:.6}, \"iterations\": {}, \"steps_per_level\": {:?}, \"fft_pair_s\": {:e}, \"converged\": {}, \"max_rss_MiB\": {:.1}, \"F\": {force}, \
              \"h_mm\": {h}, \"rel_err_force\": {:e}, \"rel_err_approach\": {:e}, \"p0_ref\": {p_ref}, \"p_max\": {}, \"rel_err_p0\": {:e}, \
              \"rel_err_contact_radius\": {:e}, \"rel_err_contact_area\": {:e}, \"status\": \"ok\"}}",
             env!("CARGO_PKG_VERSION"),
             row.seconds,
             row.setup,
             row.iterations,
+            row.levels,
+            row.pair,
             row.converged,
             row.rss,
             row.err_force,
@@ -143,6 +196,10 @@ struct Row {
     seconds: f64,
     setup: f64,
     iterations: usize,
+    /// Steps on the N × N grid, then on each coarser grid of the nested start.
+    levels: Vec<usize>,
+    /// One influence product on the N × N grid (a padded FFT pair) \[s\].
+    pair: f64,
     converged: bool,
     rss: f64,
     err_force: f64,
@@ -209,8 +266,8 @@ fn main() {
         }
     }
     if table {
-        println!("| case | N | time | steps | peak memory | p₀ error | contact-radius error |");
-        println!("| --- | --- | --- | --- | --- | --- | --- |");
+        println!("| case | N | time | steps | steps per grid, finest first | FFT pair | time / pair | peak memory | p₀ error | contact-radius error |");
+        println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
         println!("{}", rows.join("\n"));
     } else {
         println!("{{\"rows\": [\n{}\n]}}", rows.join(",\n"));

@@ -124,94 +124,136 @@ fn uzawa(
     observer: &dyn Observer,
     ws: &mut KalkerWorkspace,
 ) -> Result<ContactState> {
-    let method = Method::AugmentedLagrangian;
-    let c = al.c_mpa_per_mm;
     let nested = Nested(observer);
     let inner_watch = Watch::new(&nested, Method::Kalker);
     let (n, m) = (problem.len(), problem.modes().len());
     // One workspace for every step: the steps allocate nothing of their own.
     ws.prepare(problem);
-    let mut active = vec![true; n];
-    let mut counts = [0, 0];
-    let mut current = Iterate::zero(n, m);
+    let mut uzawa = Uzawa {
+        problem,
+        settings: al,
+        inner_watch,
+        spectral: al.c_mpa_per_mm > kalker::stiff_penalty(problem)?,
+        active: vec![true; n],
+        counts: [0, 0],
+        current: Iterate::zero(n, m),
+        shift: vec![0.0; n],
+        stopped: None,
+        linear: false,
+    };
     let started = kalker::start(
         problem,
-        c,
-        &mut active,
-        &mut counts,
+        al.c_mpa_per_mm,
+        &mut uzawa.active,
+        &mut uzawa.counts,
         inner_watch,
-        &mut current,
+        &mut uzawa.current,
         ws,
     )?;
     if let Some(stopped) = started {
+        let (active, counts) = (uzawa.active, uzawa.counts);
         return Ok(kalker::finish(
-            problem, method, stopped, ws, active, 0, counts,
+            problem, METHOD, stopped, ws, active, 0, counts,
         ));
     }
-    let spectral = c > kalker::stiff_penalty(problem)?;
-    let mut shift = vec![0.0; n];
-    let mut driver = Driver::new(method, observer, al.tolerance, al.max_steps);
-    // An inner solve that ended the iteration short, or, with `accelerate`, a step that left
-    // the contact set unchanged: then the rest of Uzawa's iteration is linear.
-    let (mut stopped, mut linear) = (None, false);
-    let end = driver.run(|_, _| {
-        shift.copy_from_slice(&current.pressure);
-        let inner = Subproblem::new(problem, 1.0 / c, &shift, spectral, &current, ws)?
-            .solve(&mut active, inner_watch.after(counts[0]))?;
+    let mut driver = Driver::new(METHOD, observer, al.tolerance, al.max_steps);
+    let end = driver.run(|_, _| uzawa.step(ws))?;
+    uzawa.finish(end, driver.steps(), ws)
+}
+
+/// The method Uzawa's steps report as.
+const METHOD: Method = Method::AugmentedLagrangian;
+
+/// Uzawa's iteration under way: its iterate, the contact set, Kalker's counts so far and how
+/// its last step came out.
+struct Uzawa<'s> {
+    problem: &'s InterfaceProblem<'s>,
+    settings: &'s AugmentedLagrangianSettings,
+    /// Where the inner Kalker solves report, one level deeper.
+    inner_watch: Watch<'s>,
+    /// Whether the subproblems are solved spectrally (c above c_stiff).
+    spectral: bool,
+    active: Vec<bool>,
+    /// Kalker's solves and penetration checks so far (`iterp`, `iterd`).
+    counts: [usize; 2],
+    current: Iterate,
+    /// The pressure p⁽ᵏ⁾ a step starts from.
+    shift: Vec<f64>,
+    /// An inner solve that ended the iteration short.
+    stopped: Option<kalker::Inner>,
+    /// With `accelerate`, the last step left the contact set unchanged: the rest of Uzawa's
+    /// iteration is linear.
+    linear: bool,
+}
+
+impl Uzawa<'_> {
+    /// One Uzawa step, the pressure's largest change relative to p_max its measure.
+    fn step(&mut self, ws: &mut KalkerWorkspace) -> Result<Step> {
+        let al = self.settings;
+        self.shift.copy_from_slice(&self.current.pressure);
+        let (rho, spectral) = (1.0 / al.c_mpa_per_mm, self.spectral);
+        let inner = Subproblem::new(self.problem, rho, &self.shift, spectral, &self.current, ws)?
+            .solve(&mut self.active, self.inner_watch.after(self.counts[0]))?;
         if let Some(halt) = inner.stopped.clone() {
-            stopped = Some(inner);
-            return Ok::<_, contopt_core::Error>(Step::Ended(halt));
+            self.stopped = Some(inner);
+            return Ok(Step::Ended(halt));
         }
-        counts[0] += inner.iterp;
-        counts[1] += inner.iterd;
+        self.counts[0] += inner.iterp;
+        self.counts[1] += inner.iterd;
         let pressure = &ws.solution().pressure;
         let p_max = pressure.iter().fold(0.0f64, |s, v| s.max(*v));
-        let relative = largest_difference(pressure, &shift) / p_max.max(f64::MIN_POSITIVE);
+        let relative = largest_difference(pressure, &self.shift) / p_max.max(f64::MIN_POSITIVE);
         // Converged when the pressure settles, or when the gap on the contact set is at
         // round-off: with a large c, c·(round-off) would otherwise keep p drifting along the
         // directions that do not move the interface.
-        let converged = relative <= al.tolerance || ws.open_on_contact(&active) <= inner.gap_floor;
-        linear = al.accelerate && inner.unchanged();
-        ws.swap_solution(&mut current);
-        Ok(match converged || linear {
+        let converged =
+            relative <= al.tolerance || ws.open_on_contact(&self.active) <= inner.gap_floor;
+        self.linear = al.accelerate && inner.unchanged();
+        ws.swap_solution(&mut self.current);
+        Ok(match converged || self.linear {
             true => Step::Last(relative, Termination::Converged),
             false => Step::Next(relative),
         })
-    })?;
-    let steps = driver.steps();
-    if let Some(inner) = stopped {
-        return Ok(kalker::finish(
+    }
+
+    /// The state after `steps` steps that ended as `end`: an inner solve's that stopped short;
+    /// when the last step left the contact set unchanged, the exact solve on it from the
+    /// current iterate (the fixed point of the rest of the iteration, which keeps the
+    /// iterate's components along directions that do not move the interface, as the
+    /// iteration would); else the current iterate's.
+    fn finish(
+        self,
+        end: Termination,
+        steps: usize,
+        ws: &mut KalkerWorkspace,
+    ) -> Result<ContactState> {
+        let Self {
             problem,
-            method,
-            inner,
-            ws,
-            active,
-            steps + 1,
+            mut active,
             counts,
-        ));
+            current,
+            ..
+        } = self;
+        if let Some(inner) = self.stopped {
+            let steps = steps + 1;
+            return Ok(kalker::finish(
+                problem, METHOD, inner, ws, active, steps, counts,
+            ));
+        }
+        if self.linear {
+            let watch = self.inner_watch.after(counts[0]);
+            let jump = kalker::solve_exact(problem, &current, &mut active, watch, ws)?;
+            return Ok(kalker::finish(
+                problem, METHOD, jump, ws, active, steps, counts,
+            ));
+        }
+        let counted = [steps, counts[0], counts[1]];
+        let mut state = problem.state(METHOD, current.pressure, current.rigid, active, counted);
+        if !end.is_converged() {
+            watch::end(&mut state, end);
+        }
+        Ok(state)
     }
-    if linear {
-        // The step left the contact set unchanged: the fixed point of the rest of Uzawa's
-        // iteration is the exact solve on this set from the current iterate (which keeps the
-        // iterate's components along directions that do not move the interface, as the
-        // iteration would).
-        let jump = kalker::solve_exact(
-            problem,
-            &current,
-            &mut active,
-            inner_watch.after(counts[0]),
-            ws,
-        )?;
-        return Ok(kalker::finish(
-            problem, method, jump, ws, active, steps, counts,
-        ));
-    }
-    let counted = [steps, counts[0], counts[1]];
-    let mut state = problem.state(method, current.pressure, current.rigid, active, counted);
-    if !end.is_converged() {
-        watch::end(&mut state, end);
-    }
-    Ok(state)
 }
 
 /// maxᵢ |aᵢ − bᵢ|.

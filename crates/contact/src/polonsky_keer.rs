@@ -170,6 +170,8 @@ pub struct PolonskyKeerWorkspace {
     previous: Vec<f64>,
     /// The points a solve on growing parts keeps.
     keep: Vec<bool>,
+    /// The last part's points among the whole's, or a coarser problem's parent of each point.
+    index: Vec<usize>,
     /// The last solve's state.
     state: ContactState,
 }
@@ -203,13 +205,14 @@ impl PolonskyKeerWorkspace {
             p: Vec::with_capacity(points),
             previous: Vec::with_capacity(points),
             keep: Vec::with_capacity(points),
+            index: vec![],
             state,
         }
     }
 
     /// A workspace for one solve, which keeps no derived problem: each is dropped once used,
     /// as the solve's peak memory asks.
-    fn one_off() -> Self {
+    pub(crate) fn one_off() -> Self {
         Self {
             derived: Derived::default(),
             ..Self::new(0)
@@ -288,8 +291,9 @@ impl PolonskyKeer {
         let deeper = Nested(watch.observer());
         let coarse_watch = Watch::new(&deeper, self.method());
         let solved = nested.solve_nested(coarse.problem(), false, coarse_watch, ws);
+        ws.derived.give_back(coarse, &mut ws.index);
         if solved.is_err() || !ws.state.is_converged() {
-            ws.derived.give_back(coarse);
+            ws.derived.done_with(&mut ws.index);
             // A start without pressure starts as zero pressure does.
             if warm {
                 refill(&mut ws.p, problem.len(), 0.0);
@@ -297,11 +301,11 @@ impl PolonskyKeer {
             return self.solve_cropped(problem, warm, watch, ws);
         }
         ws.p.clear();
-        ws.p.extend(coarse.map().iter().map(|&c| ws.state.pressure[c]));
-        // Unless the workspace keeps it, the coarse problem with its parent index (a usize per
-        // point) is not held through the fine solve: at 2048² cells the index is 32 MiB of its
-        // peak.
-        ws.derived.give_back(coarse);
+        ws.p.extend(ws.index.iter().map(|&c| ws.state.pressure[c]));
+        // Unless the workspace keeps them, neither the coarse problem nor its parent index (a
+        // usize per point) is held through the fine solve: at 2048² cells the index is 32 MiB
+        // of its peak.
+        ws.derived.done_with(&mut ws.index);
         let coarse_steps = ws.state.iterations;
         self.solve_cropped(problem, true, watch.after(coarse_steps), ws)?;
         ws.state.iterations += coarse_steps;
@@ -321,24 +325,25 @@ impl PolonskyKeer {
         seed(problem, warm, ws);
         let mut steps = 0;
         while let Some(part) = ws.derived.part(problem, &ws.keep) {
-            let index = part.map();
             if warm {
                 ws.previous.clear();
-                ws.previous.extend(index.iter().map(|&k| ws.p[k]));
+                ws.previous.extend(part.map().iter().map(|&k| ws.p[k]));
                 std::mem::swap(&mut ws.p, &mut ws.previous);
             }
             self.solve_whole(part.problem(), warm, watch.after(steps), ws)?;
+            // The part is dropped (or kept) before the whole problem's products.
+            ws.derived.give_back(part, &mut ws.index);
             steps += ws.state.iterations;
             let part_end = ws.state.termination.clone();
             refill(&mut ws.p, n, 0.0);
-            for (a, &k) in index.iter().enumerate() {
+            for (a, &k) in ws.index.iter().enumerate() {
                 ws.p[k] = ws.state.pressure[a];
             }
             ws.groups.prepare(problem)?;
             ws.cg.prepare(problem);
             settle(problem, steps, ws);
-            let grown = penetrating(problem, index, ws);
-            ws.derived.give_back(part);
+            let grown = penetrating(problem, ws);
+            ws.derived.done_with(&mut ws.index);
             if !grown || !part_end.is_converged() {
                 watch::end(&mut ws.state, part_end);
                 return Ok(());
@@ -412,14 +417,10 @@ fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) 
         .extend(g.iter().map(|&h| h <= lo + SEED_FRACTION * (hi - lo)));
 }
 
-/// Marks in `ws.keep` the points of a solved part (`index`) and those outside it that the
+/// Marks in `ws.keep` the points of a solved part (`ws.index`) and those outside it that the
 /// part's answer (the gap of `ws.state`) makes penetrate, beyond round-off of the gaps' size;
 /// returns whether any penetrates.
-fn penetrating(
-    problem: &InterfaceProblem,
-    index: &[usize],
-    ws: &mut PolonskyKeerWorkspace,
-) -> bool {
+fn penetrating(problem: &InterfaceProblem, ws: &mut PolonskyKeerWorkspace) -> bool {
     let gap = &ws.state.gap;
     let free = &mut ws.previous;
     refill(free, problem.len(), 0.0);
@@ -429,7 +430,7 @@ fn penetrating(
         .zip(gap)
         .fold(0.0f64, |m, (h, d)| m.max(h.abs() + d.abs()));
     refill(&mut ws.keep, problem.len(), false);
-    for &k in index {
+    for &k in &ws.index {
         ws.keep[k] = true;
     }
     let mut any = false;

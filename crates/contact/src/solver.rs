@@ -49,14 +49,15 @@ pub trait ContactSolver: Send + Sync {
         workspace: &mut Workspace,
     ) -> Result<ContactState>;
 
-    /// [`ContactSolver::solve_in`] in a workspace of its own, dropped after the solve.
+    /// [`ContactSolver::solve_in`] in a workspace of its own, dropped after the solve
+    /// ([`Workspace::one_off`]).
     fn solve_observed(
         &self,
         problem: &InterfaceProblem,
         start: Option<&[f64]>,
         observer: &dyn Observer,
     ) -> Result<ContactState> {
-        self.solve_in(problem, start, observer, &mut Workspace::default())
+        self.solve_in(problem, start, observer, &mut Workspace::one_off())
     }
 
     /// The same solver stopping at the looser `tolerance` (in the measure of its own), for an

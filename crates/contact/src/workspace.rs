@@ -8,7 +8,8 @@ use crate::{KalkerWorkspace, PolonskyKeerWorkspace};
 /// The workspaces of the solvers that keep one: Polonsky–Keer's
 /// ([`PolonskyKeerWorkspace`]) and Kalker's iteration's, behind the active-set, penalty and
 /// augmented-Lagrangian solvers ([`KalkerWorkspace`]). Empty until a solve sizes the part it
-/// uses; each thread that solves keeps its own.
+/// uses; each thread that solves keeps its own. Kept, it holds what a solve derives for the
+/// next (see [`PolonskyKeerWorkspace`]): for a single solve, [`Workspace::one_off`].
 ///
 /// ```
 /// # use contopt_contact::{ContactSolver, Workspace};
@@ -28,6 +29,19 @@ pub struct Workspace {
     pub polonsky_keer: PolonskyKeerWorkspace,
     /// Kalker's iteration's vectors and matrices.
     pub kalker: KalkerWorkspace,
+}
+
+impl Workspace {
+    /// A workspace for one solve, dropped after it: it keeps none of the problems a solve
+    /// derives (Polonsky–Keer's parts and coarser grids), which are then dropped as soon as
+    /// used, and the solve's peak memory is the least. For a workspace a caller keeps across
+    /// solves, [`Workspace::default`].
+    pub fn one_off() -> Self {
+        Self {
+            polonsky_keer: PolonskyKeerWorkspace::one_off(),
+            kalker: KalkerWorkspace::default(),
+        }
+    }
 }
 
 /// Makes `v` hold `n` copies of `value`, reallocating only when its capacity is below `n`.

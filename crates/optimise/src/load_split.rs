@@ -453,7 +453,7 @@ impl Split<'_, '_> {
         let cases = self.cases;
         let solve = |c: usize, observer: &dyn Observer| {
             let start = last.map(|l| l.cases[c].pressure.as_slice());
-            let workspace = &mut Workspace::default();
+            let workspace = &mut Workspace::one_off();
             crate::solve_gap_changed(solver, &cases[c], gap_change, start, observer, workspace)
         };
         let at_once = cases.first().map_or(1, |c| parallel::at_once(solver, c));

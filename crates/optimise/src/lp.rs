@@ -183,7 +183,7 @@ impl Optimisation<'_> {
             kept: self.kept.clone(),
             reference: self.reference,
             observer: &nested,
-            workspace: std::sync::Mutex::default(),
+            workspace: std::sync::Mutex::new(contopt_contact::Workspace::one_off()),
         };
         let found = match (seeding.columns(), self.problem.modes().is_empty()) {
             (Ok(_), _) => seeding.load_split(contact_solver, &LoadSplitSettings::default()),

@@ -191,8 +191,12 @@ impl Derived {
             kept.refill(fine);
             return Some(kept);
         }
-        let (problem, map, total) = fine.coarsened()?;
+        let (problem, map, mut total) = fine.coarsened()?;
         let from = identity.map(|id| (id, Derivation::Coarse));
+        if from.is_none() {
+            // Needed only to refill a kept problem: not held through a one-off solve.
+            total = vec![];
+        }
         Some(Kept {
             from,
             problem,
@@ -201,17 +205,29 @@ impl Derived {
         })
     }
 
-    /// Takes back `kept` after use: kept when it can be, else dropped.
-    pub(crate) fn give_back(&mut self, kept: Kept) {
+    /// Takes back `kept` once its problem is solved, leaving its map in `map` (copied when
+    /// the store keeps it, else moved and the problem dropped).
+    pub(crate) fn give_back(&mut self, mut kept: Kept, map: &mut Vec<usize>) {
         if !self.keeps || kept.from.is_none() {
+            std::mem::swap(map, &mut kept.map);
             return;
         }
+        map.clear();
+        map.extend_from_slice(&kept.map);
         if self.kept.len() == KEPT {
             let oldest = (0..KEPT).min_by_key(|&k| self.kept[k].0);
             oldest.map(|k| self.kept.swap_remove(k));
         }
         self.uses += 1;
         self.kept.push((self.uses, kept));
+    }
+
+    /// Done with a map that [`Derived::give_back`] left: freed unless the store keeps what it
+    /// derives (then the next solve refills it), so that a one-off solve does not hold it.
+    pub(crate) fn done_with(&self, map: &mut Vec<usize>) {
+        if !self.keeps {
+            *map = Vec::new();
+        }
     }
 
     /// The identity of `problem` when this store keeps what it derives.
