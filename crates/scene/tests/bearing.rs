@@ -161,6 +161,26 @@ fn the_bundled_bearing_on_a_coarse_grid() {
         assert!((0.75..1.25).contains(&ratio), "{}: {ratio}", case.label);
         assert!(l.peak_pressure_mrev <= l.half_space_mrev * (1.0 + 1e-12));
     }
+    // Both raceways (issue 35, point 2): the outer contact's conformity widens it, so under
+    // the aligned case's heaviest roller its peak is the inner's times √(R_i/R_o) within 2 %
+    // (Hertz's line contact, p₀ ∝ (q/R)^½; R_i = 1/(2/10 + 2/55), R_o = 1/(2/10 − 2/75):
+    // 0.8563); each case's half-space life combines its rings' as ISO/TS 16281 does.
+    let (r_i, r_o) = (1.0f64 / (0.2 + 2.0 / 55.0), 1.0f64 / (0.2 - 2.0 / 75.0));
+    let ratio = (r_i / r_o).sqrt();
+    let heaviest = &b.load_cases[0].rollers[0];
+    let [Some(inner), Some(outer)] = heaviest.p_max_rings_mpa else {
+        panic!("{heaviest:?}")
+    };
+    assert!(
+        (outer / inner / ratio - 1.0).abs() < 0.02,
+        "{outer} / {inner} vs {ratio}"
+    );
+    for case in &b.load_cases {
+        let [li, le] = case.lives.rings_mrev;
+        let combined = (li.powf(-9.0 / 8.0) + le.powf(-9.0 / 8.0)).powf(-8.0 / 9.0);
+        assert!((combined / case.lives.half_space_mrev - 1.0).abs() < 1e-12);
+        assert_eq!(case.p_max_rings_mpa[0], case.p_max_mpa);
+    }
     let miner = |f: fn(&contopt_results::Lives) -> f64| {
         1.0 / b
             .load_cases
