@@ -359,6 +359,12 @@ fn a_grid_too_narrow_names_reach_b() {
 /// A scene of the bundled bearing, zero clearance, ISO's crown, on `cells`, under `loads`
 /// (label, F_r \[N\]) of equal time fractions, no design.
 fn duty_cycle(cells: &str, loads: &[(&str, f64)]) -> Scene {
+    let text = scene_text(cells, loads);
+    Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap()
+}
+
+/// The text of [`duty_cycle`]'s scene.
+fn scene_text(cells: &str, loads: &[(&str, f64)]) -> String {
     let mut text = format!(
         "name = \"duty\"\n[bearing]\nrollers = 14\nroller_diameter_mm = 10.0\n\
          roller_length_mm = 10.0\nchamfer_mm = 0.2\npitch_diameter_mm = 65.0\n\
@@ -371,7 +377,7 @@ fn duty_cycle(cells: &str, loads: &[(&str, f64)]) -> Scene {
         ));
     }
     text.push_str("[solver]\nkind = \"polonsky_keer\"\n");
-    Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap()
+    text
 }
 
 /// The bearing report of a scene's only case.
@@ -404,4 +410,27 @@ fn a_light_load_case_is_solved_on_cells_of_its_own() {
             assert!(life.abs() < 0.03, "{heavy}/{light}: life {life:+.4}");
         }
     }
+}
+
+/// A crown designed over a duty cycle whose light case is far off the design load names that
+/// case and its heaviest roller (the design sees every contact on the design load's cells),
+/// while the light case's final figures are on cells of its own.
+#[test]
+fn a_design_names_the_load_cases_it_saw_on_coarse_cells() {
+    let text = format!(
+        "{}\n[optimisation]\nmethod = {{ kind = \"circular_search\", max_evaluations = 4 }}\n",
+        scene_text("[16, 9]", &[("A", 30e3), ("B", 2e3)]).replace("\"iso\"", "\"straight\"")
+    );
+    let scene = Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("crown was designed")
+                && w.contains("load case 1 (\"B\") roller 0")
+                && w.contains("bearing.design_load_n")),
+        "{:?}",
+        report.warnings
+    );
 }
