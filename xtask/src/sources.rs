@@ -198,6 +198,7 @@ pub const SOURCES: &[Source] = &[
         &[
             ("lives.svg", "bearing_lives.svg"),
             ("bearing_loads_1.svg", "bearing_loads.svg"),
+            ("load_zone_1.svg", "bearing_load_zone.svg"),
             ("p.svg", "bearing_p.svg"),
         ],
     ),

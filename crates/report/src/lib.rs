@@ -54,6 +54,7 @@ mod font;
 mod line;
 mod loglog;
 mod map;
+mod polar;
 mod results;
 mod scale;
 mod style;

@@ -41,7 +41,8 @@ const TILT_STEP_ARCMIN: f64 = 1e-3;
 /// Writes every file of `report` to `sink`, in order: `result.json`, `interface.csv`,
 /// `p.{svg,png}`, when some case changes the gap `dh.{svg,png}`, and for bearing cases
 /// `lives.{svg,png}` (the duty cycle's lives per case); per case `p_map_<case>` (a
-/// two-dimensional region), `envelope_<case>` (a roller's envelope), `bearing_loads_<case>`
+/// two-dimensional region), `envelope_<case>` (a roller's envelope), `load_zone_<case>` (a
+/// bearing's load zone around the ring), `bearing_loads_<case>`
 /// (a bearing's roller loads per load case), `subsurface_<case>.csv`
 /// and `mises_<case>_<section>` (stresses below the surface), `fields_<case>.vtu` and
 /// `contact_<case>.vtu` (a finite-element case's fields for ParaView: [`crate::vtu`]); cases
@@ -87,6 +88,9 @@ pub fn write_cases(report: &Report, first: usize, sink: &mut dyn Sink) -> io::Re
         }
         if let Some(chart) = bearing_loads_chart(case) {
             put(sink, &format!("bearing_loads_{number}"), &chart.draw()?)?;
+        }
+        if let Some(zone) = crate::polar::load_zone(case) {
+            put(sink, &format!("load_zone_{number}"), &zone?)?;
         }
         sections(report, case, number, sink)?;
         if let Some(vtu) = crate::vtu::fields_vtu(case)? {

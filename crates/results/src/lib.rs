@@ -358,7 +358,8 @@ pub struct BearingReport {
     pub dynamic_load_rating_n: f64,
     /// ISO/TS 16281's slice ratings on the inner and the outer raceway, q_ci and q_ce \[N\].
     pub slice_ratings_n: [f64; 2],
-    /// The raceway whose contacts are solved on the half-space grid: `inner` or `outer`.
+    /// The raceway whose contacts the case's fields and `p_max_mpa` show (both raceways'
+    /// contacts are solved): `inner` or `outer`.
     pub raceway: String,
     /// The ring that rotates against the load: `inner` or `outer`.
     pub rotating: String,
@@ -372,8 +373,9 @@ pub struct BearingReport {
     /// The robust crown's pressure level per load case, relative to the reference case's,
     /// when it is designed for the life (`objective = "life"`); null otherwise.
     pub pressure_levels: Option<Vec<f64>>,
-    /// The solved contacts: loaded rollers of every load case, duplicates (a roller and its
-    /// mirror across the load line) solved once, times the band's three crowns.
+    /// The solved contacts on both raceways: loaded rollers of every load case, duplicates
+    /// (a roller and its mirror across the load line) solved once, times the band's three
+    /// crowns.
     pub contacts_solved: usize,
     /// The load cases, in the scene's order.
     pub load_cases: Vec<BearingLoadCase>,
@@ -471,6 +473,9 @@ pub struct BearingLoadCase {
     pub rollers: Vec<BearingRoller>,
     /// The largest contact pressure over its loaded rollers on the solved raceway \[MPa\].
     pub p_max_mpa: f64,
+    /// The largest contact pressure over its loaded rollers on the inner and on the outer
+    /// raceway \[MPa\].
+    pub p_max_rings_mpa: [f64; 2],
     /// Its rating lives.
     pub lives: Lives,
     /// Its lives in hours at the bearing's speed; null without one.
@@ -491,6 +496,9 @@ pub struct BearingRoller {
     /// Its largest contact pressure on the solved raceway \[MPa\] (the band's worst); null
     /// when unloaded.
     pub p_max_mpa: Option<f64>,
+    /// Its largest contact pressure on the inner and on the outer raceway \[MPa\] (the
+    /// band's worst); null when unloaded.
+    pub p_max_rings_mpa: [Option<f64>; 2],
 }
 
 /// Rating lives \[10⁶ revolutions\].

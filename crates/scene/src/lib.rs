@@ -19,7 +19,8 @@
 //! on any number of threads), the **design** on the contact problem ([`Design`], given a
 //! [`Context`], returning [`Designed`]; a bearing is one of them), and the **report**
 //! (`report/`: from what the design found to the [`CaseReport`] — the figures, the model's
-//! limits, the stresses and fields asked for). The
+//! limits, the stresses and fields asked for; a bearing's lives are a stage of their own,
+//! `lives.rs`, from its contacts' slice loads to the lives per ring, in hours and modified). The
 //! kinds import only the small shared types below them (the zone, the gap, the load); no module
 //! of the crate imports one that imports it.
 

@@ -161,6 +161,26 @@ fn the_bundled_bearing_on_a_coarse_grid() {
         assert!((0.75..1.25).contains(&ratio), "{}: {ratio}", case.label);
         assert!(l.peak_pressure_mrev <= l.half_space_mrev * (1.0 + 1e-12));
     }
+    // Both raceways (issue 35, point 2): the outer contact's conformity widens it, so under
+    // the aligned case's heaviest roller its peak is the inner's times √(R_i/R_o) within 2 %
+    // (Hertz's line contact, p₀ ∝ (q/R)^½; R_i = 1/(2/10 + 2/55), R_o = 1/(2/10 − 2/75):
+    // 0.8563); each case's half-space life combines its rings' as ISO/TS 16281 does.
+    let (r_i, r_o) = (1.0f64 / (0.2 + 2.0 / 55.0), 1.0f64 / (0.2 - 2.0 / 75.0));
+    let ratio = (r_i / r_o).sqrt();
+    let heaviest = &b.load_cases[0].rollers[0];
+    let [Some(inner), Some(outer)] = heaviest.p_max_rings_mpa else {
+        panic!("{heaviest:?}")
+    };
+    assert!(
+        (outer / inner / ratio - 1.0).abs() < 0.02,
+        "{outer} / {inner} vs {ratio}"
+    );
+    for case in &b.load_cases {
+        let [li, le] = case.lives.rings_mrev;
+        let combined = (li.powf(-9.0 / 8.0) + le.powf(-9.0 / 8.0)).powf(-8.0 / 9.0);
+        assert!((combined / case.lives.half_space_mrev - 1.0).abs() < 1e-12);
+        assert_eq!(case.p_max_rings_mpa[0], case.p_max_mpa);
+    }
     let miner = |f: fn(&contopt_results::Lives) -> f64| {
         1.0 / b
             .load_cases
@@ -339,6 +359,12 @@ fn a_grid_too_narrow_names_reach_b() {
 /// A scene of the bundled bearing, zero clearance, ISO's crown, on `cells`, under `loads`
 /// (label, F_r \[N\]) of equal time fractions, no design.
 fn duty_cycle(cells: &str, loads: &[(&str, f64)]) -> Scene {
+    let text = scene_text(cells, loads);
+    Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap()
+}
+
+/// The text of [`duty_cycle`]'s scene.
+fn scene_text(cells: &str, loads: &[(&str, f64)]) -> String {
     let mut text = format!(
         "name = \"duty\"\n[bearing]\nrollers = 14\nroller_diameter_mm = 10.0\n\
          roller_length_mm = 10.0\nchamfer_mm = 0.2\npitch_diameter_mm = 65.0\n\
@@ -351,7 +377,7 @@ fn duty_cycle(cells: &str, loads: &[(&str, f64)]) -> Scene {
         ));
     }
     text.push_str("[solver]\nkind = \"polonsky_keer\"\n");
-    Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap()
+    text
 }
 
 /// The bearing report of a scene's only case.
@@ -384,4 +410,27 @@ fn a_light_load_case_is_solved_on_cells_of_its_own() {
             assert!(life.abs() < 0.03, "{heavy}/{light}: life {life:+.4}");
         }
     }
+}
+
+/// A crown designed over a duty cycle whose light case is far off the design load names that
+/// case and its heaviest roller (the design sees every contact on the design load's cells),
+/// while the light case's final figures are on cells of its own.
+#[test]
+fn a_design_names_the_load_cases_it_saw_on_coarse_cells() {
+    let text = format!(
+        "{}\n[optimisation]\nmethod = {{ kind = \"circular_search\", max_evaluations = 4 }}\n",
+        scene_text("[16, 9]", &[("A", 30e3), ("B", 2e3)]).replace("\"iso\"", "\"straight\"")
+    );
+    let scene = Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap();
+    let report = scene.cases()[0].run().unwrap();
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("crown was designed")
+                && w.contains("load case 1 (\"B\") roller 0")
+                && w.contains("bearing.design_load_n")),
+        "{:?}",
+        report.warnings
+    );
 }

@@ -189,7 +189,7 @@ const SAME_LOAD: f64 = 1e-9;
 
 /// The case's layout of bodies and gap for `roller` pressed by `load` \[N\]: its grid sized
 /// for that load, the roller with its free ends when `layout` has them.
-fn built(
+pub(crate) fn built(
     roller: &Roller,
     load: f64,
     layout: &Layout,

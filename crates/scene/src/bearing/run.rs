@@ -124,52 +124,111 @@ fn distributions(
     Ok(Ok(all))
 }
 
+/// Where a raceway's contacts lie: each on its grid, or all on one.
+enum OnGrid<'r, 'a> {
+    Each(&'r Grids<'a>),
+    One(&'r [[f64; 3]], [f64; 2]),
+}
+
+impl OnGrid<'_, '_> {
+    /// Contact k's points and cell.
+    fn at(&self, k: usize) -> (&[[f64; 3]], [f64; 2]) {
+        match self {
+            OnGrid::Each(grids) => (grids.of(k).points(), grids.of(k).cell),
+            OnGrid::One(points, cell) => (points, *cell),
+        }
+    }
+}
+
+/// A raceway's contacts as the slices take them: their envelope, pressures (band after
+/// band), grids, and Hertz's radius and modulus of the pair.
+struct RingPressures<'r, 'a> {
+    raceway: Raceway,
+    env: &'r Envelope,
+    pressures: Vec<&'r [f64]>,
+    grid: OnGrid<'r, 'a>,
+    radius: f64,
+    e_star: f64,
+}
+
+impl<'a> Ring<'a> {
+    fn pressures(&self) -> RingPressures<'_, 'a> {
+        RingPressures {
+            raceway: self.raceway,
+            env: &self.env,
+            pressures: (self.solved.states.iter())
+                .map(|s| s.pressure.as_slice())
+                .collect(),
+            grid: OnGrid::Each(&self.grids),
+            radius: self.radius,
+            e_star: self.e_star,
+        }
+    }
+}
+
 /// Every load case's slice loads for the lives stage ([`crate::lives`]): the slice model's,
-/// and per crown of the band the solved raceway's replaced by the half-space contacts'
-/// (`pressures`, the envelope's contacts band after band, contact k on the grid `grid(k)`)
-/// and by the Hertzian loads of their slices' peaks.
-fn slices<'g>(
+/// and per crown of the band each of `rings`' raceways replaced by its half-space contacts'
+/// (contact k on its grid) and by the Hertzian loads of their slices' peaks.
+fn slices(
     plan: &BearingPlan,
     distributions: &[LoadDistribution],
-    env: &Envelope,
-    pressures: &[&[f64]],
-    at: &Geometry,
-    grid: &dyn Fn(usize) -> (&'g [[f64; 3]], [f64; 2]),
+    rings: &[RingPressures],
+    length: f64,
 ) -> Result<Vec<CaseSlices>> {
-    let n = env.contacts.len();
-    let slices = plan.bearing.slices;
-    let width = at.length / slices as f64;
+    let bands = (rings.iter())
+        .map(|r| r.env.bands(r.pressures.len()))
+        .min()
+        .unwrap_or(1);
     let mut all = Vec::with_capacity(distributions.len());
     for (i, d) in distributions.iter().enumerate() {
         let base = SliceLoads::from_distribution(d)?;
-        let mut bands = vec![];
-        for band in 0..env.bands(pressures.len()) {
+        let mut per_band = vec![];
+        for band in 0..bands {
             let (mut loads, mut raised) = (base.clone(), base.clone());
-            for (j, contact) in env.index[i].iter().enumerate() {
-                let Some(k) = contact else { continue };
-                let p = pressures[band * n + k];
-                let (points, cell) = grid(*k);
-                let q = slice_loads_from_pressure(points, p, cell, at.length, slices)?;
-                let peaks = slice_peaks_from_pressure(points, p, cell, at.length, slices)?;
-                let hertz: Vec<f64> = q
-                    .iter()
-                    .zip(&peaks)
-                    .map(|(q, p)| q.max(hertz_slice_load(*p, width, at.radius, at.e_star)))
-                    .collect();
-                loads.set(plan.raceway, j, &q)?;
-                raised.set(plan.raceway, j, &hertz)?;
+            for ring in rings {
+                ring_slices(plan, ring, i, band, length, [&mut loads, &mut raised])?;
             }
-            bands.push([loads, raised]);
+            per_band.push([loads, raised]);
         }
         let (_, load, fraction) = &plan.loads[i];
         all.push(CaseSlices {
             radial_n: load.radial_n,
             fraction: *fraction,
             slice_model: base,
-            bands,
+            bands: per_band,
         });
     }
     Ok(all)
+}
+
+/// Load case `i`'s rollers on `ring` in crown `band` of the tolerance: their slices in
+/// `loads` from the half-space pressures, in `raised` from their slices' peaks too.
+fn ring_slices(
+    plan: &BearingPlan,
+    ring: &RingPressures,
+    i: usize,
+    band: usize,
+    length: f64,
+    [loads, raised]: [&mut SliceLoads; 2],
+) -> Result<()> {
+    let slices = plan.bearing.slices;
+    let width = length / slices as f64;
+    let n = ring.env.contacts.len();
+    for (j, contact) in ring.env.index[i].iter().enumerate() {
+        let Some(k) = contact else { continue };
+        let p = ring.pressures[band * n + k];
+        let (points, cell) = ring.grid.at(*k);
+        let q = slice_loads_from_pressure(points, p, cell, length, slices)?;
+        let peaks = slice_peaks_from_pressure(points, p, cell, length, slices)?;
+        let hertz: Vec<f64> = q
+            .iter()
+            .zip(&peaks)
+            .map(|(q, p)| q.max(hertz_slice_load(*p, width, ring.radius, ring.e_star)))
+            .collect();
+        loads.set(ring.raceway, j, &q)?;
+        raised.set(ring.raceway, j, &hertz)?;
+    }
+    Ok(())
 }
 
 /// The lives stage's input for `cases` under `plan`.
@@ -326,9 +385,15 @@ fn search_objective<'o>(
         match plan.objective {
             BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
             BearingObjective::Life => {
-                let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-                let on_grid = |_| (at.points, at.cell);
-                let cases = slices(plan, first, env, &pressures, at, &on_grid)?;
+                let ring = RingPressures {
+                    raceway: plan.raceway,
+                    env,
+                    pressures: states.iter().map(|s| s.pressure.as_slice()).collect(),
+                    grid: OnGrid::One(at.points, at.cell),
+                    radius: at.radius,
+                    e_star: at.e_star,
+                };
+                let cases = slices(plan, first, &[ring], at.length)?;
                 let duty = crate::lives::lives(&lives_input(plan, &cases))?.duty;
                 Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
             }
@@ -436,7 +501,6 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         },
         None => first,
     };
-    let env = Envelope::new(&dists, plan.raceway);
     let layout = grids::Layout {
         cells: plan.cells,
         reach: plan.reach,
@@ -445,7 +509,6 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
             weight,
         }),
     };
-    let grids = Grids::new(problem, roller, at.cell, &layout, &env.contacts)?;
     let started = Instant::now();
     let change = designed
         .as_ref()
@@ -453,20 +516,45 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     let solve = |cases: &[LoadCase], change: &[f64]| {
         solve_cases(cases, change, solver, None, &Nested(observer))
     };
-    let solved = grids.solve(&env.contacts, plan.tolerance, &change, solve)?;
+    let shared = Shared {
+        layout: &layout,
+        change: &change,
+        solve: &solve,
+    };
+    let solved = ring(
+        plan,
+        &dists,
+        plan.raceway,
+        (problem, roller, at.cell),
+        &shared,
+    )?;
+    let other = other_raceway(plan.raceway);
+    let built = grids::built(
+        &raceway_roller(plan, roller, other),
+        roller.load,
+        &layout,
+        problem.dense_limit(),
+    )?;
+    let nominal = (&built.problem, &built.roller, built.cell);
+    let opposite = ring(plan, &dists, other, nominal, &shared)?;
     report.time("solve", started);
-    if let Some(s) = solved.states.iter().find(|s| !s.termination.is_solved()) {
+    let unsolved = (solved.solved.states.iter().chain(&opposite.solved.states))
+        .find(|s| !s.termination.is_solved());
+    if let Some(s) = unsolved {
         let why = s.termination.clone().inside(s.method);
         return Ok(Designed::unsolved(why, solver.method()));
     }
-    let states = &solved.states;
     let started = Instant::now();
-    let pressures: Vec<&[f64]> = states.iter().map(|s| s.pressure.as_slice()).collect();
-    let n = env.contacts.len();
-    let on_grid = |k: usize| (grids.of(k).points(), grids.of(k).cell);
-    let cases = slices(plan, &dists, &env, &pressures, &at, &on_grid)?;
+    let cases = slices(
+        plan,
+        &dists,
+        &[solved.pressures(), opposite.pressures()],
+        at.length,
+    )?;
     let lives = crate::lives::lives(&lives_input(plan, &cases))?;
     report.time("lives", started);
+    let (env, grids, states) = (&solved.env, &solved.grids, &solved.solved.states);
+    let n = env.contacts.len();
     let worst = (0..states.len())
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(0);
@@ -475,26 +563,99 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         .filter(|&s| grids.of[s % n] == 0)
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(worst);
-    report
-        .warnings
-        .extend(resolution_warnings(plan, &env, &grids, designed.is_some())?);
-    report
-        .warnings
-        .extend(edge_warning(plan, &env, &grids, states));
+    for r in [&solved, &opposite] {
+        let designed = designed.is_some() && r.raceway == plan.raceway;
+        (report.warnings).extend(resolution_warnings(plan, r, designed)?);
+        report.warnings.extend(edge_warning(plan, r));
+    }
     if shown != worst {
-        report.warnings.push(elsewhere(plan, &env, worst % n));
+        report.warnings.push(elsewhere(plan, env, worst % n));
     }
     let levels = designed.as_ref().and_then(|d| d.levels.clone());
     report.bearing = Some(bearing_report(
-        plan, &dists, &env, states, worst, &grids, lives, levels,
+        plan,
+        &dists,
+        [&solved, &opposite],
+        worst,
+        lives,
+        levels,
     ));
     let last = Final {
-        solved: &solved,
-        env: &env,
-        grids: &grids,
+        solved: &solved.solved,
+        env,
+        grids,
         shown,
     };
     outcome(designed, &last, &at, roller, solver.method())
+}
+
+/// The raceway across the roller from `raceway`.
+fn other_raceway(raceway: Raceway) -> Raceway {
+    match raceway {
+        Raceway::Inner => Raceway::Outer,
+        Raceway::Outer => Raceway::Inner,
+    }
+}
+
+/// The case's roller (`roller`, on the solved raceway) on `raceway`: that raceway's diameter
+/// (negative for the outer ring, whose conformity the gap's 1/R = 2/D − 2/D_o holds) and
+/// crown, the roller's own crown.
+fn raceway_roller(plan: &BearingPlan, roller: &Roller, raceway: Raceway) -> Roller {
+    let b = &plan.bearing;
+    let (diameter, crown) = match raceway {
+        Raceway::Inner => (b.pitch_diameter - b.roller_diameter, &b.inner_crown),
+        Raceway::Outer => (-(b.pitch_diameter + b.roller_diameter), &b.outer_crown),
+    };
+    Roller {
+        raceway_diameter: Some(diameter),
+        crown: b.roller_crown.clone().plus(crown.clone()),
+        ..roller.clone()
+    }
+}
+
+/// The solve of load cases under a gap change (the case's solver, reporting to its
+/// observer).
+type SolveCases<'d> = dyn Fn(&[LoadCase], &[f64]) -> Result<Vec<ContactState>> + 'd;
+
+/// What the final state's contacts share on either raceway: the grids' layout, the crown's
+/// gap change, and the solve of a list of load cases.
+struct Shared<'d> {
+    layout: &'d grids::Layout,
+    change: &'d [f64],
+    solve: &'d SolveCases<'d>,
+}
+
+/// One raceway's contacts in the final state: the distinct contacts, their grids and
+/// solutions, and Hertz's radius and modulus of its pair (for a slice's peak load).
+struct Ring<'a> {
+    raceway: Raceway,
+    env: Envelope,
+    grids: Grids<'a>,
+    solved: Solved,
+    radius: f64,
+    e_star: f64,
+}
+
+/// Every contact of `raceway` under `dists` solved on its grid, `nominal` the problem of
+/// `roller` (on that raceway) under the design load and its grid's cell \[mm\].
+fn ring<'a>(
+    plan: &BearingPlan,
+    dists: &[LoadDistribution],
+    raceway: Raceway,
+    (nominal, roller, cell): (&InterfaceProblem<'a>, &Roller, [f64; 2]),
+    shared: &Shared,
+) -> Result<Ring<'a>> {
+    let env = Envelope::new(dists, raceway);
+    let grids = Grids::new(nominal, roller, cell, shared.layout, &env.contacts)?;
+    let solved = grids.solve(&env.contacts, plan.tolerance, shared.change, shared.solve)?;
+    Ok(Ring {
+        raceway,
+        env,
+        grids,
+        solved,
+        radius: roller.radius()?,
+        e_star: roller.e_star(),
+    })
 }
 
 /// The final state of a bearing's run: every contact's solution on its grid (the distinct
@@ -599,6 +760,15 @@ fn named(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
     )
 }
 
+/// A contact of `ring` named, with its raceway when it is not the solved one's.
+fn named_on(plan: &BearingPlan, ring: &Ring, k: usize) -> String {
+    let name = named(plan, &ring.env, k);
+    match ring.raceway == plan.raceway {
+        true => name,
+        false => format!("{name} on the {} raceway", raceway_name(ring.raceway)),
+    }
+}
+
 /// The warning of a worst contact solved off the design grid: the report's fields show the
 /// design grid's worst instead.
 fn elsewhere(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
@@ -618,17 +788,13 @@ fn elsewhere(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
 /// design load's cells though it is far lighter (the final figures are solved on its own
 /// grid, not the design's; a light roller at the edge of a loaded zone, which carries little
 /// of the life, is not named).
-fn resolution_warnings(
-    plan: &BearingPlan,
-    env: &Envelope,
-    grids: &Grids,
-    designed: bool,
-) -> Result<Vec<String>> {
+fn resolution_warnings(plan: &BearingPlan, ring: &Ring, designed: bool) -> Result<Vec<String>> {
+    let (env, grids) = (&ring.env, &ring.grids);
     let mut coarse = vec![];
     for k in 0..env.contacts.len() {
         let cells = grids.of(k).cells_across(env.contacts[k].load_n)?;
         if cells < 0.5 * MIN_CELLS_ACROSS {
-            coarse.push(format!("{} with {cells:.1} cells", named(plan, env, k)));
+            coarse.push(format!("{} with {cells:.1} cells", named_on(plan, ring, k)));
         }
     }
     let mut off_design = vec![];
@@ -640,7 +806,10 @@ fn resolution_warnings(
             .max_by(|&a, &b| env.contacts[a].load_n.total_cmp(&env.contacts[b].load_n));
         if let Some(k) = heaviest.filter(|&k| grids.of[k] != 0) {
             let on_design = grids.grids[0].cells_across(env.contacts[k].load_n)?;
-            off_design.push(format!("{} with {on_design:.1} cells", named(plan, env, k)));
+            off_design.push(format!(
+                "{} with {on_design:.1} cells",
+                named_on(plan, ring, k)
+            ));
         }
     }
     let mut warnings = vec![];
@@ -675,12 +844,8 @@ const CARRIES: f64 = 1e-6;
 
 /// The warning of contacts whose pressure reaches their grid's outer rows across: the grid
 /// ends inside them, and `bearing.reach_b` widens it.
-fn edge_warning(
-    plan: &BearingPlan,
-    env: &Envelope,
-    grids: &Grids,
-    states: &[ContactState],
-) -> Option<String> {
+fn edge_warning(plan: &BearingPlan, ring: &Ring) -> Option<String> {
+    let (env, grids, states) = (&ring.env, &ring.grids, &ring.solved.states);
     let n = env.contacts.len().max(1);
     let mut reached: Vec<String> = vec![];
     for (s, state) in states.iter().enumerate() {
@@ -691,7 +856,7 @@ fn edge_warning(
         let limit = CARRIES * state.p_max();
         let edge = (points.iter().zip(&state.pressure))
             .any(|(x, p)| x[1].abs() > outer - 0.5 * grid.cell[1] && *p > limit);
-        let name = named(plan, env, k);
+        let name = named_on(plan, ring, k);
         if edge && !reached.contains(&name) {
             reached.push(name);
         }
@@ -733,41 +898,49 @@ fn crowned_distributions(
     distributions(&bearing, plan, observer)
 }
 
-/// The bearing's report from the final state.
-#[allow(clippy::too_many_arguments)]
-fn bearing_report(
-    plan: &BearingPlan,
-    dists: &[LoadDistribution],
-    env: &Envelope,
-    states: &[ContactState],
-    worst: usize,
-    grids: &Grids,
-    lives: LivesOutput,
-    levels: Option<Vec<f64>>,
-) -> BearingReport {
+/// A ring's contact p_max per load case and roller (the band's worst); `None` unloaded.
+fn ring_peaks(ring: &Ring) -> Vec<Vec<Option<f64>>> {
+    let (env, states) = (&ring.env, &ring.solved.states);
     let n = env.contacts.len();
     let bands = env.bands(states.len());
-    // A contact's p_max: the worst over the band.
     let p_max = |k: usize| {
         (0..bands)
             .map(|b| states[b * n + k].p_max())
             .fold(0.0, f64::max)
     };
+    (env.index.iter())
+        .map(|rollers| rollers.iter().map(|k| k.map(p_max)).collect())
+        .collect()
+}
+
+/// The bearing's report from the final state: `rings` the solved raceway's contacts, then
+/// the other's.
+fn bearing_report(
+    plan: &BearingPlan,
+    dists: &[LoadDistribution],
+    rings: [&Ring; 2],
+    worst: usize,
+    lives: LivesOutput,
+    levels: Option<Vec<f64>>,
+) -> BearingReport {
+    let peaks = rings.map(ring_peaks);
+    // Each ring's peaks as [inner, outer].
+    let inner_first = usize::from(rings[0].raceway != Raceway::Inner);
+    let of_ring = |i: usize, j: usize| [peaks[inner_first][i][j], peaks[1 - inner_first][i][j]];
     let arcmin = |rad: f64| 60.0 * rad.to_degrees();
+    let largest = |v: &mut dyn Iterator<Item = Option<f64>>| v.flatten().fold(0.0, f64::max);
     let load_cases = dists
         .iter()
         .zip(lives.per_case.into_iter().zip(lives.per_case_hours))
         .enumerate()
         .map(|(i, (d, (lives, hours)))| {
-            let rollers: Vec<BearingRoller> = d
-                .rollers
-                .iter()
-                .zip(&env.index[i])
-                .map(|(r, k)| BearingRoller {
+            let rollers: Vec<BearingRoller> = (d.rollers.iter().enumerate())
+                .map(|(j, r)| BearingRoller {
                     angle_deg: r.angle.to_degrees(),
                     load_n: r.load_n,
                     tilt_arcmin: [arcmin(r.tilt_inner), arcmin(r.tilt_outer)],
-                    p_max_mpa: k.map(p_max),
+                    p_max_mpa: peaks[0][i][j],
+                    p_max_rings_mpa: of_ring(i, j),
                 })
                 .collect();
             let (label, load, fraction) = &plan.loads[i];
@@ -781,22 +954,15 @@ fn bearing_report(
                 loaded_zone_deg: d.load_zone().to_degrees(),
                 load_factor: d.load_factor(),
                 iterations: d.iterations,
-                p_max_mpa: rollers
-                    .iter()
-                    .filter_map(|r| r.p_max_mpa)
-                    .fold(0.0, f64::max),
+                p_max_mpa: largest(&mut rollers.iter().map(|r| r.p_max_mpa)),
+                p_max_rings_mpa: [0, 1]
+                    .map(|g| largest(&mut rollers.iter().map(|r| r.p_max_rings_mpa[g]))),
                 rollers,
                 lives,
                 hours,
             }
         })
         .collect();
-    let (k, band) = (worst % n, worst / n);
-    let (i, j) = env.origin[k];
-    let pressure = &states[worst].pressure;
-    let top = peak_index(pressure).unwrap_or(0);
-    let points = grids.of(k).points();
-    let deviation = [0.0, 1.0, -1.0][band.min(2)] * 1e3 * plan.tolerance;
     BearingReport {
         dynamic_load_rating_n: plan.rating,
         slice_ratings_n: [plan.ratings.inner, plan.ratings.outer],
@@ -806,22 +972,35 @@ fn bearing_report(
         free_ends_weight: plan.free_ends,
         tolerance_um: 1e3 * plan.tolerance,
         pressure_levels: levels,
-        contacts_solved: states.len(),
+        contacts_solved: rings.iter().map(|r| r.solved.states.len()).sum(),
         load_cases,
         duty_cycle: lives.duty,
         speed_rpm: plan.speed_rpm,
         duty_cycle_hours: lives.duty_hours,
         lubrication: plan.lubrication.map(|l| l.report),
-        worst: WorstContact {
-            load_case: i,
-            roller: j,
-            load_n: env.contacts[k].load_n,
-            tilt_arcmin: env.contacts[k].tilt_arcmin,
-            deviation_um: deviation,
-            p_max_mpa: states[worst].p_max(),
-            p_max_at_mm: [points[top][0], points[top][1]],
-            edge_loading: end_ratio(points, pressure) > EDGE_LOADING,
-        },
+        worst: worst_contact(plan, rings[0], worst),
+    }
+}
+
+/// The solved raceway's worst contact, state `worst` of `ring`.
+fn worst_contact(plan: &BearingPlan, ring: &Ring, worst: usize) -> WorstContact {
+    let (env, states) = (&ring.env, &ring.solved.states);
+    let n = env.contacts.len();
+    let (k, band) = (worst % n, worst / n);
+    let (i, j) = env.origin[k];
+    let pressure = &states[worst].pressure;
+    let top = peak_index(pressure).unwrap_or(0);
+    let points = ring.grids.of(k).points();
+    let deviation = [0.0, 1.0, -1.0][band.min(2)] * 1e3 * plan.tolerance;
+    WorstContact {
+        load_case: i,
+        roller: j,
+        load_n: env.contacts[k].load_n,
+        tilt_arcmin: env.contacts[k].tilt_arcmin,
+        deviation_um: deviation,
+        p_max_mpa: states[worst].p_max(),
+        p_max_at_mm: [points[top][0], points[top][1]],
+        edge_loading: end_ratio(points, pressure) > EDGE_LOADING,
     }
 }
 
