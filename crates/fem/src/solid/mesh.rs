@@ -149,56 +149,14 @@ impl SolidMesh {
     /// The Jacobian ∂x/∂(ξ, η, ζ) (rows: x, y, z) of element `e` at reference point `p`, its
     /// determinant and the shape functions there.
     pub fn jacobian(&self, e: usize, p: [f64; 3]) -> ([[f64; 3]; 3], f64, SolidShape) {
-        let s = self.kinds[e].shape(p);
-        let mut j = [[0.0; 3]; 3];
-        for (a, &node) in self.elements[e].iter().enumerate() {
-            let x = self.nodes[node];
-            for r in 0..3 {
-                for c in 0..3 {
-                    j[r][c] += x[r] * s.d[a][c];
-                }
-            }
-        }
-        (j, det3(&j), s)
+        let x = self.elements[e].iter().map(|&a| self.nodes[a]);
+        jacobian(self.kinds[e], x, p)
     }
 
-    /// What is wrong with element `e`'s map, if anything: det J at its nodes and integration
-    /// points against its mean (the volume over the reference volume).
+    /// What is wrong with element `e`'s map, if anything ([`element_fault`]).
     pub fn fault(&self, e: usize) -> Option<ElementFault> {
-        let kind = self.kinds[e];
-        let points = kind.integration_points();
-        let volume: f64 = points.iter().map(|&(p, w)| self.jacobian(e, p).1 * w).sum();
-        let reference: f64 = points.iter().map(|(_, w)| w).sum();
-        let mean = volume / reference;
-        // The size of det J of an element as large as its nodes' spread, undistorted.
-        let size = self.element_size(e).powi(3) / reference;
-        if mean.abs() < DEGENERATE * size {
-            return Some(ElementFault::Degenerate { ratio: mean / size });
-        }
-        let min = (0..kind.n_nodes())
-            .map(|a| kind.reference_node(a))
-            .chain(points.iter().map(|&(p, _)| p))
-            .map(|p| self.jacobian(e, p).1)
-            .fold(f64::INFINITY, f64::min);
-        if mean < 0.0 || min < -DEGENERATE * mean {
-            return Some(ElementFault::Inverted {
-                ratio: min / mean.abs(),
-            });
-        }
-        (min < DEGENERATE * mean).then_some(ElementFault::Degenerate { ratio: min / mean })
-    }
-
-    /// The largest extent of element `e`'s nodes along x, y or z.
-    fn element_size(&self, e: usize) -> f64 {
-        (0..3)
-            .map(|c| {
-                let (lo, hi) = (self.elements[e].iter())
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &a| {
-                        (lo.min(self.nodes[a][c]), hi.max(self.nodes[a][c]))
-                    });
-                hi - lo
-            })
-            .fold(0.0, f64::max)
+        let x: Vec<[f64; 3]> = self.elements[e].iter().map(|&a| self.nodes[a]).collect();
+        element_fault(self.kinds[e], &x)
     }
 
     /// The mesh's volume \[mm³\].
@@ -408,6 +366,62 @@ fn compact(nodes: Vec<[f64; 3]>, elements: Vec<(SolidKind, Vec<usize>)>) -> Resu
         })
         .collect();
     SolidMesh::new(kept, elements)
+}
+
+/// The Jacobian ∂x/∂(ξ, η, ζ) of an element of `kind` with nodes at `x` (in its order) at
+/// reference point `p`, its determinant and the shape functions there.
+fn jacobian(
+    kind: SolidKind,
+    x: impl Iterator<Item = [f64; 3]>,
+    p: [f64; 3],
+) -> ([[f64; 3]; 3], f64, SolidShape) {
+    let s = kind.shape(p);
+    let mut j = [[0.0; 3]; 3];
+    for (a, xa) in x.enumerate() {
+        for r in 0..3 {
+            for c in 0..3 {
+                j[r][c] += xa[r] * s.d[a][c];
+            }
+        }
+    }
+    (j, det3(&j), s)
+}
+
+/// What is wrong with the map of an element of `kind` whose nodes are at `x`, if anything:
+/// det J at its nodes and integration points against its mean (the volume over the reference
+/// volume), and the mean against the size of the nodes' spread.
+pub fn element_fault(kind: SolidKind, x: &[[f64; 3]]) -> Option<ElementFault> {
+    let det = |p: [f64; 3]| jacobian(kind, x.iter().copied(), p).1;
+    let points = kind.integration_points();
+    let volume: f64 = points.iter().map(|&(p, w)| det(p) * w).sum();
+    let reference: f64 = points.iter().map(|(_, w)| w).sum();
+    let mean = volume / reference;
+    // The det J of an undistorted element as large as its nodes' spread.
+    let spread = (0..3)
+        .map(|c| {
+            let (lo, hi) = x
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p[c]), hi.max(p[c]))
+                });
+            hi - lo
+        })
+        .fold(0.0, f64::max);
+    let size = spread.powi(3) / reference;
+    if mean.abs() < DEGENERATE * size {
+        return Some(ElementFault::Degenerate { ratio: mean / size });
+    }
+    let min = (0..kind.n_nodes())
+        .map(|a| kind.reference_node(a))
+        .chain(points.iter().map(|&(p, _)| p))
+        .map(det)
+        .fold(f64::INFINITY, f64::min);
+    if mean < 0.0 || min < -DEGENERATE * mean {
+        return Some(ElementFault::Inverted {
+            ratio: min / mean.abs(),
+        });
+    }
+    (min < DEGENERATE * mean).then_some(ElementFault::Degenerate { ratio: min / mean })
 }
 
 /// Kuhn's six tetrahedra of a cube about its diagonal 0–6 (corners in [`SolidKind::Hex20`]'s

@@ -13,6 +13,6 @@ mod system;
 
 pub use body::{Condensation, SolidBody, SolidSettings, SolidStats, DENSE_POINTS};
 pub use element::{FaceKind, SolidKind, MAX_FACE_NODES, MAX_SOLID_NODES};
-pub use mesh::{ElementFault, FacePoint, SolidFace, SolidMesh};
+pub use mesh::{element_fault, ElementFault, FacePoint, SolidFace, SolidMesh};
 pub use model::{Axis, SolidModel};
 pub use sample::SolidSample;
