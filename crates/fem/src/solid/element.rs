@@ -120,22 +120,11 @@ const GAUSS3: [(f64, f64); 3] = [
     (0.774_596_669_241_483_4, 5.0 / 9.0),
 ];
 
-/// Gauss–Legendre points on [−1, 1], two points of weight 1 (exact to degree 3).
-const GAUSS2: [f64; 2] = [-0.577_350_269_189_625_8, 0.577_350_269_189_625_8];
-
 /// The 4-point rule of the tetrahedron, exact to degree 2 (Keast): a stiffness of straight
 /// 10-node tetrahedra exactly; the barycentric coordinates (a, b, b, b) and permutations.
 const TET4_A: f64 = 0.585_410_196_624_968_5;
 /// See [`TET4_A`].
 const TET4_B: f64 = 0.138_196_601_125_010_5;
-
-/// The 3-point rule of the triangle at (1/6, 1/6), (2/3, 1/6), (1/6, 2/3), weights 1/6:
-/// exact to degree 2.
-const TRI3: [([f64; 2], f64); 3] = [
-    ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
-    ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
-    ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
-];
 
 /// The 6-point rule of the triangle (Strang–Fix), exact to degree 4: loads on curved faces.
 const TRI6_RULE: [([f64; 2], f64); 6] = [
@@ -454,16 +443,13 @@ impl FaceKind {
         }
     }
 
-    /// The contact points of a face: 3 points on a triangle (degree 2), 2 × 2 Gauss points on
-    /// a quadrilateral (degree 3), with their weights.
+    /// The contact points of a face, with their weights: the load quadrature
+    /// ([`FaceKind::load_points`]). At least as many points as the face has nodes, so that the
+    /// faces' quadratic field that the point pressures sample (the body's pressure basis) is
+    /// determined by them: with 3 points on a 6-node triangle or 2 × 2 on an 8-node
+    /// quadrilateral the field's least-squares fit would be singular.
     pub fn contact_points(self) -> Vec<([f64; 2], f64)> {
-        match self {
-            FaceKind::Tri6 => TRI3.to_vec(),
-            FaceKind::Quad8 | FaceKind::Quad9 => GAUSS2
-                .iter()
-                .flat_map(|&t| GAUSS2.iter().map(move |&s| ([s, t], 1.0)))
-                .collect(),
-        }
+        self.load_points()
     }
 
     /// The load quadrature of a face: 6 points on a triangle (degree 4), 3 × 3 Gauss points on

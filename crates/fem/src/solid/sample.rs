@@ -32,6 +32,9 @@ pub struct SolidSample {
     pub weight: f64,
     /// The unit normal along which displacement is measured (outward of this body).
     pub normal: [f64; 3],
+    /// Where the face is along the normal: the face's point is `point + offset·normal` (0 for
+    /// a face's own Gauss points).
+    pub offset: f64,
 }
 
 impl SolidSample {
@@ -52,6 +55,7 @@ impl SolidSample {
                             point: p.x,
                             weight: w * p.da,
                             normal: p.normal,
+                            offset: 0.0,
                         }
                     })
             })
@@ -70,7 +74,38 @@ impl SolidSample {
         weights: &[f64],
         normal: [f64; 3],
     ) -> Result<Vec<Self>> {
-        check::unit_vector("normal", normal)?;
+        Self::projected_each(mesh, faces, points, weights, &vec![normal; points.len()])
+    }
+
+    /// The samples of a second body facing the first body's samples `first` across a contact
+    /// (eq. 2.1: gaps and displacements along the first body's normals n¹): each point of
+    /// `first` projected along n¹ onto `faces`, reported at the first body's point with its
+    /// weight and the normal −n¹, so the two bodies pair point for point. The initial gap
+    /// at each point is the returned sample's −`offset`. Point-to-face collocation at the
+    /// first body's Gauss points (not a mortar projection): the first body's faces should be
+    /// the finer.
+    pub fn facing(
+        mesh: &SolidMesh,
+        faces: &[SolidFace],
+        first: &[SolidSample],
+    ) -> Result<Vec<Self>> {
+        let points: Vec<[f64; 3]> = first.iter().map(|s| s.point).collect();
+        let weights: Vec<f64> = first.iter().map(|s| s.weight).collect();
+        let normals: Vec<[f64; 3]> = first.iter().map(|s| s.normal.map(|c| -c)).collect();
+        Self::projected_each(mesh, faces, &points, &weights, &normals)
+    }
+
+    /// [`SolidSample::projected`] with a normal per point.
+    fn projected_each(
+        mesh: &SolidMesh,
+        faces: &[SolidFace],
+        points: &[[f64; 3]],
+        weights: &[f64],
+        normals: &[[f64; 3]],
+    ) -> Result<Vec<Self>> {
+        for (i, &n) in normals.iter().enumerate() {
+            check::unit_vector(&format!("normals[{i}]"), n)?;
+        }
         if weights.len() != points.len() {
             return Err(Error::invalid(
                 "weights",
@@ -78,13 +113,21 @@ impl SolidSample {
                 format!("one per point ({})", points.len()),
             ));
         }
-        let index = FaceIndex::new(mesh, faces, normal);
+        let mean = normals
+            .iter()
+            .fold([0.0; 3], |m, n| [m[0] + n[0], m[1] + n[1], m[2] + n[2]]);
+        let index = FaceIndex::new(
+            mesh,
+            faces,
+            mean.map(|c| c / norm(mean).max(f64::MIN_POSITIVE)),
+        );
         points
             .iter()
             .zip(weights)
+            .zip(normals)
             .enumerate()
-            .map(|(i, (&p, &w))| {
-                let (face, st) = index.find(mesh, p, normal).ok_or_else(|| {
+            .map(|(i, ((&p, &w), &normal))| {
+                let (face, st, offset) = index.find(mesh, p, normal).ok_or_else(|| {
                     Error::invalid(
                         format!("points[{i}]"),
                         format!("{p:?}"),
@@ -97,6 +140,7 @@ impl SolidSample {
                     point: p,
                     weight: w,
                     normal,
+                    offset,
                 })
             })
             .collect()
@@ -156,25 +200,27 @@ impl FaceIndex {
         Self { axes, cell, bins }
     }
 
-    /// The face (and its coordinates) the line through `p` along `normal` meets.
+    /// The face (its coordinates, and the distance λ along `normal`) the line through `p`
+    /// along `normal` meets: the nearest, when it meets several.
     fn find(
         &self,
         mesh: &SolidMesh,
         p: [f64; 3],
         normal: [f64; 3],
-    ) -> Option<(SolidFace, [f64; 2])> {
+    ) -> Option<(SolidFace, [f64; 2], f64)> {
         let q = project(p, &self.axes);
         let key = q.map(|c| (c / self.cell).floor() as i64);
         self.bins
             .get(&key)?
             .iter()
-            .find_map(|&f| intersect(mesh, f, p, normal).map(|st| (f, st)))
+            .filter_map(|&f| intersect(mesh, f, p, normal).map(|(st, l)| (f, st, l)))
+            .min_by(|a, b| a.2.abs().total_cmp(&b.2.abs()))
     }
 }
 
-/// The face coordinates where the line p + λn meets face `f`, if it does (Newton on
+/// The face coordinates and λ where the line p + λn meets face `f`, if it does (Newton on
 /// x(s, t) − λn = p from the face's centre).
-fn intersect(mesh: &SolidMesh, f: SolidFace, p: [f64; 3], n: [f64; 3]) -> Option<[f64; 2]> {
+fn intersect(mesh: &SolidMesh, f: SolidFace, p: [f64; 3], n: [f64; 3]) -> Option<([f64; 2], f64)> {
     let kind = mesh.face_kind(f);
     let mut st = kind.centre();
     let mut lambda = 0.0;
@@ -186,7 +232,7 @@ fn intersect(mesh: &SolidMesh, f: SolidFace, p: [f64; 3], n: [f64; 3]) -> Option
         st = [st[0] + step[0], st[1] + step[1]];
         lambda += step[2];
         if step[0].abs().max(step[1].abs()) < NEWTON_TOLERANCE {
-            return kind.contains(st, ON_FACE).then_some(st);
+            return kind.contains(st, ON_FACE).then_some((st, lambda));
         }
         if st.iter().any(|c| c.abs() > 10.0) {
             return None;
