@@ -1,13 +1,16 @@
 //! Hertz's point contact between two solids meshed apart: a quarter of a steel sphere
 //! (R = 20 mm) pressed by a pressure on its flat top onto a quarter of a steel block
 //! (`meshes/solid-sphere-on-block.geo.inc`), with the force that makes the contact radius
-//! a = 1 mm. The block's top faces are sampled at their Gauss points within 1.6a of the axis,
-//! the sphere where the block's normals meet it ([`SolidSample::facing`]); the initial gap is
-//! the distance between the meshed faces.
+//! a = 1 mm. The block's top face is sampled at the centres of a grid of cells over the
+//! contact, coarser than its nodes (so that the pair's influence is definite), the sphere
+//! where the block's normals meet it ([`SolidSample::facing`]); the initial gap is the
+//! distance between the meshed faces.
 
 use contopt_contact::{ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem};
 use contopt_core::{ElasticBody, Material, Result};
-use contopt_fem::solid::{Axis, SolidBody, SolidModel, SolidSample, SolidSettings};
+use contopt_fem::solid::{
+    Axis, SolidBody, SolidFace, SolidMesh, SolidModel, SolidSample, SolidSettings,
+};
 use contopt_gmsh::Volumes;
 
 use crate::closed_form::{contact_modulus, HertzSphere};
@@ -16,8 +19,11 @@ use crate::closed_form::{contact_modulus, HertzSphere};
 pub const RADIUS: f64 = 20.0;
 /// See [`RADIUS`].
 pub const CONTACT_RADIUS: f64 = 1.0;
-/// Points within this many contact radii of the axis are candidates.
+/// The contact points are a grid over this many contact radii from the axis.
 const CANDIDATES: f64 = 1.6;
+/// The grid's spacing in the block's element edges at the contact: the points fewer than the
+/// face nodes, so that the pair's influence is definite and the point pressures unique.
+const SPACING_IN_EDGES: f64 = 0.75;
 
 /// What one mesh gives against Hertz.
 #[derive(Clone, Copy, Debug)]
@@ -53,17 +59,8 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
     for axis in Axis::ALL {
         model.fix(block.nodes("block_bottom")?, axis)?;
     }
-    let reach = CANDIDATES * CONTACT_RADIUS;
-    let top: Vec<_> = (block.faces("block_top")?.iter().copied())
-        .filter(|&f| {
-            let nodes = model.mesh().face_nodes(f);
-            nodes.iter().any(|&n| {
-                let x = model.mesh().nodes()[n];
-                x[0].hypot(x[1]) < reach
-            })
-        })
-        .collect();
-    let first = SolidSample::gauss(model.mesh(), &top);
+    let top = block.faces("block_top")?;
+    let first = grid_samples(model.mesh(), top)?;
     let block_body = SolidBody::sampled("block", model, &first, SolidSettings::default())?;
 
     let sphere = gmsh.import_solid(Volumes::Group("sphere"))?;
@@ -78,23 +75,68 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
 
     let problem = InterfaceProblem::new(&block_body, &sphere_body, &gap)?;
     let state = ActiveSet::new(ActiveSetSettings::default())?.solve(&problem)?;
-    // The pressure as the faces' field (the Gauss-point sawtooth that moves nothing dropped).
-    let pressure = problem.recovered_pressure(&state.pressure)?;
     let points = block_body.interface().points();
-    let p0 = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
-    // a from the elliptic shape p = p₀√(1 − r²/a²) at the points loaded 0.2p₀ to 0.9p₀.
-    let loaded: Vec<f64> = (0..points.len())
-        .filter(|&i| (0.2 * p0..0.9 * p0).contains(&pressure[i]))
+    // p₀ and a from the least-squares fit of Hertz's p² = p₀²(1 − r²/a²) over the loaded
+    // points: p² = A − B r², p₀ = √A, a = √(A/B).
+    let loaded: Vec<(f64, f64)> = (0..points.len())
+        .filter(|&i| state.pressure[i] > 0.0)
         .map(|i| {
-            let r2 = points[i][0].powi(2) + points[i][1].powi(2);
-            (r2 / (1.0 - (pressure[i] / p0).powi(2))).sqrt()
+            (
+                points[i][0].powi(2) + points[i][1].powi(2),
+                state.pressure[i].powi(2),
+            )
         })
         .collect();
-    let a = loaded.iter().sum::<f64>() / loaded.len().max(1) as f64;
+    let n = loaded.len() as f64;
+    let (sx, sy) = loaded
+        .iter()
+        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / n, sy / n);
+    let (sxy, sxx) = loaded.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx).powi(2))
+    });
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let (p0, a) = (intercept.sqrt(), (intercept / -slope).sqrt());
     Ok(HertzCheck {
         nodes: block.mesh.nodes().len() + sphere.mesh.nodes().len(),
         points: points.len(),
         p0: [p0, hertz.peak_pressure(CONTACT_RADIUS)],
         a: [a, CONTACT_RADIUS],
     })
+}
+
+/// A grid of square cells over [0, 1.6a]² on the block's top face (the quarter's contact), of
+/// spacing [`SPACING_IN_EDGES`] times the median edge of the top faces there, each cell's
+/// centre projected onto the faces.
+fn grid_samples(mesh: &SolidMesh, top: &[SolidFace]) -> Result<Vec<SolidSample>> {
+    let reach = CANDIDATES * CONTACT_RADIUS;
+    let mut edges: Vec<f64> = top
+        .iter()
+        .filter_map(|&f| {
+            let nodes = mesh.face_nodes(f);
+            let (p, q) = (mesh.nodes()[nodes[0]], mesh.nodes()[nodes[1]]);
+            (p[0].hypot(p[1]) < reach).then(|| (p[0] - q[0]).hypot(p[1] - q[1]))
+        })
+        .collect();
+    edges.sort_by(f64::total_cmp);
+    let median = edges.get(edges.len() / 2).copied().unwrap_or(reach);
+    let cells = (reach / (SPACING_IN_EDGES * median)).ceil() as usize;
+    let h = reach / cells as f64;
+    let points: Vec<[f64; 3]> = (0..cells * cells)
+        .map(|k| {
+            [
+                (k % cells) as f64 * h + 0.5 * h,
+                (k / cells) as f64 * h + 0.5 * h,
+                0.0,
+            ]
+        })
+        .collect();
+    SolidSample::projected(
+        mesh,
+        top,
+        &points,
+        &vec![h * h; points.len()],
+        [0.0, 0.0, 1.0],
+    )
 }
