@@ -166,7 +166,10 @@ fn half_space_sphere_on_a_solid_block() {
 /// bundled figure against regressions; E* off by 2 would move p₀ by 26 %.
 #[test]
 fn solid_sphere_on_solid_block_against_hertz() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/solid-sphere-on-block.msh");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/meshes/solid-sphere-on-block.msh"
+    );
     let check = contopt_validation::solids::sphere_on_block(path).unwrap();
     assert!((check.p0[0] / check.p0[1] - 1.0).abs() < 0.10, "{check:?}");
     assert!((check.a[0] / check.a[1] - 1.0).abs() < 0.10, "{check:?}");

@@ -6,7 +6,7 @@
 use std::time::{Duration, Instant};
 
 use contopt_core::{
-    check, memory, ElasticBody, Error, GapShape, Geometry, Interface, Result, RigidMode,
+    check, memory, BodyFields, ElasticBody, Error, GapShape, Geometry, Interface, Result, RigidMode,
 };
 
 use faer::Mat;
@@ -437,5 +437,11 @@ impl ElasticBody for SolidBody {
 
     fn rigid_modes(&self) -> &[RigidMode] {
         &self.rigid_modes
+    }
+
+    /// The mesh, the nodal displacements and the nodal stresses, for ParaView
+    /// ([`SolidBody::mesh_fields`]).
+    fn fields(&self, pressure: &[f64], rigid: &[f64]) -> Result<Option<BodyFields>> {
+        self.mesh_fields(pressure, rigid).map(Some)
     }
 }

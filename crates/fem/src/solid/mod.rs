@@ -6,6 +6,7 @@
 
 mod body;
 mod element;
+mod fields;
 mod mesh;
 mod model;
 mod sample;
