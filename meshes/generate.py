@@ -4,7 +4,7 @@
     pip install gmsh            # once (the files here were made with gmsh 4.15.2)
     python3 meshes/generate.py  # from the repository's root, or from anywhere
 
-Each top-level `meshes/NAME.geo` is meshed in 2-D and written as `meshes/NAME.msh` (MSH 4.1,
+Each top-level `meshes/NAME.geo` is meshed in 2-D (`solid-*.geo` in 3-D) and written as `meshes/NAME.msh` (MSH 4.1,
 ASCII); those listed in BINARY are written as `meshes/NAME-binary.msh` too. `*.geo.inc` files
 are shared parts that the `.geo` files include. Meshing is single-threaded and the MSH 4.1
 format holds no date, so a rerun writes the same bytes (checked: `--check` meshes into a
@@ -43,7 +43,8 @@ def mesh(geo, outputs):
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.option.setNumber("General.NumThreads", 1)
     gmsh.open(str(geo))
-    gmsh.model.mesh.generate(2)
+    # `solid-*.geo` are solids, meshed in 3-D; the others plane or axisymmetric bodies.
+    gmsh.model.mesh.generate(3 if geo.name.startswith("solid-") else 2)
     gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
     for path, binary in outputs:
         gmsh.option.setNumber("Mesh.Binary", int(binary))

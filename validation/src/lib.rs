@@ -10,3 +10,4 @@ pub mod closed_form;
 pub mod fixtures;
 pub mod paper;
 pub mod roller;
+pub mod solids;

@@ -18,6 +18,16 @@ pub enum CellKind {
     /// The 6-node triangle: the corners counter-clockwise, then the mid-side nodes of the
     /// sides 0-1, 1-2, 2-0 (VTK's quadratic triangle).
     QuadraticTriangle,
+    /// The 10-node tetrahedron: the corners, then the mid-edge nodes of the edges 0-1, 1-2,
+    /// 2-0, 0-3, 1-3, 2-3 (VTK's quadratic tetra).
+    QuadraticTetra,
+    /// The 20-node hexahedron: the corners of the bottom and the top face, then the mid-edge
+    /// nodes of the bottom's edges, the top's, and the four edges between (VTK's quadratic
+    /// hexahedron).
+    QuadraticHexahedron,
+    /// The 27-node hexahedron: a [`CellKind::QuadraticHexahedron`]'s nodes, the centres of
+    /// the faces −x, +x, −y, +y, −z, +z and the centre (VTK's tri-quadratic hexahedron).
+    TriquadraticHexahedron,
 }
 
 impl CellKind {
@@ -27,6 +37,9 @@ impl CellKind {
             CellKind::QuadraticQuad => 8,
             CellKind::BiquadraticQuad => 9,
             CellKind::QuadraticTriangle => 6,
+            CellKind::QuadraticTetra => 10,
+            CellKind::QuadraticHexahedron => 20,
+            CellKind::TriquadraticHexahedron => 27,
         }
     }
 }

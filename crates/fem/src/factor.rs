@@ -1,7 +1,7 @@
 //! Sparse Cholesky factorisation K = L Lᵀ with the contact-face unknowns ordered last, so that
 //! the face block of K⁻¹ (the condensed compliance) comes from the trailing supernodes alone.
 
-use contopt_core::{Error, Result};
+use contopt_core::{memory, Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
@@ -27,6 +27,16 @@ pub fn factorisations() -> u64 {
     FACTORISATIONS.with(std::cell::Cell::get)
 }
 
+/// The fill-reducing ordering of the unknowns ahead of the contact face's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Ordering {
+    /// Approximate minimum degree (faer's AMD).
+    #[default]
+    Amd,
+    /// The unknowns as numbered (no reordering): the baseline AMD is measured against.
+    Natural,
+}
+
 /// A numeric Cholesky factor with its symbolic analysis kept for reuse.
 pub(crate) struct Factor {
     symbolic: SymbolicCholesky<usize>,
@@ -39,6 +49,18 @@ impl Factor {
     /// Symbolic analysis of the upper triangle `a` (n × n): AMD on the leading
     /// n − `n_tail` unknowns, the trailing `n_tail` kept last; then the numeric factorisation.
     pub fn new(a: SparseColMatRef<'_, usize, f64>, n_tail: usize, body: &str) -> Result<Self> {
+        Self::ordered(a, n_tail, body, Ordering::Amd)
+    }
+
+    /// As [`Factor::new`] with the leading unknowns ordered by `ordering`. The factor's size is
+    /// known after the symbolic analysis: it is checked against
+    /// [`memory::BODY_LIMIT_BYTES`] before its values are allocated.
+    pub fn ordered(
+        a: SparseColMatRef<'_, usize, f64>,
+        n_tail: usize,
+        body: &str,
+        ordering: Ordering,
+    ) -> Result<Self> {
         let n = a.nrows();
         let n_int = n - n_tail;
         let sym = a.symbolic();
@@ -50,23 +72,22 @@ impl Factor {
             None,
             &sym.row_idx()[..col_ptr[n_int]],
         );
-        let mut fwd = vec![0usize; n];
-        let mut inv = vec![0usize; n];
-        let mut mem = MemBuffer::new(amd::order_scratch::<usize>(n_int, interior.compute_nnz()));
-        amd::order(
-            &mut fwd[..n_int],
-            &mut inv[..n_int],
-            interior,
-            Default::default(),
-            MemStack::new(&mut mem),
-        )
-        .map_err(|e| Error::Singular {
-            body: body.into(),
-            detail: format!("ordering failed: {e:?}"),
-        })?;
-        for i in n_int..n {
-            fwd[i] = i;
-            inv[i] = i;
+        let mut fwd: Vec<usize> = (0..n).collect();
+        let mut inv: Vec<usize> = (0..n).collect();
+        if ordering == Ordering::Amd {
+            let mut mem =
+                MemBuffer::new(amd::order_scratch::<usize>(n_int, interior.compute_nnz()));
+            amd::order(
+                &mut fwd[..n_int],
+                &mut inv[..n_int],
+                interior,
+                Default::default(),
+                MemStack::new(&mut mem),
+            )
+            .map_err(|e| Error::Singular {
+                body: body.into(),
+                detail: format!("ordering failed: {e:?}"),
+            })?;
         }
         let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
         let symbolic = factorize_symbolic_cholesky(
@@ -82,6 +103,15 @@ impl Factor {
             body: body.into(),
             detail: format!("symbolic analysis failed: {e:?}"),
         })?;
+        memory::require(
+            format!(
+                "{body}: the Cholesky factor of {n} unknowns ({} nonzeros)",
+                symbolic.len_val()
+            ),
+            memory::bytes(&[symbolic.len_val()], 8),
+            memory::BODY_LIMIT_BYTES,
+            "use fewer elements (coarser away from the contact)",
+        )?;
         let values = vec![0.0; symbolic.len_val()];
         let mut factor = Self {
             symbolic,

@@ -7,6 +7,7 @@
 //! [`FeModel::solve`] solves a supported model, and [`FeBody`] condenses a model to its contact
 //! face as a [`contopt_core::ElasticBody`]. Two bodies whose contact faces are meshed apart
 //! (non-matching nodes, curved faces) are paired segment to segment by a [`ContactPairing`].
+//! Parts in three dimensions are [`solid`] bodies: quadratic tetrahedra and hexahedra.
 
 mod analysis;
 mod body;
@@ -19,6 +20,7 @@ mod model;
 pub mod pairing;
 mod recovery;
 mod samples;
+pub mod solid;
 mod solution;
 mod system;
 
@@ -26,7 +28,7 @@ pub use analysis::Analysis;
 pub use body::{BuildStats, FeBody};
 pub use contopt_core::Material;
 pub use element::ElementKind;
-pub use factor::factorisations;
+pub use factor::{factorisations, Ordering};
 pub use mesh::{body_bytes, mesh_bytes, Face, Mesh, Spacing, MAX_AXIS_ELEMENTS};
 pub use model::{Component, FeModel};
 pub use pairing::{ContactPairing, PairingSettings, PairingSurvey};

@@ -116,9 +116,10 @@ impl Numbering {
         for &n in tail_nodes {
             on_tail[n] = true;
         }
-        let modes = free_rigid_modes(model, &dofs)?;
+        let modes = free_rigid_modes(candidate_modes(model), &dofs)?;
         if pin {
-            for d in pins(&modes, &dofs, &on_tail) {
+            let tail_dof: Vec<bool> = (0..dofs.len()).map(|g| on_tail[g / 2]).collect();
+            for d in pins(&modes, &dofs, &tail_dof) {
                 dofs[d] = Dof::Pinned;
             }
         }
@@ -429,9 +430,11 @@ fn candidate_modes(model: &FeModel) -> Vec<RigidMotion> {
 }
 
 /// The rigid-body modes that no prescribed DOF restrains: the null space of the candidate
-/// modes restricted to the prescribed DOFs.
-fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<RigidMotion>> {
-    let candidates = candidate_modes(model);
+/// modes restricted to the prescribed DOFs (plane, axisymmetric and solid models alike).
+pub(crate) fn free_rigid_modes(
+    candidates: Vec<RigidMotion>,
+    dofs: &[Dof],
+) -> Result<Vec<RigidMotion>> {
     let m = candidates.len();
     let held: Vec<usize> = (0..dofs.len())
         .filter(|&g| matches!(dofs[g], Dof::Prescribed(_)))
@@ -476,8 +479,9 @@ fn free_rigid_modes(model: &FeModel, dofs: &[Dof]) -> Result<Vec<RigidMotion>> {
 }
 
 /// One unknown per free mode to hold at zero, chosen by pivoted Gram–Schmidt on the mode
-/// values so the modes stay well determined; unknowns off the contact face are preferred.
-fn pins(modes: &[RigidMotion], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
+/// values so the modes stay well determined; unknowns off the contact face (`on_tail[g]`
+/// false) are preferred.
+pub(crate) fn pins(modes: &[RigidMotion], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
     let m = modes.len();
     let mut rows: Vec<(usize, Vec<f64>)> = (0..dofs.len())
         .filter(|&g| matches!(dofs[g], Dof::Free(_)))
@@ -492,7 +496,7 @@ fn pins(modes: &[RigidMotion], dofs: &[Dof], on_tail: &[bool]) -> Vec<usize> {
         let pick = |off_face_only: bool| {
             rows.iter()
                 .enumerate()
-                .filter(|(_, r)| !off_face_only || (!on_tail[r.0 / 2] && norm2(&r.1) >= near))
+                .filter(|(_, r)| !off_face_only || (!on_tail[r.0] && norm2(&r.1) >= near))
                 .max_by(|(_, a), (_, b)| norm2(&a.1).total_cmp(&norm2(&b.1)))
                 .map(|(i, _)| i)
         };

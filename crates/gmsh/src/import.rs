@@ -129,8 +129,9 @@ impl GmshMesh {
             .map(|b| b.element_type().to_string())
             .collect();
         Err(Error::Mesh(format!(
-            "{}: the mesh is 3-D: it has {volumes} volume elements ({}); contopt's bodies are \
-             plane or axisymmetric: mesh the surface only (`Mesh 2;`, `gmsh -2`)",
+            "{}: the mesh is 3-D: it has {volumes} volume elements ({}); a plane or \
+             axisymmetric body is a surface mesh (`Mesh 2;`, `gmsh -2`), a solid is read by \
+             `import_solid`",
             self.source(),
             dedup(kinds).join(", ")
         )))

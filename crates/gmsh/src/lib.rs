@@ -36,6 +36,14 @@
 //!   points on another body of the file are left out, so a curve may be named once for
 //!   several bodies.
 //!
+//! - solids ([`GmshMesh::import_solid`]): every volume ([`Volumes::All`]) or those of one named
+//!   3-D group; 10-node tetrahedra (type 11), 20- and 27-node hexahedra (types 17, 12) in
+//!   Gmsh's local order, each checked for inversion and collapse (named by its Gmsh tag); every
+//!   named 2-D group (supports, loads, the contact face, symmetry planes) becomes the solid's
+//!   boundary faces ([`ImportedSolid::faces`]) and their nodes, and
+//!   [`ImportedSolid::check_extent`] checks the units in x, y and z. The `meshes/solid-*.geo`
+//!   files show the physical groups.
+//!
 //! # What is refused
 //! Every error names the file, and for a reading error its line (and byte, in a binary
 //! section), what was expected and what was found: another MSH version (with how to save
@@ -80,6 +88,7 @@ mod geometry;
 mod groups;
 mod import;
 mod msh;
+mod solid;
 mod types;
 
 use std::path::Path;
@@ -89,6 +98,7 @@ use contopt_core::{memory, Error, Result};
 pub use groups::Group;
 pub use import::{ImportedMesh, Surfaces};
 pub use msh::{ElementBlock, Entity, GmshMesh, PhysicalName};
+pub use solid::{ImportedSolid, SolidGroup, Volumes};
 pub use types::ElementType;
 
 /// Memory a file takes while it is read, per byte of the file: the bytes themselves, and at

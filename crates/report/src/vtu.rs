@@ -45,6 +45,9 @@ fn cell_type(kind: CellKind) -> CellType {
         CellKind::QuadraticQuad => CellType::QuadraticQuad,
         CellKind::BiquadraticQuad => CellType::BiquadraticQuad,
         CellKind::QuadraticTriangle => CellType::QuadraticTriangle,
+        CellKind::QuadraticTetra => CellType::QuadraticTetra,
+        CellKind::QuadraticHexahedron => CellType::QuadraticHexahedron,
+        CellKind::TriquadraticHexahedron => CellType::TriquadraticHexahedron,
     }
 }
 

@@ -3,6 +3,7 @@
 mod errors;
 mod hostile;
 mod meshes;
+mod solids;
 
 use std::collections::HashMap;
 

@@ -1,0 +1,447 @@
+//! A solid body on a 2-D contact region: its contact faces sampled at points, and its
+//! influence A = L K⁻¹ Lᵀ (eq. 2.22) either condensed to a dense matrix (a small region) or
+//! applied through the sparse factorisation, one forward and backward solve per product (a
+//! large one), so that the matrix-free solvers and the load split see a body like any other.
+
+use std::time::{Duration, Instant};
+
+use contopt_core::{
+    check, memory, BodyFields, ElasticBody, Error, GapShape, Geometry, Interface, Result, RigidMode,
+};
+
+use faer::Mat;
+
+use super::mesh::SolidFace;
+use super::model::SolidModel;
+use super::sample::SolidSample;
+use super::system::{Pinning, SolidSystem};
+use crate::factor::Ordering;
+use crate::system::Dof;
+
+/// Below this many contact points the influence is condensed to a dense matrix by default
+/// (3000² doubles: 72 MB); above, it is applied through the factorisation.
+pub const DENSE_POINTS: usize = 3000;
+
+/// How the body applies its influence.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Condensation {
+    /// Dense up to [`DENSE_POINTS`] contact points, products above.
+    #[default]
+    Auto,
+    /// The dense matrix A = L K⁻¹ Lᵀ from the factor's trailing block (the face unknowns
+    /// ordered last).
+    Dense,
+    /// One sparse forward and backward solve per product (no face block: AMD on everything).
+    Products,
+}
+
+/// Options of a solid body's build.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SolidSettings {
+    /// Dense matrix or products.
+    pub condensation: Condensation,
+    /// The fill-reducing ordering.
+    pub ordering: Ordering,
+}
+
+/// Sizes and wall-clock times of a solid body's build.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolidStats {
+    /// Nodes of the mesh.
+    pub nodes: usize,
+    /// Free unknowns.
+    pub unknowns: usize,
+    /// Nonzeros of the Cholesky factor.
+    pub factor_nnz: usize,
+    /// Whether the influence is a dense matrix.
+    pub dense: bool,
+    /// Element integration and assembly.
+    pub assembly: Duration,
+    /// Ordering, symbolic and numeric factorisation.
+    pub factorisation: Duration,
+    /// The dense influence matrix (zero for products).
+    pub condensation: Duration,
+    /// One influence product (solve) as measured on the load vector.
+    pub solve: Duration,
+}
+
+/// One interface point's normal-displacement row: the into-body displacement at the point is
+/// −Σ coef·u(dof) over the face nodes' global DOFs.
+#[derive(Clone, Debug)]
+pub(crate) struct Row {
+    pub entries: Vec<(usize, f64)>,
+}
+
+impl Row {
+    fn normal_into(&self, u: &[f64]) -> f64 {
+        -self.entries.iter().map(|&(g, c)| c * u[g]).sum::<f64>()
+    }
+}
+
+/// A solid of quadratic elements whose contact zone is a set of boundary faces, sampled at
+/// points ([`SolidSample`]): the Gauss points of its faces ([`SolidBody::new`]), or the cells
+/// of a half-space grid or another body's points projected onto its faces
+/// ([`SolidBody::sampled`]). Rigid motions its supports leave free are pinned and reported as
+/// its rigid modes (a sphere pressed along its symmetry axis floats along it).
+pub struct SolidBody {
+    name: String,
+    pub(crate) model: SolidModel,
+    pub(crate) system: SolidSystem,
+    interface: Interface,
+    pub(crate) rows: Vec<Row>,
+    dense: Option<Mat<f64>>,
+    load_displacement: Vec<f64>,
+    rigid_modes: Vec<RigidMode>,
+    gap_shape: GapShape,
+    stats: SolidStats,
+}
+
+impl SolidBody {
+    /// The body with contact zone `contact` (boundary faces), checked at each face's contact
+    /// points ([`crate::solid::FaceKind::contact_points`]).
+    pub fn new(
+        name: impl Into<String>,
+        model: SolidModel,
+        contact: &[SolidFace],
+        settings: SolidSettings,
+    ) -> Result<Self> {
+        let name = name.into();
+        check_contact(&name, &model, contact)?;
+        let samples = SolidSample::gauss(model.mesh(), contact);
+        Self::sampled(name, model, &samples, settings)
+    }
+
+    /// The body with its interface points given one by one.
+    pub fn sampled(
+        name: impl Into<String>,
+        model: SolidModel,
+        samples: &[SolidSample],
+        settings: SolidSettings,
+    ) -> Result<Self> {
+        let name = name.into();
+        let mut contact: Vec<SolidFace> = samples.iter().map(|s| s.face).collect();
+        contact.sort();
+        contact.dedup();
+        check_contact(&name, &model, &contact)?;
+        let n = samples.len();
+        let dense = match settings.condensation {
+            Condensation::Auto => n <= DENSE_POINTS,
+            Condensation::Dense => true,
+            Condensation::Products => false,
+        };
+        let face_nodes = model.mesh().nodes_of(&contact);
+        let tail: &[usize] = if dense { &face_nodes } else { &[] };
+        if dense {
+            memory::require(
+                format!("{name}: a dense influence of {n} contact points"),
+                memory::bytes(&[n, n + 3 * face_nodes.len()], 8),
+                memory::BODY_LIMIT_BYTES,
+                "apply the influence through the factorisation (condensation = products)",
+            )?;
+        }
+        let system = SolidSystem::ordered(&model, &name, tail, Pinning::Pin, settings.ordering)?;
+        let rows: Vec<Row> = samples.iter().map(|s| s.row(model.mesh())).collect();
+        let interface = Interface::new(
+            Geometry::Surface,
+            samples.iter().map(|s| s.point).collect(),
+            samples.iter().map(|s| s.weight).collect(),
+            samples.iter().map(|s| s.normal).collect(),
+        )?;
+        let gap_shape = gap_basis(&model, samples, &face_nodes)?;
+        let start = Instant::now();
+        let dense = dense.then(|| condense(&system, &rows));
+        let condensation = start.elapsed();
+        let start = Instant::now();
+        let u = system.solve(&model, None);
+        let solve = start.elapsed();
+        model.check_displacement(&u)?;
+        let load_displacement = rows.iter().map(|r| r.normal_into(&u)).collect();
+        let rigid_modes = system
+            .modes
+            .iter()
+            .map(|m| RigidMode {
+                name: m.name.clone(),
+                interface_displacement: rows.iter().map(|r| r.normal_into(&m.values)).collect(),
+                load: m.values.iter().zip(&model.forces).map(|(a, b)| a * b).sum(),
+            })
+            .collect();
+        let stats = SolidStats {
+            nodes: model.mesh().nodes().len(),
+            unknowns: system.n_free,
+            factor_nnz: system.factor.factor_nnz(),
+            dense: dense.is_some(),
+            assembly: system.assembly_time,
+            factorisation: system.factorisation_time,
+            condensation,
+            solve,
+        };
+        let body = Self {
+            name,
+            model,
+            system,
+            interface,
+            rows,
+            dense,
+            load_displacement,
+            rigid_modes,
+            gap_shape,
+            stats,
+        };
+        if let Some(a) = &body.dense {
+            let flat: Vec<f64> = (0..n)
+                .flat_map(|j| a.col(j).iter().copied().collect::<Vec<_>>())
+                .collect();
+            check::all_derived(
+                "material.e_mpa",
+                "the material and the mesh",
+                "the influence matrix",
+                &flat,
+            )?;
+        }
+        Ok(body)
+    }
+
+    /// The model.
+    pub fn model(&self) -> &SolidModel {
+        &self.model
+    }
+
+    /// Sizes and timings of the build.
+    pub fn stats(&self) -> &SolidStats {
+        &self.stats
+    }
+
+    /// Nodal displacements (3 per node) under the given loads, compressive normal forces
+    /// `force` at the interface points \[N\] and rigid-mode amplitudes `rigid`.
+    pub fn displacement(&self, force: &[f64], rigid: &[f64]) -> Result<Vec<f64>> {
+        let n = self.interface.len();
+        if force.len() != n {
+            return Err(Error::invalid(
+                format!("{}.force", self.name),
+                force.len(),
+                format!("one per interface point ({n})"),
+            ));
+        }
+        if rigid.len() != self.rigid_modes.len() {
+            return Err(Error::invalid(
+                format!("{}.rigid", self.name),
+                rigid.len(),
+                format!("one per rigid mode ({})", self.rigid_modes.len()),
+            ));
+        }
+        let mut u = self
+            .system
+            .solve(&self.model, Some(&self.nodal_forces(force)));
+        for (m, a) in self.system.modes.iter().zip(rigid) {
+            for (ui, v) in u.iter_mut().zip(&m.values) {
+                *ui += a * v;
+            }
+        }
+        check::all_derived(
+            &format!("{}.force", self.name),
+            "the interface forces",
+            "the displacements",
+            &u,
+        )?;
+        Ok(u)
+    }
+
+    /// The nodal forces (3 per node) of compressive forces `force` at the interface points:
+    /// −Σ coef·f on each row's DOFs (Lᵀ f, pressing into the body).
+    fn nodal_forces(&self, force: &[f64]) -> Vec<f64> {
+        let mut extra = vec![0.0; self.model.forces.len()];
+        for (r, f) in self.rows.iter().zip(force) {
+            for &(g, c) in &r.entries {
+                extra[g] -= c * f;
+            }
+        }
+        extra
+    }
+
+    /// The influence product through the factorisation: L K⁻¹ Lᵀ f over the free unknowns.
+    fn product(&self, force: &[f64], displacement: &mut [f64]) {
+        let mut rhs = Mat::<f64>::zeros(self.system.n_free, 1);
+        for (r, f) in self.rows.iter().zip(force) {
+            for &(g, c) in &r.entries {
+                if let Dof::Free(i) = self.system.dofs[g] {
+                    rhs[(i, 0)] -= c * f;
+                }
+            }
+        }
+        self.system.factor.solve_in_place(rhs.as_mut());
+        for (d, r) in displacement.iter_mut().zip(&self.rows) {
+            *d = -r
+                .entries
+                .iter()
+                .map(|&(g, c)| match self.system.dofs[g] {
+                    Dof::Free(i) => c * rhs[(i, 0)],
+                    _ => 0.0,
+                })
+                .sum::<f64>();
+        }
+    }
+}
+
+impl SolidModel {
+    /// Every nodal displacement is finite, else the loads or the material are beyond f64.
+    pub(crate) fn check_displacement(&self, u: &[f64]) -> Result<()> {
+        check::all_derived("loads", "the given loads", "the displacements", u)
+    }
+}
+
+/// The contact zone is a non-empty set of boundary faces of the mesh.
+fn check_contact(name: &str, model: &SolidModel, contact: &[SolidFace]) -> Result<()> {
+    if contact.is_empty() {
+        return Err(Error::invalid(
+            format!("{name}.contact"),
+            "[]",
+            "select at least one face",
+        ));
+    }
+    let boundary: std::collections::HashSet<SolidFace> =
+        model.mesh().boundary_faces().into_iter().collect();
+    match contact.iter().find(|f| !boundary.contains(f)) {
+        Some(f) => Err(Error::invalid(
+            format!("{name}.contact"),
+            format!("{f:?}"),
+            "is not a boundary face of the mesh",
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The map from the contact faces' nodes to the points (the faces' shape functions): the
+/// field the points' pressures sample, and the gap change Δh = L(x)Δh.
+fn gap_basis(
+    model: &SolidModel,
+    samples: &[SolidSample],
+    face_nodes: &[usize],
+) -> Result<GapShape> {
+    let mesh = model.mesh();
+    let rows = samples
+        .iter()
+        .map(|s| {
+            let shape = mesh.face_kind(s.face).shape(s.st);
+            (mesh.face_nodes(s.face).iter().enumerate())
+                .map(|(k, node)| (face_nodes.partition_point(|j| j < node), shape.n[k]))
+                .collect()
+        })
+        .collect();
+    let nodes = face_nodes.iter().map(|&k| mesh.nodes()[k]).collect();
+    GapShape::new(nodes, rows)
+}
+
+/// The dense influence A = L T Lᵀ from the face block T of K⁻¹ (face unknowns last).
+fn condense(system: &SolidSystem, rows: &[Row]) -> Mat<f64> {
+    let tail = system.factor.tail_inverse();
+    let first_tail = system.n_free - system.n_tail;
+    let sparse: Vec<Vec<(usize, f64)>> = rows
+        .iter()
+        .map(|r| {
+            (r.entries.iter())
+                .filter_map(|&(g, c)| match system.dofs[g] {
+                    Dof::Free(k) if k >= first_tail => Some((k - first_tail, c)),
+                    _ => None,
+                })
+                .collect()
+        })
+        .collect();
+    let mut t_lt = Mat::<f64>::zeros(system.n_tail, rows.len());
+    for (i, row) in sparse.iter().enumerate() {
+        for &(k, c) in row {
+            for (out, &v) in t_lt.col_mut(i).iter_mut().zip(tail.col(k).iter()) {
+                *out += c * v;
+            }
+        }
+    }
+    Mat::from_fn(rows.len(), rows.len(), |i, j| {
+        sparse[i].iter().map(|&(k, c)| c * t_lt[(k, j)]).sum()
+    })
+}
+
+impl ElasticBody for SolidBody {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn interface(&self) -> &Interface {
+        &self.interface
+    }
+
+    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
+        match &self.dense {
+            Some(a) => {
+                let n = self.interface.len();
+                for (i, d) in displacement.iter_mut().enumerate().take(n) {
+                    *d = (0..n).map(|j| a[(i, j)] * force[j]).sum();
+                }
+            }
+            None => self.product(force, displacement),
+        }
+    }
+
+    fn influence_matrix(&self) -> Mat<f64> {
+        match &self.dense {
+            Some(a) => a.clone(),
+            None => {
+                let n = self.interface.len();
+                let mut a = Mat::zeros(n, n);
+                let mut unit = vec![0.0; n];
+                let mut column = vec![0.0; n];
+                for j in 0..n {
+                    unit[j] = 1.0;
+                    self.product(&unit, &mut column);
+                    unit[j] = 0.0;
+                    a.col_mut(j)
+                        .iter_mut()
+                        .zip(&column)
+                        .for_each(|(x, v)| *x = *v);
+                }
+                a
+            }
+        }
+    }
+
+    fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
+        match &self.dense {
+            Some(a) => contopt_core::block_among(a, points),
+            None => {
+                let n = self.interface.len();
+                if points.iter().any(|&i| i >= n) {
+                    return None;
+                }
+                let mut unit = vec![0.0; n];
+                let mut column = vec![0.0; n];
+                let m = points.len();
+                let mut block = Mat::zeros(m, m);
+                for (b, &j) in points.iter().enumerate() {
+                    unit[j] = 1.0;
+                    self.product(&unit, &mut column);
+                    unit[j] = 0.0;
+                    for (a, &i) in points.iter().enumerate() {
+                        block[(a, b)] = column[i];
+                    }
+                }
+                Some(block)
+            }
+        }
+    }
+
+    fn load_displacement(&self) -> Result<Vec<f64>> {
+        Ok(self.load_displacement.clone())
+    }
+
+    fn pressure_basis(&self) -> Option<&GapShape> {
+        Some(&self.gap_shape)
+    }
+
+    fn rigid_modes(&self) -> &[RigidMode] {
+        &self.rigid_modes
+    }
+
+    /// The mesh, the nodal displacements and the nodal stresses, for ParaView
+    /// ([`SolidBody::mesh_fields`]).
+    fn fields(&self, pressure: &[f64], rigid: &[f64]) -> Result<Option<BodyFields>> {
+        self.mesh_fields(pressure, rigid).map(Some)
+    }
+}

@@ -1,0 +1,245 @@
+//! The assembled and factorised stiffness system of a solid, with its free rigid motions.
+
+use std::time::{Duration, Instant};
+
+use contopt_core::{memory, Error, Result};
+use faer::Mat;
+
+use super::model::SolidModel;
+use crate::factor::{Factor, Ordering};
+use crate::system::{free_rigid_modes, pins, Dof, RigidMotion, Triplets};
+
+/// What to do with rigid motions the supports leave free.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Pinning {
+    /// Refuse them: the model must be supported.
+    Refuse,
+    /// Hold one unknown per free motion and carry the motions separately (a body in contact).
+    Pin,
+}
+
+/// Bytes per assembled entry of the stiffness's upper triangle: a (row, column) pair and a
+/// value, and their sorted copy in the sparse matrix.
+const BYTES_PER_ENTRY: u64 = 2 * (16 + 8);
+
+/// The stiffness of a solid's free unknowns, factorised, the unknowns of the tail nodes last.
+pub(crate) struct SolidSystem {
+    pub dofs: Vec<Dof>,
+    pub n_free: usize,
+    pub n_tail: usize,
+    pub modes: Vec<RigidMotion>,
+    pub prescribed_load: Vec<f64>,
+    pub factor: Factor,
+    pub assembly_time: Duration,
+    pub factorisation_time: Duration,
+}
+
+impl SolidSystem {
+    /// Numbers, assembles and factorises `model`'s stiffness with the unknowns of
+    /// `tail_nodes` last (AMD on the others).
+    pub fn new(
+        model: &SolidModel,
+        name: &str,
+        tail_nodes: &[usize],
+        pinning: Pinning,
+    ) -> Result<Self> {
+        Self::ordered(model, name, tail_nodes, pinning, Ordering::Amd)
+    }
+
+    /// As [`SolidSystem::new`] with the leading unknowns ordered by `ordering`. The assembly's
+    /// memory is checked before it is allocated, the factor's after the symbolic analysis.
+    pub fn ordered(
+        model: &SolidModel,
+        name: &str,
+        tail_nodes: &[usize],
+        pinning: Pinning,
+        ordering: Ordering,
+    ) -> Result<Self> {
+        let mesh = &model.mesh;
+        let entries: usize = (0..mesh.n_elements())
+            .map(|e| {
+                let m = 3 * mesh.kind(e).n_nodes();
+                m * (m + 1) / 2
+            })
+            .sum();
+        memory::require(
+            format!(
+                "{name}: assembling a solid of {} nodes and {} elements",
+                mesh.nodes().len(),
+                mesh.n_elements()
+            ),
+            memory::bytes(&[entries], BYTES_PER_ENTRY),
+            memory::BODY_LIMIT_BYTES,
+            "use fewer elements",
+        )?;
+        let (dofs, modes) = numbering(model, tail_nodes, pinning)?;
+        let n_free = dofs.iter().filter(|d| matches!(d, Dof::Free(_))).count();
+        let tail: std::collections::HashSet<usize> = tail_nodes.iter().copied().collect();
+        let n_tail = (0..dofs.len())
+            .filter(|&g| tail.contains(&(g / 3)) && matches!(dofs[g], Dof::Free(_)))
+            .count();
+        let start = Instant::now();
+        let triplets = assemble(model, &dofs, entries)?;
+        let matrix = triplets.matrix(n_free)?;
+        drop(triplets.idx);
+        let assembly_time = start.elapsed();
+        let start = Instant::now();
+        let factor = Factor::ordered(matrix.as_ref(), n_tail, name, ordering)?;
+        Ok(Self {
+            dofs,
+            n_free,
+            n_tail,
+            modes,
+            prescribed_load: triplets.prescribed_load,
+            factor,
+            assembly_time,
+            factorisation_time: start.elapsed(),
+        })
+    }
+
+    /// The right-hand side over the free unknowns of the given loads plus `extra` nodal
+    /// forces (3 per node), less the effect of prescribed displacements.
+    fn rhs(&self, model: &SolidModel, extra: Option<&[f64]>) -> Mat<f64> {
+        let mut rhs = Mat::<f64>::zeros(self.n_free, 1);
+        for (g, d) in self.dofs.iter().enumerate() {
+            if let Dof::Free(i) = d {
+                rhs[(*i, 0)] = model.forces[g] + extra.map_or(0.0, |e| e[g]);
+            }
+        }
+        for (i, v) in self.prescribed_load.iter().enumerate() {
+            rhs[(i, 0)] -= v;
+        }
+        rhs
+    }
+
+    /// Nodal displacements (3 per node) under the given loads plus `extra` nodal forces.
+    pub fn solve(&self, model: &SolidModel, extra: Option<&[f64]>) -> Vec<f64> {
+        let mut rhs = self.rhs(model, extra);
+        self.factor.solve_in_place(rhs.as_mut());
+        self.expand(&rhs)
+    }
+
+    /// The nodal displacements of the free unknowns' values `x` (prescribed values in place,
+    /// pinned ones zero).
+    fn expand(&self, x: &Mat<f64>) -> Vec<f64> {
+        self.dofs
+            .iter()
+            .map(|d| match *d {
+                Dof::Free(i) => x[(i, 0)],
+                Dof::Prescribed(v) => v,
+                Dof::Pinned => 0.0,
+            })
+            .collect()
+    }
+}
+
+/// Status of every DOF (3·node + axis) with the free unknowns numbered, those of
+/// `tail_nodes` last, and the free rigid motions (pinned, or refused).
+fn numbering(
+    model: &SolidModel,
+    tail_nodes: &[usize],
+    pinning: Pinning,
+) -> Result<(Vec<Dof>, Vec<RigidMotion>)> {
+    let n_nodes = model.mesh.nodes().len();
+    let mut dofs = vec![Dof::Free(usize::MAX); 3 * n_nodes];
+    for (&(node, c), &v) in &model.prescribed {
+        dofs[3 * node + c] = Dof::Prescribed(v);
+    }
+    let mut on_tail = vec![false; 3 * n_nodes];
+    for &n in tail_nodes {
+        on_tail[3 * n..3 * n + 3].fill(true);
+    }
+    let modes = free_rigid_modes(candidate_modes(model), &dofs)?;
+    match pinning {
+        Pinning::Refuse if !modes.is_empty() => {
+            let names: Vec<&str> = modes.iter().map(|m| m.name.as_str()).collect();
+            return Err(Error::invalid(
+                "supports",
+                names.join(", "),
+                "leave these rigid motions free: hold the solid (or use it as a contact body)",
+            ));
+        }
+        Pinning::Refuse => {}
+        Pinning::Pin => {
+            for g in pins(&modes, &dofs, &on_tail) {
+                dofs[g] = Dof::Pinned;
+            }
+        }
+    }
+    let mut n_free = 0;
+    for tail in [false, true] {
+        for (g, d) in dofs.iter_mut().enumerate() {
+            if on_tail[g] == tail && matches!(d, Dof::Free(_)) {
+                *d = Dof::Free(n_free);
+                n_free += 1;
+            }
+        }
+    }
+    if n_free == 0 {
+        return Err(Error::invalid(
+            "supports",
+            "every degree of freedom",
+            "leave at least one unknown",
+        ));
+    }
+    Ok((dofs, modes))
+}
+
+/// The solid's six rigid motions: translations along x, y, z and rotations about the axes
+/// through the nodes' centroid.
+fn candidate_modes(model: &SolidModel) -> Vec<RigidMotion> {
+    let nodes = model.mesh.nodes();
+    let n = nodes.len() as f64;
+    let c = nodes.iter().fold([0.0; 3], |s, p| {
+        [s[0] + p[0] / n, s[1] + p[1] / n, s[2] + p[2] / n]
+    });
+    let field = |f: &dyn Fn([f64; 3]) -> [f64; 3]| -> Vec<f64> {
+        nodes
+            .iter()
+            .flat_map(|p| f([p[0] - c[0], p[1] - c[1], p[2] - c[2]]))
+            .collect()
+    };
+    let motion = |name: &str, f: &dyn Fn([f64; 3]) -> [f64; 3]| RigidMotion {
+        name: name.into(),
+        values: field(f),
+    };
+    vec![
+        motion("x translation", &|_| [1.0, 0.0, 0.0]),
+        motion("y translation", &|_| [0.0, 1.0, 0.0]),
+        motion("z translation", &|_| [0.0, 0.0, 1.0]),
+        motion("rotation about x", &|p| [0.0, -p[2], p[1]]),
+        motion("rotation about y", &|p| [p[2], 0.0, -p[0]]),
+        motion("rotation about z", &|p| [-p[1], p[0], 0.0]),
+    ]
+}
+
+/// The element stiffnesses over the free unknowns of `dofs` (upper triangle), with K_fp u_p;
+/// `entries` is the count reserved.
+fn assemble(model: &SolidModel, dofs: &[Dof], entries: usize) -> Result<Triplets> {
+    let n_free = dofs.iter().filter(|d| matches!(d, Dof::Free(_))).count();
+    let mut t = Triplets {
+        idx: Vec::with_capacity(entries),
+        val: Vec::with_capacity(entries),
+        prescribed_load: vec![0.0; n_free],
+    };
+    for e in 0..model.mesh.n_elements() {
+        let ke = model.element_stiffness(e)?;
+        let conn = model.mesh.element(e);
+        let m = 3 * conn.len();
+        let g = |k: usize| 3 * conn[k / 3] + k % 3;
+        for kb in 0..m {
+            let Dof::Free(j) = dofs[g(kb)] else { continue };
+            for ka in 0..m {
+                match dofs[g(ka)] {
+                    Dof::Free(i) if i <= j => {
+                        t.idx.push(faer::sparse::Pair::new(i, j));
+                        t.val.push(ke[ka * m + kb]);
+                    }
+                    Dof::Prescribed(v) if v != 0.0 => t.prescribed_load[j] += ke[kb * m + ka] * v,
+                    _ => {}
+                }
+            }
+        }
+    }
+    Ok(t)
+}

@@ -1,0 +1,129 @@
+//! How a solid body's build and contact solve grow with its size: a quarter of a steel block
+//! (symmetry planes x = 0 and y = 0, bottom clamped) of 20-node hexahedra graded towards the
+//! contact, pressed by a rigid roller quarter (R = 5 mm, half-length 5 mm, F/4 = 2500 N)
+//! along y over a top region of 2 × 6 mm, sampled at its faces' Gauss points. The influence is
+//! applied through the sparse factorisation (one forward and backward solve per product), so
+//! the matrix-free Polonsky–Keer solver runs on it unchanged. The table of the book's
+//! performance chapter ("Solids").
+//!
+//! ```text
+//! cargo run --release --example solid_scaling            # sizes 1..=4 (4: ~54 000 nodes)
+//! cargo run --release --example solid_scaling -- 2 amd natural   # one size, both orderings
+//! ```
+//!
+//! Columns: nodes and free unknowns; contact points; `assemble` the element integration and
+//! assembly; `factor` ordering, symbolic and numeric Cholesky; nnz(L); one product (a solve);
+//! the contact solve (its products); the peak heap of the whole case; p_max.
+
+use std::time::Instant;
+
+use contopt::fem::solid::{
+    Axis, Condensation, SolidBody, SolidKind, SolidMesh, SolidModel, SolidSettings,
+};
+use contopt::fem::Ordering;
+use contopt::prelude::*;
+use contopt_validation::fixtures::PeakAlloc;
+
+#[global_allocator]
+static ALLOC: PeakAlloc = PeakAlloc;
+
+/// Block quarter [0, 10] × [0, 16] × [−10, 0] mm.
+const BLOCK: [f64; 3] = [10.0, 16.0, 10.0];
+/// The rigid roller: radius and half-length \[mm\], quarter load \[N\].
+const RADIUS: f64 = 5.0;
+const HALF_LENGTH: f64 = 5.0;
+const QUARTER_LOAD: f64 = 2500.0;
+
+/// Cells (x, y, z) of size `k`: about 13 500·k² nodes... in steps to ~54 000 at k = 4.
+fn cells(k: usize) -> [usize; 3] {
+    [8 * k, 4 * k, 6 * k].map(|c| c.max(1))
+}
+
+fn block(k: usize) -> Result<SolidModel> {
+    let c = cells(k);
+    // Graded towards x = 0 and z = 0 (the contact), uniform along the roller.
+    let mesh =
+        SolidMesh::block(SolidKind::Hex20, [1.0, 1.0, 1.0], [c[0], c[1], c[2]])?.map(|q| {
+            let g = |t: f64| t * (0.15 + 0.85 * t);
+            [
+                BLOCK[0] * g(q[0]),
+                BLOCK[1] * q[1],
+                -BLOCK[2] * g(1.0 - q[2]),
+            ]
+        })?;
+    let mut model = SolidModel::new(mesh, Material::new(2.0e5, 0.3)?);
+    let on = |c: usize, v: f64| move |x: [f64; 3]| (x[c] - v).abs() < 1e-9;
+    let x0 = model.mesh().nodes_where(on(0, 0.0));
+    let y0 = model.mesh().nodes_where(on(1, 0.0));
+    let bottom = model.mesh().nodes_where(on(2, -BLOCK[2]));
+    model.fix(&x0, Axis::X)?;
+    model.fix(&y0, Axis::Y)?;
+    for axis in Axis::ALL {
+        model.fix(&bottom, axis)?;
+    }
+    Ok(model)
+}
+
+fn run(k: usize, ordering: Ordering) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let heap = PeakAlloc::start();
+    let model = block(k)?;
+    let contact = model
+        .mesh()
+        .faces_where(|x| x[2].abs() < 1e-9 && x[0] <= 2.0 + 1e-9 && x[1] <= 6.0 + 1e-9);
+    let settings = SolidSettings {
+        condensation: Condensation::Products,
+        ordering,
+    };
+    let body = SolidBody::new("block", model, &contact, settings)?;
+    let roller = RigidBody::pressed("roller", body.interface(), [0.0, 0.0, 1.0], QUARTER_LOAD)?;
+    // A straight roller over y ≤ 5 mm; beyond its end the gap opens by 1 mm.
+    let gap: Vec<f64> = (body.interface().points().iter())
+        .map(|x| x[0] * x[0] / (2.0 * RADIUS) + if x[1] > HALF_LENGTH { 1.0 } else { 0.0 })
+        .collect();
+    let problem = InterfaceProblem::new(&body, &roller, &gap)?;
+    let start = Instant::now();
+    let state = PolonskyKeer::new(PolonskyKeerSettings::default())?.solve(&problem)?;
+    let solve = start.elapsed();
+    let peak = PeakAlloc::peak_since(heap);
+    let s = body.stats();
+    let p_max = state.pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+    println!(
+        "| {:>6} | {:>7} | {:>5} | {:?} | {:>7.2} | {:>7.2} | {:>6.1} | {:>6.3} | {:>6.2} | {:>6} | {:>6.0} | {:>7.1} |",
+        s.nodes,
+        s.unknowns,
+        body.interface().len(),
+        ordering,
+        s.assembly.as_secs_f64(),
+        s.factorisation.as_secs_f64(),
+        s.factor_nnz as f64 / 1e6,
+        s.solve.as_secs_f64(),
+        solve.as_secs_f64(),
+        state.iterations,
+        peak,
+        p_max,
+    );
+    assert!(state.is_converged(), "{}", state.termination);
+    Ok(())
+}
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    contopt::faer::set_global_parallelism(contopt::faer::Par::Seq);
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let sizes: Vec<usize> = match args.first().and_then(|a| a.parse().ok()) {
+        Some(k) => vec![k],
+        None => (1..=4).collect(),
+    };
+    let orderings: Vec<Ordering> = if args.iter().any(|a| a == "natural") {
+        vec![Ordering::Amd, Ordering::Natural]
+    } else {
+        vec![Ordering::Amd]
+    };
+    println!("| nodes | unknowns | points | ordering | assemble s | factor s | nnz(L) M | product s | contact s | steps | peak MiB | p_max MPa |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for k in sizes {
+        for &ordering in &orderings {
+            run(k, ordering)?;
+        }
+    }
+    Ok(())
+}

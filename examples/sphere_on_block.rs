@@ -1,0 +1,51 @@
+//! Hertz's point contact between two solids meshed apart in Gmsh: a quarter of a steel sphere
+//! (R = 20 mm) on a quarter of a steel block, at several resolutions of the contact
+//! (`contopt_validation::solids`): p₀ and the contact radius against Hertz. The convergence
+//! table of the book's chapter "Parts in three dimensions".
+//!
+//! ```text
+//! python3 meshes/generate.py --bench target/gmsh-bench   # once (pip install gmsh)
+//! cargo run --release --example sphere_on_block -- target/gmsh-bench
+//! ```
+//!
+//! Without a folder, the bundled mesh alone (`meshes/solid-sphere-on-block.msh`, 0.25 mm).
+
+use std::time::Instant;
+
+use contopt_validation::solids::sphere_on_block;
+
+/// Element sizes at the contact of the bench meshes (`meshes/bench/solid-sphere-on-block-*.geo`).
+const FINE: [&str; 5] = ["0.4", "0.18", "0.13", "0.09", "0.06"];
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let mut meshes = vec![(
+        "0.25 (bundled)".to_string(),
+        format!("{root}/meshes/solid-sphere-on-block.msh"),
+    )];
+    if let Some(folder) = std::env::args().nth(1) {
+        for f in FINE {
+            meshes.push((
+                f.to_string(),
+                format!("{folder}/solid-sphere-on-block-{f}-binary.msh"),
+            ));
+        }
+    }
+    println!("| size at contact mm | nodes | points | p₀ MPa | p₀/Hertz − 1 | a mm | a/Hertz − 1 | time s |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for (size, path) in meshes {
+        let start = Instant::now();
+        let c = sphere_on_block(&path)?;
+        println!(
+            "| {size} | {} | {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:.1} |",
+            c.nodes,
+            c.points,
+            c.p0[0],
+            100.0 * (c.p0[0] / c.p0[1] - 1.0),
+            c.a[0],
+            100.0 * (c.a[0] / c.a[1] - 1.0),
+            start.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}

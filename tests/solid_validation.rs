@@ -1,0 +1,176 @@
+//! Solid bodies (`contopt_fem::solid`) in contact: a rigid plate on a block (uniform pressure,
+//! exact), a half-space grid pressed as Hertz's sphere into a solid block, both influence
+//! forms (dense and through the factorisation) alike.
+
+use contopt::fem::solid::{
+    Axis, Condensation, SolidBody, SolidKind, SolidMesh, SolidModel, SolidSample, SolidSettings,
+};
+use contopt::prelude::*;
+use contopt_validation::closed_form::{contact_modulus, HertzSphere};
+
+fn steel() -> Material {
+    Material::new(2.0e5, 0.3).unwrap()
+}
+
+fn solve(problem: &InterfaceProblem) -> ContactState {
+    let st = ActiveSet::new(ActiveSetSettings::default())
+        .unwrap()
+        .solve(problem)
+        .unwrap();
+    assert!(st.is_converged(), "{}", st.termination);
+    st
+}
+
+/// A block [0, 4] × [0, 4] × [0, 6] of `kind` held on its bottom and sides along their
+/// normals (a column in uniaxial strain), its top face its contact zone.
+fn column(kind: SolidKind, settings: SolidSettings) -> SolidBody {
+    let mesh = SolidMesh::block(kind, [4.0, 4.0, 6.0], [2, 2, 3]).unwrap();
+    let mut model = SolidModel::new(mesh, steel());
+    for (axis, c, v) in [
+        (Axis::X, 0, 0.0),
+        (Axis::X, 0, 4.0),
+        (Axis::Y, 1, 0.0),
+        (Axis::Y, 1, 4.0),
+        (Axis::Z, 2, 0.0),
+    ] {
+        let nodes = model.mesh().nodes_where(|x| (x[c] - v).abs() < 1e-9);
+        model.fix(&nodes, axis).unwrap();
+    }
+    let top = model.mesh().faces_where(|x| (x[2] - 6.0).abs() < 1e-9);
+    SolidBody::new("column", model, &top, settings).unwrap()
+}
+
+/// A rigid plate pressed by F onto a column's whole top face: the pressure (the faces' field,
+/// [`InterfaceProblem::recovered_pressure`]) is F/A at every point and the approach F·H/(A·M), M = E(1 − ν)/((1 + ν)(1 − 2ν)) the constrained
+/// modulus, to round-off (10⁻⁸: the solve on the semi-definite influence loses a few
+/// digits); tetrahedra and hexahedra, the dense influence and the products.
+#[test]
+fn rigid_plate_on_a_column_is_uniform() {
+    let force = 1600.0;
+    let (e, nu) = (2.0e5, 0.3);
+    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let p = force / 16.0;
+    for kind in SolidKind::ALL {
+        for condensation in [Condensation::Dense, Condensation::Products] {
+            let settings = SolidSettings {
+                condensation,
+                ..Default::default()
+            };
+            let block = column(kind, settings);
+            let plate =
+                RigidBody::pressed("plate", block.interface(), [0.0, 0.0, 1.0], force).unwrap();
+            let gap = vec![0.0; block.interface().len()];
+            let st = solve(&InterfaceProblem::new(&block, &plate, &gap).unwrap());
+            let worst = st
+                .pressure
+                .iter()
+                .map(|q| (q / p - 1.0).abs())
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-8, "{kind:?} {condensation:?}: {worst:e}");
+            let approach = st.approach().unwrap();
+            let want = p * 6.0 / m;
+            assert!(
+                (approach / want - 1.0).abs() < 1e-9,
+                "{kind:?}: {approach} vs {want}"
+            );
+        }
+    }
+}
+
+/// The dense influence and the products through the factorisation are one operator (to
+/// round-off), and the solid's rigid mode is found: a block floating along z.
+#[test]
+fn dense_and_products_agree() {
+    let [dense, products] = [Condensation::Dense, Condensation::Products].map(|condensation| {
+        column(
+            SolidKind::Tet10,
+            SolidSettings {
+                condensation,
+                ..Default::default()
+            },
+        )
+    });
+    let (a, b) = (dense.influence_matrix(), products.influence_matrix());
+    let largest = (0..a.nrows()).map(|i| a[(i, i)]).fold(0.0, f64::max);
+    for i in 0..a.nrows() {
+        for j in 0..a.ncols() {
+            assert!((a[(i, j)] - b[(i, j)]).abs() < 1e-10 * largest);
+        }
+    }
+    assert!(dense.stats().dense && !products.stats().dense);
+    assert!(dense.rigid_modes().is_empty());
+}
+
+/// Hertz's sphere as a half-space grid (the sphere's own compliance, its gap r²/2R) pressed
+/// into a steel block meshed with 20-node hexahedra, graded towards the contact: the block is
+/// sampled at the grid's cell centres ([`SolidSample::projected`]), so the two pair point for
+/// point. Against Hertz with E* of the pair: p₀ within 3 % and the load from the pressures
+/// exact (the block is 16a wide and 8a deep, finite: it is stiffer than a half-space).
+#[test]
+fn half_space_sphere_on_a_solid_block() {
+    let (a, radius) = (1.0, 50.0);
+    let hertz = HertzSphere {
+        radius,
+        modulus: contact_modulus(&[steel(), steel()]),
+    };
+    let force = hertz.force(a);
+    // A block [−8, 8]² × [−8, 0], graded towards the top centre (elements of 0.2a there).
+    let mesh = SolidMesh::block(SolidKind::Hex20, [2.0, 2.0, 1.0], [16, 16, 8])
+        .unwrap()
+        .map(|q| {
+            let g = |t: f64| 8.0 * t * (0.1 + 0.9 * t.abs());
+            [g(q[0] - 1.0), g(q[1] - 1.0), -g(1.0 - q[2])]
+        })
+        .unwrap();
+    let mut model = SolidModel::new(mesh, steel());
+    let bottom = model.mesh().nodes_where(|x| (x[2] + 8.0).abs() < 1e-9);
+    for axis in Axis::ALL {
+        model.fix(&bottom, axis).unwrap();
+    }
+    let top = model.mesh().faces_where(|x| x[2].abs() < 1e-9);
+    let (cells, dx) = (24, 2.4 * a / 24.0);
+    let origin = -1.2 * a + 0.5 * dx;
+    let sphere = HalfSpace::grid("sphere", steel(), cells, cells, dx, dx, [origin, origin])
+        .unwrap()
+        .upper()
+        .pressed(force)
+        .unwrap();
+    let points: Vec<[f64; 3]> = sphere.interface().points().to_vec();
+    let samples = SolidSample::projected(
+        model.mesh(),
+        &top,
+        &points,
+        &vec![dx * dx; points.len()],
+        [0.0, 0.0, 1.0],
+    )
+    .unwrap();
+    let block = SolidBody::sampled("block", model, &samples, SolidSettings::default()).unwrap();
+    let gap = hertz.gaps(block.interface());
+    let st = solve(&InterfaceProblem::new(&block, &sphere, &gap).unwrap());
+    let p0 = st.pressure.iter().fold(0.0, |m: f64, &p| m.max(p));
+    let load: f64 = st.pressure.iter().map(|p| p * dx * dx).sum();
+    println!(
+        "p0 {p0} vs {}, load {load} vs {force}",
+        hertz.peak_pressure(a)
+    );
+    assert!((load / force - 1.0).abs() < 1e-9);
+    assert!((p0 / hertz.peak_pressure(a) - 1.0).abs() < 0.03);
+}
+
+/// Hertz's sphere on a block, both solids meshed apart in Gmsh (the bundled
+/// `meshes/solid-sphere-on-block.msh`, 0.25 mm tetrahedra at the contact), the sphere pressed
+/// by a pressure on its top and floating along z, read at a grid of 7 × 7 cells: p₀ and a
+/// within 10 % (measured −7.8 % and +7.1 %). Not the 1 %: the grid's point forces
+/// are more compliant than Hertz's distributed pressure, and finer meshes level off at −4 %
+/// (`cargo run --release --example sphere_on_block` gives the table). The test holds the
+/// bundled figure against regressions; E* off by 2 would move p₀ by 26 %.
+#[test]
+fn solid_sphere_on_solid_block_against_hertz() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/meshes/solid-sphere-on-block.msh"
+    );
+    let check = contopt_validation::solids::sphere_on_block(path).unwrap();
+    assert!((check.p0[0] / check.p0[1] - 1.0).abs() < 0.10, "{check:?}");
+    assert!((check.a[0] / check.a[1] - 1.0).abs() < 0.10, "{check:?}");
+}

@@ -1,0 +1,142 @@
+//! Hertz's point contact between two solids meshed apart: a quarter of a steel sphere
+//! (R = 20 mm) pressed by a pressure on its flat top onto a quarter of a steel block
+//! (`meshes/solid-sphere-on-block.geo.inc`), with the force that makes the contact radius
+//! a = 1 mm. The block's top face is sampled at the centres of a grid of cells over the
+//! contact, coarser than its nodes (so that the pair's influence is definite), the sphere
+//! where the block's normals meet it ([`SolidSample::facing`]); the initial gap is the
+//! distance between the meshed faces.
+
+use contopt_contact::{ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem};
+use contopt_core::{ElasticBody, Material, Result};
+use contopt_fem::solid::{
+    Axis, SolidBody, SolidFace, SolidMesh, SolidModel, SolidSample, SolidSettings,
+};
+use contopt_gmsh::Volumes;
+
+use crate::closed_form::{contact_modulus, HertzSphere};
+
+/// The sphere's radius and the contact radius aimed at \[mm\].
+pub const RADIUS: f64 = 20.0;
+/// See [`RADIUS`].
+pub const CONTACT_RADIUS: f64 = 1.0;
+/// The contact points are a grid over this many contact radii from the axis.
+const CANDIDATES: f64 = 1.6;
+/// The grid's spacing in the block's element edges at the contact: the points fewer than the
+/// face nodes, so that the pair's influence is definite and the point pressures unique.
+const SPACING_IN_EDGES: f64 = 0.75;
+
+/// What one mesh gives against Hertz.
+#[derive(Clone, Copy, Debug)]
+pub struct HertzCheck {
+    /// Nodes of both solids.
+    pub nodes: usize,
+    /// Contact points.
+    pub points: usize,
+    /// The largest pressure and Hertz's p₀ \[MPa\].
+    pub p0: [f64; 2],
+    /// The contact radius from the pressure's shape and Hertz's a \[mm\].
+    pub a: [f64; 2],
+}
+
+/// Steel.
+pub fn steel() -> Material {
+    Material::new(2.0e5, 0.3).expect("steel")
+}
+
+/// The sphere on the block read from `path`, solved, against Hertz.
+pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
+    let gmsh = contopt_gmsh::read(path)?;
+    let hertz = HertzSphere {
+        radius: RADIUS,
+        modulus: contact_modulus(&[steel(), steel()]),
+    };
+    let quarter = hertz.force(CONTACT_RADIUS) / 4.0;
+
+    let block = gmsh.import_solid(Volumes::Group("block"))?;
+    let mut model = SolidModel::new(block.mesh.clone(), steel());
+    model.fix(block.nodes("block_x0")?, Axis::X)?;
+    model.fix(block.nodes("block_y0")?, Axis::Y)?;
+    for axis in Axis::ALL {
+        model.fix(block.nodes("block_bottom")?, axis)?;
+    }
+    let top = block.faces("block_top")?;
+    let first = grid_samples(model.mesh(), top)?;
+    let block_body = SolidBody::sampled("block", model, &first, SolidSettings::default())?;
+
+    let sphere = gmsh.import_solid(Volumes::Group("sphere"))?;
+    let mut model = SolidModel::new(sphere.mesh.clone(), steel());
+    model.fix(sphere.nodes("sphere_x0")?, Axis::X)?;
+    model.fix(sphere.nodes("sphere_y0")?, Axis::Y)?;
+    let top_area = std::f64::consts::PI * RADIUS * RADIUS / 4.0;
+    model.add_pressure(sphere.faces("sphere_top")?, quarter / top_area)?;
+    let second = SolidSample::facing(model.mesh(), sphere.faces("sphere_face")?, &first)?;
+    let gap: Vec<f64> = second.iter().map(|s| -s.offset).collect();
+    let sphere_body = SolidBody::sampled("sphere", model, &second, SolidSettings::default())?;
+
+    let problem = InterfaceProblem::new(&block_body, &sphere_body, &gap)?;
+    let state = ActiveSet::new(ActiveSetSettings::default())?.solve(&problem)?;
+    let points = block_body.interface().points();
+    // p₀ and a from the least-squares fit of Hertz's p² = p₀²(1 − r²/a²) over the loaded
+    // points: p² = A − B r², p₀ = √A, a = √(A/B).
+    let loaded: Vec<(f64, f64)> = (0..points.len())
+        .filter(|&i| state.pressure[i] > 0.0)
+        .map(|i| {
+            (
+                points[i][0].powi(2) + points[i][1].powi(2),
+                state.pressure[i].powi(2),
+            )
+        })
+        .collect();
+    let n = loaded.len() as f64;
+    let (sx, sy) = loaded
+        .iter()
+        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / n, sy / n);
+    let (sxy, sxx) = loaded.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx).powi(2))
+    });
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let (p0, a) = (intercept.sqrt(), (intercept / -slope).sqrt());
+    Ok(HertzCheck {
+        nodes: block.mesh.nodes().len() + sphere.mesh.nodes().len(),
+        points: points.len(),
+        p0: [p0, hertz.peak_pressure(CONTACT_RADIUS)],
+        a: [a, CONTACT_RADIUS],
+    })
+}
+
+/// A grid of square cells over [0, 1.6a]² on the block's top face (the quarter's contact), of
+/// spacing [`SPACING_IN_EDGES`] times the median edge of the top faces there, each cell's
+/// centre projected onto the faces.
+fn grid_samples(mesh: &SolidMesh, top: &[SolidFace]) -> Result<Vec<SolidSample>> {
+    let reach = CANDIDATES * CONTACT_RADIUS;
+    let mut edges: Vec<f64> = top
+        .iter()
+        .filter_map(|&f| {
+            let nodes = mesh.face_nodes(f);
+            let (p, q) = (mesh.nodes()[nodes[0]], mesh.nodes()[nodes[1]]);
+            (p[0].hypot(p[1]) < reach).then(|| (p[0] - q[0]).hypot(p[1] - q[1]))
+        })
+        .collect();
+    edges.sort_by(f64::total_cmp);
+    let median = edges.get(edges.len() / 2).copied().unwrap_or(reach);
+    let cells = (reach / (SPACING_IN_EDGES * median)).ceil() as usize;
+    let h = reach / cells as f64;
+    let points: Vec<[f64; 3]> = (0..cells * cells)
+        .map(|k| {
+            [
+                (k % cells) as f64 * h + 0.5 * h,
+                (k / cells) as f64 * h + 0.5 * h,
+                0.0,
+            ]
+        })
+        .collect();
+    SolidSample::projected(
+        mesh,
+        top,
+        &points,
+        &vec![h * h; points.len()],
+        [0.0, 0.0, 1.0],
+    )
+}
