@@ -27,9 +27,9 @@ use contopt_roller::{
 
 use super::grids::{self, Grids, Solved};
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
-use crate::report::MIN_CELLS_ACROSS;
 use crate::lives::{CaseSlices, LivesInput, LivesOutput};
 use crate::methods::{roller_report, BearingCrown, Check, Context, Design, Designed};
+use crate::report::MIN_CELLS_ACROSS;
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
 /// arc-minutes are one contact (a roller and its mirror across the load line: round-off).
