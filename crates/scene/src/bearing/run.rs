@@ -470,29 +470,10 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     };
     report.time("distribution", started);
     report.warnings.extend(lone_rollers(plan, &first));
-    let env = Envelope::new(&first, plan.raceway);
-    let started = Instant::now();
-    let designed = match plan.crown {
-        Some(crown) => {
-            let cases = env.cases(problem, roller, plan.tolerance)?;
-            let envelope = Over {
-                first: &first,
-                env: &env,
-                cases: &cases,
-                at: &at,
-            };
-            Some(design(plan, crown, c, &envelope)?)
-        }
-        None => None,
+    let designed = match crown(plan, c, &first, &at, report)? {
+        Ok(designed) => designed,
+        Err(stopped) => return Ok(*stopped),
     };
-    if let Some(d) = &designed {
-        report.time("optimise", started);
-        if !d.termination.is_solved() && !matches!(d.termination, Termination::StepLimit { .. }) {
-            let mut out = Designed::unsolved(d.termination.clone(), solver.method());
-            out.method = Some(d.method);
-            return Ok(out);
-        }
-    }
     // The final state: the distributions under the final crown, every contact at its loads.
     let dists = match &designed {
         Some(d) => match crowned_distributions(plan, &d.change, &at, observer)? {
@@ -544,10 +525,47 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         let why = s.termination.clone().inside(s.method);
         return Ok(Designed::unsolved(why, solver.method()));
     }
+    let rings = Rings {
+        dists: &dists,
+        solved: &solved,
+        opposite: &opposite,
+        at: &at,
+        roller,
+    };
+    finish(plan, c, report, designed, &rings)
+}
+
+/// The final state's contacts on both raceways, under the final distributions `dists`: the
+/// designed one (`solved`) and the other (`opposite`), on the design's geometry `at`.
+struct Rings<'r, 'a> {
+    dists: &'r [LoadDistribution],
+    solved: &'r Ring<'a>,
+    opposite: &'r Ring<'a>,
+    at: &'r Geometry<'r>,
+    roller: &'r Roller,
+}
+
+/// The report of a bearing case from both raceways' final contacts: the lives (their own
+/// stage, [`crate::lives`]), the warnings of the contacts' cells and edges, the bearing's
+/// figures; and the design's outcome, the worst contact on the design grid shown.
+fn finish(
+    plan: &BearingPlan,
+    c: &Context,
+    report: &mut CaseReport,
+    designed: Option<Crowned>,
+    rings: &Rings,
+) -> Result<Designed> {
+    let Rings {
+        dists,
+        solved,
+        opposite,
+        at,
+        roller,
+    } = *rings;
     let started = Instant::now();
     let cases = slices(
         plan,
-        &dists,
+        dists,
         &[solved.pressures(), opposite.pressures()],
         at.length,
     )?;
@@ -563,7 +581,7 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         .filter(|&s| grids.of[s % n] == 0)
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(worst);
-    for r in [&solved, &opposite] {
+    for r in [solved, opposite] {
         let designed = designed.is_some() && r.raceway == plan.raceway;
         (report.warnings).extend(resolution_warnings(plan, r, designed)?);
         report.warnings.extend(edge_warning(plan, r));
@@ -574,8 +592,8 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     let levels = designed.as_ref().and_then(|d| d.levels.clone());
     report.bearing = Some(bearing_report(
         plan,
-        &dists,
-        [&solved, &opposite],
+        dists,
+        [solved, opposite],
         worst,
         lives,
         levels,
@@ -586,7 +604,41 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         grids,
         shown,
     };
-    outcome(designed, &last, &at, roller, solver.method())
+    outcome(designed, &last, at, roller, c.solver.method())
+}
+
+/// The crown the case designs over the first distributions `first` (none when it gives its
+/// own), timed into `report`; a design that stopped short of a solution is the case's outcome
+/// (`Err`).
+fn crown(
+    plan: &BearingPlan,
+    c: &Context,
+    first: &[LoadDistribution],
+    at: &Geometry,
+    report: &mut CaseReport,
+) -> Result<std::result::Result<Option<Crowned>, Box<Designed>>> {
+    let Some(crown) = plan.crown else {
+        return Ok(Ok(None));
+    };
+    let roller = (c.case.roller)
+        .ok_or_else(|| Error::invalid("bearing", "its roller", "was not composed"))?;
+    let env = Envelope::new(first, plan.raceway);
+    let started = Instant::now();
+    let cases = env.cases(c.problem, roller, plan.tolerance)?;
+    let envelope = Over {
+        first,
+        env: &env,
+        cases: &cases,
+        at,
+    };
+    let d = design(plan, crown, c, &envelope)?;
+    report.time("optimise", started);
+    if !d.termination.is_solved() && !matches!(d.termination, Termination::StepLimit { .. }) {
+        let mut out = Designed::unsolved(d.termination.clone(), c.solver.method());
+        out.method = Some(d.method);
+        return Ok(Err(Box::new(out)));
+    }
+    Ok(Ok(Some(d)))
 }
 
 /// The raceway across the roller from `raceway`.
