@@ -168,6 +168,49 @@ fn a_contact_of_a_few_cells_warns_with_the_number() {
     );
 }
 
+/// A rigid cylinder (R = 10 mm) as long as its grid (4 mm), at 10 kN on a half-space: its
+/// straight ends are sharp edges, where the pressure is singular. The old answer was a p_max
+/// three times Hertz's line p₀ (4182 MPa) with no word, and a larger one on finer cells; now
+/// each case names the edge, and its p_max grows by about √2 per halving of the cells while the
+/// pressure at the middle does not move.
+#[test]
+fn a_peak_at_a_sharp_edge_is_named() {
+    let run = |cells: usize| {
+        let cell = 4.0 / cells as f64;
+        let text = format!(
+            r#"name = "cylinder"
+[contact]
+zone = {{ kind = "grid", cells = [{cells}, 40], cell_mm = [{cell}, 0.03] }}
+gap = {{ kind = "cylinder", radius_mm = 10.0 }}
+load = {{ force_n = 10000.0 }}
+
+[[body]]
+kind = "half_space"
+material = {{ e_mpa = 2.0e5, nu = 0.3 }}
+
+[[body]]
+kind = "rigid"
+"#
+        );
+        let report = parse(&text).unwrap().cases()[0].run().unwrap();
+        assert!(report.is_solved(), "{:?}", report.termination);
+        let warning = report.warnings.iter().find(|w| w.contains("sharp edge"));
+        assert!(warning.is_some(), "{:?}", report.warnings);
+        let middle = (report.interface.iter())
+            .filter(|q| q.x_mm[0].abs() < cell)
+            .map(|q| q.p_mpa)
+            .fold(0.0f64, f64::max);
+        (report.p_max_mpa.unwrap(), middle)
+    };
+    let (coarse, coarse_middle) = run(40);
+    let (fine, fine_middle) = run(80);
+    assert!(fine > 1.25 * coarse, "{coarse} → {fine} MPa");
+    assert!(
+        (fine_middle / coarse_middle - 1.0).abs() < 0.02,
+        "{coarse_middle} → {fine_middle} MPa"
+    );
+}
+
 /// A sphere pressed 10⁻⁹ mm into a grid whose cell centres miss its apex: no point carries
 /// pressure. It used to report p_max 0 and nothing else; now the case warns, with Hertz's
 /// contact in cells (a = 7·10⁻⁵ mm against cells of 0.02 mm).

@@ -1,13 +1,15 @@
 //! The model's limits, judged on every converged case: a contact that reaches an edge of its
 //! zone (where the zone, not a body, ends it) is outside the model — its pressure is wrong, and
 //! the case says where and how large the zone must be; a contact resolved by fewer than
-//! [`MIN_CELLS_ACROSS`] cells across its half-width carries a warning with the number; and
-//! Hertz's nominal contact is reported beside the case where it applies.
+//! [`MIN_CELLS_ACROSS`] cells across its half-width carries a warning with the number, and one
+//! whose pressure rises to a sharp edge (a punch's rim) a warning that its peak depends on the
+//! cells; and Hertz's nominal contact is reported beside the case where it applies.
 
 use contopt_contact::InterfaceProblem;
 use contopt_core::stress::peak_index;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
+use super::edge::{points_per_cell, sharp_edge};
 use crate::mesh_surface::MeshSurface;
 use crate::zone::Layout;
 use crate::Case;
@@ -74,6 +76,10 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
                 r.half_width_mm / MIN_CELLS_ACROSS
             ));
         }
+    }
+    let layout = &case.plan.layout;
+    if let Some(edge) = sharp_edge(layout, points, &carrying, &pressure) {
+        report.warnings.push(edge.warning());
     }
     report.warnings.extend(light_cases(report));
 }
@@ -350,10 +356,7 @@ fn resolution(
             let hi = inside.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             let symmetric = matches!(layout, Layout::Strips { .. });
             let half = if symmetric { 0.5 * (hi - lo) } else { hi };
-            let per_cell = match layout {
-                Layout::Faces(_) => 3.0,
-                _ => 1.0,
-            };
+            let per_cell = points_per_cell(layout) as f64;
             let cells = inside.len() as f64 / per_cell / if symmetric { 2.0 } else { 1.0 };
             let radial = match layout {
                 Layout::Rings(_) => true,
@@ -447,6 +450,32 @@ mod tests {
         judge(&mut many, case, &problem);
         assert_eq!(many.resolution.as_ref().unwrap().cells, 12.0);
         assert!(many.warnings.is_empty(), "{:?}", many.warnings);
+    }
+
+    /// A pressure that rises to the contact's edge (Sneddon's punch, p ∝ 1/√(a² − r²), on
+    /// the first 20 of 40 rings) is named as a sharp edge with its peak and the pressure a ring
+    /// inward; Hertz's, falling to zero, and an even pressure (an optimised punch) are not.
+    #[test]
+    fn a_peak_at_a_sharp_edge_is_named() {
+        let scene = scene(40);
+        let case = &scene.cases()[0];
+        let judged = |shape: &dyn Fn(f64) -> f64| {
+            let (mut r, problem) = report(case, 20, CaseStatus::Solved);
+            let rim = 1.01 * r.interface[19].x_mm[0];
+            for q in &mut r.interface[..20] {
+                q.p_mpa = 100.0 * shape(q.x_mm[0] / rim);
+            }
+            judge(&mut r, case, &problem);
+            r.warnings
+        };
+        let sneddon = judged(&|s| 1.0 / (1.0 - s * s).sqrt());
+        assert_eq!(sneddon.len(), 1, "{sneddon:?}");
+        assert!(sneddon[0].contains("sharp edge"), "{sneddon:?}");
+        assert!(sneddon[0].contains("r = +"), "{sneddon:?}");
+        let hertz = judged(&|s| (1.0 - s * s).sqrt());
+        assert!(hertz.is_empty(), "{hertz:?}");
+        let even = judged(&|s| 1.0 + 1e-9 * s);
+        assert!(even.is_empty(), "{even:?}");
     }
 
     /// A zone that carries nothing says the bodies do not touch; a case that did not converge

@@ -6,11 +6,12 @@
 //! - [`figures`]: the method's passes, the interface's pressure, gap and gap change in the
 //!   results' units, the penetration and its warning, a roller's figures;
 //! - [`limits`]: the model's limits, judged on every converged case (a contact reaching its
-//!   zone's edge, too few cells across it, Hertz's nominal contact);
+//!   zone's edge, too few cells across it, a peak at a sharp edge, Hertz's nominal contact);
 //! - [`subsurface`]: the stresses below the surface, when the scene asks for them;
 //! - [`fields`]: the meshes' fields for a viewer, when the scene asks for them;
 //! - the closed-form pressure beside a validation case ([`crate::reference`]).
 
+mod edge;
 mod fields;
 mod figures;
 mod limits;

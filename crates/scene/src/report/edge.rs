@@ -1,0 +1,129 @@
+//! A sharp edge: a contact whose pressure rises to its peak at the contact's own edge, as under
+//! a flat punch's rim (Sneddon's p ∝ 1/√(a² − r²)) or a straight cylinder's end. The elastic
+//! pressure there is singular, so the peak on a zone is the value on its cells, growing as they
+//! shrink (by about √2 per halving), not a converged figure. A smooth contact (Hertz's) falls to
+//! zero at its edge instead.
+
+use contopt_core::stress::peak_index;
+
+use crate::zone::Layout;
+
+/// The peak sits at a sharp edge when it stands this many times above the largest pressure a
+/// cell inward (a 1/√ singularity gives 1.7–3 on cells of any size; an optimised, even pressure
+/// stays within round-off of 1).
+const RISE: f64 = 1.05;
+
+/// A contact's peak at its own edge, with the pressure a cell inward.
+#[derive(Debug, PartialEq)]
+pub(super) struct SharpEdge {
+    /// The surface axis along which the peak ends the contact, as named in the reports.
+    pub along: &'static str,
+    /// The peak's position along that axis, mm.
+    pub at_mm: f64,
+    /// The peak, MPa.
+    pub p_mpa: f64,
+    /// The largest pressure a cell inward from the peak, MPa.
+    pub inward_mpa: f64,
+}
+
+impl SharpEdge {
+    /// The warning a case carries.
+    pub fn warning(&self) -> String {
+        format!(
+            "the pressure rises to its peak at the contact's edge ({} = {:+.4} mm: {:.1} MPa, \
+             {:.2} times the {:.1} MPa a cell inward): the contact ends at a sharp edge (a \
+             punch's rim, a body's end), where the elastic pressure is singular, so p_max is the \
+             value on these cells and grows as they shrink; the load, the approach and the \
+             pressure away from the edge do not; round the edge (a fillet, a crown or a profile) \
+             for a peak that converges",
+            self.along,
+            self.at_mm,
+            self.p_mpa,
+            self.p_mpa / self.inward_mpa,
+            self.inward_mpa
+        )
+    }
+}
+
+/// Points of a layout that share one cell along a line: the three Gauss points of a face.
+pub(super) fn points_per_cell(layout: &Layout) -> usize {
+    match layout {
+        Layout::Faces(_) => 3,
+        _ => 1,
+    }
+}
+
+/// The sharp edge where the pressure peaks, if it does: along each surface axis of the zone,
+/// on the line of points through the peak, the peak lies in the last cell of its carrying run
+/// and stands [`RISE`] times above the cell inward from it. The low end of rings and faces is
+/// the axis (or plane) of symmetry, not an edge; an imported mesh's faces are not judged.
+pub(super) fn sharp_edge(
+    layout: &Layout,
+    points: &[[f64; 3]],
+    carrying: &[bool],
+    pressure: &[f64],
+) -> Option<SharpEdge> {
+    let peak = peak_index(pressure)?;
+    let (axes, symmetric_low): (&[(usize, &'static str)], bool) = match layout {
+        Layout::Grid { .. } => (&[(0, "x"), (1, "y")], false),
+        Layout::Strips { .. } => (&[(0, "x")], false),
+        Layout::Rings(_) => (&[(0, "r")], true),
+        Layout::Faces(f) if f.analysis == contopt_fem::Analysis::Axisymmetric => {
+            (&[(0, "r")], true)
+        }
+        Layout::Faces(_) => (&[(0, "x")], true),
+        Layout::Mesh(_) => return None,
+    };
+    let m = points_per_cell(layout);
+    axes.iter().find_map(|&(axis, along)| {
+        let line = line_through(points, peak, axis);
+        let k = line.iter().position(|&i| i == peak)?;
+        let (start, end) = run(&line, carrying, k);
+        // The cell inward from the peak's: below it at the run's high end, above it at its
+        // low end (unless that is the axis).
+        let (lo, hi) = if k + m > end {
+            (k.saturating_sub(2 * m - 1).max(start), k.checked_sub(m)?)
+        } else if k < start + m && !(symmetric_low && start == 0) {
+            (k + m, (k + 2 * m - 1).min(end))
+        } else {
+            return None;
+        };
+        if lo > hi || lo < start || hi > end {
+            return None;
+        }
+        let inward_mpa = (lo..=hi).map(|j| pressure[line[j]]).fold(0.0f64, f64::max);
+        (pressure[peak] > RISE * inward_mpa && inward_mpa > 0.0).then(|| SharpEdge {
+            along,
+            at_mm: points[peak][axis],
+            p_mpa: pressure[peak],
+            inward_mpa,
+        })
+    })
+}
+
+/// The points on the line through `peak` along `axis` (those sharing its other surface
+/// coordinate), ordered along it.
+fn line_through(points: &[[f64; 3]], peak: usize, axis: usize) -> Vec<usize> {
+    let other = 1 - axis;
+    let mut line: Vec<usize> = (0..points.len())
+        .filter(|&i| {
+            let (a, b) = (points[i][other], points[peak][other]);
+            (a - b).abs() < 1e-9 * (1.0 + b.abs())
+        })
+        .collect();
+    line.sort_by(|&a, &b| points[a][axis].total_cmp(&points[b][axis]));
+    line
+}
+
+/// The first and last positions on `line` of the carrying run holding position `k`.
+fn run(line: &[usize], carrying: &[bool], k: usize) -> (usize, usize) {
+    let mut start = k;
+    while start > 0 && carrying[line[start - 1]] {
+        start -= 1;
+    }
+    let mut end = k;
+    while end + 1 < line.len() && carrying[line[end + 1]] {
+        end += 1;
+    }
+    (start, end)
+}
