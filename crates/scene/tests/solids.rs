@@ -37,10 +37,13 @@ fn the_bundled_sphere_on_a_solid_block_against_hertz() {
     assert!((load / 2000.0 - 1.0).abs() < 1e-9, "load {load}");
 }
 
+/// Edits of a scene: dotted keys and their TOML values.
+type Edits<'a> = Vec<(&'a str, Option<&'a str>)>;
+
 /// Each edit is refused at `key` in the scene's file and line, with its words.
 #[test]
 fn errors_of_the_mesh_and_its_groups_name_the_key() {
-    let cases: Vec<(Vec<(&str, Option<&str>)>, &str, Vec<&str>)> = vec![
+    let cases: Vec<(Edits, &str, Vec<&str>)> = vec![
         (
             vec![("body.0.contact", Some("\"topp\""))],
             "body[0].contact",
