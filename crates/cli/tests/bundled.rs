@@ -153,6 +153,7 @@ every_bundled_scene!(
     cylinder_on_block: "cylinder-on-block",
     filleted_punch: "filleted-punch",
     shrink_fit: "shrink-fit",
+    sphere_on_solid_block: "sphere-on-solid-block",
 );
 
 /// The first field of a CSV row (RFC 4180: quoted when it holds a comma or a quote, quotes

@@ -9,7 +9,7 @@ use contopt_core::{
 use faer::Mat;
 
 use crate::samples::{gap_basis, nodes_of, FaceSample, Mortar};
-use crate::system::{Dof, System};
+use crate::system::System;
 use crate::{Face, FeModel};
 
 /// One interface point's normal-displacement operator: the into-body displacement at the
@@ -159,11 +159,11 @@ impl FeBody {
             gap_shape,
             rows,
         } = Sampled::new(&model, samples, &face_nodes)?;
-        let influence = condense(&system, &rows);
+        let influence = system.condense(rows.iter().map(|r| r.dofs.into_iter().zip(r.coef)));
         let condensation = condensation_start.elapsed();
 
         let solve_start = Instant::now();
-        let u = system.solve(&model, None);
+        let u = system.solve(&model.forces, None);
         let load_solve = solve_start.elapsed();
         let load_displacement = rows.iter().map(|r| r.normal_into(&u)).collect();
         let rigid_modes: Vec<RigidMode> = system
@@ -267,7 +267,7 @@ impl FeBody {
                 extra[g] -= c * f;
             }
         }
-        let mut u = self.system.solve(&self.model, Some(&extra));
+        let mut u = self.system.solve(&self.model.forces, Some(&extra));
         for (m, a) in self.system.modes.iter().zip(rigid) {
             for (ui, v) in u.iter_mut().zip(&m.values) {
                 *ui += a * v;
@@ -365,41 +365,6 @@ impl Sampled {
             rows,
         })
     }
-}
-
-/// The influence matrix A = L K⁻¹ Lᵀ (eq. 2.22) from the face block T of K⁻¹, the face
-/// unknowns being numbered last. Each row of L holds at most six unknowns (a face's three
-/// nodes), so A is formed from sparse rows — T Lᵀ, then L (T Lᵀ) — in O(points · face
-/// unknowns + points²) rather than the dense products' O(points · face unknowns²).
-fn condense(system: &System, rows: &[PointRow]) -> Mat<f64> {
-    let tail = system.factor.tail_inverse();
-    let first_tail = system.n_free - system.n_tail;
-    // The face unknowns of each row, by position in T, with their coefficients.
-    let sparse: Vec<Vec<(usize, f64)>> = rows
-        .iter()
-        .map(|r| {
-            r.dofs
-                .iter()
-                .zip(&r.coef)
-                .filter_map(|(&g, &c)| match system.dofs[g] {
-                    Dof::Free(k) if k >= first_tail => Some((k - first_tail, c)),
-                    _ => None,
-                })
-                .collect()
-        })
-        .collect();
-    // Tᵀ = T, so the columns of T Lᵀ are sums of columns of T (contiguous).
-    let mut t_lt = Mat::<f64>::zeros(system.n_tail, rows.len());
-    for (i, row) in sparse.iter().enumerate() {
-        for &(k, c) in row {
-            for (out, &v) in t_lt.col_mut(i).iter_mut().zip(tail.col(k).iter()) {
-                *out += c * v;
-            }
-        }
-    }
-    Mat::from_fn(rows.len(), rows.len(), |i, j| {
-        sparse[i].iter().map(|&(k, c)| c * t_lt[(k, j)]).sum()
-    })
 }
 
 impl ElasticBody for FeBody {

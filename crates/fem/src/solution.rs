@@ -48,7 +48,7 @@ impl FeModel {
                 "rigid-body modes are left free; add supports",
             ));
         }
-        let displacement = system.solve(self, None);
+        let displacement = system.solve(&self.forces, None);
         self.check_displacement(&displacement)?;
         Ok(Solution { displacement })
     }

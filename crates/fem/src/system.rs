@@ -196,13 +196,13 @@ impl System {
         })
     }
 
-    /// Solves for the nodal displacements (length 2·nodes) under the model's given loads plus
-    /// `extra` nodal forces (length 2·nodes).
-    pub fn solve(&self, model: &FeModel, extra: Option<&[f64]>) -> Vec<f64> {
+    /// Solves for the nodal displacements (one per global DOF) under the model's given nodal
+    /// `forces` plus `extra` nodal forces (both one per global DOF).
+    pub fn solve(&self, forces: &[f64], extra: Option<&[f64]>) -> Vec<f64> {
         let mut rhs = Mat::<f64>::zeros(self.n_free, 1);
         for (g, d) in self.dofs.iter().enumerate() {
             if let Dof::Free(i) = d {
-                rhs[(*i, 0)] = model.forces[g] + extra.map_or(0.0, |e| e[g]);
+                rhs[(*i, 0)] = forces[g] + extra.map_or(0.0, |e| e[g]);
             }
         }
         for (i, v) in self.prescribed_load.iter().enumerate() {
@@ -217,6 +217,43 @@ impl System {
                 Dof::Pinned => 0.0,
             })
             .collect()
+    }
+
+    /// The influence matrix A = L K⁻¹ Lᵀ (eq. 2.22) from the face block T of K⁻¹, the face
+    /// unknowns being numbered last; `rows` are the rows of L, each the (global DOF,
+    /// coefficient) pairs of one interface point. A row holds a face's unknowns only, so A is
+    /// formed from sparse rows — T Lᵀ, then L (T Lᵀ) — in O(points · face unknowns + points²)
+    /// rather than the dense products' O(points · face unknowns²).
+    pub fn condense<R>(&self, rows: impl IntoIterator<Item = R>) -> Mat<f64>
+    where
+        R: IntoIterator<Item = (usize, f64)>,
+    {
+        let tail = self.factor.tail_inverse();
+        let first_tail = self.n_free - self.n_tail;
+        // The face unknowns of each row, by position in T, with their coefficients.
+        let sparse: Vec<Vec<(usize, f64)>> = rows
+            .into_iter()
+            .map(|r| {
+                (r.into_iter())
+                    .filter_map(|(g, c)| match self.dofs[g] {
+                        Dof::Free(k) if k >= first_tail => Some((k - first_tail, c)),
+                        _ => None,
+                    })
+                    .collect()
+            })
+            .collect();
+        // Tᵀ = T, so the columns of T Lᵀ are sums of columns of T (contiguous).
+        let mut t_lt = Mat::<f64>::zeros(self.n_tail, sparse.len());
+        for (i, row) in sparse.iter().enumerate() {
+            for &(k, c) in row {
+                for (out, &v) in t_lt.col_mut(i).iter_mut().zip(tail.col(k).iter()) {
+                    *out += c * v;
+                }
+            }
+        }
+        Mat::from_fn(sparse.len(), sparse.len(), |i, j| {
+            sparse[i].iter().map(|&(k, c)| c * t_lt[(k, j)]).sum()
+        })
     }
 }
 

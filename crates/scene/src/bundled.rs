@@ -45,6 +45,7 @@ bundled!(
     "cylinder-on-block"["../meshes/cylinder-on-block-b8.msh"],
     "filleted-punch"["../meshes/filleted-punch.msh"],
     "shrink-fit"["../meshes/shrink-fit.msh"],
+    "sphere-on-solid-block"["../meshes/solid-block-on-grid.msh"],
 );
 
 /// The bundled scene `name`.

@@ -60,8 +60,8 @@ pub use bearing_spec::{
 };
 pub use bodies::{
     misplaced, own_surface, BodyKind, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec,
-    GroupLoad, GroupSupport, HalfSpaceBody, Placement, PunchLoad, Rigid, Side, Support, Takes,
-    WinklerBed,
+    GroupLoad, GroupSupport, HalfSpaceBody, Placement, PunchLoad, Rigid, Side, Solid, SolidAxis,
+    SolidLoad, SolidSupport, Support, Takes, WinklerBed,
 };
 pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};

@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, PoisonError};
 
 use contopt_core::{Error, Result};
-use contopt_gmsh::{GmshMesh, ImportedMesh, PhysicalName, Surfaces};
+use contopt_gmsh::{GmshMesh, ImportedMesh, ImportedSolid, PhysicalName, Surfaces, Volumes};
 
 /// The files a scene's bodies read, and those read so far.
 #[derive(Debug)]
@@ -26,6 +26,8 @@ pub struct MeshFiles {
     bundled: &'static [(&'static str, &'static [u8])],
     /// The bodies imported so far, by path and surface group.
     read: Mutex<HashMap<BodyKey, Arc<Imported>>>,
+    /// The solids imported so far, by path and volume group.
+    solids: Mutex<HashMap<BodyKey, Arc<ImportedSolid>>>,
 }
 
 /// A body of a mesh file: the file's path as the scene writes it, and its surface group.
@@ -59,6 +61,7 @@ impl MeshFiles {
             dir: dir.to_owned(),
             bundled,
             read: Mutex::new(HashMap::new()),
+            solids: Mutex::new(HashMap::new()),
         }
     }
 
@@ -80,6 +83,23 @@ impl MeshFiles {
         });
         read().insert(key, imported.clone());
         Ok(imported)
+    }
+
+    /// The solid of the mesh file `path` made of the 3-D physical group `volume` (every volume
+    /// when `None`), read and imported on the first call for this path and group; errors as
+    /// [`MeshFiles::import`]'s, Gmsh's naming the element or the group.
+    pub fn import_solid(&self, path: &str, volume: Option<&str>) -> Result<Arc<ImportedSolid>> {
+        let key = (path.to_string(), volume.map(str::to_string));
+        let read = || self.solids.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(done) = read().get(&key) {
+            return Ok(done.clone());
+        }
+        let solid = Arc::new(
+            self.file(path)?
+                .import_solid(volume.map_or(Volumes::All, Volumes::Group))?,
+        );
+        read().insert(key, solid.clone());
+        Ok(solid)
     }
 
     /// The file `path` read by Gmsh's reader: a bundled mesh, or a regular file.

@@ -29,7 +29,9 @@ use contopt_optimise::OptimisationMethod;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
-use crate::bodies::{BodyKind, FeBase, FeBlock, FeMesh, FePunch, HalfSpaceBody, Rigid, WinklerBed};
+use crate::bodies::{
+    BodyKind, FeBase, FeBlock, FeMesh, FePunch, HalfSpaceBody, Rigid, Solid, WinklerBed,
+};
 pub use crate::chosen::Chosen;
 use crate::gap::{Cylinder, Flat, FlatPunch, GapKind, Measured, RollerGap, Sphere};
 use crate::methods::{CircularSearch, Design, EnvelopeSplit, FujiwaraKawaseSearch, Gap};
@@ -368,7 +370,7 @@ impl Registry {
     }
 
     /// The library's kinds: the bodies `rigid`, `half_space`, `fe_base`, `fe_punch`,
-    /// `fe_block`, `winkler`, `fe_mesh`; the zones `grid`, `rings`, `strips`, `faces`, `mesh`;
+    /// `fe_block`, `winkler`, `fe_mesh`, `solid`; the zones `grid`, `rings`, `strips`, `faces`, `mesh`;
     /// the gaps `flat`, `sphere`, `cylinder`, `flat_punch`,
     /// `roller`, `measured`; the designs of [`OptimisationMethod`] (`given_load`,
     /// `given_displacement`, `linear_programme`, `load_split`) and a roller's
@@ -384,6 +386,7 @@ impl Registry {
             .with_body::<FeBlock>("fe_block")
             .with_body::<WinklerBed>("winkler")
             .with_body::<FeMesh>("fe_mesh")
+            .with_body::<Solid>("solid")
             .with_zone::<GridZone>("grid")
             .with_zone::<RingsZone>("rings")
             .with_zone::<StripsZone>("strips")

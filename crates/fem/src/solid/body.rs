@@ -14,9 +14,9 @@ use faer::Mat;
 use super::mesh::SolidFace;
 use super::model::SolidModel;
 use super::sample::SolidSample;
-use super::system::{Pinning, SolidSystem};
+use super::system::Pinning;
 use crate::factor::Ordering;
-use crate::system::Dof;
+use crate::system::{Dof, System};
 
 /// Below this many contact points the influence is condensed to a dense matrix by default
 /// (3000² doubles: 72 MB); above, it is applied through the factorisation.
@@ -86,7 +86,7 @@ impl Row {
 pub struct SolidBody {
     name: String,
     pub(crate) model: SolidModel,
-    pub(crate) system: SolidSystem,
+    pub(crate) system: System,
     interface: Interface,
     pub(crate) rows: Vec<Row>,
     dense: Option<Mat<f64>>,
@@ -139,7 +139,7 @@ impl SolidBody {
                 "apply the influence through the factorisation (condensation = products)",
             )?;
         }
-        let system = SolidSystem::ordered(&model, &name, tail, Pinning::Pin, settings.ordering)?;
+        let system = System::solid(&model, &name, tail, Pinning::Pin, settings.ordering)?;
         let rows: Vec<Row> = samples.iter().map(|s| s.row(model.mesh())).collect();
         let interface = Interface::new(
             Geometry::Surface,
@@ -149,10 +149,10 @@ impl SolidBody {
         )?;
         let gap_shape = gap_basis(&model, samples, &face_nodes)?;
         let start = Instant::now();
-        let dense = dense.then(|| condense(&system, &rows));
+        let dense = dense.then(|| system.condense(rows.iter().map(|r| r.entries.iter().copied())));
         let condensation = start.elapsed();
         let start = Instant::now();
-        let u = system.solve(&model, None);
+        let u = system.solve(&model.forces, None);
         let solve = start.elapsed();
         model.check_displacement(&u)?;
         let load_displacement = rows.iter().map(|r| r.normal_into(&u)).collect();
@@ -231,7 +231,7 @@ impl SolidBody {
         }
         let mut u = self
             .system
-            .solve(&self.model, Some(&self.nodal_forces(force)));
+            .solve(&self.model.forces, Some(&self.nodal_forces(force)));
         for (m, a) in self.system.modes.iter().zip(rigid) {
             for (ui, v) in u.iter_mut().zip(&m.values) {
                 *ui += a * v;
@@ -329,34 +329,6 @@ fn gap_basis(
         .collect();
     let nodes = face_nodes.iter().map(|&k| mesh.nodes()[k]).collect();
     GapShape::new(nodes, rows)
-}
-
-/// The dense influence A = L T Lᵀ from the face block T of K⁻¹ (face unknowns last).
-fn condense(system: &SolidSystem, rows: &[Row]) -> Mat<f64> {
-    let tail = system.factor.tail_inverse();
-    let first_tail = system.n_free - system.n_tail;
-    let sparse: Vec<Vec<(usize, f64)>> = rows
-        .iter()
-        .map(|r| {
-            (r.entries.iter())
-                .filter_map(|&(g, c)| match system.dofs[g] {
-                    Dof::Free(k) if k >= first_tail => Some((k - first_tail, c)),
-                    _ => None,
-                })
-                .collect()
-        })
-        .collect();
-    let mut t_lt = Mat::<f64>::zeros(system.n_tail, rows.len());
-    for (i, row) in sparse.iter().enumerate() {
-        for &(k, c) in row {
-            for (out, &v) in t_lt.col_mut(i).iter_mut().zip(tail.col(k).iter()) {
-                *out += c * v;
-            }
-        }
-    }
-    Mat::from_fn(rows.len(), rows.len(), |i, j| {
-        sparse[i].iter().map(|&(k, c)| c * t_lt[(k, j)]).sum()
-    })
 }
 
 impl ElasticBody for SolidBody {

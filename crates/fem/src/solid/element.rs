@@ -9,10 +9,12 @@
 // Loops over the axes x, y, z index several arrays at once, as the formulas do.
 #![allow(clippy::needless_range_loop)]
 
+use crate::element::{lagrange2, ElementKind, GAUSS3, MAX_NODES};
+
 /// Most nodes of a solid element (the 27-node hexahedron).
 pub const MAX_SOLID_NODES: usize = 27;
 /// Most nodes of a face (the 9-node quadrilateral).
-pub const MAX_FACE_NODES: usize = 9;
+pub const MAX_FACE_NODES: usize = MAX_NODES;
 
 /// Reference coordinates of the hexahedra's nodes in Gmsh's order: 8 corners, 12 mid-edge
 /// nodes, 6 face centres and the centre (the 20-node element has the first 20).
@@ -113,46 +115,11 @@ pub struct FaceShape {
 /// One quadrature point of a reference element: coordinates and weight.
 pub type QuadraturePoint = ([f64; 3], f64);
 
-/// Gauss–Legendre points and weights on [−1, 1], three points (exact to degree 5).
-const GAUSS3: [(f64, f64); 3] = [
-    (-0.774_596_669_241_483_4, 5.0 / 9.0),
-    (0.0, 8.0 / 9.0),
-    (0.774_596_669_241_483_4, 5.0 / 9.0),
-];
-
 /// The 4-point rule of the tetrahedron, exact to degree 2 (Keast): a stiffness of straight
 /// 10-node tetrahedra exactly; the barycentric coordinates (a, b, b, b) and permutations.
 const TET4_A: f64 = 0.585_410_196_624_968_5;
 /// See [`TET4_A`].
 const TET4_B: f64 = 0.138_196_601_125_010_5;
-
-/// The 6-point rule of the triangle (Strang–Fix), exact to degree 4: loads on curved faces.
-const TRI6_RULE: [([f64; 2], f64); 6] = [
-    (
-        [0.445_948_490_915_965, 0.445_948_490_915_965],
-        0.111_690_794_839_005,
-    ),
-    (
-        [0.108_103_018_168_070, 0.445_948_490_915_965],
-        0.111_690_794_839_005,
-    ),
-    (
-        [0.445_948_490_915_965, 0.108_103_018_168_070],
-        0.111_690_794_839_005,
-    ),
-    (
-        [0.091_576_213_509_771, 0.091_576_213_509_771],
-        0.054_975_871_827_661,
-    ),
-    (
-        [0.816_847_572_980_459, 0.091_576_213_509_771],
-        0.054_975_871_827_661,
-    ),
-    (
-        [0.091_576_213_509_771, 0.816_847_572_980_459],
-        0.054_975_871_827_661,
-    ),
-];
 
 impl SolidKind {
     /// Every kind.
@@ -324,21 +291,10 @@ fn hex20(p: [f64; 3], s: &mut SolidShape) {
     }
 }
 
-/// The quadratic Lagrange polynomial on {−1, 0, 1} that is 1 at `node` and its derivative.
-fn lagrange(node: f64, x: f64) -> (f64, f64) {
-    if node < 0.0 {
-        (0.5 * x * (x - 1.0), x - 0.5)
-    } else if node > 0.0 {
-        (0.5 * x * (x + 1.0), x + 0.5)
-    } else {
-        (1.0 - x * x, -2.0 * x)
-    }
-}
-
 /// 27-node Lagrange hexahedron: products of quadratic Lagrange polynomials.
 fn hex27(p: [f64; 3], s: &mut SolidShape) {
     for (a, r) in HEX_NODES.iter().enumerate() {
-        let l: [(f64, f64); 3] = std::array::from_fn(|c| lagrange(r[c], p[c]));
+        let l: [(f64, f64); 3] = std::array::from_fn(|c| lagrange2(r[c], p[c]));
         s.n[a] = l[0].0 * l[1].0 * l[2].0;
         s.d[a] = [
             l[0].1 * l[1].0 * l[2].0,
@@ -366,65 +322,25 @@ impl FaceKind {
         }
     }
 
-    /// Shape functions and (s, t) derivatives: the quadratic triangle (corners, then the
-    /// sides 0–1, 1–2, 2–0) or quadrilateral (corners, sides 0–1, 1–2, 2–3, 3–0, centre).
-    pub fn shape(self, st: [f64; 2]) -> FaceShape {
-        let mut f = FaceShape {
-            n: [0.0; MAX_FACE_NODES],
-            d: [[0.0; 2]; MAX_FACE_NODES],
-        };
+    /// The plane element whose shape functions the face's are, in the same node order: the
+    /// 6-node triangle, the 8-node serendipity or the 9-node Lagrange quadrilateral.
+    pub const fn plane_kind(self) -> ElementKind {
         match self {
-            FaceKind::Tri6 => {
-                let l = [1.0 - st[0] - st[1], st[0], st[1]];
-                let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
-                for i in 0..3 {
-                    f.n[i] = l[i] * (2.0 * l[i] - 1.0);
-                    f.d[i] = dl[i].map(|d| (4.0 * l[i] - 1.0) * d);
-                    let j = (i + 1) % 3;
-                    f.n[3 + i] = 4.0 * l[i] * l[j];
-                    f.d[3 + i] = [0, 1].map(|c| 4.0 * (dl[i][c] * l[j] + l[i] * dl[j][c]));
-                }
-            }
-            FaceKind::Quad8 => {
-                const CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
-                const MIDS: [[f64; 2]; 4] = [[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]];
-                let [s, t] = st;
-                for (a, r) in CORNERS.iter().enumerate() {
-                    let (fs, ft) = (1.0 + s * r[0], 1.0 + t * r[1]);
-                    let sum = s * r[0] + t * r[1] - 1.0;
-                    f.n[a] = 0.25 * fs * ft * sum;
-                    f.d[a] = [0.25 * r[0] * ft * (sum + fs), 0.25 * r[1] * fs * (sum + ft)];
-                }
-                for (k, r) in MIDS.iter().enumerate() {
-                    f.n[4 + k] = if r[0] == 0.0 {
-                        f.d[4 + k] = [-s * (1.0 + t * r[1]), 0.5 * (1.0 - s * s) * r[1]];
-                        0.5 * (1.0 - s * s) * (1.0 + t * r[1])
-                    } else {
-                        f.d[4 + k] = [0.5 * (1.0 - t * t) * r[0], -t * (1.0 + s * r[0])];
-                        0.5 * (1.0 - t * t) * (1.0 + s * r[0])
-                    };
-                }
-            }
-            FaceKind::Quad9 => {
-                const NODES: [[f64; 2]; 9] = [
-                    [-1.0, -1.0],
-                    [1.0, -1.0],
-                    [1.0, 1.0],
-                    [-1.0, 1.0],
-                    [0.0, -1.0],
-                    [1.0, 0.0],
-                    [0.0, 1.0],
-                    [-1.0, 0.0],
-                    [0.0, 0.0],
-                ];
-                for (a, r) in NODES.iter().enumerate() {
-                    let (ls, lt) = (lagrange(r[0], st[0]), lagrange(r[1], st[1]));
-                    f.n[a] = ls.0 * lt.0;
-                    f.d[a] = [ls.1 * lt.0, ls.0 * lt.1];
-                }
-            }
+            FaceKind::Tri6 => ElementKind::T6,
+            FaceKind::Quad8 => ElementKind::Q8,
+            FaceKind::Quad9 => ElementKind::Q9,
         }
-        f
+    }
+
+    /// Shape functions and (s, t) derivatives: the quadratic triangle (corners, then the
+    /// sides 0–1, 1–2, 2–0) or quadrilateral (corners, sides 0–1, 1–2, 2–3, 3–0, centre), the
+    /// plane element's ([`FaceKind::plane_kind`]).
+    pub fn shape(self, st: [f64; 2]) -> FaceShape {
+        let s = self.plane_kind().shape(st[0], st[1]);
+        FaceShape {
+            n: s.n,
+            d: std::array::from_fn(|a| [s.dxi[a], s.deta[a]]),
+        }
     }
 
     /// Whether (s, t) lies on the reference face, to `slack`.
@@ -452,16 +368,13 @@ impl FaceKind {
         self.load_points()
     }
 
-    /// The load quadrature of a face: 6 points on a triangle (degree 4), 3 × 3 Gauss points on
-    /// a quadrilateral (degree 5), so that pressures on curved faces integrate well.
+    /// The load quadrature of a face, the plane element's integration rule
+    /// ([`ElementKind::integration_points`]): 6 points on a triangle (degree 4), 3 × 3 Gauss
+    /// points on a quadrilateral (degree 5), so that pressures on curved faces integrate well.
     pub fn load_points(self) -> Vec<([f64; 2], f64)> {
-        match self {
-            FaceKind::Tri6 => TRI6_RULE.to_vec(),
-            FaceKind::Quad8 | FaceKind::Quad9 => GAUSS3
-                .iter()
-                .flat_map(|&(t, wt)| GAUSS3.iter().map(move |&(s, ws)| ([s, t], ws * wt)))
-                .collect(),
-        }
+        (self.plane_kind().integration_points().iter())
+            .map(|p| ([p.xi, p.eta], p.weight))
+            .collect()
     }
 }
 

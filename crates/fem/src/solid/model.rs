@@ -9,7 +9,9 @@ use contopt_core::{check, Error, Material, Result, StressTensor};
 
 use super::element::MAX_SOLID_NODES;
 use super::mesh::{SolidFace, SolidMesh};
-use super::system::SolidSystem;
+use super::system::Pinning;
+use crate::factor::Ordering;
+use crate::system::System;
 
 /// A direction of space.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -242,8 +244,8 @@ impl SolidModel {
     /// Solves the supported model under its given loads: nodal displacements (3 per node).
     /// Errors when the supports leave a rigid motion free.
     pub fn solve(&self) -> Result<Vec<f64>> {
-        let system = SolidSystem::new(self, "model", &[], super::system::Pinning::Refuse)?;
-        let u = system.solve(self, None);
+        let system = System::solid(self, "model", &[], Pinning::Refuse, Ordering::Amd)?;
+        let u = system.solve(&self.forces, None);
         check::all_derived("loads", "the given loads", "the displacements", &u)?;
         Ok(u)
     }

@@ -1,13 +1,13 @@
-//! The assembled and factorised stiffness system of a solid, with its free rigid motions.
+//! The assembled and factorised stiffness system ([`System`]) of a solid, with its free rigid
+//! motions.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use contopt_core::{memory, Error, Result};
-use faer::Mat;
 
 use super::model::SolidModel;
 use crate::factor::{Factor, Ordering};
-use crate::system::{free_rigid_modes, pins, Dof, RigidMotion, Triplets};
+use crate::system::{free_rigid_modes, pins, Dof, RigidMotion, System, Triplets};
 
 /// What to do with rigid motions the supports leave free.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,33 +22,11 @@ pub(crate) enum Pinning {
 /// value, and their sorted copy in the sparse matrix.
 const BYTES_PER_ENTRY: u64 = 2 * (16 + 8);
 
-/// The stiffness of a solid's free unknowns, factorised, the unknowns of the tail nodes last.
-pub(crate) struct SolidSystem {
-    pub dofs: Vec<Dof>,
-    pub n_free: usize,
-    pub n_tail: usize,
-    pub modes: Vec<RigidMotion>,
-    pub prescribed_load: Vec<f64>,
-    pub factor: Factor,
-    pub assembly_time: Duration,
-    pub factorisation_time: Duration,
-}
-
-impl SolidSystem {
-    /// Numbers, assembles and factorises `model`'s stiffness with the unknowns of
-    /// `tail_nodes` last (AMD on the others).
-    pub fn new(
-        model: &SolidModel,
-        name: &str,
-        tail_nodes: &[usize],
-        pinning: Pinning,
-    ) -> Result<Self> {
-        Self::ordered(model, name, tail_nodes, pinning, Ordering::Amd)
-    }
-
-    /// As [`SolidSystem::new`] with the leading unknowns ordered by `ordering`. The assembly's
-    /// memory is checked before it is allocated, the factor's after the symbolic analysis.
-    pub fn ordered(
+impl System {
+    /// Numbers, assembles and factorises a solid `model`'s stiffness with the unknowns of
+    /// `tail_nodes` last, the others ordered by `ordering`. The assembly's memory is checked
+    /// before it is allocated, the factor's after the symbolic analysis.
+    pub fn solid(
         model: &SolidModel,
         name: &str,
         tail_nodes: &[usize],
@@ -95,41 +73,6 @@ impl SolidSystem {
             assembly_time,
             factorisation_time: start.elapsed(),
         })
-    }
-
-    /// The right-hand side over the free unknowns of the given loads plus `extra` nodal
-    /// forces (3 per node), less the effect of prescribed displacements.
-    fn rhs(&self, model: &SolidModel, extra: Option<&[f64]>) -> Mat<f64> {
-        let mut rhs = Mat::<f64>::zeros(self.n_free, 1);
-        for (g, d) in self.dofs.iter().enumerate() {
-            if let Dof::Free(i) = d {
-                rhs[(*i, 0)] = model.forces[g] + extra.map_or(0.0, |e| e[g]);
-            }
-        }
-        for (i, v) in self.prescribed_load.iter().enumerate() {
-            rhs[(i, 0)] -= v;
-        }
-        rhs
-    }
-
-    /// Nodal displacements (3 per node) under the given loads plus `extra` nodal forces.
-    pub fn solve(&self, model: &SolidModel, extra: Option<&[f64]>) -> Vec<f64> {
-        let mut rhs = self.rhs(model, extra);
-        self.factor.solve_in_place(rhs.as_mut());
-        self.expand(&rhs)
-    }
-
-    /// The nodal displacements of the free unknowns' values `x` (prescribed values in place,
-    /// pinned ones zero).
-    fn expand(&self, x: &Mat<f64>) -> Vec<f64> {
-        self.dofs
-            .iter()
-            .map(|d| match *d {
-                Dof::Free(i) => x[(i, 0)],
-                Dof::Prescribed(v) => v,
-                Dof::Pinned => 0.0,
-            })
-            .collect()
     }
 }
 

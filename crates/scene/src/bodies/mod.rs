@@ -8,12 +8,14 @@
 //! surface (finite elements, half-spaces) build it from the zone; the others (a rigid body, a
 //! Winkler bed) take the zone's surface, or their partner's on finite-element faces. An
 //! imported body (`fe_mesh`) brings its own mesh and offers its model to a zone of imported
-//! meshes, which pairs two of them before either is condensed ([`BodyKind::part`]).
+//! meshes, which pairs two of them before either is condensed ([`BodyKind::part`]). A solid
+//! (`solid`) brings its own 3-D mesh and stands on a grid, read at its cells.
 
 mod fe;
 mod fe_mesh;
 mod half_space;
 mod rigid;
+mod solid;
 mod winkler;
 
 use std::path::Path;
@@ -30,6 +32,7 @@ pub use fe::{FeBase, FeBlock, FePunch, PunchLoad, Support};
 pub use fe_mesh::{Direction, FeMesh, GroupLoad, GroupSupport};
 pub use half_space::{FreeEndsSpec, HalfSpaceBody};
 pub use rigid::Rigid;
+pub use solid::{Solid, SolidAxis, SolidLoad, SolidSupport};
 pub use winkler::WinklerBed;
 
 /// Which side of the zone a body is on.
