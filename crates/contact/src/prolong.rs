@@ -23,6 +23,9 @@ pub(crate) fn prolong(
         out.extend(parent.iter().map(|&c| coarse[c]));
         return;
     };
+    // Room for the whole: grown step by step, the vector would hold its old and new
+    // buffers at once.
+    out.reserve(nx * ny);
     let (fx, fy) = (nx.div_ceil(cx), ny.div_ceil(cy));
     for j in 0..ny {
         let (j0, j1, t) = between(j, fy, cy);
