@@ -23,6 +23,7 @@ pub mod parallel;
 mod penalty;
 mod polonsky_keer;
 mod problem;
+mod prolong;
 mod qp;
 mod settings;
 mod solver;

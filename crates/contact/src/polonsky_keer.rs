@@ -11,6 +11,7 @@ use contopt_core::{check, ContactState, Error, Quantity, Residuals, Result, Stal
 use serde::{Deserialize, Serialize};
 
 use crate::problem::Derived;
+use crate::prolong::prolong;
 use crate::watch::{self, Watch};
 use crate::workspace::refill;
 use crate::{problem, ContactSolver, InterfaceProblem, Workspace};
@@ -263,8 +264,10 @@ impl PolonskyKeer {
 
     /// Solves from the start in `ws.p` when `warm`; a cold start (or a start without pressure)
     /// on a problem with a coarser version ([`InterfaceProblem::coarsen`]) starts from the
-    /// coarse solution (itself found so, to [`NESTED_TOLERANCE`]), each point given its coarse
-    /// point's pressure. Its steps count with the solve's, and number the fine ones on; they are
+    /// coarse solution (itself found so, to [`NESTED_TOLERANCE`]), carried to each point by
+    /// [`prolong`]: on a cell grid, interpolated between the coarse cells about it (one fine
+    /// step fewer than each point taking its coarse point's pressure, for Hertz and the flat
+    /// punch at 1024² cells). Its steps count with the solve's, and number the fine ones on; they are
     /// reported one level deeper (a solve that this one runs), so that an observer tells the
     /// fine grid's steps, the costly ones, from the coarser grids' (a quarter of the cost each
     /// level down).
@@ -291,6 +294,7 @@ impl PolonskyKeer {
         let deeper = Nested(watch.observer());
         let coarse_watch = Watch::new(&deeper, self.method());
         let solved = nested.solve_nested(coarse.problem(), false, coarse_watch, ws);
+        let grids = problem.cell_grid().zip(coarse.problem().cell_grid());
         ws.derived.give_back(coarse, &mut ws.index);
         if solved.is_err() || !ws.state.is_converged() {
             ws.derived.done_with(&mut ws.index);
@@ -300,8 +304,7 @@ impl PolonskyKeer {
             }
             return self.solve_cropped(problem, warm, watch, ws);
         }
-        ws.p.clear();
-        ws.p.extend(ws.index.iter().map(|&c| ws.state.pressure[c]));
+        prolong(&ws.state.pressure, &ws.index, grids, &mut ws.p);
         // Unless the workspace keeps them, neither the coarse problem nor its parent index (a
         // usize per point) is held through the fine solve: at 2048² cells the index is 32 MiB
         // of its peak.

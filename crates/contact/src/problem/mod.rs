@@ -13,7 +13,8 @@ use std::sync::Arc;
 
 use contopt_core::observe::Method;
 use contopt_core::{
-    check, ContactState, ElasticBody, Error, GapShape, Interface, Residuals, Result, Termination,
+    check, ContactState, ElasticBody, Error, GapShape, InfluenceShape, Interface, Residuals,
+    Result, Termination,
 };
 use faer::linalg::solvers::{Llt, Solve};
 use faer::{Mat, Side};
@@ -497,6 +498,21 @@ impl<'a> InterfaceProblem<'a> {
         let dense = Dense::new(self.dense_limit());
         let part = InterfaceProblem::assemble(operator, modes, gaps, dense).ok()?;
         Some((part, index))
+    }
+
+    /// The cells (nx, ny) of the grid whose cells are the problem's points, x fastest: a
+    /// body's that is a cell grid ([`InfluenceShape::CellGrid`]) when the bodies pair their
+    /// points in order and no pressure basis stands between; else `None`.
+    pub(crate) fn cell_grid(&self) -> Option<[usize; 2]> {
+        if !self.operator.pairs_in_order() || self.pressure_basis.is_some() {
+            return None;
+        }
+        (0..2)
+            .find_map(|k| match self.operator.body(k).influence_shape()? {
+                (InfluenceShape::CellGrid { cells, .. }, _) => Some(cells),
+                _ => None,
+            })
+            .filter(|[nx, ny]| nx * ny == self.len())
     }
 
     /// The problem on coarser bodies ([`ElasticBody::coarsen`]), with the coarse point of
