@@ -6,6 +6,7 @@ use contopt_core::{memory, Error, Result};
 use faer::Mat;
 
 use super::model::SolidModel;
+use crate::dissection::unknown_order;
 use crate::factor::{Factor, Ordering};
 use crate::system::{free_rigid_modes, pins, Dof, RigidMotion, Triplets};
 
@@ -84,7 +85,15 @@ impl SolidSystem {
         drop(triplets.idx);
         let assembly_time = start.elapsed();
         let start = Instant::now();
-        let factor = Factor::ordered(matrix.as_ref(), n_tail, name, ordering)?;
+        let factor = match ordering {
+            Ordering::Dissection => {
+                let mesh = &model.mesh;
+                let elements = (0..mesh.n_elements()).map(|e| mesh.element(e));
+                let order = unknown_order(mesh.nodes(), elements, &dofs, n_free - n_tail);
+                Factor::permuted(matrix.as_ref(), n_tail, name, order)?
+            }
+            _ => Factor::ordered(matrix.as_ref(), n_tail, name, ordering)?,
+        };
         Ok(Self {
             dofs,
             n_free,
