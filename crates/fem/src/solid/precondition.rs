@@ -123,3 +123,32 @@ fn symmetry_planes(model: &SolidModel) -> Vec<(usize, f64)> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solid::{Axis, SolidKind, SolidMesh};
+    use contopt_core::Material;
+
+    /// The quarter block of the scaling example: x = 0 and y = 0 held along their normals are
+    /// symmetry planes (four images); the clamped bottom and the free faces are not.
+    #[test]
+    fn symmetry_planes_are_the_planes_held_along_their_normals() {
+        let mesh = SolidMesh::block(SolidKind::Hex20, [2.0, 3.0, 4.0], [2, 2, 2]).unwrap();
+        let mut model = SolidModel::new(mesh, Material::new(2.0e5, 0.3).unwrap());
+        let on = |c: usize, v: f64| move |x: [f64; 3]| (x[c] - v).abs() < 1e-9;
+        let x0 = model.mesh().nodes_where(on(0, 0.0));
+        let y0 = model.mesh().nodes_where(on(1, 0.0));
+        let bottom = model.mesh().nodes_where(on(2, 0.0));
+        model.fix(&x0, Axis::X).unwrap();
+        model.fix(&y0, Axis::Y).unwrap();
+        for axis in Axis::ALL {
+            model.fix(&bottom, axis).unwrap();
+        }
+        assert_eq!(symmetry_planes(&model), vec![(0, 0.0), (1, 0.0)]);
+        let images = images(&model);
+        assert_eq!(images.len(), 4);
+        let far = images[3].apply([0.5, 1.0, 4.0]);
+        assert_eq!(far, [-0.5, -1.0, 4.0]);
+    }
+}
