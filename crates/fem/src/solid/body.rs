@@ -431,7 +431,8 @@ impl ElasticBody for SolidBody {
         }
     }
 
-    /// Boussinesq's half-space among the interface points ([`HalfSpaceInverse`]).
+    /// Boussinesq's half-space among the interface points, with the symmetry planes' images
+    /// (module `solid::precondition`); none above [`crate::solid::PRECONDITIONED_POINTS`].
     fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
         let inverse = self
             .preconditioner
