@@ -8,11 +8,13 @@
 //!
 //! ```text
 //! cargo run --release --example solid_scaling            # sizes 1..=4 (4: ~54 000 nodes)
-//! cargo run --release --example solid_scaling -- 2 amd natural   # one size, both orderings
+//! cargo run --release --example solid_scaling -- 2 amd natural dissection   # one size, three orderings
+//! cargo run --release --example solid_scaling -- 4 dissection dense   # the influence condensed once
 //! ```
 //!
-//! Columns: nodes and free unknowns; contact points; `assemble` the element integration and
-//! assembly; `factor` ordering, symbolic and numeric Cholesky; nnz(L); one product (a solve);
+//! Columns: nodes and free unknowns; contact points; the ordering; the influence's form;
+//! `assemble` the element integration and assembly; `factor` ordering, symbolic and numeric
+//! Cholesky; `condense` the dense influence (zero for products); nnz(L); one product (a solve);
 //! the contact solve (its products); the peak heap of the whole case; p_max.
 
 use std::time::Instant;
@@ -64,14 +66,18 @@ fn block(k: usize) -> Result<SolidModel> {
     Ok(model)
 }
 
-fn run(k: usize, ordering: Ordering) -> std::result::Result<(), Box<dyn std::error::Error>> {
+fn run(
+    k: usize,
+    ordering: Ordering,
+    condensation: Condensation,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let heap = PeakAlloc::start();
     let model = block(k)?;
     let contact = model
         .mesh()
         .faces_where(|x| x[2].abs() < 1e-9 && x[0] <= 2.0 + 1e-9 && x[1] <= 6.0 + 1e-9);
     let settings = SolidSettings {
-        condensation: Condensation::Products,
+        condensation,
         ordering,
     };
     let body = SolidBody::new("block", model, &contact, settings)?;
@@ -88,13 +94,15 @@ fn run(k: usize, ordering: Ordering) -> std::result::Result<(), Box<dyn std::err
     let s = body.stats();
     let p_max = state.pressure.iter().fold(0.0f64, |m, &p| m.max(p));
     println!(
-        "| {:>6} | {:>7} | {:>5} | {:?} | {:>7.2} | {:>7.2} | {:>6.1} | {:>6.3} | {:>6.2} | {:>6} | {:>6.0} | {:>7.1} |",
+        "| {:>6} | {:>7} | {:>5} | {:?} | {} | {:>7.2} | {:>7.2} | {:>6.2} | {:>6.1} | {:>6.3} | {:>6.2} | {:>6} | {:>6.0} | {:>7.1} |",
         s.nodes,
         s.unknowns,
         body.interface().len(),
         ordering,
+        if s.dense { "dense" } else { "products" },
         s.assembly.as_secs_f64(),
         s.factorisation.as_secs_f64(),
+        s.condensation.as_secs_f64(),
         s.factor_nnz as f64 / 1e6,
         s.solve.as_secs_f64(),
         solve.as_secs_f64(),
@@ -113,16 +121,29 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         Some(k) => vec![k],
         None => (1..=4).collect(),
     };
-    let orderings: Vec<Ordering> = if args.iter().any(|a| a == "natural") {
-        vec![Ordering::Amd, Ordering::Natural]
+    let mut orderings: Vec<Ordering> = args
+        .iter()
+        .filter_map(|a| match a.as_str() {
+            "amd" => Some(Ordering::Amd),
+            "natural" => Some(Ordering::Natural),
+            "dissection" => Some(Ordering::Dissection),
+            _ => None,
+        })
+        .collect();
+    // `dense`: the influence condensed once (a block of solves) instead of products.
+    let condensation = if args.iter().any(|a| a == "dense") {
+        Condensation::Dense
     } else {
-        vec![Ordering::Amd]
+        Condensation::Products
     };
-    println!("| nodes | unknowns | points | ordering | assemble s | factor s | nnz(L) M | product s | contact s | steps | peak MiB | p_max MPa |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    if orderings.is_empty() {
+        orderings.push(Ordering::Dissection);
+    }
+    println!("| nodes | unknowns | points | ordering | influence | assemble s | factor s | condense s | nnz(L) M | product s | contact s | steps | peak MiB | p_max MPa |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for k in sizes {
         for &ordering in &orderings {
-            run(k, ordering)?;
+            run(k, ordering, condensation)?;
         }
     }
     Ok(())

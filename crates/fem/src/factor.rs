@@ -35,6 +35,9 @@ pub enum Ordering {
     Amd,
     /// The unknowns as numbered (no reordering): the baseline AMD is measured against.
     Natural,
+    /// Nested dissection of the mesh's nodes by their coordinates: solids only, where the
+    /// nodes are known; a factor given a matrix alone orders it by AMD.
+    Dissection,
 }
 
 /// A numeric Cholesky factor with its symbolic analysis kept for reuse.
@@ -62,19 +65,19 @@ impl Factor {
         ordering: Ordering,
     ) -> Result<Self> {
         let n = a.nrows();
-        let n_int = n - n_tail;
-        let sym = a.symbolic();
-        let col_ptr = sym.col_ptr();
-        let interior = SymbolicSparseColMatRef::new_checked(
-            n_int,
-            n_int,
-            &col_ptr[..=n_int],
-            None,
-            &sym.row_idx()[..col_ptr[n_int]],
-        );
         let mut fwd: Vec<usize> = (0..n).collect();
-        let mut inv: Vec<usize> = (0..n).collect();
-        if ordering == Ordering::Amd {
+        if ordering != Ordering::Natural {
+            let n_int = n - n_tail;
+            let sym = a.symbolic();
+            let col_ptr = sym.col_ptr();
+            let interior = SymbolicSparseColMatRef::new_checked(
+                n_int,
+                n_int,
+                &col_ptr[..=n_int],
+                None,
+                &sym.row_idx()[..col_ptr[n_int]],
+            );
+            let mut inv: Vec<usize> = (0..n).collect();
             let mut mem =
                 MemBuffer::new(amd::order_scratch::<usize>(n_int, interior.compute_nnz()));
             amd::order(
@@ -88,6 +91,23 @@ impl Factor {
                 body: body.into(),
                 detail: format!("ordering failed: {e:?}"),
             })?;
+        }
+        Self::permuted(a, n_tail, body, fwd)
+    }
+
+    /// As [`Factor::new`] with the leading unknowns eliminated in the order `fwd` (position →
+    /// unknown; its last `n_tail` entries the trailing unknowns in place).
+    pub fn permuted(
+        a: SparseColMatRef<'_, usize, f64>,
+        n_tail: usize,
+        body: &str,
+        fwd: Vec<usize>,
+    ) -> Result<Self> {
+        let n = a.nrows();
+        let sym = a.symbolic();
+        let mut inv = vec![0; n];
+        for (position, &unknown) in fwd.iter().enumerate() {
+            inv[unknown] = position;
         }
         let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
         let symbolic = factorize_symbolic_cholesky(

@@ -12,6 +12,7 @@
 mod analysis;
 mod body;
 pub mod coupled;
+mod dissection;
 pub mod element;
 mod factor;
 mod fields;

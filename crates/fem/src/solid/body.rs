@@ -13,6 +13,7 @@ use faer::Mat;
 
 use super::mesh::SolidFace;
 use super::model::SolidModel;
+use super::precondition::HalfSpaceInverse;
 use super::sample::SolidSample;
 use super::system::Pinning;
 use crate::factor::Ordering;
@@ -94,6 +95,8 @@ pub struct SolidBody {
     rigid_modes: Vec<RigidMode>,
     gap_shape: GapShape,
     stats: SolidStats,
+    /// Built at the first preconditioned step.
+    preconditioner: std::sync::OnceLock<Option<HalfSpaceInverse>>,
 }
 
 impl SolidBody {
@@ -186,6 +189,7 @@ impl SolidBody {
             rigid_modes,
             gap_shape,
             stats,
+            preconditioner: std::sync::OnceLock::new(),
         };
         if let Some(a) = &body.dense {
             let flat: Vec<f64> = (0..n)
@@ -397,6 +401,18 @@ impl ElasticBody for SolidBody {
                 Some(block)
             }
         }
+    }
+
+    /// Boussinesq's half-space among the interface points, with the symmetry planes' images
+    /// (module `solid::precondition`); none above [`crate::solid::PRECONDITIONED_POINTS`].
+    fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
+        let inverse = self
+            .preconditioner
+            .get_or_init(|| HalfSpaceInverse::new(&self.model, &self.interface));
+        inverse
+            .as_ref()
+            .map(|b| b.apply(displacement, force))
+            .is_some()
     }
 
     fn load_displacement(&self) -> Result<Vec<f64>> {

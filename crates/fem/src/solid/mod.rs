@@ -9,6 +9,7 @@ mod element;
 mod fields;
 mod mesh;
 mod model;
+mod precondition;
 mod sample;
 mod system;
 
@@ -16,4 +17,5 @@ pub use body::{Condensation, SolidBody, SolidSettings, SolidStats, DENSE_POINTS}
 pub use element::{FaceKind, SolidKind, MAX_FACE_NODES, MAX_SOLID_NODES};
 pub use mesh::{element_fault, ElementFault, FacePoint, SolidFace, SolidMesh};
 pub use model::{Axis, SolidModel};
+pub use precondition::PRECONDITIONED_POINTS;
 pub use sample::SolidSample;

@@ -6,6 +6,7 @@ use std::time::Instant;
 use contopt_core::{memory, Error, Result};
 
 use super::model::SolidModel;
+use crate::dissection::unknown_order;
 use crate::factor::{Factor, Ordering};
 use crate::system::{free_rigid_modes, pins, Dof, RigidMotion, System, Triplets};
 
@@ -62,7 +63,15 @@ impl System {
         drop(triplets.idx);
         let assembly_time = start.elapsed();
         let start = Instant::now();
-        let factor = Factor::ordered(matrix.as_ref(), n_tail, name, ordering)?;
+        let factor = match ordering {
+            Ordering::Dissection => {
+                let mesh = &model.mesh;
+                let elements = (0..mesh.n_elements()).map(|e| mesh.element(e));
+                let order = unknown_order(mesh.nodes(), elements, &dofs, n_free - n_tail);
+                Factor::permuted(matrix.as_ref(), n_tail, name, order)?
+            }
+            _ => Factor::ordered(matrix.as_ref(), n_tail, name, ordering)?,
+        };
         Ok(Self {
             dofs,
             n_free,
