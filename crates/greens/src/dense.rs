@@ -56,7 +56,11 @@ impl DenseCompliance {
         let size = format!("{rows} × {columns}");
         if rows.checked_mul(columns) != Some(entries.len()) {
             let given = format!("{} entries", entries.len());
-            return Err(Error::invalid("compliance", given, format!("{size} entries")));
+            return Err(Error::invalid(
+                "compliance",
+                given,
+                format!("{size} entries"),
+            ));
         }
         if rows != columns {
             return Err(Error::invalid("compliance", size, "a square matrix"));
@@ -202,7 +206,13 @@ mod tests {
 
     fn line(n: usize) -> Interface {
         let points = (0..n).map(|i| [i as f64, 0.0, 0.0]).collect();
-        Interface::new(Geometry::Surface, points, vec![1.0; n], vec![[0.0, 0.0, 1.0]; n]).unwrap()
+        Interface::new(
+            Geometry::Surface,
+            points,
+            vec![1.0; n],
+            vec![[0.0, 0.0, 1.0]; n],
+        )
+        .unwrap()
     }
 
     fn refused(shape: [usize; 2], entries: &[f64]) -> String {
@@ -218,7 +228,10 @@ mod tests {
         let e = refused([1, 4], &[1.0; 4]);
         assert_eq!(e, "invalid compliance = 1 × 4: a square matrix");
         let e = refused([1, 1], &[1.0]);
-        assert!(e.starts_with("invalid compliance = 1 × 1: 2 × 2, one row"), "{e}");
+        assert!(
+            e.starts_with("invalid compliance = 1 × 1: 2 × 2, one row"),
+            "{e}"
+        );
         let e = refused([2, 2], &[1.0, f64::NAN, 0.0, 1.0]);
         assert_eq!(e, "invalid compliance[0, 1] = NaN: must be finite");
         let e = refused([2, 2], &[1.0, 0.5, 0.4, 1.0]);

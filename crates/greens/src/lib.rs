@@ -30,9 +30,7 @@ mod subsurface_2d;
 mod winkler;
 
 pub use axisymmetric::AxisymmetricHalfSpace;
-pub use dense::{
-    dense_compliance_bytes, DenseCompliance, PIVOT_TOLERANCE, SYMMETRY_TOLERANCE,
-};
+pub use dense::{dense_compliance_bytes, DenseCompliance, PIVOT_TOLERANCE, SYMMETRY_TOLERANCE};
 pub use free_ends::FreeEnds;
 pub use half_plane::{HalfPlane, PlaneState};
 pub use half_space::HalfSpace;
