@@ -12,6 +12,10 @@ errors against the closed forms, then our Python call against the same solve fro
 
 The interpreter needs contopt (built optimised: `pip install ./crates/python`) and the peers'
 requirements (their README); a tool that cannot be imported is reported as unavailable.
+
+    python crates/python/peers.py --overhead [SIZES, default 256,512] [REPEATS, default 21]
+
+measures what the binding adds to a solve in one process (`overhead`), contopt and numpy alone.
 """
 
 import json
@@ -124,8 +128,71 @@ def rust_seconds(case, n, repeats):
     return best
 
 
+def overhead(sizes, repeats):
+    """What the binding adds to a solve, measured in one process so that the machine's load
+    falls on both alike: the call a user makes (`Solver.solve`, then reading the pressure and
+    the gap as numpy) against `solve_in_rust`, the same solve of the same contact on this
+    thread with nothing converted, the two interleaved (their order alternating) `repeats`
+    times after one of each to warm up. Medians of the ratios: wall time (perf_counter), CPU
+    time (process_time, every thread of the process), and the call's wall over its own solve's
+    time inside Rust (`Solution.seconds`)."""
+    import statistics
+
+    import contopt
+
+    rp = peers()
+    print(
+        "| case | N | Python call (s) | solve_in_rust (s) | wall over | CPU over "
+        "| call over its solve in Rust |"
+    )
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for case in CASES:
+        for n in sizes:
+            ref = rp.analytic(case)
+            h, heights, _ = rp.geometry(case, n)
+            origin = -(n // 2) * h
+            body = contopt.HalfSpace(
+                nx=n, ny=n, dx_mm=h, dy_mm=h, e_mpa=rp.E, nu=rp.NU, origin_mm=(origin, origin)
+            )
+            contact = contopt.Contact(body, -heights.T, force_n=ref["F"])
+            solver = contopt.Solver("polonsky_keer", tolerance=TOLERANCE)
+
+            def call():
+                solution = solver.solve(contact)
+                solution.pressure_mpa, solution.gap_mm
+                return solution.seconds
+
+            def timed(f):
+                w, c = time.perf_counter(), time.process_time()
+                inside = f()
+                return time.perf_counter() - w, time.process_time() - c, inside
+
+            call(), contopt.solve_in_rust(solver, contact)
+            calls, rusts = [], []
+            for k in range(repeats):
+                if k % 2 == 0:
+                    calls.append(timed(call))
+                    rusts.append(timed(lambda: contopt.solve_in_rust(solver, contact)))
+                else:
+                    rusts.append(timed(lambda: contopt.solve_in_rust(solver, contact)))
+                    calls.append(timed(call))
+            med = statistics.median
+            wall = med(c[0] / r[0] for c, r in zip(calls, rusts))
+            cpu = med(c[1] / r[1] for c, r in zip(calls, rusts))
+            inside = med(c[0] / c[2] for c in calls)
+            print(
+                f"| {case} | {n} | {med(c[0] for c in calls):.4f} | {med(r[0] for r in rusts):.4f} "
+                f"| {100 * (wall - 1):+.1f} % | {100 * (cpu - 1):+.1f} % | {100 * (inside - 1):+.1f} % |",
+                flush=True,
+            )
+
+
 def main():
     args = sys.argv[1:]
+    if args[:1] == ["--overhead"]:
+        sizes = [int(s) for s in (args[1] if len(args) > 1 else "256,512").split(",")]
+        overhead(sizes, int(args[2]) if len(args) > 2 else 21)
+        return
     if args[:1] == ["--one"]:
         tool, case, n, repeats = args[1], args[2], int(args[3]), int(args[4])
         try:

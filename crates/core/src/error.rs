@@ -81,8 +81,78 @@ impl Error {
     }
 }
 
+/// A field's bad value as data: the parts of an [`Error::InvalidInput`], for a caller that
+/// acts on them (a binding's exception attributes, a form that marks the field) rather than
+/// reading the sentence. A scene places it in its file (`contopt_scene::Located`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FieldError {
+    /// The field as the library named it (`nu`, `compliance[0, 1]`).
+    pub field: String,
+    /// The value as given.
+    pub value: String,
+    /// What the value must satisfy.
+    pub allowed: String,
+}
+
+/// The words that open an [`Error::InvalidInput`]'s sentence and part its field from its
+/// value and its value from what is allowed: `invalid FIELD = VALUE: ALLOWED`.
+const INVALID: (&str, &str, &str) = ("invalid ", " = ", ": ");
+
+impl FieldError {
+    /// The field error an [`Error::InvalidInput`]'s sentence states, for one that crossed a
+    /// boundary as text only (serde's `de::Error::custom` takes a `Display`): the inverse of
+    /// the error's `Display`, kept beside it. `None` for any other sentence.
+    pub fn from_message(message: &str) -> Option<Self> {
+        let (open, equals, colon) = INVALID;
+        let (field, rest) = message.strip_prefix(open)?.split_once(equals)?;
+        let (value, allowed) = rest.split_once(colon)?;
+        Some(Self {
+            field: field.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        })
+    }
+}
+
+impl Error {
+    /// The field, value and what is allowed of an [`Error::InvalidInput`]; `None` for the
+    /// other errors, which name no field.
+    pub fn field_error(&self) -> Option<FieldError> {
+        match self {
+            Error::InvalidInput {
+                field,
+                value,
+                reason,
+            } => Some(FieldError {
+                field: field.clone(),
+                value: value.clone(),
+                allowed: reason.clone(),
+            }),
+            _ => None,
+        }
+    }
+}
+
 impl std::fmt::Debug for Error {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         std::fmt::Display::fmt(self, f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_field_error_reads_back_from_its_sentence() {
+        let e = Error::invalid("material.nu", 0.7, "must lie strictly between -1 and 0.5");
+        let typed = e.field_error().unwrap();
+        assert_eq!(typed.field, "material.nu");
+        assert_eq!(typed.value, "0.7");
+        assert_eq!(typed.allowed, "must lie strictly between -1 and 0.5");
+        assert_eq!(FieldError::from_message(&e.to_string()), Some(typed));
+        assert_eq!(FieldError::from_message("mesh: inverted element 3"), None);
+        let other = Error::Mesh("inverted element 3".into());
+        assert_eq!(other.field_error(), None);
     }
 }

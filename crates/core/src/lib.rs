@@ -27,7 +27,7 @@ pub mod stress;
 mod termination;
 
 pub use body::{block_among, ElasticBody, InfluenceShape, RigidMode};
-pub use error::{Error, Result};
+pub use error::{Error, FieldError, Result};
 pub use faer;
 pub use fields::{BodyFields, Cell, CellKind};
 pub use full_system::FullSystem;

@@ -8,6 +8,8 @@
 //! - [`HalfPlane`]: strips on the edge of a half-plane in plane strain or plane stress
 //!   (Flamant);
 //! - [`Winkler`]: a bed of independent springs under any surface (kernel δ(x − x')/k);
+//! - [`DenseCompliance`]: any surface whose compliance matrix is given (made elsewhere:
+//!   numpy, a finite-element code), checked symmetric and positive definite;
 //! - [`Pasternak`]: springs tied by a shear layer, under a row of strips (p = kw − G_p w'').
 //!
 //! Each also gives the stresses below its surface under a contact pressure
@@ -15,6 +17,7 @@
 //! grid, closed forms for strips and on the axis of rings, a rim quadrature off it.
 
 mod axisymmetric;
+mod dense;
 pub mod elliptic;
 mod fft;
 mod free_ends;
@@ -27,6 +30,7 @@ mod subsurface_2d;
 mod winkler;
 
 pub use axisymmetric::AxisymmetricHalfSpace;
+pub use dense::{dense_compliance_bytes, DenseCompliance, PIVOT_TOLERANCE, SYMMETRY_TOLERANCE};
 pub use free_ends::FreeEnds;
 pub use half_plane::{HalfPlane, PlaneState};
 pub use half_space::HalfSpace;

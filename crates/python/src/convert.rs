@@ -1,7 +1,9 @@
 //! Values between Python and the library: JSON trees (settings, reports) through Python's
 //! `json` module, numpy arrays checked for shape and finiteness, and scene edits as TOML text.
 
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{
+    PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
@@ -75,6 +77,35 @@ pub fn finite_array(array: &Bound<'_, PyAny>, key: &str, shape: &[usize]) -> PyR
         ));
     }
     Ok(values)
+}
+
+/// `read` given a 2-D float array as its shape (rows, columns) and its entries in row-major
+/// order, borrowed from numpy without a copy when it is already a C-ordered float64 array
+/// (numpy makes one otherwise): a large matrix is checked (its size, its memory) before the
+/// library allocates anything of its own.
+pub fn with_matrix<T>(
+    matrix: &Bound<'_, PyAny>,
+    key: &str,
+    read: impl FnOnce([usize; 2], &[f64]) -> T,
+) -> PyResult<T> {
+    let py = matrix.py();
+    let allowed = "a 2-D float array";
+    let contiguous = py
+        .import("numpy")?
+        .call_method1("ascontiguousarray", (matrix, "float64"))
+        .map_err(|_| invalid(py, key, value_text(matrix), allowed))?;
+    let array: PyReadonlyArray2<'_, f64> = contiguous.extract().map_err(|_| {
+        let ndim: usize = contiguous
+            .getattr("ndim")
+            .and_then(|d| d.extract())
+            .unwrap_or(0);
+        invalid(py, key, format!("an array of {ndim} dimensions"), allowed)
+    })?;
+    let shape = [array.shape()[0], array.shape()[1]];
+    let entries = array
+        .as_slice()
+        .map_err(|e| invalid(py, key, value_text(matrix), &e.to_string()))?;
+    Ok(read(shape, entries))
 }
 
 /// The index of the `k`-th value in C order of an array of `shape`.

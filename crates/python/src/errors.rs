@@ -24,18 +24,6 @@ create_exception!(
      Attributes: key (the argument or field), value (as given), allowed (what it must be)."
 );
 
-/// The parts of a message `invalid FIELD = VALUE: REASON` or `invalid value VALUE: REASON`
-/// (the library's [`contopt_core::Error::InvalidInput`] as written): (value, reason).
-fn value_and_reason(message: &str) -> Option<(String, String)> {
-    let rest = message.strip_prefix("invalid ")?;
-    let (head, reason) = rest.split_once(": ")?;
-    let value = match head.strip_prefix("value ") {
-        Some(value) => value,
-        None => head.split_once(" = ")?.1,
-    };
-    Some((value.to_string(), reason.to_string()))
-}
-
 /// A scene's error as Python's exception: a missing or unreadable file as `OSError`
 /// (`FileNotFoundError` when it is not there), every other as [`SceneError`] with its place.
 pub fn scene_error(py: Python<'_>, e: contopt_scene::SceneError) -> PyErr {
@@ -52,8 +40,8 @@ pub fn scene_error(py: Python<'_>, e: contopt_scene::SceneError) -> PyErr {
         contopt_scene::SceneError::Invalid(located) => {
             let err = SceneError::new_err(located.to_string());
             let (line, column) = located.place.unzip();
-            let (value, allowed) = match value_and_reason(&located.message) {
-                Some((value, reason)) => (Some(value), reason),
+            let (value, allowed) = match &located.field {
+                Some(field) => (Some(field.value.clone()), field.allowed.clone()),
                 None => (None, located.message.clone()),
             };
             let instance = err.value(py);
@@ -112,13 +100,9 @@ pub fn scene_error(py: Python<'_>, e: contopt_scene::SceneError) -> PyErr {
 /// must be when it names them.
 pub fn library_error(py: Python<'_>, e: contopt_core::Error) -> PyErr {
     let err = InputError::new_err(e.to_string());
-    let (key, value, allowed) = match &e {
-        contopt_core::Error::InvalidInput {
-            field,
-            value,
-            reason,
-        } => (Some(field.clone()), Some(value.clone()), reason.clone()),
-        other => (None, None, other.to_string()),
+    let (key, value, allowed) = match e.field_error() {
+        Some(f) => (Some(f.field), Some(f.value), f.allowed),
+        None => (None, None, e.to_string()),
     };
     let attributes: [(&str, Py<PyAny>); 3] = [
         ("key", key.into_py_any(py).unwrap_or_else(|_| py.None())),

@@ -10,7 +10,9 @@
 //! Build and test: `bash crates/python/check.sh` (a venv, maturin, pytest).
 
 mod convert;
+mod dense;
 mod errors;
+mod kinds;
 mod library;
 mod optimise;
 mod report;
@@ -30,13 +32,16 @@ fn contopt_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", py.get_type::<errors::SceneError>())?;
     m.add("InputError", py.get_type::<errors::InputError>())?;
     m.add_class::<library::HalfSpace>()?;
+    m.add_class::<dense::DenseBody>()?;
     m.add_class::<library::Contact>()?;
     m.add_class::<library::Solver>()?;
     m.add_class::<library::Solution>()?;
+    m.add_function(wrap_pyfunction!(library::solve_in_rust, m)?)?;
     m.add_class::<optimise::Optimum>()?;
     m.add_function(wrap_pyfunction!(optimise::optimise, m)?)?;
     m.add_class::<termination::Termination>()?;
     m.add_class::<watch::Progress>()?;
+    m.add_class::<kinds::Registry>()?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<report::Report>()?;
     m.add_class::<report::CaseResult>()?;

@@ -10,13 +10,15 @@ use std::sync::Arc;
 
 use contopt_contact::{ContactSolver, InterfaceProblem, SolverSettings};
 use contopt_core::{ContactState, ElasticBody, Material, RigidBody};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{array, finite_array, from_python, to_python};
+use crate::dense::DenseBody;
 use crate::errors::{invalid, library_error};
 use crate::termination::Termination;
-use crate::watch::watched;
+use crate::watch::{watched, Watch};
 
 /// An elastic half-space under a regular grid of nx × ny rectangular cells of dx × dy mm
 /// (Love's solution per cell, FFT products): the grid of Johnson's eq. 3.25.
@@ -153,9 +155,45 @@ impl HalfSpace {
     }
 }
 
-/// A rigid indenter on a half-space grid: its shape is the initial gap h [mm] at each cell
-/// (h ≥ 0 where it first touches), pressed by a force `force_n` [N] (the approach follows) or
-/// pushed in by `approach_mm` [mm] (the force follows).
+/// A body on a grid of cells as a contact takes it: its own copy, the arrays' shape (ny, nx),
+/// the first cell's centre and the cell's sides [mm].
+struct OnGrid {
+    body: Box<dyn ElasticBody>,
+    shape: [usize; 2],
+    origin: [f64; 2],
+    cell: [f64; 2],
+}
+
+impl OnGrid {
+    /// A `HalfSpace` or a `DenseBody`; a `TypeError` for anything else.
+    fn of(body: &Bound<'_, PyAny>) -> PyResult<Self> {
+        if let Ok(h) = body.extract::<PyRef<'_, HalfSpace>>() {
+            return Ok(Self {
+                body: Box::new((*h.body).clone()),
+                shape: [h.ny, h.nx],
+                origin: h.origin,
+                cell: [h.dx, h.dy],
+            });
+        }
+        let d = body.extract::<PyRef<'_, DenseBody>>().map_err(|_| {
+            let type_name = body.get_type().name().map(|n| n.to_string());
+            PyTypeError::new_err(format!(
+                "body: a HalfSpace or a DenseBody, not {}",
+                type_name.unwrap_or_else(|_| "?".into())
+            ))
+        })?;
+        Ok(Self {
+            body: Box::new((*d.body).clone()),
+            shape: [d.ny, d.nx],
+            origin: d.origin,
+            cell: d.cell,
+        })
+    }
+}
+
+/// A rigid indenter on a half-space grid or a dense body: its shape is the initial gap h [mm]
+/// at each cell (h ≥ 0 where it first touches), pressed by a force `force_n` [N] (the
+/// approach follows) or pushed in by `approach_mm` [mm] (the force follows).
 #[pyclass(module = "contopt", frozen)]
 pub struct Contact {
     problem: InterfaceProblem<'static>,
@@ -201,20 +239,22 @@ impl Contact {
 
 #[pymethods]
 impl Contact {
-    /// The contact of `body` with a rigid indenter whose gap to it is `gap_mm`, shape
-    /// (ny, nx) [mm]; give exactly one of `force_n` [N] and `approach_mm` [mm].
+    /// The contact of `body` (a `HalfSpace` or a `DenseBody`) with a rigid indenter whose gap
+    /// to it is `gap_mm`, shape (ny, nx) [mm]; give exactly one of `force_n` [N] and
+    /// `approach_mm` [mm].
     #[new]
     #[pyo3(signature = (body, gap_mm, *, force_n=None, approach_mm=None))]
     fn new(
         py: Python<'_>,
-        body: &HalfSpace,
+        body: &Bound<'_, PyAny>,
         gap_mm: &Bound<'_, PyAny>,
         force_n: Option<f64>,
         approach_mm: Option<f64>,
     ) -> PyResult<Self> {
-        let shape = [body.ny, body.nx];
+        let grid = OnGrid::of(body)?;
+        let shape = grid.shape;
         let gap = finite_array(gap_mm, "gap_mm", &shape)?;
-        let surface = body.body.interface();
+        let surface = grid.body.interface();
         let (indenter, gap, approach) = match (force_n, approach_mm) {
             (Some(force), None) => {
                 let rigid = RigidBody::pressed("indenter", surface, [0.0, 0.0, 1.0], force)
@@ -239,15 +279,15 @@ impl Contact {
                 ));
             }
         };
-        let half_space: Box<dyn ElasticBody> = Box::new((*body.body).clone());
-        let problem = InterfaceProblem::owned(half_space, Box::new(indenter), &gap)
+        let area = surface.weights().to_vec();
+        let problem = InterfaceProblem::owned(grid.body, Box::new(indenter), &gap)
             .map_err(|e| library_error(py, e))?;
         Ok(Self {
-            area: surface.weights().to_vec(),
+            area,
             problem,
             shape,
-            origin: body.origin,
-            cell: [body.dx, body.dy],
+            origin: grid.origin,
+            cell: grid.cell,
             approach,
         })
     }
@@ -421,6 +461,18 @@ impl Solver {
             kind_and_settings(&self.settings).1
         )
     }
+}
+
+/// The solve of `contact` by `solver` alone, the same call that `Solver.solve` makes, on the
+/// calling thread with the GIL held and nothing converted: its time in Rust [s]. It measures
+/// what the binding adds to a solve (`crates/python/peers.py --overhead`).
+#[pyfunction]
+pub fn solve_in_rust(py: Python<'_>, solver: &Solver, contact: &Contact) -> PyResult<f64> {
+    let watch = Watch::default();
+    let clock = std::time::Instant::now();
+    let state = solver.solver.solve_observed(&contact.problem, None, &watch);
+    let seconds = clock.elapsed().as_secs_f64();
+    state.map(|_| seconds).map_err(|e| library_error(py, e))
 }
 
 /// A solve's answer: the pressure and the gap on the grid, the approach, how it ended.

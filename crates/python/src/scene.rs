@@ -3,12 +3,13 @@
 
 use std::path::PathBuf;
 
-use contopt_scene::{Format, Registry, BUNDLED};
+use contopt_scene::{Format, BUNDLED};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{from_python, toml_text};
 use crate::errors::{invalid, scene_error};
+use crate::kinds::{raised, Failure, Registry};
 use crate::report::Report;
 use crate::watch::watched;
 
@@ -17,6 +18,16 @@ use crate::watch::watched;
 #[pyclass(module = "contopt", frozen)]
 pub struct Scene {
     scene: contopt_scene::Scene,
+    /// Where the factories of the kinds added from Python keep their exceptions.
+    failures: Vec<Failure>,
+}
+
+/// The registry a scene is read with (the standard one by default) and its factories' slots.
+fn chosen(registry: Option<PyRef<'_, Registry>>) -> (contopt_scene::Registry, Vec<Failure>) {
+    match registry {
+        Some(r) => (r.registry.clone(), r.failures.clone()),
+        None => (contopt_scene::Registry::standard(), vec![]),
+    }
 }
 
 /// Edits `{dotted key: value}` as the library takes them: (key, TOML text), or no text for
@@ -49,11 +60,18 @@ fn borrowed(edits: &[(String, Option<String>)]) -> Vec<(&str, Option<&str>)> {
 #[pymethods]
 impl Scene {
     /// Reads and checks a scene file (TOML, or JSON when its name ends in `.json`); the files
-    /// it names are read from its folder.
+    /// it names are read from its folder. `registry` has the kinds it may name (by default
+    /// the library's).
     #[staticmethod]
-    fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let scene = py.detach(|| Registry::standard().load(&path));
-        Self::made(py, scene)
+    #[pyo3(signature = (path, *, registry=None))]
+    fn from_file(
+        py: Python<'_>,
+        path: PathBuf,
+        registry: Option<PyRef<'_, Registry>>,
+    ) -> PyResult<Self> {
+        let (registry, failures) = chosen(registry);
+        let scene = py.detach(|| registry.load(&path));
+        Self::made(py, scene, failures)
     }
 
     /// Reads and checks scene text in TOML, with `edits` (`{"contact.load.force_n": 500.0}`;
@@ -61,35 +79,41 @@ impl Scene {
     /// where the files it names are read.
     #[staticmethod]
     #[pyo3(
-        signature = (text, *, edits=None, file=PathBuf::from("scene.toml")),
-        text_signature = "(text, *, edits=None, file='scene.toml')"
+        signature = (text, *, edits=None, file=PathBuf::from("scene.toml"), registry=None),
+        text_signature = "(text, *, edits=None, file='scene.toml', registry=None)"
     )]
     fn from_toml(
         py: Python<'_>,
         text: &str,
         edits: Option<&Bound<'_, PyDict>>,
         file: PathBuf,
+        registry: Option<PyRef<'_, Registry>>,
     ) -> PyResult<Self> {
         let edits = edits_of(edits)?;
-        let scene = py.detach(|| {
-            Registry::standard().parse_with(text, Format::Toml, &file, &borrowed(&edits))
-        });
-        Self::made(py, scene)
+        let (registry, failures) = chosen(registry);
+        let scene = py.detach(|| registry.parse_with(text, Format::Toml, &file, &borrowed(&edits)));
+        Self::made(py, scene, failures)
     }
 
     /// Reads and checks a scene given as a dict (the tables of a scene file as dicts, its
     /// arrays of tables as lists); `file` names it in messages.
     #[staticmethod]
     #[pyo3(
-        signature = (data, *, file=PathBuf::from("<dict>")),
-        text_signature = "(data, *, file='<dict>')"
+        signature = (data, *, file=PathBuf::from("<dict>"), registry=None),
+        text_signature = "(data, *, file='<dict>', registry=None)"
     )]
-    fn from_dict(py: Python<'_>, data: &Bound<'_, PyDict>, file: PathBuf) -> PyResult<Self> {
+    fn from_dict(
+        py: Python<'_>,
+        data: &Bound<'_, PyDict>,
+        file: PathBuf,
+        registry: Option<PyRef<'_, Registry>>,
+    ) -> PyResult<Self> {
         let json = from_python(data.as_any(), "data")?;
         let text = serde_json::to_string_pretty(&json)
             .map_err(|e| invalid(py, "data", "?", &e.to_string()))?;
-        let scene = py.detach(|| Registry::standard().parse(&text, Format::Json, &file));
-        Self::made(py, scene)
+        let (registry, failures) = chosen(registry);
+        let scene = py.detach(|| registry.parse(&text, Format::Json, &file));
+        Self::made(py, scene, failures)
     }
 
     /// The bundled scene `name` (one of `Scene.bundled_names()`), with `edits` as in
@@ -98,8 +122,9 @@ impl Scene {
     #[pyo3(signature = (name, *, edits=None))]
     fn bundled(py: Python<'_>, name: &str, edits: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let edits = edits_of(edits)?;
-        let scene = py.detach(|| Registry::standard().bundled_with(name, &borrowed(&edits)));
-        Self::made(py, scene)
+        let registry = contopt_scene::Registry::standard();
+        let scene = py.detach(|| registry.bundled_with(name, &borrowed(&edits)));
+        Self::made(py, scene, vec![])
     }
 
     /// The bundled scenes' names (`contopt list`).
@@ -185,12 +210,12 @@ impl Scene {
             let done = || watch.case_done();
             scene.run_parallel_observed(0..cases, threads, watch, &done)
         })?
-        .map_err(|e| scene_error(py, e))?;
+        .map_err(|e| self.error(py, e))?;
         let cases = ran
             .results
             .into_iter()
             .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| scene_error(py, e))?;
+            .map_err(|e| self.error(py, e))?;
         Ok(Report::new(contopt_results::Report {
             schema_version: contopt_results::SCHEMA_VERSION,
             scene: scene.name.clone(),
@@ -213,9 +238,16 @@ impl Scene {
     fn made(
         py: Python<'_>,
         scene: Result<contopt_scene::Scene, contopt_scene::SceneError>,
+        failures: Vec<Failure>,
     ) -> PyResult<Self> {
         scene
-            .map(|scene| Self { scene })
+            .map(|scene| Self { scene, failures })
             .map_err(|e| scene_error(py, e))
+    }
+
+    /// A run's error: the exception a factory of a kind added from Python raised, as itself,
+    /// or the scene's error.
+    fn error(&self, py: Python<'_>, e: contopt_scene::SceneError) -> PyErr {
+        raised(&self.failures).unwrap_or_else(|| scene_error(py, e))
     }
 }

@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use contopt_core::FieldError;
 use contopt_input::{InputError, Node};
 
 /// What can go wrong with a scene.
@@ -38,6 +39,10 @@ pub struct Located {
     pub path: String,
     /// What is wrong, with the value and what it must be.
     pub message: String,
+    /// The field, its value and what it must be as data, when the error is a bad value (a
+    /// library's [`contopt_core::Error::InvalidInput`]); `None` for a missing key, an
+    /// unknown kind, a wrong type.
+    pub field: Option<FieldError>,
 }
 
 impl std::fmt::Display for Located {
@@ -98,40 +103,46 @@ impl Locator {
     /// An error of the reader, at its own path and span.
     pub fn input(&self, e: InputError) -> SceneError {
         let place = e.line_column(&self.text);
-        self.error(place, e.path, e.message)
+        // A kind's own checks reach the reader through serde's `custom`, as text.
+        let field = FieldError::from_message(&e.message);
+        self.error(place, e.path, e.message, field)
     }
 
     /// A message about the key at `path` (its line and column, or its nearest present
     /// ancestor's).
     pub fn at(&self, path: &str, message: impl Into<String>) -> SceneError {
         let place = self.place_of(path);
-        self.error(place, path.to_string(), message.into())
+        self.error(place, path.to_string(), message.into(), None)
     }
 
     /// A library error about the section at `path`: an invalid field is placed at
     /// `path.field` when that key is in the scene (a body's `radius_mm`), its message then
     /// `= value: reason`.
     pub fn library(&self, path: &str, e: contopt_core::Error) -> SceneError {
-        match e {
-            contopt_core::Error::InvalidInput {
-                field,
-                value,
-                reason,
-            } => {
-                let full = join(path, &field);
-                self.at(&full, format!("invalid value {value}: {reason}"))
+        match e.field_error() {
+            Some(field) => {
+                let full = join(path, &field.field);
+                let message = format!("invalid value {}: {}", field.value, field.allowed);
+                self.error(self.place_of(&full), full, message, Some(field))
             }
-            other => self.at(path, other.to_string()),
+            None => self.at(path, e.to_string()),
         }
     }
 
-    fn error(&self, place: Option<(usize, usize)>, path: String, message: String) -> SceneError {
+    fn error(
+        &self,
+        place: Option<(usize, usize)>,
+        path: String,
+        message: String,
+        field: Option<FieldError>,
+    ) -> SceneError {
         SceneError::Invalid(Box::new(Located {
             file: self.file.clone(),
             place,
             case: self.case.clone(),
             path,
             message,
+            field,
         }))
     }
 

@@ -415,6 +415,31 @@ impl Registry {
         self
     }
 
+    /// Registers a body kind read at run time by `read` (a binding's kinds, whose types Rust
+    /// does not know) as `name`, replacing a kind of that name: `read` is given the kind's
+    /// settings as JSON (the table less its `kind`) and returns the kind or a message, which
+    /// is placed at the settings. The settings are written back into `result.json` as they
+    /// were read.
+    pub fn with_body_reader<F>(mut self, name: &'static str, read: F) -> Self
+    where
+        F: Fn(&serde_json::Value) -> Result<Arc<dyn BodyKind>, String> + Send + Sync + 'static,
+    {
+        self.bodies.add(
+            name,
+            Arc::new(move |name, tagged| {
+                let settings: serde_json::Value = tagged
+                    .content
+                    .deserialize_seed(PhantomData, &tagged.content_path)?;
+                let kind = read(&settings).map_err(|message| {
+                    InputError::new(&tagged.content_path, tagged.content.span(), message)
+                })?;
+                let written = under(name, settings.clone());
+                Ok(Chosen::new(name, written, kind, Arc::new(settings)))
+            }),
+        );
+        self
+    }
+
     /// Registers the zone kind `K` as `name` (replacing a kind of that name).
     pub fn with_zone<K>(mut self, name: &'static str) -> Self
     where
@@ -618,6 +643,26 @@ mod tests {
         );
         let designs: Vec<_> = Registry::standard().designs().collect();
         assert!(designs.starts_with(&["given_load", "given_displacement"]));
+    }
+
+    #[test]
+    fn a_reader_registers_a_kind_known_at_run_time() {
+        let registry = Registry::standard().with_body_reader("springs", |settings| {
+            serde_json::from_value::<WinklerBed>(settings.clone())
+                .map(|bed| Arc::new(bed) as Arc<dyn BodyKind>)
+                .map_err(|e| e.to_string())
+        });
+        let read = |text: &str| {
+            let node = Node::parse_toml(text).unwrap();
+            registry.body(node.get("body").unwrap(), "body")
+        };
+        let body = read("body = { kind = \"springs\", modulus_mpa_per_mm = 2.0 }").unwrap();
+        assert_eq!(body.name(), "springs");
+        let written = serde_json::json!({ "springs": { "modulus_mpa_per_mm": 2.0 } });
+        assert_eq!(body.written(), &written);
+        let e = read("body = { kind = \"springs\", modulus = 2.0 }").unwrap_err();
+        assert_eq!(e.path, "body");
+        assert!(e.message.contains("unknown field `modulus`"), "{e}");
     }
 
     #[test]

@@ -319,6 +319,31 @@ fn a_bad_material_is_reported_on_its_own_body() {
         message.contains("body[0].material") && message.contains("0.5"),
         "{message}"
     );
+    // The same as data, for a caller that acts on it (the Python binding's attributes).
+    let e = parse(&bad).unwrap_err();
+    let field = e
+        .located()
+        .and_then(|l| l.field.clone())
+        .expect("a field error");
+    assert_eq!((field.field.as_str(), field.value.as_str()), ("nu", "0.5"));
+    assert!(message.ends_with(&field.allowed), "{message}");
+}
+
+/// A bed's modulus refused by the library's own check (not the reader) carries its field as
+/// data too, at the scene's key.
+#[test]
+fn a_library_check_carries_its_field() {
+    let text = sphere(1000.0, 16, 0.05).replace(
+        "kind = \"half_space\"\nmaterial = { e_mpa = 2.0e5, nu = 0.3 }",
+        "kind = \"winkler\"\nmodulus_mpa_per_mm = -1.0",
+    );
+    let e = parse(&text).expect_err("a negative modulus");
+    let located = e.located().expect("a place");
+    assert_eq!(located.path, "body[0].modulus_mpa_per_mm", "{e}");
+    let field = located.field.clone().expect("a field error");
+    assert_eq!(field.field, "modulus_mpa_per_mm");
+    assert_eq!(field.value, "-1");
+    assert_eq!(field.allowed, "must be positive and finite");
 }
 
 /// What `run` refuses, `check` (reading the scene) refuses first, in words — not a Rust enum's

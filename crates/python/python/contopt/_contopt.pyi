@@ -14,10 +14,12 @@ __version__: str
 __all__ = [
     "CaseResult",
     "Contact",
+    "DenseBody",
     "HalfSpace",
     "InputError",
     "Optimum",
     "Progress",
+    "Registry",
     "Report",
     "Scene",
     "SceneError",
@@ -26,6 +28,7 @@ __all__ = [
     "Termination",
     "__version__",
     "optimise",
+    "solve_in_rust",
 ]
 
 _FloatArray = npt.NDArray[np.float64]
@@ -116,12 +119,45 @@ class HalfSpace:
     def periodic(self) -> bool: ...
 
 @final
-class Contact:
-    """A rigid indenter on a half-space grid, its shape the gap h [mm], shape (ny, nx)."""
+class DenseBody:
+    """A body under nx × ny cells whose compliance [mm/N] is a symmetric positive definite
+    (nx·ny) × (nx·ny) matrix: entry [i, j] the displacement at cell i (C order of the (ny, nx)
+    arrays) under a unit compressive force on cell j."""
 
     def __new__(
         cls,
-        body: HalfSpace,
+        compliance_mm_per_n: _ArrayLike,
+        *,
+        nx: int,
+        ny: int,
+        dx_mm: float,
+        dy_mm: float,
+        origin_mm: Optional[tuple[float, float]] = None,
+    ) -> DenseBody: ...
+    @property
+    def shape(self) -> tuple[int, int]: ...
+    @property
+    def cell_area_mm2(self) -> float: ...
+
+_Factory = Callable[[dict[str, Any], _FloatArray, _FloatArray], _ArrayLike]
+
+@final
+class Registry:
+    """The kinds a scene may name: the library's, and body kinds added from Python."""
+
+    @staticmethod
+    def standard() -> Registry: ...
+    def kinds(self) -> dict[str, list[str]]: ...
+    def add_body(self, name: str, factory: _Factory) -> None: ...
+
+@final
+class Contact:
+    """A rigid indenter on a half-space grid or a dense body, its shape the gap h [mm], shape
+    (ny, nx)."""
+
+    def __new__(
+        cls,
+        body: Union[HalfSpace, DenseBody],
         gap_mm: _ArrayLike,
         *,
         force_n: Optional[float] = None,
@@ -129,6 +165,10 @@ class Contact:
     ) -> Contact: ...
     @property
     def shape(self) -> tuple[int, int]: ...
+
+def solve_in_rust(solver: Solver, contact: Contact) -> float:
+    """The same solve as ``solver.solve(contact)``, on this thread, nothing converted: its
+    time in Rust [s] (what the binding adds is the difference)."""
 
 @final
 class Solution:
@@ -223,13 +263,19 @@ class Scene:
     """A scene, its cases read and checked."""
 
     @staticmethod
-    def from_file(path: _Path) -> Scene: ...
+    def from_file(path: _Path, *, registry: Optional[Registry] = None) -> Scene: ...
     @staticmethod
     def from_toml(
-        text: str, *, edits: Optional[Mapping[str, Any]] = None, file: _Path = "scene.toml"
+        text: str,
+        *,
+        edits: Optional[Mapping[str, Any]] = None,
+        file: _Path = "scene.toml",
+        registry: Optional[Registry] = None,
     ) -> Scene: ...
     @staticmethod
-    def from_dict(data: Mapping[str, Any], *, file: _Path = "<dict>") -> Scene: ...
+    def from_dict(
+        data: Mapping[str, Any], *, file: _Path = "<dict>", registry: Optional[Registry] = None
+    ) -> Scene: ...
     @staticmethod
     def bundled(name: str, *, edits: Optional[Mapping[str, Any]] = None) -> Scene: ...
     @staticmethod
