@@ -18,7 +18,7 @@ use crate::convert::{array, finite_array, from_python, to_python};
 use crate::dense::DenseBody;
 use crate::errors::{invalid, library_error};
 use crate::termination::Termination;
-use crate::watch::{watched, Watch};
+use crate::watch::{watched_here, Watch};
 
 /// An elastic half-space under a regular grid of nx × ny rectangular cells of dx × dy mm
 /// (Love's solution per cell, FFT products): the grid of Johnson's eq. 3.25.
@@ -445,7 +445,7 @@ impl Solver {
         };
         let solver = self.solver.as_ref();
         let problem = &contact.problem;
-        let (state, seconds) = watched(py, None, 1, |watch| {
+        let (state, seconds) = watched_here(py, |watch| {
             let clock = std::time::Instant::now();
             let state = solver.solve_observed(problem, start.as_deref(), watch);
             (state, clock.elapsed().as_secs_f64())

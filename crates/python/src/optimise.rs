@@ -12,7 +12,7 @@ use crate::convert::{array, finite_array, from_python, to_python};
 use crate::errors::{invalid, library_error};
 use crate::library::{Contact, Solver};
 use crate::termination::Termination;
-use crate::watch::watched;
+use crate::watch::watched_here;
 
 /// The methods, as scenes name them.
 const METHODS: [&str; 4] = [
@@ -165,7 +165,7 @@ pub fn optimise(
     let problem = contact.problem();
     let index = contact.indexer();
     let controller = |x: [f64; 3]| values[index(x)];
-    let found = watched(py, None, 1, |watch| {
+    let found = watched_here(py, |watch| {
         Optimisation::new(problem, &q, &controller)
             .and_then(|o| o.with_omega(&omega_v, &omega_opt))
             .and_then(|o| chosen.run(&o.with_observer(watch), solver))

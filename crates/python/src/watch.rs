@@ -8,7 +8,8 @@
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::sync::Mutex;
-use std::time::Duration;
+use std::thread::ThreadId;
+use std::time::{Duration, Instant};
 
 use contopt_core::observe::{Event, Flow, Method, Observer};
 use pyo3::exceptions::PyRuntimeError;
@@ -60,6 +61,16 @@ pub struct Watch {
     /// Events seen: the waiting thread calls back only when it moved.
     events: AtomicUsize,
     latest: Mutex<Option<(Method, usize, usize)>>,
+    /// A solve run on the calling thread ([`watched_here`]): that thread, when it last ran
+    /// Python's signal handlers, and the exception they raised.
+    here: Option<Here>,
+}
+
+/// The calling thread of a solve run on it, polled for signals from the solve's own events.
+struct Here {
+    thread: ThreadId,
+    polled: Mutex<Instant>,
+    failure: Mutex<Option<PyErr>>,
 }
 
 impl Watch {
@@ -67,6 +78,23 @@ impl Watch {
     pub fn case_done(&self) {
         self.cases_done.fetch_add(1, Ordering::Relaxed);
         self.events.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// On the calling thread of a solve run on it, at most every [`POLL`]: Python's signal
+    /// handlers, with the GIL taken back for them; an exception they raise stops the solve.
+    fn poll_here(&self, here: &Here) {
+        if std::thread::current().id() != here.thread {
+            return;
+        }
+        let mut polled = here.polled.lock().unwrap_or_else(|e| e.into_inner());
+        if polled.elapsed() < POLL {
+            return;
+        }
+        *polled = Instant::now();
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            self.stop.store(true, Ordering::Relaxed);
+            *here.failure.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+        }
     }
 
     fn progress(&self, cases: usize) -> Progress {
@@ -86,6 +114,9 @@ impl Observer for Watch {
         *self.latest.lock().unwrap_or_else(|e| e.into_inner()) =
             Some((event.method, event.level, event.iteration));
         self.events.fetch_add(1, Ordering::Relaxed);
+        if let Some(here) = self.here.as_ref() {
+            self.poll_here(here);
+        }
         if self.stop.load(Ordering::Relaxed) {
             Flow::Stop
         } else {
@@ -161,4 +192,27 @@ pub fn watched<T: Send>(
         f.call1(py, (watch.progress(cases),))?;
     }
     outcome.ok_or_else(|| PyRuntimeError::new_err("the work did not run"))
+}
+
+/// Runs one solve, `work`, on the calling thread with the GIL released: its events run
+/// Python's signal handlers at most every [`POLL`] (Ctrl-C stops it at its next iteration, and
+/// the `KeyboardInterrupt` is returned once it has ended). No thread is started, so the solve
+/// reuses the calling thread's memory from one call to the next (a thread of its own per call
+/// costs a fresh allocator arena: 3–15 % of a 256² solve).
+pub fn watched_here<T: Send>(py: Python<'_>, work: impl FnOnce(&Watch) -> T + Send) -> PyResult<T> {
+    let watch = Watch {
+        here: Some(Here {
+            thread: std::thread::current().id(),
+            polled: Mutex::new(Instant::now()),
+            failure: Mutex::new(None),
+        }),
+        ..Watch::default()
+    };
+    let out = py.detach(|| work(&watch));
+    let failure = (watch.here.as_ref())
+        .and_then(|h| h.failure.lock().unwrap_or_else(|e| e.into_inner()).take());
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(out),
+    }
 }
