@@ -402,21 +402,7 @@ mod tests {
     use super::*;
     use crate::Crown;
 
-    fn bearing(slices: usize) -> CylindricalRollerBearing {
-        CylindricalRollerBearing {
-            rollers: 14,
-            roller_diameter: 10.0,
-            roller_length: 10.0,
-            chamfer: 0.2,
-            pitch_diameter: 65.0,
-            clearance: 0.0,
-            roller_crown: Crown::Straight,
-            inner_crown: Crown::Straight,
-            outer_crown: Crown::Straight,
-            slices,
-            first_roller: 0.0,
-        }
-    }
+    use crate::bearing::bearing_209 as bearing;
 
     /// The table of f_c is ISO/TR 1281-1's formula rounded to 0.1 (λν = 0.83): every row within
     /// 0.05; between rows, linear; outside, an error.

@@ -107,7 +107,8 @@ pub fn hours(mrev: f64, speed_rpm: f64) -> Result<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{basic_rating_life, Crown};
+    use crate::basic_rating_life;
+    use crate::bearing::bearing_209;
 
     /// The branches of a_ISO meet where κ changes branch (0.4 and 1: the constants' pairs
     /// give 1.3993/0.4^0.054381 = 1.2348/0.4^0.19087 = 1.4708 within 2e-5), a_ISO is 0.1
@@ -166,19 +167,7 @@ mod tests {
     /// (100/200)^0.3 beside its larger C_0r.
     #[test]
     fn static_rating_and_fatigue_limit() {
-        let mut b = CylindricalRollerBearing {
-            rollers: 14,
-            roller_diameter: 10.0,
-            roller_length: 10.0,
-            chamfer: 0.2,
-            pitch_diameter: 65.0,
-            clearance: 0.0,
-            roller_crown: Crown::Straight,
-            inner_crown: Crown::Straight,
-            outer_crown: Crown::Straight,
-            slices: 30,
-            first_roller: 0.0,
-        };
+        let mut b = bearing_209(30);
         let c0 = static_load_rating(&b).unwrap();
         assert!((c0 - 44.0 * (55.0 / 65.0) * 14.0 * 9.6 * 10.0).abs() < 1e-9 * c0);
         assert!((fatigue_load_limit(&b).unwrap() - c0 / 8.2).abs() < 1e-9 * c0);
