@@ -40,5 +40,6 @@ pub use life::{
 };
 pub use modified::{
     fatigue_load_limit, hours, life_modification_factor, rated_viscosity, static_load_rating,
-    A_ISO_MAX, KAPPA_MAX, KAPPA_MIN,
+    viscosity_at_temperature, A_ISO_MAX, ISO_VG_GRADES, KAPPA_MAX, KAPPA_MIN,
+    OPERATING_TEMPERATURE_C, WALTHER_MIN_VISCOSITY,
 };

@@ -95,7 +95,8 @@ fn lubricated(
         )
     })?;
     let rated = rated_viscosity(speed, bearing.pitch_diameter)?;
-    let kappa = lub.viscosity_mm2_s / rated;
+    let viscosity = lub.viscosity()?;
+    let kappa = viscosity / rated;
     let static_rating = static_load_rating(bearing)?;
     let limit = match lub.fatigue_load_limit_n {
         Some(c) => c,
@@ -105,7 +106,7 @@ fn lubricated(
     life_modification_factor(kappa, 0.0).map_err(|e| {
         Error::invalid(
             "lubrication.viscosity_mm2_s",
-            lub.viscosity_mm2_s,
+            viscosity,
             e.to_string(),
         )
     })?;
@@ -115,7 +116,7 @@ fn lubricated(
             contaminated_limit_n: lub.contamination * limit,
         },
         report: LubricationReport {
-            viscosity_mm2_s: lub.viscosity_mm2_s,
+            viscosity_mm2_s: viscosity,
             rated_viscosity_mm2_s: rated,
             kappa,
             contamination: lub.contamination,
