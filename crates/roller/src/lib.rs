@@ -20,6 +20,7 @@ mod figures;
 mod geometry;
 mod life;
 mod modified;
+mod tolerance;
 
 pub use bearing::{
     BearingLoad, BearingSettings, CylindricalRollerBearing, LoadDistribution, Raceway, RollerCase,
@@ -43,3 +44,4 @@ pub use modified::{
     viscosity_at_temperature, A_ISO_MAX, ISO_VG_GRADES, KAPPA_MAX, KAPPA_MIN,
     OPERATING_TEMPERATURE_C, WALTHER_MIN_VISCOSITY,
 };
+pub use tolerance::{worst_in_box, CrownTolerances, WorstCrown, MAX_GRID, MIN_GRID, PARAMETERS};

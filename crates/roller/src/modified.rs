@@ -126,7 +126,10 @@ const KELVIN: f64 = 273.15;
 /// Errors: ν₁₀₀ not below ν₄₀, either below 2 mm²/s ([`WALTHER_MIN_VISCOSITY`]), a
 /// temperature outside [`OPERATING_TEMPERATURE_C`], or a result below 2 mm²/s.
 pub fn viscosity_at_temperature(nu_40: f64, nu_100: f64, temperature_c: f64) -> Result<f64> {
-    for (field, nu) in [("viscosity_40_mm2_s", nu_40), ("viscosity_100_mm2_s", nu_100)] {
+    for (field, nu) in [
+        ("viscosity_40_mm2_s", nu_40),
+        ("viscosity_100_mm2_s", nu_100),
+    ] {
         if !(nu >= WALTHER_MIN_VISCOSITY && nu.is_finite()) {
             return Err(Error::invalid(
                 field,
