@@ -437,11 +437,10 @@ pub struct ModifiedLives {
     pub a_iso: f64,
     /// ISO 281's modified rating life L_nm = a_ISO·L₁₀ \[10⁶ revolutions\].
     pub modified_mrev: f64,
-    /// a_ISO at the reference life's equivalent load P_ref = C_r·L₁₀r^(−3/10) (over a duty
-    /// cycle: L_nmr/L₁₀r).
+    /// L_nmr/L₁₀r: the slices' a_ISO in effect over the bearing.
     pub a_iso_reference: f64,
-    /// ISO/TS 16281's modified reference rating life L_nmr = a_ISO(P_ref)·L₁₀r, L₁₀r the
-    /// half-space contacts' \[10⁶ revolutions\].
+    /// ISO/TS 16281's modified reference rating life L_nmr from the half-space contacts'
+    /// slices, a_ISO per slice (each slice's life a_ISO,k·(q_c/q_e,k)⁴) \[10⁶ revolutions\].
     pub modified_reference_mrev: f64,
 }
 

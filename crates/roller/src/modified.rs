@@ -86,6 +86,14 @@ pub fn static_load_rating(bearing: &CylindricalRollerBearing) -> Result<f64> {
         * d)
 }
 
+/// The contact stress at which ISO 281 sets the fatigue load limit \[MPa\]: C_u is the load
+/// under which the most heavily loaded raceway contact reaches 1500 MPa (bearing steel of
+/// common quality). ISO/TS 16281's modified reference life takes a_ISO per slice; this crate
+/// gives each slice the fatigue load limit of a Hertzian slice at this stress (scaled by
+/// √(C_u/C_u,ISO) when a catalogue's C_u replaces ISO 281's), since a line contact's load goes
+/// as the square of its peak pressure.
+pub const FATIGUE_STRESS_MPA: f64 = 1500.0;
+
 /// The pitch diameter past which ISO 281's C_u falls with size \[mm\].
 const FATIGUE_SIZE: f64 = 100.0;
 

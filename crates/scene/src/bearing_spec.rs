@@ -4,8 +4,8 @@
 
 use contopt_core::{check, Error, Material, Result};
 use contopt_roller::{
-    viscosity_at_temperature, BearingLoad, Crown, CrownSettings, CylindricalRollerBearing,
-    Raceway, Roller, Tilt, ISO_VG_GRADES,
+    viscosity_at_temperature, BearingLoad, Crown, CrownSettings, CylindricalRollerBearing, Raceway,
+    Roller, Tilt, ISO_VG_GRADES,
 };
 use serde::{Deserialize, Serialize};
 

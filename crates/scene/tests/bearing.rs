@@ -94,9 +94,17 @@ fn a_bearing_is_checked_at_its_keys() {
     let lubrication = line_of("lubrication = ");
     for (from, to, field) in [
         ("iso_vg = 68", "iso_vg = 70", "lubrication.iso_vg"),
-        ("temperature_c = 70.0", "temperature_c = 170.0", "lubrication.temperature_c"),
+        (
+            "temperature_c = 70.0",
+            "temperature_c = 170.0",
+            "lubrication.temperature_c",
+        ),
         (oil, "viscosity_mm2_s = 20.0, temperature_c = 70.0", "both"),
-        (oil, "iso_vg = 68, temperature_c = 70.0", "viscosity_100_mm2_s"),
+        (
+            oil,
+            "iso_vg = 68, temperature_c = 70.0",
+            "viscosity_100_mm2_s",
+        ),
     ] {
         let e = refused(from, to);
         assert!(
