@@ -4,8 +4,8 @@
 
 use contopt_core::{check, Error, Material, Result};
 use contopt_roller::{
-    viscosity_at_temperature, BearingLoad, Crown, CrownSettings, CylindricalRollerBearing, Raceway,
-    Roller, Tilt, ISO_VG_GRADES,
+    viscosity_at_temperature, BearingLoad, Crown, CrownSettings, CrownTolerances,
+    CylindricalRollerBearing, Raceway, Roller, Tilt, ISO_VG_GRADES, MAX_GRID, MIN_GRID,
 };
 use serde::{Deserialize, Serialize};
 
@@ -183,6 +183,11 @@ pub struct BearingSpec {
     /// contact is solved at both ends of the band too, and the worst is taken.
     #[serde(default)]
     pub tolerance_um: f64,
+    /// The roller crown's manufacturing tolerances as a box of its parameters
+    /// (`crown_tolerance = { drop_um, crowned_length_mm, log_constant, grid }`, default none):
+    /// the worst crown in the box is searched and reported.
+    #[serde(default)]
+    pub crown_tolerance: Option<CrownToleranceSpec>,
     /// What a design of the crown minimises (default the worst p_max).
     #[serde(default)]
     pub objective: BearingObjective,
@@ -328,6 +333,69 @@ fn iso_vg(vg: f64) -> Result<f64> {
             vg,
             format!("is not an ISO 3448 grade: one of {ISO_VG_GRADES:?}"),
         )),
+    }
+}
+
+/// The roller crown's manufacturing tolerances (`[bearing] crown_tolerance`), each ±: the
+/// scene's parametric `roller_profile` as made anywhere in their box
+/// ([`contopt_roller::worst_in_box`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrownToleranceSpec {
+    /// The end drop's \[µm\] (default 0), 0 to 1000.
+    #[serde(default)]
+    pub drop_um: f64,
+    /// The crowned length's at each end \[mm\] (default 0), below the half-length.
+    #[serde(default)]
+    pub crowned_length_mm: f64,
+    /// The logarithm's constant's, relative (default 0), 0 to below 1.
+    #[serde(default)]
+    pub log_constant: f64,
+    /// Points along each axis of the first grid over the box, its corners among them
+    /// (default 3), 2 to 9.
+    #[serde(default = "CrownToleranceSpec::default_grid")]
+    pub grid: usize,
+}
+
+impl CrownToleranceSpec {
+    fn default_grid() -> usize {
+        3
+    }
+
+    /// The library's tolerances, checked; fields named from the bearing.
+    pub(crate) fn tolerances(&self, half_length: f64) -> Result<CrownTolerances> {
+        let named = "crown_tolerance.";
+        check::between(
+            &format!("{named}drop_um"),
+            self.drop_um,
+            -f64::EPSILON,
+            MAX_TOLERANCE_UM,
+        )?;
+        check::between(
+            &format!("{named}crowned_length_mm"),
+            self.crowned_length_mm,
+            -f64::EPSILON,
+            half_length,
+        )?;
+        check::count(&format!("{named}grid"), self.grid, MIN_GRID, MAX_GRID)?;
+        let t = CrownTolerances {
+            drop: 1e-3 * self.drop_um,
+            crowned_length: self.crowned_length_mm,
+            log_constant: self.log_constant,
+        };
+        t.check().map_err(|e| match e {
+            Error::InvalidInput {
+                field,
+                value,
+                reason,
+            } => Error::InvalidInput {
+                field: field.replace("tolerance.", named),
+                value,
+                reason,
+            },
+            other => other,
+        })?;
+        Ok(t)
     }
 }
 

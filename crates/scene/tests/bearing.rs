@@ -464,3 +464,41 @@ fn a_design_names_the_load_cases_it_saw_on_coarse_cells() {
         report.warnings
     );
 }
+
+/// The crown's tolerance box (issue 35, point 6): a Fujiwara–Kawase roller crown (K1 = 1.2,
+/// K2 = 0.4, z_m = 10 µm) made anywhere within ±2 µm of drop, ±0.5 mm of crowned length and
+/// ±20 % of its log constant, on 24 × 13 cells under one load case: the worst crown found is
+/// at least as bad as every corner and as the nominal crown (both among the grid's points),
+/// and the tolerances matter (the worst p_max above the nominal's). A box the crown cannot be
+/// made in is named at its line.
+#[test]
+fn the_worst_crown_of_the_tolerance_box() {
+    let text = scene_text("[24, 13]", &[("A", 8900.0)]).replace(
+        "roller_profile = \"iso\"\n",
+        "roller_profile = { fujiwara_kawase = { k1 = 1.2, k2 = 0.4, z_m_mm = 0.01 } }\n\
+         crown_tolerance = { drop_um = 2.0, crowned_length_mm = 0.5, log_constant = 0.2 }\n",
+    );
+    let scene = Scene::parse(&text, Format::Toml, Path::new("duty.toml")).unwrap();
+    let b = bearing_of(&scene);
+    let t = b.crown_tolerance.unwrap();
+    eprintln!("{t:?}");
+    assert_eq!(t.active, [true; 3]);
+    assert!(t.worst >= t.worst_corner, "{t:?}");
+    assert!(t.p_max_mpa > t.nominal_p_max_mpa, "{t:?}");
+    assert!(t.deviation.iter().all(|d| d.abs() <= 1.0));
+    let bad = text.replace("log_constant = 0.2", "log_constant = 1.5");
+    let e = Scene::parse(&bad, Format::Toml, Path::new("duty.toml"))
+        .map(|s| s.cases()[0].run().map(|_| ()))
+        .err()
+        .map(|e| e.to_string());
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("crown_tolerance"))
+        .unwrap()
+        + 1;
+    let e = e.expect("refused at parse");
+    assert!(
+        e.contains(&format!("duty.toml:{line}:")) && e.contains("crown_tolerance.log_constant"),
+        "{e}"
+    );
+}

@@ -20,7 +20,7 @@ use contopt_results::LubricationReport;
 use contopt_roller::{
     dynamic_load_rating, fatigue_load_limit, hertz_slice_load, life_modification_factor,
     rated_viscosity, slice_ratings, static_load_rating, BearingLoad, CrownSettings,
-    CylindricalRollerBearing, Raceway, Roller, SliceRatings, FATIGUE_STRESS_MPA,
+    CrownTolerances, CylindricalRollerBearing, Raceway, Roller, SliceRatings, FATIGUE_STRESS_MPA,
 };
 
 pub(crate) use crate::bearing_spec::duty_cycle_levels;
@@ -61,6 +61,8 @@ pub(crate) struct BearingPlan {
     pub free_ends: Option<f64>,
     /// The tolerance band \[mm\].
     pub tolerance: f64,
+    /// The roller crown's tolerance box and its grid, when the scene gives one.
+    pub crown_tolerance: Option<(CrownTolerances, usize)>,
     pub objective: BearingObjective,
     /// The rotating ring's speed \[min⁻¹\], for lives in hours.
     pub speed_rpm: Option<f64>,
@@ -342,7 +344,12 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Option<BearingPlan>,
         check::positive("speed_rpm", n).map_err(within("bearing".into()))?;
     }
     let lubrication = lubricated(b, &bearing, b.speed_rpm).map_err(within("bearing".into()))?;
+    let crown_tolerance = (b.crown_tolerance.as_ref())
+        .map(|t| Ok((t.tolerances(0.5 * bearing.effective_length())?, t.grid)))
+        .transpose()
+        .map_err(within("bearing".into()))?;
     Ok(Some(BearingPlan {
+        crown_tolerance,
         crown: (spec.optimisation.as_ref()).and_then(|o| o.method.bearing_crown()),
         cells: b.cells,
         reach: b.reach_b,
