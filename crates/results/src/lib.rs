@@ -435,12 +435,14 @@ pub struct CrownToleranceReport {
     /// The worst crown's duty-cycle life from the solved raceway's slice peaks
     /// \[10⁶ revolutions\].
     pub life_mrev: f64,
-    /// The nominal crown's, on the same contacts.
+    /// The nominal crown's p_max on the same contacts \[MPa\].
     pub nominal_p_max_mpa: f64,
+    /// The nominal crown's life on the same contacts \[10⁶ revolutions\].
     pub nominal_life_mrev: f64,
-    /// The objective at the worst corner of the box and at the worst crown found (p_max
-    /// \[MPa\], or −1000·ln of the life for `objective = "life"`).
+    /// The objective at the worst corner of the box (the worst p_max \[MPa\], or −1000·ln of
+    /// the life for `objective = "life"`).
     pub worst_corner: f64,
+    /// The objective at the worst crown found, at least `worst_corner`.
     pub worst: f64,
     /// The crowns evaluated.
     pub evaluations: usize,

@@ -549,7 +549,8 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     };
     let out = finish(plan, c, report, designed, &rings)?;
     let started = Instant::now();
-    let worst_crown = crown_box::worst_crown(plan, c, &dists, &change, &at)?;
+    let worst_crown =
+        crown_box::worst_crown(plan, c, (&dists, &change), &at, &mut report.warnings)?;
     if let Some(b) = report.bearing.as_mut() {
         b.crown_tolerance = worst_crown;
     }

@@ -21,17 +21,35 @@ const SEARCH_EVALUATIONS: usize = 40;
 const SEARCH_TOLERANCE: f64 = 0.05;
 
 /// The worst crown of `plan`'s tolerance box about its roller crown, on the contacts of
-/// `dists` with the design's gap change `change` on the grid of `at`; `None` without a box.
+/// `dists` with the design's gap change `change` on the grid of `at`; `None` without a box,
+/// and with a warning in `warnings` when the case's roller crown has none of the parameters
+/// the box spans (a straight roller, or a crown the case designs: its drop band is
+/// `tolerance_um`).
 pub(super) fn worst_crown(
     plan: &BearingPlan,
     c: &Context,
-    dists: &[LoadDistribution],
-    change: &[f64],
+    (dists, change): (&[LoadDistribution], &[f64]),
     at: &Geometry,
+    warnings: &mut Vec<String>,
 ) -> Result<Option<CrownToleranceReport>> {
     let Some((tolerances, grid)) = plan.crown_tolerance else {
         return Ok(None);
     };
+    if !tolerances
+        .active(&plan.bearing.roller_crown)
+        .contains(&true)
+    {
+        warnings.push(format!(
+            "bearing.crown_tolerance: the roller crown of this case ({}) has no end drop, \
+             crowned length or log constant the box's non-zero tolerances span; no crown of \
+             the box was searched (a designed crown's drop band is bearing.tolerance_um)",
+            match plan.crown {
+                Some(_) => "designed by the case".to_string(),
+                None => format!("{:?}", plan.bearing.roller_crown),
+            }
+        ));
+        return Ok(None);
+    }
     let roller = (c.case.roller)
         .ok_or_else(|| contopt_core::Error::invalid("bearing", "its roller", "was not composed"))?;
     let nominal = &plan.bearing.roller_crown;
