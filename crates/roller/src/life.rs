@@ -247,8 +247,9 @@ pub fn reference_rating_life(
 }
 
 /// ISO/TS 16281's modified reference rating life with a life modification factor per slice
-/// (clause 5.4 with a_ISO in each slice's life): L_nmr = [Σ_k (a_ik^(−9/8)·(q_ci/q_ei,k)^(−9/2)
-/// + a_ek^(−9/8)·(q_ce/q_ee,k)^(−9/2))]^(−8/9), each slice's life (q_c/q_e,k)⁴ multiplied by
+/// (clause 5.4 with a_ISO in each slice's life):
+/// L_nmr = [Σ_k (a_ik^(−9/8)·(q_ci/q_ei,k)^(−9/2) + a_ek^(−9/8)·(q_ce/q_ee,k)^(−9/2))]^(−8/9),
+/// each slice's life (q_c/q_e,k)⁴ multiplied by
 /// its factor a_k = `factor`(raceway, q_e,k) before the slices' lives are combined (their
 /// damages add with the exponent 9/8). A factor of 1 is the basic reference life; a factor
 /// the same in every slice multiplies it. Slices without load are not asked for a factor.
@@ -422,7 +423,6 @@ pub fn miner(cases: &[(f64, f64)]) -> Result<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Crown;
 
     use crate::bearing::bearing_209 as bearing;
 
