@@ -117,7 +117,7 @@ pub const ISO_VG_GRADES: [f64; 20] = [
 /// crate does not).
 const WALTHER: f64 = 0.7;
 
-/// The least kinematic viscosity the Ubbelohde–Walther relation with [`WALTHER`] holds for
+/// The least kinematic viscosity the Ubbelohde–Walther relation with the constant 0.7 holds for
 /// \[mm²/s\].
 pub const WALTHER_MIN_VISCOSITY: f64 = 2.0;
 
