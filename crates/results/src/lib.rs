@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 7;
+pub const SCHEMA_VERSION: u32 = 8;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -391,6 +391,8 @@ pub struct BearingReport {
     /// ISO 281's lubrication and fatigue limit figures behind the modified lives; null
     /// without `[bearing.lubrication]`.
     pub lubrication: Option<LubricationReport>,
+    /// The worst roller crown over its tolerance box; null without `crown_tolerance`.
+    pub crown_tolerance: Option<CrownToleranceReport>,
 }
 
 /// ISO 281's figures of a bearing's lubrication and fatigue limit.
@@ -411,6 +413,39 @@ pub struct LubricationReport {
     /// The fatigue load limit C_u \[N\]: the scene's, or ISO 281's C_0r/8.2 (smaller past
     /// D_pw = 100 mm).
     pub fatigue_load_limit_n: f64,
+}
+
+/// The worst roller crown over the box of its manufacturing tolerances, found by a grid over
+/// the box (its corners among its points) and a simplex search from the grid's worst, on the
+/// solved raceway's contacts under the final load distributions (design grid).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct CrownToleranceReport {
+    /// The tolerances, each ±: the end drop \[µm\], the crowned length at each end \[mm\],
+    /// the log constant (relative).
+    pub tolerances: [f64; 3],
+    /// Which of them the crown has (a circular crown has no log constant, ISO's no finite
+    /// end drop).
+    pub active: [bool; 3],
+    /// The worst crown's deviation from the nominal, each in −1 … 1 of its tolerance.
+    pub deviation: [f64; 3],
+    /// The worst crown's p_max over the contacts \[MPa\].
+    pub p_max_mpa: f64,
+    /// The worst crown's duty-cycle life from the solved raceway's slice peaks
+    /// \[10⁶ revolutions\].
+    pub life_mrev: f64,
+    /// The nominal crown's p_max on the same contacts \[MPa\].
+    pub nominal_p_max_mpa: f64,
+    /// The nominal crown's life on the same contacts \[10⁶ revolutions\].
+    pub nominal_life_mrev: f64,
+    /// The objective at the worst corner of the box (the worst p_max \[MPa\], or −1000·ln of
+    /// the life for `objective = "life"`).
+    pub worst_corner: f64,
+    /// The objective at the worst crown found, at least `worst_corner`.
+    pub worst: f64,
+    /// The crowns evaluated.
+    pub evaluations: usize,
 }
 
 /// Lives in hours at the bearing's speed.
@@ -437,11 +472,10 @@ pub struct ModifiedLives {
     pub a_iso: f64,
     /// ISO 281's modified rating life L_nm = a_ISO·L₁₀ \[10⁶ revolutions\].
     pub modified_mrev: f64,
-    /// a_ISO at the reference life's equivalent load P_ref = C_r·L₁₀r^(−3/10) (over a duty
-    /// cycle: L_nmr/L₁₀r).
+    /// L_nmr/L₁₀r: the slices' a_ISO in effect over the bearing.
     pub a_iso_reference: f64,
-    /// ISO/TS 16281's modified reference rating life L_nmr = a_ISO(P_ref)·L₁₀r, L₁₀r the
-    /// half-space contacts' \[10⁶ revolutions\].
+    /// ISO/TS 16281's modified reference rating life L_nmr from the half-space contacts'
+    /// slices, a_ISO per slice (each slice's life a_ISO,k·(q_c/q_e,k)⁴) \[10⁶ revolutions\].
     pub modified_reference_mrev: f64,
 }
 

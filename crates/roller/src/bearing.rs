@@ -849,25 +849,36 @@ impl Model {
     }
 }
 
+/// The tests' bearing, shared by the crate's test modules: a 209 size, Z = 14 rollers of
+/// 10 × 10 mm (chamfers 0.2 mm, L_we = 9.6 mm), pitch diameter 65 mm, straight crowns, no
+/// clearance, `slices` slices.
+#[cfg(test)]
+pub(crate) fn bearing_209(slices: usize) -> CylindricalRollerBearing {
+    CylindricalRollerBearing {
+        rollers: 14,
+        roller_diameter: 10.0,
+        roller_length: 10.0,
+        chamfer: 0.2,
+        pitch_diameter: 65.0,
+        clearance: 0.0,
+        roller_crown: Crown::Straight,
+        inner_crown: Crown::Straight,
+        outer_crown: Crown::Straight,
+        slices,
+        first_roller: 0.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A 209-size cylindrical roller bearing: Z = 14 rollers of 10 × 10 mm (chamfers 0.2 mm),
-    /// pitch diameter 65 mm, ISO's roller crown, 30 slices.
+    /// [`bearing_209`] with ISO's roller crown, 30 slices and `clearance`.
     fn bearing(clearance: f64) -> CylindricalRollerBearing {
         CylindricalRollerBearing {
-            rollers: 14,
-            roller_diameter: 10.0,
-            roller_length: 10.0,
-            chamfer: 0.2,
-            pitch_diameter: 65.0,
             clearance,
             roller_crown: Crown::iso(10.0).unwrap(),
-            inner_crown: Crown::Straight,
-            outer_crown: Crown::Straight,
-            slices: 30,
-            first_roller: 0.0,
+            ..bearing_209(30)
         }
     }
 

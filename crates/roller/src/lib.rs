@@ -20,6 +20,7 @@ mod figures;
 mod geometry;
 mod life;
 mod modified;
+mod tolerance;
 
 pub use bearing::{
     BearingLoad, BearingSettings, CylindricalRollerBearing, LoadDistribution, Raceway, RollerCase,
@@ -34,11 +35,14 @@ pub use design::{
 pub use figures::{end_ratio, CaseContact, CaseFigures, RollerFigures, EDGE_LOADING};
 pub use geometry::{Roller, RollerEnds};
 pub use life::{
-    basic_rating_life, dynamic_load_rating, f_c, hertz_slice_load, miner, reference_rating_life,
-    slice_loads_from_pressure, slice_peaks_from_pressure, slice_ratings, ReferenceLife, SliceLoads,
-    SliceRatings, B_M, REDUCTION, ROLLER_LIFE_EXPONENT,
+    basic_rating_life, dynamic_load_rating, f_c, hertz_slice_load, miner,
+    modified_reference_rating_life, reference_rating_life, slice_loads_from_pressure,
+    slice_peaks_from_pressure, slice_ratings, ReferenceLife, SliceLoads, SliceRatings, B_M,
+    REDUCTION, ROLLER_LIFE_EXPONENT,
 };
 pub use modified::{
     fatigue_load_limit, hours, life_modification_factor, rated_viscosity, static_load_rating,
-    A_ISO_MAX, KAPPA_MAX, KAPPA_MIN,
+    viscosity_at_temperature, A_ISO_MAX, FATIGUE_STRESS_MPA, ISO_VG_GRADES, KAPPA_MAX, KAPPA_MIN,
+    OPERATING_TEMPERATURE_C, WALTHER_MIN_VISCOSITY,
 };
+pub use tolerance::{worst_in_box, CrownTolerances, WorstCrown, MAX_GRID, MIN_GRID, PARAMETERS};

@@ -234,24 +234,47 @@ pub struct ReferenceLife {
 /// ISO/TS 16281's basic reference rating life of a roller bearing (clause 5.4):
 /// L_10r = [Σ_k ((q_ci/q_ei,k)^(−9/2) + (q_ce/q_ee,k)^(−9/2))]^(−8/9), the sum over the slices,
 /// q_e the slices' equivalent loads over the rollers on a `rotating` and a standing ring. The
-/// modified reference rating life is a_ISO·L_10r, a_ISO ISO 281's life modification factor
-/// (lubrication, contamination, fatigue limit), not computed here. The standard's stress-riser
-/// functions (edge stresses, clause 5.3.3) are not applied: the slice loads are taken as they
-/// are. An error when no slice of a raceway carries load (its life is unbounded).
+/// modified reference rating life, a_ISO per slice, is [`modified_reference_rating_life`].
+/// The standard's stress-riser functions (edge stresses, clause 5.3.3) are not applied: the
+/// slice loads are taken as they are. An error when no slice of a raceway carries load (its
+/// life is unbounded).
 pub fn reference_rating_life(
     ratings: &SliceRatings,
     loads: &SliceLoads,
     rotating: Raceway,
 ) -> Result<ReferenceLife> {
+    modified_reference_rating_life(ratings, loads, rotating, |_, _| Ok(1.0))
+}
+
+/// ISO/TS 16281's modified reference rating life with a life modification factor per slice
+/// (clause 5.4 with a_ISO in each slice's life):
+/// L_nmr = [Σ_k (a_ik^(−9/8)·(q_ci/q_ei,k)^(−9/2) + a_ek^(−9/8)·(q_ce/q_ee,k)^(−9/2))]^(−8/9),
+/// each slice's life (q_c/q_e,k)⁴ multiplied by
+/// its factor a_k = `factor`(raceway, q_e,k) before the slices' lives are combined (their
+/// damages add with the exponent 9/8). A factor of 1 is the basic reference life; a factor
+/// the same in every slice multiplies it. Slices without load are not asked for a factor.
+pub fn modified_reference_rating_life(
+    ratings: &SliceRatings,
+    loads: &SliceLoads,
+    rotating: Raceway,
+    factor: impl Fn(Raceway, f64) -> Result<f64>,
+) -> Result<ReferenceLife> {
     check::positive("ratings.inner", ratings.inner)?;
     check::positive("ratings.outer", ratings.outer)?;
-    let damage = |raceway: Raceway, rating: f64| -> f64 {
-        (0..loads.slices)
-            .map(|k| (loads.equivalent(raceway, rotating, k) / rating).powf(4.5))
-            .sum()
+    let damage = |raceway: Raceway, rating: f64| -> Result<f64> {
+        let mut sum = 0.0;
+        for k in 0..loads.slices {
+            let q = loads.equivalent(raceway, rotating, k);
+            if q > 0.0 {
+                let a =
+                    check::positive("the slice's life modification factor", factor(raceway, q)?)?;
+                sum += a.powf(-9.0 / 8.0) * (q / rating).powf(4.5);
+            }
+        }
+        Ok(sum)
     };
     let life = |raceway: Raceway, rating: f64| -> Result<f64> {
-        let d = damage(raceway, rating);
+        let d = damage(raceway, rating)?;
         if d <= 0.0 {
             return Err(Error::invalid(
                 format!("slice loads on the {raceway:?} raceway"),
@@ -400,23 +423,8 @@ pub fn miner(cases: &[(f64, f64)]) -> Result<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Crown;
 
-    fn bearing(slices: usize) -> CylindricalRollerBearing {
-        CylindricalRollerBearing {
-            rollers: 14,
-            roller_diameter: 10.0,
-            roller_length: 10.0,
-            chamfer: 0.2,
-            pitch_diameter: 65.0,
-            clearance: 0.0,
-            roller_crown: Crown::Straight,
-            inner_crown: Crown::Straight,
-            outer_crown: Crown::Straight,
-            slices,
-            first_roller: 0.0,
-        }
-    }
+    use crate::bearing::bearing_209 as bearing;
 
     /// The table of f_c is ISO/TR 1281-1's formula rounded to 0.1 (λν = 0.83): every row within
     /// 0.05; between rows, linear; outside, an error.
@@ -507,6 +515,44 @@ mod tests {
         let unloaded = SliceLoads::new(14, 7).unwrap();
         let r = slice_ratings(&bearing(7), rating).unwrap();
         assert!(reference_rating_life(&r, &unloaded, Raceway::Inner).is_err());
+    }
+
+    /// The modified reference life: a factor the same in every slice multiplies each ring's
+    /// life by itself (a = 2: ×2 exactly); a factor per slice weights each slice's damage by
+    /// a^(−9/8) before they add: one roller, 2 slices on each ring carrying q and 2q, factors
+    /// 4 and 1, give [4^(−9/8)·q^(9/2) + (2q)^(9/2)]/q_c^(9/2) per ring, to the −8/9, written
+    /// out here; a factor taken where a slice carries nothing would be a defect.
+    #[test]
+    fn a_factor_per_slice_weights_each_slices_damage() {
+        let b = bearing(2);
+        let r = slice_ratings(&b, dynamic_load_rating(&b).unwrap()).unwrap();
+        let mut loads = SliceLoads::new(14, 2).unwrap();
+        loads.set(Raceway::Inner, 0, &[1000.0, 2000.0]).unwrap();
+        loads.set(Raceway::Outer, 0, &[1000.0, 2000.0]).unwrap();
+        let basic = reference_rating_life(&r, &loads, Raceway::Inner).unwrap();
+        let twice =
+            modified_reference_rating_life(&r, &loads, Raceway::Inner, |_, _| Ok(2.0)).unwrap();
+        assert!((twice.bearing / basic.bearing - 2.0).abs() < 1e-12);
+        assert!((twice.outer / basic.outer - 2.0).abs() < 1e-12);
+        let per_slice = |_: Raceway, q: f64| {
+            assert!(q > 0.0);
+            Ok(if q < 800.0 { 4.0 } else { 1.0 })
+        };
+        let life = modified_reference_rating_life(&r, &loads, Raceway::Inner, per_slice).unwrap();
+        // The inner ring rotates: slice k's equivalent load is the 4-mean over 14 rollers.
+        let qe = |q: f64| q * (1.0f64 / 14.0).powf(0.25);
+        let inner = |a: [f64; 2]| {
+            (a[0].powf(-9.0 / 8.0) * (qe(1000.0) / r.inner).powf(4.5)
+                + a[1].powf(-9.0 / 8.0) * (qe(2000.0) / r.inner).powf(4.5))
+            .powf(-8.0 / 9.0)
+        };
+        let factors = [1000.0, 2000.0].map(|q| if qe(q) < 800.0 { 4.0 } else { 1.0 });
+        assert_eq!(factors, [4.0, 1.0]);
+        assert!(
+            (life.inner / inner(factors) - 1.0).abs() < 1e-12,
+            "{factors:?}"
+        );
+        assert!((basic.inner / inner([1.0, 1.0]) - 1.0).abs() < 1e-12);
     }
 
     /// A pressure map's slice loads: every cell's force lands in the slices its width covers,

@@ -4,7 +4,8 @@
 
 use contopt_core::{check, Error, Material, Result};
 use contopt_roller::{
-    BearingLoad, Crown, CrownSettings, CylindricalRollerBearing, Raceway, Roller, Tilt,
+    viscosity_at_temperature, BearingLoad, Crown, CrownSettings, CrownTolerances,
+    CylindricalRollerBearing, Raceway, Roller, Tilt, ISO_VG_GRADES, MAX_GRID, MIN_GRID,
 };
 use serde::{Deserialize, Serialize};
 
@@ -182,6 +183,11 @@ pub struct BearingSpec {
     /// contact is solved at both ends of the band too, and the worst is taken.
     #[serde(default)]
     pub tolerance_um: f64,
+    /// The roller crown's manufacturing tolerances as a box of its parameters
+    /// (`crown_tolerance = { drop_um, crowned_length_mm, log_constant, grid }`, default none):
+    /// the worst crown in the box is searched and reported.
+    #[serde(default)]
+    pub crown_tolerance: Option<CrownToleranceSpec>,
     /// What a design of the crown minimises (default the worst p_max).
     #[serde(default)]
     pub objective: BearingObjective,
@@ -206,9 +212,25 @@ pub struct BearingSpec {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LubricationSpec {
-    /// The lubricant's kinematic viscosity at the operating temperature ν \[mm²/s\] (an ISO
-    /// VG grade is its viscosity at 40 °C: VG 68 is 68 mm²/s there, less when warmer).
-    pub viscosity_mm2_s: f64,
+    /// The lubricant's kinematic viscosity at the operating temperature ν \[mm²/s\]; or,
+    /// instead, the oil (`iso_vg` or `viscosity_40_mm2_s`, with `viscosity_100_mm2_s`) and
+    /// `temperature_c`.
+    #[serde(default)]
+    pub viscosity_mm2_s: Option<f64>,
+    /// The oil's ISO VG grade (ISO 3448: its viscosity at 40 °C, VG 68 is 68 mm²/s).
+    #[serde(default)]
+    pub iso_vg: Option<f64>,
+    /// The oil's viscosity at 40 °C \[mm²/s\] (instead of `iso_vg`, from its data sheet).
+    #[serde(default)]
+    pub viscosity_40_mm2_s: Option<f64>,
+    /// The oil's viscosity at 100 °C \[mm²/s\] (its data sheet; a mineral VG 68 of viscosity
+    /// index about 95 has about 8.7).
+    #[serde(default)]
+    pub viscosity_100_mm2_s: Option<f64>,
+    /// The operating temperature \[°C\], −20 to 150: ν there by ASTM D341's
+    /// Ubbelohde–Walther relation through the oil's two viscosities.
+    #[serde(default)]
+    pub temperature_c: Option<f64>,
     /// ISO 281's contamination factor e_C, 0 to 1 (1: extremely clean; about 0.5 to 0.3 for
     /// normal cleanliness; ISO 281 Table 13).
     pub contamination: f64,
@@ -221,7 +243,7 @@ pub struct LubricationSpec {
 impl LubricationSpec {
     /// Checks its numbers; fields are named from the bearing.
     pub(crate) fn check(&self) -> Result<()> {
-        check::positive("lubrication.viscosity_mm2_s", self.viscosity_mm2_s)?;
+        self.viscosity()?;
         check::between(
             "lubrication.contamination",
             self.contamination,
@@ -232,6 +254,148 @@ impl LubricationSpec {
             check::positive("lubrication.fatigue_load_limit_n", c)?;
         }
         Ok(())
+    }
+
+    /// The viscosity at the operating temperature \[mm²/s\]: the one given, or the oil's at
+    /// its temperature ([`viscosity_at_temperature`]).
+    pub(crate) fn viscosity(&self) -> Result<f64> {
+        let oil = (self.iso_vg.is_some() || self.viscosity_40_mm2_s.is_some())
+            || self.viscosity_100_mm2_s.is_some()
+            || self.temperature_c.is_some();
+        match (self.viscosity_mm2_s, oil) {
+            (Some(nu), false) => check::positive("lubrication.viscosity_mm2_s", nu),
+            (Some(nu), true) => Err(Error::invalid(
+                "lubrication.viscosity_mm2_s",
+                nu,
+                "give either the viscosity at the operating temperature or the oil \
+                 (iso_vg or viscosity_40_mm2_s, viscosity_100_mm2_s) and temperature_c, not both",
+            )),
+            (None, _) => self.oil_viscosity(),
+        }
+    }
+
+    /// ν at `temperature_c` of the oil given by its grade or ν₄₀, and ν₁₀₀.
+    fn oil_viscosity(&self) -> Result<f64> {
+        let nu_40 = match (self.iso_vg, self.viscosity_40_mm2_s) {
+            (Some(vg), None) => iso_vg(vg)?,
+            (None, Some(nu)) => nu,
+            (Some(vg), Some(_)) => {
+                return Err(Error::invalid(
+                    "lubrication.iso_vg",
+                    vg,
+                    "give iso_vg or viscosity_40_mm2_s, not both",
+                ))
+            }
+            (None, None) => {
+                return Err(Error::invalid(
+                    "lubrication.viscosity_mm2_s",
+                    "missing",
+                    "give the viscosity at the operating temperature, or the oil (iso_vg or \
+                     viscosity_40_mm2_s, with viscosity_100_mm2_s) and temperature_c",
+                ))
+            }
+        };
+        let needed = |field: &str, value: Option<f64>, why: &str| {
+            value.ok_or_else(|| Error::invalid(format!("lubrication.{field}"), "missing", why))
+        };
+        let nu_100 = needed(
+            "viscosity_100_mm2_s",
+            self.viscosity_100_mm2_s,
+            "the oil's viscosity at 100 °C (its data sheet) sets how it thins with temperature",
+        )?;
+        let t = needed(
+            "temperature_c",
+            self.temperature_c,
+            "the operating temperature the oil's viscosity is taken at",
+        )?;
+        viscosity_at_temperature(nu_40, nu_100, t).map_err(|e| match e {
+            Error::InvalidInput {
+                field,
+                value,
+                reason,
+            } => Error::InvalidInput {
+                field: format!("lubrication.{field}"),
+                value,
+                reason,
+            },
+            other => other,
+        })
+    }
+}
+
+/// ISO 3448's grade `vg` as its viscosity at 40 °C \[mm²/s\]; an error for a number that is
+/// not a grade.
+fn iso_vg(vg: f64) -> Result<f64> {
+    match ISO_VG_GRADES.contains(&vg) {
+        true => Ok(vg),
+        false => Err(Error::invalid(
+            "lubrication.iso_vg",
+            vg,
+            format!("is not an ISO 3448 grade: one of {ISO_VG_GRADES:?}"),
+        )),
+    }
+}
+
+/// The roller crown's manufacturing tolerances (`[bearing] crown_tolerance`), each ±: the
+/// scene's parametric `roller_profile` as made anywhere in their box
+/// ([`contopt_roller::worst_in_box`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrownToleranceSpec {
+    /// The end drop's \[µm\] (default 0), 0 to 1000.
+    #[serde(default)]
+    pub drop_um: f64,
+    /// The crowned length's at each end \[mm\] (default 0), below the half-length.
+    #[serde(default)]
+    pub crowned_length_mm: f64,
+    /// The logarithm's constant's, relative (default 0), 0 to below 1.
+    #[serde(default)]
+    pub log_constant: f64,
+    /// Points along each axis of the first grid over the box, its corners among them
+    /// (default 3), 2 to 9.
+    #[serde(default = "CrownToleranceSpec::default_grid")]
+    pub grid: usize,
+}
+
+impl CrownToleranceSpec {
+    fn default_grid() -> usize {
+        3
+    }
+
+    /// The library's tolerances, checked; fields named from the bearing.
+    pub(crate) fn tolerances(&self, half_length: f64) -> Result<CrownTolerances> {
+        let named = "crown_tolerance.";
+        check::between(
+            &format!("{named}drop_um"),
+            self.drop_um,
+            -f64::EPSILON,
+            MAX_TOLERANCE_UM,
+        )?;
+        check::between(
+            &format!("{named}crowned_length_mm"),
+            self.crowned_length_mm,
+            -f64::EPSILON,
+            half_length,
+        )?;
+        check::count(&format!("{named}grid"), self.grid, MIN_GRID, MAX_GRID)?;
+        let t = CrownTolerances {
+            drop: 1e-3 * self.drop_um,
+            crowned_length: self.crowned_length_mm,
+            log_constant: self.log_constant,
+        };
+        t.check().map_err(|e| match e {
+            Error::InvalidInput {
+                field,
+                value,
+                reason,
+            } => Error::InvalidInput {
+                field: field.replace("tolerance.", named),
+                value,
+                reason,
+            },
+            other => other,
+        })?;
+        Ok(t)
     }
 }
 

@@ -6,16 +6,17 @@
 //! Which figure comes from where: L₁₀ = (C_r/F_r)^(10/3) and L_nm = a_ISO·L₁₀ are ISO 281's
 //! (a₁ = 1, 90 % reliability); L₁₀r is ISO/TS 16281's reference rating life from the slices,
 //! each raceway's [Σ_k (q_c/q_e,k)^(9/2)]^(−8/9) and the bearing's (L_i^(−9/8) + L_e^(−9/8))^(−8/9)
-//! ([`reference_rating_life`]); L_nmr = a_ISO(P_ref)·L₁₀r with the equivalent load
-//! P_ref = C_r·L₁₀r^(−3/10) that gives L₁₀r under ISO 281's formula (this crate's reading of
-//! ISO/TS 16281's modified reference life, whose text could not be read here; its per-slice
-//! a_ISO is not computed). The duty cycle's lives are Palmgren–Miner's ([`miner`]).
+//! ([`reference_rating_life`]); L_nmr is ISO/TS 16281's modified reference life with a_ISO
+//! per slice ([`modified_reference_rating_life`]), each slice's e_C·C_u/P taken as e_C·q_u/q_e,k
+//! with q_u the slice's fatigue load limit (a Hertzian slice at ISO 281's 1500 MPa: this
+//! crate's form, the standard's text could not be read here). The duty cycle's lives are
+//! Palmgren–Miner's ([`miner`]).
 
 use contopt_core::Result;
 use contopt_results::{LifeHours, Lives, ModifiedLives};
 use contopt_roller::{
-    basic_rating_life, hours, life_modification_factor, miner, reference_rating_life, Raceway,
-    ReferenceLife, SliceLoads, SliceRatings, ROLLER_LIFE_EXPONENT,
+    basic_rating_life, hours, life_modification_factor, miner, modified_reference_rating_life,
+    reference_rating_life, Raceway, ReferenceLife, SliceLoads, SliceRatings,
 };
 
 /// One load case's slice loads.
@@ -38,6 +39,9 @@ pub(crate) struct Lubrication {
     pub kappa: f64,
     /// e_C·C_u \[N\].
     pub contaminated_limit_n: f64,
+    /// e_C times each raceway's slice fatigue load limit (inner, outer) \[N\]: the load of a
+    /// Hertzian slice at ISO 281's 1500 MPa ([`contopt_roller::FATIGUE_STRESS_MPA`]).
+    pub contaminated_slice_limits_n: [f64; 2],
 }
 
 /// What the stage takes: the ratings, the rotating ring, the load cases' slices, and the
@@ -86,26 +90,26 @@ fn reference(input: &LivesInput, loads: &SliceLoads) -> Result<ReferenceLife> {
 
 /// One load case's lives: the half-space's and the raised ones the band's worst.
 fn case_lives(input: &LivesInput, case: &CaseSlices) -> Result<Lives> {
-    let (mut half_space, mut peak): (Option<ReferenceLife>, f64) = (None, f64::INFINITY);
+    let (mut half_space, mut peak) = (None::<(ReferenceLife, &SliceLoads)>, f64::INFINITY);
     for [loads, raised] in &case.bands {
         let life = reference(input, loads)?;
-        if half_space.is_none_or(|h| life.bearing < h.bearing) {
-            half_space = Some(life);
+        if half_space.is_none_or(|h| life.bearing < h.0.bearing) {
+            half_space = Some((life, loads));
         }
         peak = peak.min(reference(input, raised)?.bearing);
     }
-    let half_space = match half_space {
+    let (half_space, loads) = match half_space {
         Some(h) => h,
-        None => reference(input, &case.slice_model)?,
+        None => (reference(input, &case.slice_model)?, &case.slice_model),
     };
     let iso = basic_rating_life(input.rating, case.radial_n)?;
     let modified = match input.lubrication {
         Some(lub) => Some(modified(
-            input.rating,
+            input,
             &lub,
             case.radial_n,
             iso,
-            half_space.bearing,
+            (half_space, loads),
         )?),
         None => None,
     };
@@ -119,24 +123,33 @@ fn case_lives(input: &LivesInput, case: &CaseSlices) -> Result<Lives> {
     })
 }
 
-/// ISO 281's modified lives of a load case: L_nm = a_ISO(e_C·C_u/F_r)·L₁₀ and
-/// L_nmr = a_ISO(e_C·C_u/P_ref)·L₁₀r, P_ref = C_r·L₁₀r^(−1/p) (p = 10/3).
+/// ISO 281's and ISO/TS 16281's modified lives of a load case: L_nm = a_ISO(e_C·C_u/F_r)·L₁₀,
+/// and L_nmr with a_ISO per slice ([`modified_reference_rating_life`]): slice k of a raceway
+/// at a_ISO(κ, e_C·q_u/q_e,k), q_u the raceway's slice fatigue load limit and q_e,k the
+/// slice's equivalent load, `reference` = (L₁₀r, the slice loads it was taken from). The
+/// reported a_ISO of L_nmr is L_nmr/L₁₀r.
 fn modified(
-    rating: f64,
+    input: &LivesInput,
     lub: &Lubrication,
     radial: f64,
     l10: f64,
-    l10r: f64,
+    (l10r, loads): (ReferenceLife, &SliceLoads),
 ) -> Result<ModifiedLives> {
     let a_iso = life_modification_factor(lub.kappa, lub.contaminated_limit_n / radial)?;
-    let reference_load = rating * l10r.powf(-1.0 / ROLLER_LIFE_EXPONENT);
-    let a_reference =
-        life_modification_factor(lub.kappa, lub.contaminated_limit_n / reference_load)?;
+    let per_slice = |raceway: Raceway, q: f64| {
+        let limit = match raceway {
+            Raceway::Inner => lub.contaminated_slice_limits_n[0],
+            Raceway::Outer => lub.contaminated_slice_limits_n[1],
+        };
+        life_modification_factor(lub.kappa, limit / q)
+    };
+    let nmr =
+        modified_reference_rating_life(input.ratings, loads, input.rotating, per_slice)?.bearing;
     Ok(ModifiedLives {
         a_iso,
         modified_mrev: a_iso * l10,
-        a_iso_reference: a_reference,
-        modified_reference_mrev: a_reference * l10r,
+        a_iso_reference: nmr / l10r.bearing,
+        modified_reference_mrev: nmr,
     })
 }
 
@@ -250,14 +263,18 @@ mod tests {
         assert!(l.modified.is_none() && h.modified_h.is_none());
     }
 
-    /// With lubrication, L_nm = a_ISO·L₁₀ at P = F_r, and L_nmr = a_ISO·L₁₀r at the load
-    /// that gives L₁₀r under ISO 281's formula; over a duty cycle every life, the modified
-    /// ones too, is Palmgren–Miner's of the load cases'.
+    /// With lubrication, L_nm = a_ISO·L₁₀ at P = F_r, and L_nmr with a_ISO per slice: here
+    /// every loaded slice of a ring carries the same equivalent load q_e (the inner ring
+    /// rotates: q·(1/2)^(1/4) over the 2 rollers, the outer q·(1/2)^(2/9)), so each ring's
+    /// life is multiplied by a_ISO(κ, e_C·q_u/q_e) of its own, and the bearing's is the rings'
+    /// combined ((a_i·L_i)^(−9/8) + (a_e·L_e)^(−9/8))^(−8/9); over a duty cycle every life,
+    /// the modified ones too, is Palmgren–Miner's of the load cases'.
     #[test]
     fn modified_lives_and_the_duty_cycle() {
         let lub = Lubrication {
             kappa: 1.5,
             contaminated_limit_n: 0.5 * 6000.0,
+            contaminated_slice_limits_n: [40.0, 60.0],
         };
         let bands = |q: f64| vec![[slices(q, q), slices(q, q)]];
         let cases = [
@@ -270,12 +287,17 @@ mod tests {
             let a = life_modification_factor(1.5, 3000.0 / c.radial_n).unwrap();
             assert_eq!(m.a_iso, a);
             assert!((m.modified_mrev / (a * l.iso_281_mrev) - 1.0).abs() < 1e-12);
-            let p_ref = 50e3 * l.half_space_mrev.powf(-0.3);
-            assert!(
-                (basic_rating_life(50e3, p_ref).unwrap() / l.half_space_mrev - 1.0).abs() < 1e-12
-            );
-            let a_ref = life_modification_factor(1.5, 3000.0 / p_ref).unwrap();
-            assert!((m.modified_reference_mrev / (a_ref * l.half_space_mrev) - 1.0).abs() < 1e-12);
+            let q = c.bands[0][0].roller(Raceway::Inner, 0)[0];
+            let a_ring = |limit: f64, mean: f64| {
+                life_modification_factor(1.5, limit / (q * 0.5f64.powf(1.0 / mean))).unwrap()
+            };
+            let (a_i, a_e) = (a_ring(40.0, 4.0), a_ring(60.0, 4.5));
+            assert!(a_i != a_e && a_i > 0.1);
+            let [l_i, l_e] = l.rings_mrev;
+            let want =
+                ((a_i * l_i).powf(-9.0 / 8.0) + (a_e * l_e).powf(-9.0 / 8.0)).powf(-8.0 / 9.0);
+            assert!((m.modified_reference_mrev / want - 1.0).abs() < 1e-12);
+            assert!((m.a_iso_reference - want / l.half_space_mrev).abs() < 1e-12);
         }
         let miner = |f: &dyn Fn(&Lives) -> f64| {
             1.0 / (0.75 / f(&out.per_case[0]) + 0.25 / f(&out.per_case[1]))

@@ -18,9 +18,9 @@ use contopt_core::{check, Error, Result};
 use contopt_input::{Node, Value};
 use contopt_results::LubricationReport;
 use contopt_roller::{
-    dynamic_load_rating, fatigue_load_limit, life_modification_factor, rated_viscosity,
-    slice_ratings, static_load_rating, BearingLoad, CrownSettings, CylindricalRollerBearing,
-    Raceway, SliceRatings,
+    dynamic_load_rating, fatigue_load_limit, hertz_slice_load, life_modification_factor,
+    rated_viscosity, slice_ratings, static_load_rating, BearingLoad, CrownSettings,
+    CrownTolerances, CylindricalRollerBearing, Raceway, Roller, SliceRatings, FATIGUE_STRESS_MPA,
 };
 
 pub(crate) use crate::bearing_spec::duty_cycle_levels;
@@ -61,6 +61,8 @@ pub(crate) struct BearingPlan {
     pub free_ends: Option<f64>,
     /// The tolerance band \[mm\].
     pub tolerance: f64,
+    /// The roller crown's tolerance box and its grid, when the scene gives one.
+    pub crown_tolerance: Option<(CrownTolerances, usize)>,
     pub objective: BearingObjective,
     /// The rotating ring's speed \[min⁻¹\], for lives in hours.
     pub speed_rpm: Option<f64>,
@@ -95,27 +97,25 @@ fn lubricated(
         )
     })?;
     let rated = rated_viscosity(speed, bearing.pitch_diameter)?;
-    let kappa = lub.viscosity_mm2_s / rated;
+    let viscosity = lub.viscosity()?;
+    let kappa = viscosity / rated;
     let static_rating = static_load_rating(bearing)?;
     let limit = match lub.fatigue_load_limit_n {
         Some(c) => c,
         None => fatigue_load_limit(bearing)?,
     };
     // Refuses a κ below the formula's range here, before anything is solved.
-    life_modification_factor(kappa, 0.0).map_err(|e| {
-        Error::invalid(
-            "lubrication.viscosity_mm2_s",
-            lub.viscosity_mm2_s,
-            e.to_string(),
-        )
-    })?;
+    life_modification_factor(kappa, 0.0)
+        .map_err(|e| Error::invalid("lubrication.viscosity_mm2_s", viscosity, e.to_string()))?;
+    let slice_limit = slice_fatigue_limits(b, bearing, limit)?;
     Ok(Some(Lubricated {
         figures: Lubrication {
             kappa,
             contaminated_limit_n: lub.contamination * limit,
+            contaminated_slice_limits_n: slice_limit.map(|q| lub.contamination * q),
         },
         report: LubricationReport {
-            viscosity_mm2_s: lub.viscosity_mm2_s,
+            viscosity_mm2_s: viscosity,
             rated_viscosity_mm2_s: rated,
             kappa,
             contamination: lub.contamination,
@@ -123,6 +123,32 @@ fn lubricated(
             fatigue_load_limit_n: limit,
         },
     }))
+}
+
+/// Each raceway's slice fatigue load limit \[N\] (inner, outer): the load of a Hertzian slice
+/// of `bearing` ([`hertz_slice_load`], L_we/n_s wide, on the pair's radius and modulus) at
+/// ISO 281's fatigue stress ([`FATIGUE_STRESS_MPA`]) times √(C_u/C_u,ISO), `limit` = C_u.
+fn slice_fatigue_limits(
+    b: &BearingSpec,
+    bearing: &CylindricalRollerBearing,
+    limit: f64,
+) -> Result<[f64; 2]> {
+    let stress = FATIGUE_STRESS_MPA * (limit / fatigue_load_limit(bearing)?).sqrt();
+    let width = bearing.effective_length() / bearing.slices as f64;
+    let (d, pitch) = (b.roller_diameter_mm, b.pitch_diameter_mm);
+    let pair = |raceway_diameter: f64| -> Result<f64> {
+        let roller = Roller {
+            raceway_diameter: Some(raceway_diameter),
+            ..b.roller()
+        };
+        Ok(hertz_slice_load(
+            stress,
+            width,
+            roller.radius()?,
+            roller.e_star(),
+        ))
+    };
+    Ok([pair(pitch - d)?, pair(-(pitch + d))?])
 }
 
 /// The span of the key at `path` of `tree`.
@@ -318,7 +344,12 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator) -> Result<Option<BearingPlan>,
         check::positive("speed_rpm", n).map_err(within("bearing".into()))?;
     }
     let lubrication = lubricated(b, &bearing, b.speed_rpm).map_err(within("bearing".into()))?;
+    let crown_tolerance = (b.crown_tolerance.as_ref())
+        .map(|t| Ok((t.tolerances(0.5 * bearing.effective_length())?, t.grid)))
+        .transpose()
+        .map_err(within("bearing".into()))?;
     Ok(Some(BearingPlan {
+        crown_tolerance,
         crown: (spec.optimisation.as_ref()).and_then(|o| o.method.bearing_crown()),
         cells: b.cells,
         reach: b.reach_b,

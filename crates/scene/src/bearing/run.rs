@@ -25,6 +25,8 @@ use contopt_roller::{
     RollerEnds, SliceLoads, EDGE_LOADING,
 };
 
+mod crown_box;
+
 use super::grids::{self, Grids, Solved};
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
 use crate::lives::{CaseSlices, LivesInput, LivesOutput};
@@ -385,20 +387,33 @@ fn search_objective<'o>(
         match plan.objective {
             BearingObjective::PMax => Ok(penalised_worst(at.points, states)),
             BearingObjective::Life => {
-                let ring = RingPressures {
-                    raceway: plan.raceway,
-                    env,
-                    pressures: states.iter().map(|s| s.pressure.as_slice()).collect(),
-                    grid: OnGrid::One(at.points, at.cell),
-                    radius: at.radius,
-                    e_star: at.e_star,
-                };
-                let cases = slices(plan, first, &[ring], at.length)?;
-                let duty = crate::lives::lives(&lives_input(plan, &cases))?.duty;
-                Ok(-LOG_SCALE * duty.peak_pressure_mrev.ln())
+                Ok(-LOG_SCALE * peak_life(plan, first, env, at, states)?.ln())
             }
         }
     }
+}
+
+/// The duty cycle's life from the slice peaks of the solved raceway's contacts `states` (all
+/// on the grid of `at`), the other ring's the slice model's \[10⁶ revolutions\].
+fn peak_life(
+    plan: &BearingPlan,
+    first: &[LoadDistribution],
+    env: &Envelope,
+    at: &Geometry,
+    states: &[ContactState],
+) -> Result<f64> {
+    let ring = RingPressures {
+        raceway: plan.raceway,
+        env,
+        pressures: states.iter().map(|s| s.pressure.as_slice()).collect(),
+        grid: OnGrid::One(at.points, at.cell),
+        radius: at.radius,
+        e_star: at.e_star,
+    };
+    let cases = slices(plan, first, &[ring], at.length)?;
+    Ok(crate::lives::lives(&lives_input(plan, &cases))?
+        .duty
+        .peak_pressure_mrev)
 }
 
 /// A grid of at least this many points is searched coarse to fine
@@ -532,7 +547,15 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
         at: &at,
         roller,
     };
-    finish(plan, c, report, designed, &rings)
+    let out = finish(plan, c, report, designed, &rings)?;
+    let started = Instant::now();
+    let worst_crown =
+        crown_box::worst_crown(plan, c, (&dists, &change), &at, &mut report.warnings)?;
+    if let Some(b) = report.bearing.as_mut() {
+        b.crown_tolerance = worst_crown;
+    }
+    report.time("tolerance box", started);
+    Ok(out)
 }
 
 /// The final state's contacts on both raceways, under the final distributions `dists`: the
@@ -1030,6 +1053,7 @@ fn bearing_report(
         speed_rpm: plan.speed_rpm,
         duty_cycle_hours: lives.duty_hours,
         lubrication: plan.lubrication.map(|l| l.report),
+        crown_tolerance: None,
         worst: worst_contact(plan, rings[0], worst),
     }
 }
