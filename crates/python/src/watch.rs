@@ -1,9 +1,10 @@
-//! Work with the GIL released: it runs on a thread of its own while the calling thread waits
-//! without the GIL, waking every [`POLL`] to run Python's signal handlers (Ctrl-C) and the
-//! caller's progress callback. A `KeyboardInterrupt`, or an exception the callback raises,
-//! asks the work to stop at its next iteration ([`Watch`] is the methods' observer); the work
-//! ends cleanly (its threads joined, its buffers dropped) and that exception comes back as
-//! itself.
+//! Work with the GIL released. A scene's run ([`watched`]) runs on a thread of its own while
+//! the calling thread waits without the GIL, waking every [`POLL`] to run Python's signal
+//! handlers (Ctrl-C) and the caller's progress callback; one solve ([`watched_here`]) runs on
+//! the calling thread, its own iterations running the signal handlers. A `KeyboardInterrupt`,
+//! or an exception the callback raises, asks the work to stop at its next iteration ([`Watch`]
+//! is the methods' observer); the work ends cleanly (its threads joined, its buffers dropped)
+//! and that exception comes back as itself.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};

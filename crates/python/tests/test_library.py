@@ -2,6 +2,8 @@
 and order, equilibrium Σp·A = F, every solver, stops that are returned, and bad input."""
 
 import math
+import os
+import signal
 import threading
 import time
 
@@ -179,6 +181,24 @@ def test_bad_grids_and_solvers():
         contopt.Solver("polonsky_keer", tolerance=-1.0)
     with pytest.raises(contopt.InputError):
         contopt.Solver("penalty")
+
+
+def test_ctrl_c_stops_a_solve_on_the_calling_thread():
+    # The solve runs on this thread with the GIL released; its own iterations run Python's
+    # signal handlers, so Ctrl-C stops it and comes back as itself.
+    body, gap, force = hertz(n=512)
+    contact = contopt.Contact(body, gap, force_n=force)
+    solver = contopt.Solver("polonsky_keer", tolerance=1e-12)
+    start = time.perf_counter()
+    solver.solve(contact)
+    whole = time.perf_counter() - start
+    timer = threading.Timer(0.2 * whole, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        solver.solve(contact)
+    timer.join()
+    assert time.perf_counter() - start < 0.8 * whole
 
 
 def test_the_gil_is_released_during_a_solve():
