@@ -103,7 +103,7 @@ pub(super) fn sharp_edge(
 
 /// The points on the line through `peak` along `axis` (those sharing its other surface
 /// coordinate), ordered along it.
-fn line_through(points: &[[f64; 3]], peak: usize, axis: usize) -> Vec<usize> {
+pub(super) fn line_through(points: &[[f64; 3]], peak: usize, axis: usize) -> Vec<usize> {
     let other = 1 - axis;
     let mut line: Vec<usize> = (0..points.len())
         .filter(|&i| {

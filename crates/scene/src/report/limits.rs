@@ -9,7 +9,7 @@ use contopt_contact::InterfaceProblem;
 use contopt_core::stress::peak_index;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
-use super::edge::{points_per_cell, sharp_edge};
+use super::edge::{line_through, points_per_cell, sharp_edge};
 use crate::mesh_surface::MeshSurface;
 use crate::zone::Layout;
 use crate::Case;
@@ -327,13 +327,8 @@ fn resolution(
     }
     // The carrying points on the line through the peak along the other axis.
     let count = |other: usize| {
-        carrying
-            .iter()
-            .zip(points)
-            .filter(|(c, x)| {
-                **c && (x[other] - points[peak][other]).abs() < 1e-9 * (1.0 + x[other].abs())
-            })
-            .count() as f64
+        let line = line_through(points, peak, 1 - other);
+        line.iter().filter(|&&i| carrying[i]).count() as f64
     };
     match layout {
         Layout::Grid { dx, dy, .. } => {
