@@ -174,7 +174,7 @@ fn hertz_sphere_and_solver_agreement() {
 /// under 100 MPa (18 contact elements), with plain Uzawa steps. The paper's claim: the
 /// augmented Lagrangian needs only a relatively small c; it reaches the QP's pressure for every
 /// k. The plain penalty's error falls like 1/c and does not break down at large c. The table
-/// is printed (`cargo test --release --test contact_validation -- --nocapture`).
+/// is printed (`cargo test --release --test validation contact_validation:: -- --nocapture`).
 #[test]
 fn penalty_parameter_sweep() {
     let problem = paper("paper-table1", 18);

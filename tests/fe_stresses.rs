@@ -3,7 +3,7 @@
 //! singular punch edge (r = 50 mm) the stresses on the axis converge, and every horizontal
 //! section of each body carries the punch load.
 //!
-//! The figures are printed by `cargo test --test fe_stresses -- --nocapture`.
+//! The figures are printed by `cargo test --test validation fe_stresses:: -- --nocapture`.
 
 use std::f64::consts::PI;
 

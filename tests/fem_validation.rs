@@ -282,7 +282,7 @@ fn t6_ring_nodal_errors(nr: usize) -> [f64; 3] {
 /// linear least-squares fit and averaged, converge at O(h²) in the largest error over all
 /// nodes (at the bore, where 1/r² is steepest), the order of a quadratic element's stress,
 /// one below its displacement's 3. Measured, relative to p, for 2, 4, 8, 16 cells through the
-/// wall (`cargo test --test fem_validation t6_nodal -- --nocapture`): σ_r 0.164, 0.051,
+/// wall (`cargo test --test validation fem_validation::t6_nodal -- --nocapture`): σ_r 0.164, 0.051,
 /// 0.0145, 0.0039 (orders 1.68, 1.82, 1.90); σ_θ 0.058, 0.019, 0.0060, 0.0017 (1.58, 1.69,
 /// 1.83); σ_z 0.038, 0.013, 0.0038, 0.0010 (1.56, 1.77, 1.88). (The axisymmetric Q8 of the
 /// recovery's own test: σ_r 0.154, 0.052, 0.0152, 0.0042.)
@@ -399,7 +399,7 @@ type ErrorAt = Box<dyn Fn(usize) -> f64>;
 /// pre-asymptotic, about 3.7, and is not used here.) The T6 quarter ring reaches its rate
 /// later, from above: measured in plane strain for k = 1, 2, 4, … 32, rates 2.27, 3.22, 3.41,
 /// 3.25, 3.09 (Q8: 2.76, 2.93, 2.98, 2.99, 3.00), so T6 is refined from k = 4 (`cargo test
-/// --test fem_validation quadratic -- --nocapture` prints the rates).
+/// --test validation fem_validation::quadratic -- --nocapture` prints the rates).
 #[test]
 fn quadratic_elements_converge_at_third_order_in_l2() {
     let radial = |p: [f64; 2], ur: f64| {

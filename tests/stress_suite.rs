@@ -15,13 +15,13 @@
 //!
 //! **Fast and long runs.** By default the sweeps take every third decade of c, ν = 0.49,
 //! 0.499, 0.4999 (and 0.3 as the baseline), one mesh per case and aspect ratios to 1:1000; the
-//! whole file runs in under 2 s in the test profile (`cargo test --test stress_suite`; the
+//! whole file runs in under 2 s in the test profile (`cargo test --test validation stress_suite::`; the
 //! budget is 40 s). With the environment variable `CONTOPT_LONG=1` (read by [`long`]) they take
 //! every decade of c, ν up to 0.499999, finer meshes, aspect ratios to 1:10⁴ and a 40 × 40
 //! Hertz grid (about 15 s in release):
 //!
 //! ```text
-//! CONTOPT_LONG=1 cargo test --release --test stress_suite -- --nocapture
+//! CONTOPT_LONG=1 cargo test --release --test validation stress_suite:: -- --nocapture
 //! ```
 //!
 //! `--nocapture` prints the tables (penalty sweeps, "what Q8/Q9 do as they lock", the digits

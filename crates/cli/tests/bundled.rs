@@ -5,7 +5,7 @@
 //! cells, the bearing on 24 × 11 (the bundled grids take seconds to minutes); nothing else
 //! changes.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

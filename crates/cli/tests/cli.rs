@@ -4,7 +4,7 @@
 //! that cannot be equilibrated, dense matrices past their limits, and the roller scenes (shrunk
 //! to small grids: the bundled ones take minutes).
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};

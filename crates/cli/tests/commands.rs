@@ -3,7 +3,7 @@
 //! a contact outside the model, `check` refusing what `run` refuses in the same words, `show`
 //! giving a template that `check` accepts.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 //! or an infinity. Also the numerical stress cases of whole scenes: units, no contact, full
 //! contact, zero and unbalanced loads.
 
-mod common;
+use crate::common;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};

@@ -3,7 +3,7 @@
 //! (`contopt merge`) too, byte for byte but the timings; bad shards and bad sets of shards are
 //! refused, naming the value.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
