@@ -83,6 +83,12 @@ const SINGULAR: f64 = 1e-12;
 /// The most Newton steps of one roller's equilibrium.
 const ROLLER_STEPS: usize = 100;
 
+/// A slice's interference within this fraction of the rings' motion (|u| + s/2) is round-off
+/// and carries nothing: without clearance a roller at the loaded zone's edge sees
+/// δ_r·cos 90° ≈ 6·10⁻¹⁷·δ_r, which would otherwise be reported as a load of 10⁻¹⁵ N and
+/// solved as a contact on a grid sized for it.
+const ROUND_OFF: f64 = 1e-12;
+
 /// A roller's equilibrium is met when its force and moment imbalance are this fraction of the
 /// bearing's tolerance.
 const ROLLER_TOLERANCE: f64 = 1e-3;
@@ -804,9 +810,13 @@ impl Model {
         rings: &Rings,
         termination: Termination,
     ) -> LoadDistribution {
+        let round_off = ROUND_OFF * (u[0].hypot(u[1]) + self.half_clearance);
         let slice_loads = |e: &dyn Fn(usize) -> f64| -> Vec<f64> {
             (0..self.x.len())
-                .map(|k| self.kappa * e(k).max(0.0).powf(LINE_EXPONENT))
+                .map(|k| match e(k) {
+                    e if e > round_off => self.kappa * e.powf(LINE_EXPONENT),
+                    _ => 0.0,
+                })
                 .collect()
         };
         let mut moment = [0.0; 2];
@@ -937,6 +947,44 @@ mod tests {
         assert!((carried / 8900.0 - 1.0).abs() < 1e-9, "{carried}");
         // A positive tilt opens the gap at +x: the rollers lean on their −x ends.
         assert!(d.moment_nmm[0] < 0.0 && d.rollers[0].moment_nmm < 0.0);
+    }
+
+    /// Without clearance, straight crowns and Z = 12, each roller carries
+    /// Q_max·cos^(10/9) ψ, so F_r = Q_max·Σ cos^(19/9) ψ (Stribeck's sum with the line
+    /// contact's exponent; Q_max = 4.08·F_r/Z for many rollers): Q_max to 1e-9. The rollers at
+    /// ±90°, on the zone's edge, carry nothing (not the 10⁻¹⁵ N of cos 90°'s round-off) and are
+    /// not load cases.
+    #[test]
+    fn without_clearance_the_loads_follow_stribecks_sum() {
+        let b = CylindricalRollerBearing {
+            rollers: 12,
+            ..bearing_209(30)
+        };
+        let d = solve(&b, &held(10_000.0, 0.0));
+        let sum: f64 = (0..12)
+            .map(|j| (j as f64 * PI / 6.0).cos())
+            .filter(|&c| c > 1e-9)
+            .map(|c| c.powf(19.0 / 9.0))
+            .sum();
+        let q_max = 10_000.0 / sum;
+        assert!(
+            (d.max_load() / q_max - 1.0).abs() < 1e-9,
+            "{} vs {q_max}",
+            d.max_load()
+        );
+        for r in &d.rollers {
+            let want = q_max * r.angle.cos().max(0.0).powf(10.0 / 9.0);
+            assert!(
+                (r.load_n - want).abs() < 1e-9 * q_max,
+                "{}: {}",
+                r.angle,
+                r.load_n
+            );
+        }
+        let edge = |r: &&RollerLoad| (r.angle.abs() - 0.5 * PI).abs() < 1e-9;
+        assert_eq!(d.rollers.iter().filter(edge).count(), 2);
+        assert!(d.rollers.iter().filter(edge).all(|r| r.load_n == 0.0));
+        assert_eq!(d.roller_cases(Raceway::Inner).len(), 5);
     }
 
     /// A held misalignment and the moment it takes are one equilibrium seen from two sides:

@@ -502,3 +502,55 @@ fn the_worst_crown_of_the_tolerance_box() {
         "{e}"
     );
 }
+
+/// A new user's bearing without clearance (Z = 12, straight rollers, the ±1 µm band): the
+/// rollers at ±90° sit on the loaded zone's edge and carry nothing, not the 10⁻¹⁵ N of
+/// cos 90°'s round-off that was solved as a contact on cells sized for it and ran into the
+/// step limit (190 s, then "did not converge"); the heaviest roller carries Stribeck's
+/// Q_max = F_r/Σcos^(19/9)ψ. A contact that does not converge is named (its load case,
+/// roller and load), not only the case.
+#[test]
+fn a_bearing_without_clearance_leaves_its_edge_rollers_unloaded() {
+    let text = scene_text("[40, 25]", &[("10 kN", 10e3)])
+        .replace(
+            "rollers = 14",
+            "rollers = 12\nclearance_mm = 0.0\ntolerance_um = 1.0",
+        )
+        .replace("roller_profile = \"iso\"", "roller_profile = \"straight\"");
+    let scene = Scene::parse(&text, Format::Toml, Path::new("zero.toml")).unwrap();
+    let bearing = bearing_of(&scene);
+    let rollers = &bearing.load_cases[0].rollers;
+    let sum: f64 = [
+        1.0,
+        2.0 * 0.75f64.sqrt().powf(19.0 / 9.0),
+        2.0 * 0.5f64.powf(19.0 / 9.0),
+    ]
+    .iter()
+    .sum();
+    assert!(
+        (rollers[0].load_n / (10e3 / sum) - 1.0).abs() < 1e-6,
+        "{}",
+        rollers[0].load_n
+    );
+    assert_eq!(rollers[3].load_n, 0.0);
+    assert_eq!(rollers[9].load_n, 0.0);
+
+    let stopped = Scene::parse(
+        &text.replace(
+            "kind = \"polonsky_keer\"",
+            "kind = \"polonsky_keer\"\nmax_steps = 3",
+        ),
+        Format::Toml,
+        Path::new("zero.toml"),
+    )
+    .unwrap();
+    let report = stopped.cases()[0].run().unwrap();
+    assert!(!report.is_solved());
+    assert!(
+        report.warnings.iter().any(|w| w
+            .contains("the contact of load case 0 (\"10 kN\") roller 0")
+            && w.contains("did not converge")),
+        "{:?}",
+        report.warnings
+    );
+}

@@ -534,10 +534,11 @@ fn run(plan: &BearingPlan, c: &Context, report: &mut CaseReport) -> Result<Desig
     let nominal = (&built.problem, &built.roller, built.cell);
     let opposite = ring(plan, &dists, other, nominal, &shared)?;
     report.time("solve", started);
-    let unsolved = (solved.solved.states.iter().chain(&opposite.solved.states))
-        .find(|s| !s.termination.is_solved());
-    if let Some(s) = unsolved {
-        let why = s.termination.clone().inside(s.method);
+    if let Some((why, which)) = [&solved, &opposite]
+        .into_iter()
+        .find_map(|ring| unsolved(plan, ring))
+    {
+        report.warnings.push(which);
         return Ok(Designed::unsolved(why, solver.method()));
     }
     let rings = Rings {
@@ -833,6 +834,32 @@ fn named(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
         "load case {i} (\"{}\") roller {j} (Q = {:.4e} N)",
         plan.loads[i].0, env.contacts[k].load_n
     )
+}
+
+/// The first contact of `ring` whose solve did not converge: how it ended, and a warning
+/// naming it (load case, roller, load, raceway, and the tolerance band's crown it was
+/// solved under), so a bearing of many contacts says which one failed.
+fn unsolved(plan: &BearingPlan, ring: &Ring) -> Option<(Termination, String)> {
+    let n = ring.env.contacts.len();
+    let states = &ring.solved.states;
+    let at = states.iter().position(|s| !s.termination.is_solved())?;
+    let band = match at / n.max(1) {
+        0 => String::new(),
+        b => {
+            let sign = if b == 1 { '+' } else { '−' };
+            format!(
+                ", its crown's drop {sign}{} µm (the tolerance band)",
+                1e3 * plan.tolerance
+            )
+        }
+    };
+    let s = &states[at];
+    let which = format!(
+        "the contact of {}{band} did not converge: {}",
+        named_on(plan, ring, at % n.max(1)),
+        s.termination.clone().inside(s.method)
+    );
+    Some((s.termination.clone().inside(s.method), which))
 }
 
 /// A contact of `ring` named, with its raceway when it is not the solved one's.
