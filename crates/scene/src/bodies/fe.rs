@@ -272,6 +272,10 @@ impl BodyKind for FeBase {
         Ok(Box::new(FeBody::new(self.name(), model, &contact)?))
     }
 
+    fn has_displacement_elements(&self) -> bool {
+        true
+    }
+
     fn material(&self) -> Option<Material> {
         Some(self.material)
     }
@@ -355,6 +359,10 @@ impl BodyKind for FePunch {
         let model = self.model(zone)?;
         let contact = model.mesh().faces_on_y(0.0, 0.0, zone.radius_mm);
         Ok(Box::new(FeBody::new(self.name(), model, &contact)?))
+    }
+
+    fn has_displacement_elements(&self) -> bool {
+        true
     }
 
     fn material(&self) -> Option<Material> {
@@ -455,6 +463,10 @@ impl BodyKind for FeBlock {
         }
         let contact = model.mesh().faces_on_y(0.0, 0.0, zone.radius_mm);
         Ok(Box::new(FeBody::new(self.name(), model, &contact)?))
+    }
+
+    fn has_displacement_elements(&self) -> bool {
+        true
     }
 
     fn material(&self) -> Option<Material> {

@@ -448,6 +448,10 @@ impl BodyKind for FeMesh {
         Ok(Box::new(FeBody::new(part.name, part.model, &part.contact)?))
     }
 
+    fn has_displacement_elements(&self) -> bool {
+        true
+    }
+
     fn material(&self) -> Option<Material> {
         Some(self.material)
     }

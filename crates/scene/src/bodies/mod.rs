@@ -144,6 +144,12 @@ pub trait BodyKind: Send + Sync {
         false
     }
 
+    /// Whether it is built of displacement finite elements, which lock as ν → 0.5
+    /// ([`contopt_fem::locking_warning`]; default no).
+    fn has_displacement_elements(&self) -> bool {
+        false
+    }
+
     /// Whether its surface ends free across x (a roller's free ends), so that the stresses
     /// below it are its own, not its partner's.
     fn free_ends(&self) -> bool {

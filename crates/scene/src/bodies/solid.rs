@@ -383,6 +383,10 @@ impl BodyKind for Solid {
         )?))
     }
 
+    fn has_displacement_elements(&self) -> bool {
+        true
+    }
+
     fn material(&self) -> Option<Material> {
         Some(self.material)
     }

@@ -43,6 +43,7 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
         p0_mpa: h.p0,
         half_width_mm: h.half_width,
     });
+    report.warnings.extend(locking(case));
     if report.status != CaseStatus::Solved {
         return;
     }
@@ -82,6 +83,17 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
         report.warnings.push(edge.warning());
     }
     report.warnings.extend(light_cases(report));
+}
+
+/// A warning for each body of displacement elements whose material is nearly incompressible
+/// ([`contopt_fem::locking_warning`]): solved or not, its stiffness is wrong.
+fn locking(case: &Case) -> Vec<String> {
+    (case.spec.body.iter().enumerate())
+        .filter(|(_, b)| b.has_displacement_elements())
+        .filter_map(|(i, b)| {
+            contopt_fem::locking_warning(&format!("body[{i}] ({})", b.name()), &b.material()?)
+        })
+        .collect()
 }
 
 /// A warning for each of an envelope's load cases past its first (the case's own, judged
