@@ -31,19 +31,29 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             ));
         }
     }
-    println!("| size at contact mm | nodes | points | p₀ MPa | p₀/Hertz − 1 | a mm | a/Hertz − 1 | time s |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!(
+        "| size at contact mm | nodes | cells | k block, sphere | p₀ MPa (centre cell) \
+         | p₀/Hertz − 1 | a mm (cell fit) | a/Hertz − 1 | cell fit's p₀ | at centres: p₀, a \
+         | time s |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (size, path) in meshes {
         let start = Instant::now();
         let c = sphere_on_block(&path)?;
         println!(
-            "| {size} | {} | {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:.1} |",
+            "| {size} | {} | {} | {}, {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:+.1} % | {:+.1} %, {:+.1} % \
+             | {:.1} |",
             c.nodes,
             c.points,
+            c.sub_rule[0],
+            c.sub_rule[1],
             c.p0[0],
             100.0 * (c.p0[0] / c.p0[1] - 1.0),
             c.a[0],
             100.0 * (c.a[0] / c.a[1] - 1.0),
+            100.0 * (c.fitted_p0 / c.p0[1] - 1.0),
+            100.0 * (c.centres[0] / c.p0[1] - 1.0),
+            100.0 * (c.centres[1] / c.a[1] - 1.0),
             start.elapsed().as_secs_f64()
         );
     }
