@@ -93,6 +93,26 @@ fn errors_of_the_mesh_and_its_groups_name_the_key() {
             "body[0].loads[0]",
             vec!["exactly one"],
         ),
+        (
+            vec![(
+                "body.0.supports",
+                Some(r#"[{ group = "bottom", fix = ["z"] }]"#),
+            )],
+            "body[0].supports",
+            vec!["free in its x translation", "\"top\") cannot hold"],
+        ),
+        (
+            vec![(
+                "body.0.supports",
+                Some(r#"[{ group = "bottom", fix = ["x", "y"] }]"#),
+            )],
+            "body[0].supports",
+            vec![
+                "free in its z translation",
+                "no load presses it",
+                "fix = [\"z\"]",
+            ],
+        ),
     ];
     for (edits, key, needles) in cases {
         let message = scene(&edits).expect_err(key).to_string();

@@ -14,7 +14,7 @@ use faer::Mat;
 use super::mesh::SolidFace;
 use super::model::SolidModel;
 use super::precondition::HalfSpaceInverse;
-use super::sample::SolidSample;
+use super::sample::{Row, SolidSample};
 use super::system::Pinning;
 use crate::factor::Ordering;
 use crate::system::{Dof, System};
@@ -64,19 +64,6 @@ pub struct SolidStats {
     pub condensation: Duration,
     /// One influence product (solve) as measured on the load vector.
     pub solve: Duration,
-}
-
-/// One interface point's normal-displacement row: the into-body displacement at the point is
-/// −Σ coef·u(dof) over the face nodes' global DOFs.
-#[derive(Clone, Debug)]
-pub(crate) struct Row {
-    pub entries: Vec<(usize, f64)>,
-}
-
-impl Row {
-    fn normal_into(&self, u: &[f64]) -> f64 {
-        -self.entries.iter().map(|&(g, c)| c * u[g]).sum::<f64>()
-    }
 }
 
 /// A solid of quadratic elements whose contact zone is a set of boundary faces, sampled at

@@ -25,7 +25,6 @@ use std::collections::{BTreeMap, HashMap};
 
 use contopt_core::{check, Error, Result};
 
-use super::body::Row;
 use super::element::cross;
 use super::mesh::{norm, SolidFace, SolidMesh};
 
@@ -309,6 +308,19 @@ impl SolidSample {
             .filter(|&(_, c)| c != 0.0)
             .collect();
         Row { entries }
+    }
+}
+
+/// One interface point's normal-displacement row: the into-body displacement at the point is
+/// −Σ coef·u(dof) over the face nodes' global DOFs.
+#[derive(Clone, Debug)]
+pub(crate) struct Row {
+    pub entries: Vec<(usize, f64)>,
+}
+
+impl Row {
+    pub(crate) fn normal_into(&self, u: &[f64]) -> f64 {
+        -self.entries.iter().map(|&(g, c)| c * u[g]).sum::<f64>()
     }
 }
 

@@ -20,8 +20,10 @@ use contopt_fem::solid::{
 use contopt_gmsh::ImportedSolid;
 use serde::{Deserialize, Serialize};
 
+use super::held::{self, Holding};
 use super::{misplaced, BodyKind, Placement, Side, Takes};
 use crate::chosen::Chosen;
+use crate::mesh_surface::FreeMotion;
 use crate::meshes::MeshFiles;
 use crate::zone::{GridZone, Layout, ZoneKind};
 
@@ -257,6 +259,36 @@ impl Solid {
         Ok(samples)
     }
 
+    /// Every rigid motion its supports and symmetry planes leave free can be held by the
+    /// contact and is pressed onto it ([`held::check_held`], as for a plane mesh).
+    fn check_held(&self, solid: &ImportedSolid, model: &SolidModel) -> Result<()> {
+        let faces = solid
+            .faces(&self.contact)
+            .map_err(|e| at_key("contact", format!("{:?}", self.contact), e))?;
+        let free: Vec<FreeMotion> = (model.free_motions()?.into_iter())
+            .map(|m| {
+                let along = model.along_normals(&m, faces);
+                FreeMotion::new(m, along, model.forces())
+            })
+            .collect();
+        let groups: Vec<&str> = (self.supports.iter().map(|s| s.group.as_str()))
+            .chain(self.symmetry.iter().map(String::as_str))
+            .collect();
+        let loads: Vec<String> = (self.loads.iter())
+            .map(|l| match (l.pressure_mpa, l.traction_mpa) {
+                (Some(p), _) => format!("{{ group = \"{}\", pressure_mpa = {p} }}", l.group),
+                (_, Some(t)) => format!("{{ group = \"{}\", traction_mpa = {t:?} }}", l.group),
+                _ => format!("{{ group = \"{}\" }}", l.group),
+            })
+            .collect();
+        let holding = Holding {
+            supports: format!("{groups:?}"),
+            contact: &self.contact,
+            loads: format!("[{}]", loads.join(", ")),
+        };
+        held::check_held(&free, &holding)
+    }
+
     /// An error of Gmsh's import placed at the key that names what it is about: the volume
     /// group, a surface group the body names, else the file.
     fn placed(&self, e: Error) -> Error {
@@ -344,7 +376,8 @@ impl BodyKind for Solid {
     fn check(&self, at: &Placement) -> Result<()> {
         self.grid(at)?;
         let solid = self.imported(at.meshes)?;
-        self.model(&solid)?;
+        let model = self.model(&solid)?;
+        self.check_held(&solid, &model)?;
         self.samples(at, &solid).map(drop)
     }
 
