@@ -1,7 +1,10 @@
 //! Hertz's point contact between two solids meshed apart in Gmsh: a quarter of a steel sphere
 //! (R = 20 mm) on a quarter of a steel block, at several resolutions of the contact
-//! (`contopt_validation::solids`): p₀ and the contact radius against Hertz. The convergence
-//! table of the book's chapter "Parts in three dimensions".
+//! (`contopt_validation::solids`): p₀ (the centre cell against Hertz's mean over it) and the
+//! contact radius (fitted to every cell as Hertz's cell means) against Hertz, with the
+//! sub-rules k of the two bodies and, last, the fit at the cells' centres of earlier versions.
+//! The convergence table of the book's chapter "Parts in three dimensions" (`cargo xtask book
+//! --only sphere_on_block`).
 //!
 //! ```text
 //! python3 meshes/generate.py --bench target/gmsh-bench   # once (pip install gmsh)

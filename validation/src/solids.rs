@@ -1,10 +1,12 @@
 //! Hertz's point contact between two solids meshed apart: a quarter of a steel sphere
 //! (R = 20 mm) pressed by a pressure on its flat top onto a quarter of a steel block
 //! (`meshes/solid-sphere-on-block.geo.inc`), with the force that makes the contact radius
-//! a = 1 mm. The block's top face is sampled at the centres of a grid of cells over the
-//! contact, coarser than its nodes (so that the pair's influence is definite), the sphere
-//! where the block's normals meet it ([`SolidSample::facing`]); the initial gap is the
-//! distance between the meshed faces.
+//! a = 1 mm. The block's top face is read over a grid of cells over the contact, coarser than
+//! its nodes (so that the pair's influence is definite), each cell as its mean
+//! ([`SolidSample::cells`]), the sphere over the same cells along the block's normal
+//! ([`SolidSample::facing`]); the initial gap is each cell's mean distance between the meshed
+//! faces ([`SolidSample::initial_gap`]). The cells' pressures are compared with Hertz's means
+//! over the same cells.
 
 use contopt_contact::{ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem};
 use contopt_core::{ElasticBody, Error, Material, Result};
@@ -128,8 +130,8 @@ fn fit_centres(cells: &[([f64; 2], f64, f64)]) -> Option<[f64; 2]> {
 }
 
 /// A grid of square cells over [0, 1.6a]² on the block's top face (the quarter's contact), of
-/// spacing [`SPACING_IN_EDGES`] times the median edge of the top faces there, each cell's
-/// centre projected onto the faces.
+/// spacing [`SPACING_IN_EDGES`] times the median edge of the top faces there, each read as
+/// its mean over the faces.
 fn grid_samples(mesh: &SolidMesh, top: &[SolidFace]) -> Result<Vec<SolidSample>> {
     let reach = CANDIDATES * CONTACT_RADIUS;
     let mut edges: Vec<f64> = top
