@@ -2,7 +2,8 @@
 //! types 11, 17 and 12), linear-elastic and isotropic, with supports and symmetry planes on
 //! nodes, pressures and tractions on faces; a [`SolidBody`] is one side of a 2-D contact
 //! region, sampled at its faces' Gauss points (against a rigid body or a partner sampled
-//! there) or at a half-space grid's cells ([`SolidSample::projected`]).
+//! there) or over cells, each read as its mean over the faces (a half-space grid's,
+//! [`SolidSample::cells`]; another solid's, [`SolidSample::facing`]).
 
 mod body;
 mod element;

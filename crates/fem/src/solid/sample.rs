@@ -1,23 +1,6 @@
 //! Where a solid's contact faces are read: at their own Gauss points, or over the *cells* of a
 //! contact region (a half-space grid's cells, another body's cells or points) projected onto
-//! them along a normal.
-//!
-//! An interface point stands for a cell. Its force is spread as a uniform pressure over the
-//! cell: a sub-rule of k × k points at the centres of equal parts of the cell, each projected
-//! onto the faces along the normal and each carrying force/k²; and the displacement the point
-//! reports is the cell's mean over the same sub-points. The point's row of the trace map L is
-//! thus the mean of its sub-points' shape-function rows, the body's influence L K⁻¹ Lᵀ stays
-//! symmetric and is the influence among uniform cell pressures — the solid's counterpart of
-//! the half-space grid's Love kernel (uniform pressure on a cell, `contopt_greens`) and, like
-//! the plane pairing's mortar (`crate::ContactPairing`: T = W̃⁻¹BᵀW, node values as weighted
-//! means ∫N¹ₖ v dS / w̃ₖ of the points'), a weighted mean over the faces rather than a point
-//! value. A point force spread by a face's shape functions is softer than the pressure of its
-//! cell, the more so as the elements get finer than the cells (its own deflection grows like
-//! Boussinesq's 1/r as the face shrinks); the cell's mean is not.
-//!
-//! k is chosen per cell ([`SUB_POINTS_PER_FACE`]): enough sub-points that every face the cell
-//! covers holds several. A cell without extent (a point, [`SolidSample::projected`], or a face's
-//! Gauss point, [`SolidSample::gauss`]) is the case k = 1.
+//! them along a normal, each point standing for its cell ([`SolidSample`]).
 // Loops over the axes x, y, z index several arrays at once, as the formulas do.
 #![allow(clippy::needless_range_loop)]
 
@@ -105,6 +88,23 @@ pub struct SubSample {
 /// One interface point of a solid, standing for a cell: the point, weight (the cell's area)
 /// and normal the interface reports, and the k × k sub-points where the body is read, each
 /// carrying 1/k² of the point's force.
+///
+/// The point's force is spread as a uniform pressure over the
+/// cell: a sub-rule of k × k points at the centres of equal parts of the cell, each projected
+/// onto the faces along the normal and each carrying force/k²; and the displacement the point
+/// reports is the cell's mean over the same sub-points. The point's row of the trace map L is
+/// thus the mean of its sub-points' shape-function rows, the body's influence L K⁻¹ Lᵀ stays
+/// symmetric and is the influence among uniform cell pressures — the solid's counterpart of
+/// the half-space grid's Love kernel (uniform pressure on a cell, `contopt_greens`) and, like
+/// the plane pairing's mortar ([`crate::ContactPairing`]: T = W̃⁻¹BᵀW, node values as weighted
+/// means ∫N¹ₖ v dS / w̃ₖ of the points'), a weighted mean over the faces rather than a point
+/// value. A point force spread by a face's shape functions is softer than the pressure of its
+/// cell, the more so as the elements get finer than the cells (its own deflection grows like
+/// Boussinesq's 1/r as the face shrinks); the cell's mean is not.
+///
+/// k is chosen per cell ([`SUB_POINTS_PER_FACE`]): enough sub-points that every face the cell
+/// covers holds several. A cell without extent (a point, [`SolidSample::projected`], or a face's
+/// Gauss point, [`SolidSample::gauss`]) is the case k = 1.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolidSample {
     /// The point the interface reports (the cell's centre) \[mm\].
@@ -178,7 +178,7 @@ impl SolidSample {
     /// The samples of `faces` standing for `cells`, read along `normal` (a unit vector, the
     /// interface's outward normal for this body): each reported at its cell's centre with the
     /// cell's area, its force a uniform pressure over the cell and its displacement the cell's
-    /// mean, both on a k × k sub-rule ([`SUB_POINTS_PER_FACE`]; see the [module](self)). A
+    /// mean, both on a k × k sub-rule ([`SUB_POINTS_PER_FACE`]; see [`SolidSample`]). A
     /// grid's cells on the plane of a block's flat face give a body that pairs cell for cell
     /// with a half-space grid. Errors name the first cell whose sub-point no face meets.
     pub fn cells(
