@@ -1,7 +1,10 @@
 //! Hertz's point contact between two solids meshed apart in Gmsh: a quarter of a steel sphere
 //! (R = 20 mm) on a quarter of a steel block, at several resolutions of the contact
-//! (`contopt_validation::solids`): p₀ and the contact radius against Hertz. The convergence
-//! table of the book's chapter "Parts in three dimensions".
+//! (`contopt_validation::solids`): p₀ (the centre cell against Hertz's mean over it) and the
+//! contact radius (fitted to every cell as Hertz's cell means) against Hertz, with the
+//! sub-rules k of the two bodies and, last, the fit at the cells' centres of earlier versions.
+//! The convergence table of the book's chapter "Parts in three dimensions" (`cargo xtask book
+//! --only sphere_on_block`).
 //!
 //! ```text
 //! python3 meshes/generate.py --bench target/gmsh-bench   # once (pip install gmsh)
@@ -31,19 +34,29 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             ));
         }
     }
-    println!("| size at contact mm | nodes | points | p₀ MPa | p₀/Hertz − 1 | a mm | a/Hertz − 1 | time s |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!(
+        "| size at contact mm | nodes | cells | k block, sphere | p₀ MPa (centre cell) \
+         | p₀/Hertz − 1 | a mm (cell fit) | a/Hertz − 1 | cell fit's p₀ | at centres: p₀, a \
+         | time s |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (size, path) in meshes {
         let start = Instant::now();
         let c = sphere_on_block(&path)?;
         println!(
-            "| {size} | {} | {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:.1} |",
+            "| {size} | {} | {} | {}, {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:+.1} % | {:+.1} %, {:+.1} % \
+             | {:.1} |",
             c.nodes,
             c.points,
+            c.sub_rule[0],
+            c.sub_rule[1],
             c.p0[0],
             100.0 * (c.p0[0] / c.p0[1] - 1.0),
             c.a[0],
             100.0 * (c.a[0] / c.a[1] - 1.0),
+            100.0 * (c.fitted_p0 / c.p0[1] - 1.0),
+            100.0 * (c.centres[0] / c.p0[1] - 1.0),
+            100.0 * (c.centres[1] / c.a[1] - 1.0),
             start.elapsed().as_secs_f64()
         );
     }

@@ -1,19 +1,21 @@
 //! Hertz's point contact between two solids meshed apart: a quarter of a steel sphere
 //! (R = 20 mm) pressed by a pressure on its flat top onto a quarter of a steel block
 //! (`meshes/solid-sphere-on-block.geo.inc`), with the force that makes the contact radius
-//! a = 1 mm. The block's top face is sampled at the centres of a grid of cells over the
-//! contact, coarser than its nodes (so that the pair's influence is definite), the sphere
-//! where the block's normals meet it ([`SolidSample::facing`]); the initial gap is the
-//! distance between the meshed faces.
+//! a = 1 mm. The block's top face is read over a grid of cells over the contact, coarser than
+//! its nodes (so that the pair's influence is definite), each cell as its mean
+//! ([`SolidSample::cells`]), the sphere over the same cells along the block's normal
+//! ([`SolidSample::facing`]); the initial gap is each cell's mean distance between the meshed
+//! faces ([`SolidSample::initial_gap`]). The cells' pressures are compared with Hertz's means
+//! over the same cells.
 
 use contopt_contact::{ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem};
-use contopt_core::{ElasticBody, Material, Result};
+use contopt_core::{ElasticBody, Error, Material, Result};
 use contopt_fem::solid::{
-    Axis, SolidBody, SolidFace, SolidMesh, SolidModel, SolidSample, SolidSettings,
+    Axis, Cell, SolidBody, SolidFace, SolidMesh, SolidModel, SolidSample, SolidSettings,
 };
 use contopt_gmsh::Volumes;
 
-use crate::closed_form::{contact_modulus, HertzSphere};
+use crate::closed_form::{contact_modulus, fit_sphere_cells, hertz_cell_mean, HertzSphere};
 
 /// The sphere's radius and the contact radius aimed at \[mm\].
 pub const RADIUS: f64 = 20.0;
@@ -32,10 +34,19 @@ pub struct HertzCheck {
     pub nodes: usize,
     /// Contact points.
     pub points: usize,
-    /// The largest pressure and Hertz's p₀ \[MPa\].
+    /// p₀ from the centre cell: its pressure over Hertz's mean of p/p₀ on it (0.99 of p₀ on
+    /// the bundled mesh's cells), and Hertz's p₀ \[MPa\].
     pub p0: [f64; 2],
-    /// The contact radius from the pressure's shape and Hertz's a \[mm\].
+    /// The contact radius fitted to every cell's pressure as Hertz's cell means
+    /// ([`fit_sphere_cells`]), and Hertz's a \[mm\].
     pub a: [f64; 2],
+    /// p₀ of the same fit \[MPa\].
+    pub fitted_p0: f64,
+    /// p₀ \[MPa\] and a \[mm\] of the line p² = p₀²(1 − r²/a²) through the loaded cells'
+    /// pressures at their centres, the estimate of earlier versions.
+    pub centres: [f64; 2],
+    /// The largest sub-rule k of the block's cells and of the sphere's.
+    pub sub_rule: [usize; 2],
 }
 
 /// Steel.
@@ -70,45 +81,57 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
     let top_area = std::f64::consts::PI * RADIUS * RADIUS / 4.0;
     model.add_pressure(sphere.faces("sphere_top")?, quarter / top_area)?;
     let second = SolidSample::facing(model.mesh(), sphere.faces("sphere_face")?, &first)?;
-    let gap: Vec<f64> = second.iter().map(|s| -s.offset).collect();
+    let gap = SolidSample::initial_gap(&first, &second);
     let sphere_body = SolidBody::sampled("sphere", model, &second, SolidSettings::default())?;
 
     let problem = InterfaceProblem::new(&block_body, &sphere_body, &gap)?;
     let state = ActiveSet::new(ActiveSetSettings::default())?.solve(&problem)?;
     let points = block_body.interface().points();
-    // p₀ and a from the least-squares fit of Hertz's p² = p₀²(1 − r²/a²) over the loaded
-    // points: p² = A − B r², p₀ = √A, a = √(A/B).
-    let loaded: Vec<(f64, f64)> = (0..points.len())
-        .filter(|&i| state.pressure[i] > 0.0)
-        .map(|i| {
-            (
-                points[i][0].powi(2) + points[i][1].powi(2),
-                state.pressure[i].powi(2),
-            )
-        })
+    let h = first[0].sides[0][0];
+    let cells: Vec<([f64; 2], f64, f64)> = (points.iter().zip(&state.pressure))
+        .map(|(x, &p)| ([x[0], x[1]], h, p))
+        .collect();
+    let no_fit = || Error::invalid("pressure", "all zero", "a contact to fit Hertz's sphere to");
+    let (p0, a) = fit_sphere_cells(&cells).ok_or_else(no_fit)?;
+    let centres = fit_centres(&cells).ok_or_else(no_fit)?;
+    // The centre cell's pressure against Hertz's mean over it.
+    let centre = (cells.iter())
+        .min_by(|a, b| a.0[0].hypot(a.0[1]).total_cmp(&b.0[0].hypot(b.0[1])))
+        .ok_or_else(no_fit)?;
+    let centre_mean = hertz_cell_mean(centre.0, centre.1, CONTACT_RADIUS);
+    let rule = |s: &[SolidSample]| s.iter().map(SolidSample::sub_rule).max().unwrap_or(1);
+    Ok(HertzCheck {
+        nodes: block.mesh.nodes().len() + sphere.mesh.nodes().len(),
+        points: points.len(),
+        p0: [centre.2 / centre_mean, hertz.peak_pressure(CONTACT_RADIUS)],
+        a: [a, CONTACT_RADIUS],
+        fitted_p0: p0,
+        centres,
+        sub_rule: [rule(&first), rule(&second)],
+    })
+}
+
+/// p₀ and a from the least-squares line p² = p₀² − (p₀/a)² r² through the loaded cells'
+/// pressures at their centres (the cells across the contact's edge, loaded with their centres
+/// outside a, pull a outwards: [`fit_sphere_cells`] compares the cells' means instead).
+fn fit_centres(cells: &[([f64; 2], f64, f64)]) -> Option<[f64; 2]> {
+    let loaded: Vec<(f64, f64)> = (cells.iter())
+        .filter(|c| c.2 > 0.0)
+        .map(|c| (c.0[0].powi(2) + c.0[1].powi(2), c.2 * c.2))
         .collect();
     let n = loaded.len() as f64;
-    let (sx, sy) = loaded
-        .iter()
-        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
-    let (mx, my) = (sx / n, sy / n);
+    let (mx, my) = (loaded.iter()).fold((0.0, 0.0), |(a, b), &(x, y)| (a + x / n, b + y / n));
     let (sxy, sxx) = loaded.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
         (a + (x - mx) * (y - my), b + (x - mx).powi(2))
     });
     let slope = sxy / sxx;
     let intercept = my - slope * mx;
-    let (p0, a) = (intercept.sqrt(), (intercept / -slope).sqrt());
-    Ok(HertzCheck {
-        nodes: block.mesh.nodes().len() + sphere.mesh.nodes().len(),
-        points: points.len(),
-        p0: [p0, hertz.peak_pressure(CONTACT_RADIUS)],
-        a: [a, CONTACT_RADIUS],
-    })
+    (slope < 0.0 && intercept > 0.0).then(|| [intercept.sqrt(), (intercept / -slope).sqrt()])
 }
 
 /// A grid of square cells over [0, 1.6a]² on the block's top face (the quarter's contact), of
-/// spacing [`SPACING_IN_EDGES`] times the median edge of the top faces there, each cell's
-/// centre projected onto the faces.
+/// spacing [`SPACING_IN_EDGES`] times the median edge of the top faces there, each read as
+/// its mean over the faces.
 fn grid_samples(mesh: &SolidMesh, top: &[SolidFace]) -> Result<Vec<SolidSample>> {
     let reach = CANDIDATES * CONTACT_RADIUS;
     let mut edges: Vec<f64> = top
@@ -123,20 +146,15 @@ fn grid_samples(mesh: &SolidMesh, top: &[SolidFace]) -> Result<Vec<SolidSample>>
     let median = edges.get(edges.len() / 2).copied().unwrap_or(reach);
     let cells = (reach / (SPACING_IN_EDGES * median)).ceil() as usize;
     let h = reach / cells as f64;
-    let points: Vec<[f64; 3]> = (0..cells * cells)
+    let grid: Vec<Cell> = (0..cells * cells)
         .map(|k| {
-            [
+            let centre = [
                 (k % cells) as f64 * h + 0.5 * h,
                 (k / cells) as f64 * h + 0.5 * h,
                 0.0,
-            ]
+            ];
+            Cell::xy(centre, [h, h])
         })
         .collect();
-    SolidSample::projected(
-        mesh,
-        top,
-        &points,
-        &vec![h * h; points.len()],
-        [0.0, 0.0, 1.0],
-    )
+    SolidSample::cells(mesh, top, &grid, [0.0, 0.0, 1.0])
 }

@@ -142,6 +142,16 @@ pub const SOURCES: &[Source] = &[
         "cylinder_on_block",
         false,
     ),
+    // A solid sphere on a solid block against Hertz (solids.md): the bundled mesh and the
+    // bench meshes, not committed; seconds in the release profile, timings in its table.
+    Source {
+        args: &["target/gmsh-bench"],
+        needs: Some((
+            "target/gmsh-bench",
+            "python3 meshes/generate.py --bench target/gmsh-bench",
+        )),
+        ..example(&["--example", "sphere_on_block"], "sphere_on_block", true)
+    },
     // Your own part (own_part.md): the bundled filleted punch, its plots, and its meshes
     // before and after the design.
     scene(

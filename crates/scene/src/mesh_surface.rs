@@ -27,7 +27,7 @@ use std::collections::{HashMap, HashSet};
 
 use contopt_core::Result;
 use contopt_fem::element::lagrange2;
-use contopt_fem::{Analysis, Face, FeModel};
+use contopt_fem::{Analysis, Face, FeModel, RigidMotion};
 
 use contopt_results::Resolution;
 
@@ -71,6 +71,17 @@ pub struct FreeMotion {
 }
 
 impl FreeMotion {
+    /// The free `motion` of a body under the nodal loads `forces`, displaced `along` the
+    /// contact faces' normals at their points.
+    pub fn new(motion: RigidMotion, along: Vec<f64>, forces: &[f64]) -> Self {
+        FreeMotion {
+            along,
+            load: motion.values.iter().zip(forces).map(|(a, b)| a * b).sum(),
+            size: motion.values.iter().fold(0.0f64, |s, v| s.max(v.abs())),
+            name: motion.name,
+        }
+    }
+
     /// Whether it moves the contact faces (a contact can hold it).
     pub fn moves_faces(&self) -> bool {
         self.along.iter().any(|v| v.abs() > MOVES * self.size)
@@ -80,16 +91,10 @@ impl FreeMotion {
 impl MeshPart {
     /// The rigid motions its supports leave free, with how each moves the contact faces.
     pub fn free_motions(&self) -> Result<Vec<FreeMotion>> {
-        let forces = self.model.forces();
-        Ok(self
-            .model
-            .free_motions()?
-            .into_iter()
-            .map(|m| FreeMotion {
-                along: m.along_normals(&self.model, &self.contact),
-                load: m.values.iter().zip(forces).map(|(a, b)| a * b).sum(),
-                size: m.values.iter().fold(0.0f64, |s, v| s.max(v.abs())),
-                name: m.name,
+        Ok((self.model.free_motions()?.into_iter())
+            .map(|m| {
+                let along = m.along_normals(&self.model, &self.contact);
+                FreeMotion::new(m, along, self.model.forces())
             })
             .collect())
     }

@@ -14,7 +14,7 @@ use faer::Mat;
 use super::mesh::SolidFace;
 use super::model::SolidModel;
 use super::precondition::HalfSpaceInverse;
-use super::sample::SolidSample;
+use super::sample::{Row, SolidSample};
 use super::system::Pinning;
 use crate::factor::Ordering;
 use crate::system::{Dof, System};
@@ -66,22 +66,9 @@ pub struct SolidStats {
     pub solve: Duration,
 }
 
-/// One interface point's normal-displacement row: the into-body displacement at the point is
-/// −Σ coef·u(dof) over the face nodes' global DOFs.
-#[derive(Clone, Debug)]
-pub(crate) struct Row {
-    pub entries: Vec<(usize, f64)>,
-}
-
-impl Row {
-    fn normal_into(&self, u: &[f64]) -> f64 {
-        -self.entries.iter().map(|&(g, c)| c * u[g]).sum::<f64>()
-    }
-}
-
 /// A solid of quadratic elements whose contact zone is a set of boundary faces, sampled at
-/// points ([`SolidSample`]): the Gauss points of its faces ([`SolidBody::new`]), or the cells
-/// of a half-space grid or another body's points projected onto its faces
+/// points ([`SolidSample`]): the Gauss points of its faces ([`SolidBody::new`]), or cells —
+/// a half-space grid's, another body's — each read as its mean over the faces
 /// ([`SolidBody::sampled`]). Rigid motions its supports leave free are pinned and reported as
 /// its rigid modes (a sphere pressed along its symmetry axis floats along it).
 pub struct SolidBody {
@@ -114,7 +101,8 @@ impl SolidBody {
         Self::sampled(name, model, &samples, settings)
     }
 
-    /// The body with its interface points given one by one.
+    /// The body with its interface points given one by one: each point's displacement is its
+    /// cell's mean, and its force a uniform pressure on the cell ([`SolidSample`]).
     pub fn sampled(
         name: impl Into<String>,
         model: SolidModel,
@@ -122,7 +110,9 @@ impl SolidBody {
         settings: SolidSettings,
     ) -> Result<Self> {
         let name = name.into();
-        let mut contact: Vec<SolidFace> = samples.iter().map(|s| s.face).collect();
+        let mut contact: Vec<SolidFace> = (samples.iter())
+            .flat_map(|s| s.parts.iter().map(|p| p.face))
+            .collect();
         contact.sort();
         contact.dedup();
         check_contact(&name, &model, &contact)?;
@@ -314,8 +304,9 @@ fn check_contact(name: &str, model: &SolidModel, contact: &[SolidFace]) -> Resul
     }
 }
 
-/// The map from the contact faces' nodes to the points (the faces' shape functions): the
-/// field the points' pressures sample, and the gap change Δh = L(x)Δh.
+/// The map from the contact faces' nodes to the points (each the mean of the faces' shape
+/// functions over its cell, [`SolidSample`]): the field the points' pressures sample, and the
+/// gap change Δh = L(x)Δh.
 fn gap_basis(
     model: &SolidModel,
     samples: &[SolidSample],
@@ -325,9 +316,8 @@ fn gap_basis(
     let rows = samples
         .iter()
         .map(|s| {
-            let shape = mesh.face_kind(s.face).shape(s.st);
-            (mesh.face_nodes(s.face).iter().enumerate())
-                .map(|(k, node)| (face_nodes.partition_point(|j| j < node), shape.n[k]))
+            (s.node_weights(mesh).into_iter())
+                .map(|(node, w)| (face_nodes.partition_point(|&j| j < node), w))
                 .collect()
         })
         .collect();

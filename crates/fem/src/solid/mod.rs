@@ -2,7 +2,8 @@
 //! types 11, 17 and 12), linear-elastic and isotropic, with supports and symmetry planes on
 //! nodes, pressures and tractions on faces; a [`SolidBody`] is one side of a 2-D contact
 //! region, sampled at its faces' Gauss points (against a rigid body or a partner sampled
-//! there) or at a half-space grid's cells ([`SolidSample::projected`]).
+//! there) or over cells, each read as its mean over the faces (a half-space grid's,
+//! [`SolidSample::cells`]; another solid's, [`SolidSample::facing`]).
 
 mod body;
 mod element;
@@ -18,4 +19,4 @@ pub use element::{FaceKind, SolidKind, MAX_FACE_NODES, MAX_SOLID_NODES};
 pub use mesh::{element_fault, ElementFault, FacePoint, SolidFace, SolidMesh};
 pub use model::{Axis, SolidModel};
 pub use precondition::PRECONDITIONED_POINTS;
-pub use sample::SolidSample;
+pub use sample::{Cell, SolidSample, SubSample, MAX_SUB_RULE, SUB_POINTS_PER_FACE};

@@ -9,9 +9,10 @@ use contopt_core::{check, Error, Material, Result, StressTensor};
 
 use super::element::MAX_SOLID_NODES;
 use super::mesh::{SolidFace, SolidMesh};
-use super::system::Pinning;
+use super::sample::SolidSample;
+use super::system::{numbering, Pinning};
 use crate::factor::Ordering;
-use crate::system::System;
+use crate::system::{RigidMotion, System};
 
 /// A direction of space.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -248,6 +249,22 @@ impl SolidModel {
         let u = system.solve(&self.forces, None);
         check::all_derived("loads", "the given loads", "the displacements", &u)?;
         Ok(u)
+    }
+
+    /// The rigid motions its supports leave free (what [`crate::solid::SolidBody`] pins and
+    /// reports as its rigid modes), without assembling anything: the 3-D counterpart of
+    /// [`crate::FeModel::free_motions`].
+    pub fn free_motions(&self) -> Result<Vec<RigidMotion>> {
+        Ok(numbering(self, &[], Pinning::Pin)?.1)
+    }
+
+    /// The displacement of `motion` along the outward normal at the contact points of each of
+    /// `faces` ([`SolidSample::gauss`]), face after face: zero where it slides along them (a
+    /// frictionless contact on them cannot hold it).
+    pub fn along_normals(&self, motion: &RigidMotion, faces: &[SolidFace]) -> Vec<f64> {
+        (SolidSample::gauss(&self.mesh, faces).iter())
+            .map(|s| -s.row(&self.mesh).normal_into(&motion.values))
+            .collect()
     }
 }
 

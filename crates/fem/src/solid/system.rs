@@ -87,7 +87,7 @@ impl System {
 
 /// Status of every DOF (3·node + axis) with the free unknowns numbered, those of
 /// `tail_nodes` last, and the free rigid motions (pinned, or refused).
-fn numbering(
+pub(super) fn numbering(
     model: &SolidModel,
     tail_nodes: &[usize],
     pinning: Pinning,

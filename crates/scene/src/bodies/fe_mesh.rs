@@ -17,6 +17,7 @@ use contopt_core::{check, ElasticBody, Error, Interface, Material, Result, GEOME
 use contopt_fem::{mesh_bytes, pairing::mortar_bytes, Analysis, Component, FeBody, FeModel};
 use serde::{Deserialize, Serialize};
 
+use super::held::{self, Holding};
 use super::{misplaced, BodyKind, Placement, Side, Takes};
 use crate::chosen::Chosen;
 use crate::mesh_surface::MeshPart;
@@ -26,10 +27,6 @@ use crate::zone::{Layout, MeshZone, ZoneKind};
 /// The mesh's bounding box must agree with the extent the scene states to this fraction: a
 /// units check (metres, inches, centimetres are off by 10 or more) that allows a rounded size.
 const EXTENT_TOLERANCE: f64 = 0.01;
-
-/// A free motion's normal displacement smaller than this fraction of its largest is zero: it
-/// moves the faces one way only (the contact crate's own round-off).
-const ONE_WAY: f64 = 1e-12;
 
 /// A direction of the plane: x (r in axisymmetry) or y (z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -223,73 +220,17 @@ impl FeMesh {
         }
     }
 
-    /// Every rigid motion the supports leave free moves the contact faces along their normals
-    /// (else no frictionless contact holds it), and the loads press the body in each motion
-    /// that moves them one way (else the contact cannot carry them).
+    /// Every rigid motion the supports leave free can be held by the contact and is pressed
+    /// onto it ([`held::check_held`]).
     fn check_held(&self, part: &MeshPart) -> Result<()> {
-        let supports = || {
-            let groups: Vec<&str> = self.supports.iter().map(|s| s.group.as_str()).collect();
-            format!("{groups:?}")
+        let groups: Vec<&str> = self.supports.iter().map(|s| s.group.as_str()).collect();
+        let holding = Holding {
+            supports: format!("{groups:?}"),
+            contact: &self.contact,
+            loads: self.loads_named(),
         };
-        for free in part.free_motions()? {
-            let name = &free.name;
-            if !free.moves_faces() {
-                return Err(Error::invalid(
-                    "supports",
-                    supports(),
-                    format!(
-                        "leave the body free in its {name}, which its contact faces (\"{}\") \
-                         cannot hold: a frictionless contact pushes only along their normals; \
-                         hold a group there (a symmetry line x = 0: {{ group = …, fix = \
-                         [\"x\"] }})",
-                        self.contact
-                    ),
-                ));
-            }
-            let span = free.along.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let towards = free.along.iter().all(|v| *v >= -ONE_WAY * span);
-            let away = free.along.iter().all(|v| *v <= ONE_WAY * span);
-            let pulled = (away && free.load > 0.0) || (towards && free.load < 0.0);
-            if pulled {
-                return Err(Error::invalid(
-                    "loads",
-                    self.loads_named(),
-                    format!(
-                        "pull the body away from its partner along its free {name} (it moves \
-                         its contact faces \"{}\" off their partner), which a contact cannot \
-                         hold: turn the load round (a pressure_mpa positive presses into the \
-                         body), or hold the body in its {name}{}",
-                        self.contact,
-                        hold_hint(name)
-                    ),
-                ));
-            }
-            if (towards || away) && free.load == 0.0 {
-                return Err(Error::invalid(
-                    "supports",
-                    supports(),
-                    format!(
-                        "leave the body free in its {name}, and no load presses it onto its \
-                         partner along it: hold it{} or press it (loads = [{{ group = …, \
-                         pressure_mpa = … }}])",
-                        hold_hint(name)
-                    ),
-                ));
-            }
-        }
-        Ok(())
+        held::check_held(&part.free_motions()?, &holding)
     }
-}
-
-/// How to hold a body in its free motion `name` (`"y translation"`, `"rotation"`): a group
-/// fixed along that axis, or, for a rotation, two groups.
-fn hold_hint(name: &str) -> String {
-    let axis = match name {
-        "x translation" => "x",
-        "y translation" | "axial translation" => "y",
-        _ => return " (fix a second group, away from the first, across the motion)".into(),
-    };
-    format!(" ({{ group = …, fix = [\"{axis}\"] }})")
 }
 
 /// A Gmsh error about `value` placed at `key`.

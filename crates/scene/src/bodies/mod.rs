@@ -14,6 +14,7 @@
 mod fe;
 mod fe_mesh;
 mod half_space;
+mod held;
 mod rigid;
 mod solid;
 mod winkler;

@@ -1,26 +1,31 @@
 //! A solid part read from a Gmsh mesh (`kind = "solid"`): 10-node tetrahedra, 20- or 27-node
 //! hexahedra, with named surface groups for its contact face, its supports, its symmetry
 //! planes and its loads ([`contopt_fem::solid`]). It stands on a grid zone, either side: its
-//! contact face lies on the zone's plane z = 0 and is read where the grid's cells' centres
-//! meet it ([`SolidSample::projected`]), so that it pairs cell for cell with a half-space, a
-//! rigid body or another solid on the same grid, the zone's gap between them.
+//! contact face lies on the zone's plane z = 0 and is read over the grid's cells, each cell's
+//! mean pressure and displacement ([`SolidSample::cells`]), so that it pairs cell for cell
+//! with a half-space, a rigid body or another solid on the same grid, the zone's gap between
+//! them.
 //!
 //! Everything the scene names is checked when the scene is read, nothing assembled: the file
 //! (relative to the scene's folder, [`crate::meshes`]), the volume group, each surface group
 //! (present, not empty, on this solid's boundary: Gmsh's import refuses the rest, naming the
 //! element or the group), the extent against the size the scene states (a mesh drawn in
 //! metres is 1000 times too small), each symmetry group (a plane across x, y or z), and the
-//! contact face against the grid (every cell's centre meets it, on the plane z = 0).
+//! contact face against the grid (it lies under every cell, on the plane z = 0).
 
 use contopt_core::{check, memory, ElasticBody, Error, Interface, Material, Result};
-use contopt_fem::solid::{Axis, SolidBody, SolidModel, SolidSample, SolidSettings, DENSE_POINTS};
+use contopt_fem::solid::{
+    Axis, Cell, SolidBody, SolidModel, SolidSample, SolidSettings, DENSE_POINTS,
+};
 use contopt_gmsh::ImportedSolid;
 use serde::{Deserialize, Serialize};
 
+use super::held::{self, Holding};
 use super::{misplaced, BodyKind, Placement, Side, Takes};
 use crate::chosen::Chosen;
+use crate::mesh_surface::FreeMotion;
 use crate::meshes::MeshFiles;
-use crate::zone::{GridZone, ZoneKind};
+use crate::zone::{GridZone, Layout, ZoneKind};
 
 /// The mesh's bounding box must agree with the extent the scene states to this fraction (a
 /// units check that allows a rounded size).
@@ -198,14 +203,18 @@ impl Solid {
         Ok(model)
     }
 
-    /// The contact face read at the grid's cell centres, along the body's outward normal (+z
-    /// below the zone, −z above), each centre on a face of the contact group and the face on
-    /// the plane z = 0 there.
+    /// The contact face read over the grid's cells, along the body's outward normal (+z
+    /// below the zone, −z above): each cell's mean on a sub-rule of its faces
+    /// ([`SolidSample::cells`]), every sub-point on a face of the contact group and the face
+    /// on the plane z = 0 there.
     fn samples(&self, at: &Placement, solid: &ImportedSolid) -> Result<Vec<SolidSample>> {
         let surface = at
             .layout
             .surface()
             .ok_or_else(|| misplaced(at, "a solid stands on a grid zone"))??;
+        let &Layout::Grid { dx, dy, .. } = at.layout else {
+            return Err(misplaced(at, "a solid stands on a grid zone"));
+        };
         let normal = match at.side {
             Side::Below => [0.0, 0.0, 1.0],
             Side::Above => [0.0, 0.0, -1.0],
@@ -213,38 +222,71 @@ impl Solid {
         let faces = solid
             .faces(&self.contact)
             .map_err(|e| at_key("contact", format!("{:?}", self.contact), e))?;
-        let samples = SolidSample::projected(
-            &solid.mesh,
-            faces,
-            surface.points(),
-            surface.weights(),
-            normal,
-        )
-        .map_err(|e| match e {
-            Error::InvalidInput { value, .. } => Error::invalid(
-                "contact",
-                format!("{:?}", self.contact),
-                format!(
-                    "has no face under the grid's cell centred at {value} mm (along z): the \
-                     contact face must cover the grid (contact.zone's cells × cell_mm)"
+        let cells: Vec<Cell> = (surface.points().iter())
+            .map(|&p| Cell::xy(p, [dx, dy]))
+            .collect();
+        let samples =
+            SolidSample::cells(&solid.mesh, faces, &cells, normal).map_err(|e| match e {
+                Error::InvalidInput { value, reason, .. } => Error::invalid(
+                    "contact",
+                    format!("{:?}", self.contact),
+                    format!(
+                        "has no face under the grid's cell centred at {value} mm (along z; \
+                         {reason}): the contact face must cover the grid (contact.zone's \
+                         cells × cell_mm)"
+                    ),
                 ),
-            ),
-            other => other,
-        })?;
+                other => other,
+            })?;
         let size = self.extent_mm.iter().fold(0.0f64, |m, &e| m.max(e));
-        if let Some(s) = samples.iter().find(|s| s.offset.abs() > ON_PLANE * size) {
+        let off = (samples.iter()).find_map(|s| {
+            (s.parts.iter())
+                .find(|p| p.offset.abs() > ON_PLANE * size)
+                .map(|p| (s, p))
+        });
+        if let Some((s, part)) = off {
             return Err(Error::invalid(
                 "contact",
                 format!("{:?}", self.contact),
                 format!(
-                    "lies {} mm off the zone's plane z = 0 at ({}, {}) mm: the solid's \
-                     contact face lies on z = 0 (move the part in Gmsh), and the zone's gap \
-                     describes the bodies' shapes",
-                    s.offset, s.point[0], s.point[1]
+                    "lies {} mm off the zone's plane z = 0 in the cell centred at ({}, {}) mm: \
+                     the solid's contact face lies on z = 0 (move the part in Gmsh), and the \
+                     zone's gap describes the bodies' shapes",
+                    part.offset, s.point[0], s.point[1]
                 ),
             ));
         }
         Ok(samples)
+    }
+
+    /// Every rigid motion its supports and symmetry planes leave free can be held by the
+    /// contact and is pressed onto it ([`held::check_held`], as for a plane mesh).
+    fn check_held(&self, solid: &ImportedSolid, model: &SolidModel) -> Result<()> {
+        let faces = solid
+            .faces(&self.contact)
+            .map_err(|e| at_key("contact", format!("{:?}", self.contact), e))?;
+        let free: Vec<FreeMotion> = (model.free_motions()?.into_iter())
+            .map(|m| {
+                let along = model.along_normals(&m, faces);
+                FreeMotion::new(m, along, model.forces())
+            })
+            .collect();
+        let groups: Vec<&str> = (self.supports.iter().map(|s| s.group.as_str()))
+            .chain(self.symmetry.iter().map(String::as_str))
+            .collect();
+        let loads: Vec<String> = (self.loads.iter())
+            .map(|l| match (l.pressure_mpa, l.traction_mpa) {
+                (Some(p), _) => format!("{{ group = \"{}\", pressure_mpa = {p} }}", l.group),
+                (_, Some(t)) => format!("{{ group = \"{}\", traction_mpa = {t:?} }}", l.group),
+                _ => format!("{{ group = \"{}\" }}", l.group),
+            })
+            .collect();
+        let holding = Holding {
+            supports: format!("{groups:?}"),
+            contact: &self.contact,
+            loads: format!("[{}]", loads.join(", ")),
+        };
+        held::check_held(&free, &holding)
     }
 
     /// An error of Gmsh's import placed at the key that names what it is about: the volume
@@ -334,7 +376,8 @@ impl BodyKind for Solid {
     fn check(&self, at: &Placement) -> Result<()> {
         self.grid(at)?;
         let solid = self.imported(at.meshes)?;
-        self.model(&solid)?;
+        let model = self.model(&solid)?;
+        self.check_held(&solid, &model)?;
         self.samples(at, &solid).map(drop)
     }
 
@@ -369,7 +412,7 @@ impl BodyKind for Solid {
         }
     }
 
-    /// Read at the grid's cells: dense influence up to [`DENSE_POINTS`] cells, products
+    /// Read over the grid's cells: dense influence up to [`DENSE_POINTS`] cells, products
     /// through the factorisation above.
     fn build(&self, at: &Placement, _surface: Option<&Interface>) -> Result<Box<dyn ElasticBody>> {
         let solid = self.imported(at.meshes)?;
