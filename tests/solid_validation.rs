@@ -124,9 +124,10 @@ fn orderings_give_one_operator() {
 
 /// Hertz's sphere as a half-space grid (the sphere's own compliance, its gap r²/2R) pressed
 /// into a steel block meshed with 20-node hexahedra, graded towards the contact: the block is
-/// sampled at the grid's cell centres ([`SolidSample::projected`]), so the two pair point for
-/// point. Against Hertz with E* of the pair: p₀ within 3 % and the load from the pressures
-/// exact (the block is 16a wide and 8a deep, finite: it is stiffer than a half-space).
+/// read over the grid's cells, each cell's mean ([`SolidSample::cells`]), so the two pair
+/// cell for cell. Against Hertz with E* of the pair: p₀ within 3 % (measured −0.65 %; −1.3 %
+/// with the cells read at their centres) and the load from the pressures exact (the block is
+/// 16a wide and 8a deep, finite).
 #[test]
 fn half_space_sphere_on_a_solid_block() {
     let (a, radius) = (1.0, 50.0);
