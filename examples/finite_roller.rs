@@ -11,21 +11,28 @@
 //! quarter of Q): a roller between two equal raceways is symmetric about its axial plane,
 //! whose points therefore move only as the roller does.
 //!
-//! Both solids are read on the cells of the half-space model's grid (100 × 41 cells over the
-//! effective length and ±2.6 b, here its quarter): each cell's displacement is the mean of
-//! its body's face over the cell and its force is spread over the cell, both by 2 × 2 Gauss
-//! points on every piece into which the faces' element edges cut the cell (the influence of
-//! a cell is that of its pressure, not of a point force, which on a face finer than the cell
-//! is too compliant). The pressure along the centre line (y = 0) — its value at mid-length,
-//! its peak and where it sits, and its profile towards the end — is compared with the
-//! half-space model on the same cells, without free ends and with the image of weight w at
-//! the end faces (`greens::FreeEnds`): 1.37 (the scenes' default), 1.388 (the finest fit to
-//! Hetényi under a Hertz strip), 1.58 and 1.95 (the fits of `examples/quarter_space.rs`).
+//! Both solids are read on one grid of cells: the half-space model's cells of 0.1 mm over the
+//! last 0.6 mm of the half-length, merged to 0.2–1 mm towards the middle, and its rows across
+//! (0.0225 mm, the first halved by the symmetry plane) to 1.2 b (`CELL_X`, `ROWS`). A cell is
+//! never finer than the faces under it (else the cells would outnumber what the faces can tell
+//! apart). Each cell's displacement is the mean of its body's face over the cell and its force
+//! is spread over the cell, both by 2 × 2 Gauss points on every piece into which the faces'
+//! element edges cut the cell: the influence of a cell is that of its pressure, not of a point
+//! force. The pressure along the centre line — at mid-length, at its peak and where that sits,
+//! and towards the end — is compared with the half-space model's means over the same cells (on
+//! 100 × 41 and 200 × 81 cells over the effective length and ±2.6 b), without free ends and with
+//! the image of weight w at the end faces (`greens::FreeEnds`): 1.37 (the scenes' default),
+//! 1.388 (the finest fit to Hetényi under a Hertz strip), 1.58 and 1.95 (the fits of
+//! `examples/quarter_space.rs`); and the weight at which each of the half-space model's
+//! figures equals the solids'.
 //!
 //! ```text
-//! cargo run --release --example finite_roller            # two meshes per crown, minutes
-//! cargo run --release --example finite_roller -- coarse  # the coarse meshes only
+//! cargo run --release --example finite_roller       # four solid pairs per crown, ~18 min
+//! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~3 min
+//! cargo run --release --example finite_roller -- 0  # the half-space models only
 //! ```
+//!
+//! (Wall clock on the shared 2-core machine at load 10–12; about 6.5 minutes of CPU in all.)
 
 use std::collections::HashMap;
 use std::time::Instant;
