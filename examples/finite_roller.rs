@@ -707,7 +707,13 @@ fn half_space(r: &Roller, grid: &Grid, cells: [usize; 2], weight: Option<f64>) -
 }
 
 /// The solids' centre line at resolution `res`, with the nodes of each and the time.
-fn finite(r: &Roller, grid: &Grid, res: &Resolution) -> Result<Line> {
+/// and, with `crown`, the crown the load split designs for it (point 4).
+fn finite(
+    r: &Roller,
+    grid: &Grid,
+    res: &Resolution,
+    crown: bool,
+) -> Result<(Line, Option<(Optimum, Interface)>)> {
     let start = Instant::now();
     let [raceway, roller] = solids(&r.crown, res, grid)?;
     let gap: Vec<f64> = (0..grid.len())
@@ -717,11 +723,12 @@ fn finite(r: &Roller, grid: &Grid, res: &Resolution) -> Result<Line> {
         })
         .collect::<Result<_>>()?;
     let problem = InterfaceProblem::new(&raceway.body, &roller.body, &gap)?;
-    let state = ActiveSet::new(ActiveSetSettings::default())?.solve(&problem)?;
+    let solver = ActiveSet::new(ActiveSetSettings::default())?;
+    let state = solver.solve(&problem)?;
     let force: f64 = (0..grid.len())
         .map(|k| state.pressure[k] * grid.point(k).1)
         .sum();
-    Ok(Line {
+    let line = Line {
         name: format!(
             "solids, {} ({} + {} nodes, {:.0} + {:.0} s, {:.0} s in all; F/4 = {:.1} N)",
             res.name,
@@ -733,7 +740,94 @@ fn finite(r: &Roller, grid: &Grid, res: &Resolution) -> Result<Line> {
             force
         ),
         pressure: state.pressure[..grid.nx()].to_vec(),
-    })
+    };
+    let optimum = crown
+        .then(|| designed(&problem, &solver, grid.dy))
+        .transpose()?;
+    Ok((line, optimum))
+}
+
+/// The crown the load split designs (roller-study's "optimised L1 = 5 mm"): Ω_v the centre
+/// row (|y| ≤ `dy`/2), the rest of each column Ω_nv, the gap change a profile along the axis
+/// symmetric about mid-length, v = 1 along the whole length (the cubic controller with
+/// L1 = L2 = l/2).
+fn designed(
+    problem: &InterfaceProblem,
+    solver: &dyn ContactSolver,
+    dy: f64,
+) -> Result<(Optimum, Interface)> {
+    let iface = problem.interface();
+    let shape = GapShape::symmetric(iface, 0)?;
+    let regions = (iface.points().iter())
+        .map(|x| match x[1].abs() <= 0.5 * dy {
+            true => Region::OmegaV,
+            false => Region::OmegaNv,
+        })
+        .collect();
+    let controller = Profile::cubic(0.5 * LENGTH, 0.5 * LENGTH)?;
+    let optimum = Optimisation::new(problem, &shape, &controller)?
+        .with_regions(regions)?
+        .load_split(solver, &LoadSplitSettings::default())?;
+    Ok((optimum, iface.clone()))
+}
+
+/// The half-space model's designed crown on `cells`, without free ends or with the image of
+/// `weight`.
+fn half_space_design(
+    r: &Roller,
+    cells: [usize; 2],
+    weight: Option<f64>,
+) -> Result<(Optimum, Interface)> {
+    let [nx, ny] = cells;
+    let [_, dy] = r.cell(nx, ny, REACH)?;
+    let solver = PolonskyKeer::new(PolonskyKeerSettings::default())?;
+    match weight {
+        None => {
+            let (a, b, gap) = r.bodies(nx, ny, REACH)?;
+            let problem = InterfaceProblem::new(&a, &b, &gap)?;
+            designed(&problem, &solver, dy)
+        }
+        Some(weight) => {
+            let ends = RollerEnds {
+                chamfer_mm: CHAMFER,
+                weight,
+            };
+            let (a, b, gap) = r.free_end_bodies(nx, ny, REACH, &ends)?;
+            let problem = InterfaceProblem::new(&a, &b, &gap)?;
+            designed(&problem, &solver, dy)
+        }
+    }
+}
+
+/// The resolutions (the first ones) whose solids also design a crown.
+const DESIGNED: usize = 2;
+
+/// Where the designed crowns' drops are compared: the solids' cell centres towards the end
+/// \[mm\].
+const CROWN_AT: [f64; 6] = [3.65, 4.1, 4.45, 4.65, 4.85, 4.95];
+
+/// A designed crown's p_max and its drop at `CROWN_AT` (the centre row's point nearest each),
+/// as a table row.
+fn crown_row(name: &str, o: &Optimum, iface: &Interface) -> String {
+    let drops: Vec<String> = CROWN_AT
+        .iter()
+        .map(|&at| {
+            let k = (0..iface.len())
+                .filter(|&k| iface.points()[k][1].abs() < ON && iface.points()[k][0] > 0.0)
+                .min_by(|&a, &b| {
+                    let d = |k: usize| (iface.points()[k][0] - at).abs();
+                    d(a).total_cmp(&d(b))
+                })
+                .expect("a centre row");
+            format!("{:.2}", 1e3 * o.gap_change[k])
+        })
+        .collect();
+    format!(
+        "{name} | {:.1} | {} | {:?}",
+        o.p_max,
+        drops.join(" | "),
+        o.termination
+    )
 }
 
 /// A figure that moves less than this with the weight \[MPa\] matches none.
@@ -845,10 +939,39 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                 lines.push(half_space(&r, &grid, cells, Some(w))?);
             }
         }
-        for res in &RESOLUTIONS[..levels.min(RESOLUTIONS.len())] {
-            lines.push(finite(&r, &grid, res)?);
+        let mut crowns = vec![];
+        if matches!(r.crown, Crown::Straight) {
+            for weight in [None, Some(1.388)] {
+                let (o, iface) = half_space_design(&r, CELLS, weight)?;
+                let name = match weight {
+                    None => "half-space, no free ends".to_string(),
+                    Some(w) => format!("half-space, image w = {w}"),
+                };
+                crowns.push(crown_row(&name, &o, &iface));
+            }
+        }
+        for (k, res) in RESOLUTIONS[..levels.min(RESOLUTIONS.len())]
+            .iter()
+            .enumerate()
+        {
+            let design = matches!(r.crown, Crown::Straight) && k < DESIGNED;
+            let (line, crown) = finite(&r, &grid, res, design)?;
+            if let Some((o, iface)) = crown {
+                crowns.push(crown_row(&format!("solids, {}", res.name), &o, &iface));
+            }
+            lines.push(line);
         }
         report(&grid, &lines);
+        if !crowns.is_empty() {
+            let at: Vec<String> = CROWN_AT.iter().map(|x| format!("{x}")).collect();
+            println!("the crown designed by the load split (Ω_v the centre row, v = 1 along the length), from the straight roller: its drop [µm] at x [mm]\n");
+            println!("model | p_max MPa | {} | termination", at.join(" | "));
+            println!("---|---{}|---", "|---".repeat(at.len()));
+            for row in crowns {
+                println!("{row}");
+            }
+            println!();
+        }
     }
     Ok(())
 }
