@@ -26,6 +26,10 @@
 //! `examples/quarter_space.rs`); and the weight at which each of the half-space model's
 //! figures equals the solids'.
 //!
+//! Point 4, the load split only: the straight roller's crown designed as `roller-study`'s
+//! "optimised L1 = 5 mm" (Ω_v the centre row, v = 1 along the length) with the solids of the
+//! first two resolutions, against the half-space model's design without and with free ends.
+//!
 //! ```text
 //! cargo run --release --example finite_roller       # four solid pairs per crown, ~18 min
 //! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~3 min
