@@ -31,12 +31,12 @@
 //! first two resolutions, against the half-space model's design without and with free ends.
 //!
 //! ```text
-//! cargo run --release --example finite_roller       # four solid pairs per crown, ~18 min
+//! cargo run --release --example finite_roller       # four solid pairs per crown, 13-18 min
 //! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~3 min
 //! cargo run --release --example finite_roller -- 0  # the half-space models only
 //! ```
 //!
-//! (Wall clock on the shared 2-core machine at load 10–12; about 6.5 minutes of CPU in all.)
+//! (Wall clock on the shared 2-core machine at load 10–12; about 6 minutes of CPU in all.)
 
 use std::collections::HashMap;
 use std::time::Instant;
