@@ -360,8 +360,8 @@ impl Lines {
         x
     }
 
-    /// The depths below a surface to `depth`, starting as the contact's lines across.
-    /// The first `NEAR` layers grow by the resolution's ratio, the others by `FAR`.
+    /// The depths below a surface to `depth`, the first layer the resolution's depth: the
+    /// first `NEAR` layers grow by the resolution's ratio, the others by `FAR`.
     fn depths(&self, depth: f64, res: &Resolution) -> Vec<f64> {
         let mut d: Vec<f64> = (0..=NEAR)
             .map(|k| self.depth * (res.growth.powi(k as i32) - 1.0) / (res.growth - 1.0))
