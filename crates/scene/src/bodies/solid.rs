@@ -379,7 +379,10 @@ impl BodyKind for Solid {
             self.name(),
             model,
             &samples,
-            SolidSettings::default(),
+            SolidSettings {
+                memory_limit_bytes: at.memory_limit_bytes,
+                ..Default::default()
+            },
         )?))
     }
 
