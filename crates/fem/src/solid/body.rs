@@ -42,7 +42,8 @@ pub enum Condensation {
 pub struct SolidSettings {
     /// Dense matrix or products.
     pub condensation: Condensation,
-    /// The fill-reducing ordering.
+    /// The fill-reducing ordering of the unknowns ahead of the contact face's (nested
+    /// dissection by default).
     pub ordering: Ordering,
     /// The most memory the build may take \[bytes\]: the assembly's estimate is checked
     /// against it before the assembly, the factor's after its symbolic analysis, before its
