@@ -112,6 +112,7 @@ fn orderings_give_one_operator() {
             let settings = SolidSettings {
                 condensation: Condensation::Products,
                 ordering,
+                ..Default::default()
             };
             column(SolidKind::Hex20, settings).influence_matrix()
         });

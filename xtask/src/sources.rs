@@ -67,6 +67,8 @@ pub const SOURCES: &[Source] = &[
         ..example(&["--example", "circular_load"], "circular_load", false)
     },
     example(&["--example", "fem_cost"], "fem_cost", true),
+    // Slow: a minute of CPU, and timings only.
+    example(&["--example", "solid_scaling"], "solid_scaling", true),
     example(
         &["--example", "paper_unoptimised"],
         "paper_unoptimised",

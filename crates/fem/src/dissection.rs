@@ -1,6 +1,6 @@
 //! Nested dissection of a mesh's nodes by their coordinates (George 1973; the geometric
-//! variant of Miller, Teng, Thurston and Vavasis 1998): the nodes are cut across their longest
-//! side by the smallest of a few planes near the median, the nodes on one side touching the
+//! variant of Miller, Teng, Thurston and Vavasis 1998): the nodes are cut by the smallest of a
+//! few planes near the median across each axis, the nodes on one side touching the
 //! other (the separator) are numbered last, and each half is cut again. A separator's unknowns
 //! fill in among themselves only, so a 3-D mesh's factor grows as n^(4/3) rather than the
 //! faster growth minimum-degree orderings show on quadratic solids.
@@ -82,33 +82,45 @@ enum Side {
     Above,
 }
 
-/// The two halves of `nodes` and their separator, by the best of [`CUTS`] across the longest
-/// side. `side` is all [`Side::Out`] on entry and on return.
+/// The two halves of `nodes` and their separator, by the best of [`CUTS`] across each of the
+/// three axes: the fewest separator nodes, the most even split on a tie. Every axis is tried,
+/// not only the longest side: on a mesh graded towards its contact the longest side may have
+/// the most nodes on a plane across it. `side` is all [`Side::Out`] on entry and on return.
 fn bisect(
-    mut nodes: Vec<usize>,
+    nodes: Vec<usize>,
     points: &[[f64; 3]],
     graph: &Adjacency,
     side: &mut [Side],
 ) -> [Vec<usize>; 3] {
-    let axis = longest_side(&nodes, points);
-    nodes.sort_by(|&a, &b| points[a][axis].total_cmp(&points[b][axis]));
-    let split_at = |fraction: f64| {
-        let value = points[nodes[(fraction * nodes.len() as f64) as usize]][axis];
-        nodes.partition_point(|&k| points[k][axis] < value)
-    };
-    let mut splits: Vec<usize> = CUTS.iter().map(|&f| split_at(f)).collect();
-    splits.retain(|&k| k > 0 && k < nodes.len());
-    if splits.is_empty() {
-        // Every node on one plane: split the list in the middle instead.
-        splits.push(nodes.len() / 2);
+    let mut best: Option<(Vec<usize>, usize, Vec<usize>)> = None;
+    for axis in [0, 1, 2] {
+        let mut sorted = nodes.clone();
+        sorted.sort_by(|&a, &b| points[a][axis].total_cmp(&points[b][axis]));
+        let split_at = |fraction: f64| {
+            let value = points[sorted[(fraction * sorted.len() as f64) as usize]][axis];
+            sorted.partition_point(|&k| points[k][axis] < value)
+        };
+        let mut splits: Vec<usize> = CUTS.iter().map(|&f| split_at(f)).collect();
+        splits.retain(|&k| k > 0 && k < sorted.len());
+        for k in splits {
+            let cut = separator(&sorted, k, graph, side);
+            let key = |cut: &[usize], k: usize| (cut.len(), (2 * k).abs_diff(sorted.len()));
+            if best
+                .as_ref()
+                .is_none_or(|(c, b, _)| key(&cut, k) < key(c, *b))
+            {
+                best = Some((cut, k, sorted.clone()));
+            }
+        }
     }
-    let best = splits
-        .into_iter()
-        .map(|k| (separator(&nodes, k, graph, side), k))
-        .min_by_key(|(cut, k)| (cut.len(), (2 * k).abs_diff(nodes.len())));
     match best {
-        Some((cut, k)) => halves(nodes, k, cut, side),
-        None => [Vec::new(), Vec::new(), nodes],
+        Some((cut, k, sorted)) => halves(sorted, k, cut, side),
+        // Every node on one point: split the list in the middle instead.
+        None => {
+            let k = nodes.len() / 2;
+            let cut = separator(&nodes, k, graph, side);
+            halves(nodes, k, cut, side)
+        }
     }
 }
 
@@ -154,21 +166,6 @@ fn halves(nodes: Vec<usize>, k: usize, cut: Vec<usize>, side: &mut [Side]) -> [V
         side[n] = Side::Out;
     }
     [a, b, cut]
-}
-
-/// The axis along which `nodes` spread furthest.
-fn longest_side(nodes: &[usize], points: &[[f64; 3]]) -> usize {
-    let extent = |axis: usize| {
-        let (lo, hi) = nodes
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &n| {
-                (lo.min(points[n][axis]), hi.max(points[n][axis]))
-            });
-        hi - lo
-    };
-    (0..3)
-        .max_by(|&a, &b| extent(a).total_cmp(&extent(b)))
-        .unwrap_or(0)
 }
 
 /// The leading `n_int` free unknowns of `dofs` (3 per node) in the nested-dissection order of

@@ -4,7 +4,9 @@
 use contopt_core::{memory, Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::matmul::matmul;
-use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams, LltRef,
@@ -12,7 +14,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 thread_local! {
     /// The numeric factorisations made on this thread so far.
@@ -52,17 +54,18 @@ impl Factor {
     /// Symbolic analysis of the upper triangle `a` (n × n): AMD on the leading
     /// n − `n_tail` unknowns, the trailing `n_tail` kept last; then the numeric factorisation.
     pub fn new(a: SparseColMatRef<'_, usize, f64>, n_tail: usize, body: &str) -> Result<Self> {
-        Self::ordered(a, n_tail, body, Ordering::Amd)
+        Self::ordered(a, n_tail, body, Ordering::Amd, memory::BODY_LIMIT_BYTES)
     }
 
     /// As [`Factor::new`] with the leading unknowns ordered by `ordering`. The factor's size is
-    /// known after the symbolic analysis: it is checked against
-    /// [`memory::BODY_LIMIT_BYTES`] before its values are allocated.
+    /// known after the symbolic analysis: it is checked against `limit` \[bytes\] before its
+    /// values are allocated.
     pub fn ordered(
         a: SparseColMatRef<'_, usize, f64>,
         n_tail: usize,
         body: &str,
         ordering: Ordering,
+        limit: u64,
     ) -> Result<Self> {
         let n = a.nrows();
         let mut fwd: Vec<usize> = (0..n).collect();
@@ -92,16 +95,17 @@ impl Factor {
                 detail: format!("ordering failed: {e:?}"),
             })?;
         }
-        Self::permuted(a, n_tail, body, fwd)
+        Self::permuted(a, n_tail, body, fwd, limit)
     }
 
-    /// As [`Factor::new`] with the leading unknowns eliminated in the order `fwd` (position →
-    /// unknown; its last `n_tail` entries the trailing unknowns in place).
+    /// As [`Factor::ordered`] with the leading unknowns eliminated in the order `fwd` (position
+    /// → unknown; its last `n_tail` entries the trailing unknowns in place).
     pub fn permuted(
         a: SparseColMatRef<'_, usize, f64>,
         n_tail: usize,
         body: &str,
         fwd: Vec<usize>,
+        limit: u64,
     ) -> Result<Self> {
         let n = a.nrows();
         let sym = a.symbolic();
@@ -129,7 +133,7 @@ impl Factor {
                 symbolic.len_val()
             ),
             memory::bytes(&[symbolic.len_val()], 8),
-            memory::BODY_LIMIT_BYTES,
+            limit,
             "use fewer elements (coarser away from the contact)",
         )?;
         let values = vec![0.0; symbolic.len_val()];
@@ -176,6 +180,22 @@ impl Factor {
         self.values.len()
     }
 
+    /// Floating-point operations of the numeric factorisation: per supernode of k columns
+    /// and p rows below them, k³/3 (its diagonal block) + p k² (the rows below) + p² k (its
+    /// update of the later columns). What an ordering costs, apart from the kernels' speed.
+    pub fn flops(&self) -> f64 {
+        let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else {
+            unreachable!("the factorisation is forced supernodal")
+        };
+        (0..sn.n_supernodes())
+            .map(|s| {
+                let k = (sn.supernode_end()[s] - sn.supernode_begin()[s]) as f64;
+                let p = (sn.col_ptr_for_row_idx()[s + 1] - sn.col_ptr_for_row_idx()[s]) as f64;
+                k * k * k / 3.0 + p * k * k + p * p * k
+            })
+            .sum()
+    }
+
     /// Solves K X = B in place for a block of right-hand sides.
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
         let mut mem = MemBuffer::new(
@@ -194,57 +214,13 @@ impl Factor {
     /// the identity, permuted), the block is Yᵀ Y. Y is zero above the first supernode that
     /// holds a trailing unknown, so only the trailing supernodes are visited.
     pub fn tail_inverse(&self) -> Mat<f64> {
-        let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else {
-            unreachable!("the factorisation is forced supernodal")
-        };
-        let n = self.symbolic.nrows();
-        let n_tail = self.n_tail;
-        let inv = self
-            .symbolic
-            .perm()
-            .map(|p| p.arrays().1.to_vec())
-            .unwrap_or_else(|| (0..n).collect());
-        // Positions of the trailing unknowns in the factor's order.
-        let pos: Vec<usize> = (n - n_tail..n).map(|i| inv[i]).collect();
-        let first = pos.iter().copied().min().unwrap_or(n);
-        let llt = SupernodalLltRef::new(sn, &self.values);
-        let begin = sn.supernode_begin();
-        let s0 = (0..sn.n_supernodes())
-            .find(|&s| sn.supernode_end()[s] > first)
-            .unwrap_or(sn.n_supernodes());
-        let offset = if s0 < sn.n_supernodes() { begin[s0] } else { n };
-        let mut y = Mat::<f64>::zeros(n - offset, n_tail);
-        for (k, &p) in pos.iter().enumerate() {
-            y[(p - offset, k)] = 1.0;
+        let sweep = self.tail_sweep();
+        let mut y = Mat::<f64>::zeros(sweep.rows(), self.n_tail);
+        for (k, &p) in sweep.positions.iter().enumerate() {
+            y[(p, k)] = 1.0;
         }
-        let mut tmp = Mat::<f64>::zeros(0, 0);
-        for s in s0..sn.n_supernodes() {
-            let node = llt.supernode(s);
-            let ls = node.val();
-            let size = ls.ncols();
-            let (top, bottom) = ls.split_at_row(size);
-            let start = node.start() - offset;
-            solve_lower_triangular_in_place(top, y.as_mut().subrows_mut(start, size), Par::Seq);
-            let pattern = node.pattern();
-            if pattern.is_empty() {
-                continue;
-            }
-            tmp.resize_with(pattern.len(), n_tail, |_, _| 0.0);
-            matmul(
-                tmp.as_mut(),
-                Accum::Replace,
-                bottom,
-                y.as_ref().subrows(start, size),
-                1.0,
-                Par::Seq,
-            );
-            for j in 0..n_tail {
-                for (r, &i) in pattern.iter().enumerate() {
-                    y[(i - offset, j)] -= tmp[(r, j)];
-                }
-            }
-        }
-        let mut a = Mat::<f64>::zeros(n_tail, n_tail);
+        sweep.forward(y.as_mut());
+        let mut a = Mat::<f64>::zeros(self.n_tail, self.n_tail);
         matmul(
             a.as_mut(),
             Accum::Replace,
@@ -254,5 +230,211 @@ impl Factor {
             Par::Seq,
         );
         a
+    }
+
+    /// Solves K x = b for a right-hand side `b` that is zero outside the trailing unknowns, and
+    /// returns x on them in place of `b` (`n_tail` values: T b, T the trailing block of K⁻¹).
+    /// Only the trailing supernodes are visited, forward and backward (eq. 2.22's product
+    /// A f = L T Lᵀ f through the factor at the cost of its trailing block, not of all of L).
+    pub fn tail_solve_in_place(&self, b: &mut [f64]) {
+        let sweep = self.tail_sweep();
+        let mut y = Mat::<f64>::zeros(sweep.rows(), 1);
+        for (&p, &v) in sweep.positions.iter().zip(b.iter()) {
+            y[(p, 0)] = v;
+        }
+        sweep.forward(y.as_mut());
+        sweep.backward(y.as_mut());
+        for (&p, v) in sweep.positions.iter().zip(b.iter_mut()) {
+            *v = y[(p, 0)];
+        }
+    }
+
+    /// The trailing supernodes and where the trailing unknowns sit among their rows.
+    fn tail_sweep(&self) -> TailSweep<'_> {
+        let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else {
+            unreachable!("the factorisation is forced supernodal")
+        };
+        let n = self.symbolic.nrows();
+        let inv = self.symbolic.perm().map(|p| p.arrays().1);
+        // Positions of the trailing unknowns in the factor's order.
+        let position = |i: usize| inv.map_or(i, |inv| inv[i]);
+        let offset = (n - self.n_tail..n).map(position).min().unwrap_or(n);
+        let first_supernode = (0..sn.n_supernodes())
+            .find(|&s| sn.supernode_end()[s] > offset)
+            .unwrap_or(sn.n_supernodes());
+        TailSweep {
+            llt: SupernodalLltRef::new(sn, &self.values),
+            first_supernode,
+            offset,
+            n,
+            positions: (n - self.n_tail..n).map(|i| position(i) - offset).collect(),
+        }
+    }
+}
+
+/// The factor L from the first trailing unknown's row (`offset`, factor order) on: where a
+/// right-hand side of trailing unknowns is nonzero. The supernode that holds that row (a
+/// relaxed supernode may reach back into the unknowns ahead) is entered at it.
+struct TailSweep<'a> {
+    llt: SupernodalLltRef<'a, usize, f64>,
+    first_supernode: usize,
+    offset: usize,
+    n: usize,
+    /// Row of each trailing unknown, counted from `offset`.
+    positions: Vec<usize>,
+}
+
+/// A supernode's columns from the sweep's offset on: its diagonal block, the rows below it,
+/// its first row (counted from the offset) and the rows below's indices (factor order).
+struct Columns<'a> {
+    diagonal: MatRef<'a, f64>,
+    below: MatRef<'a, f64>,
+    start: usize,
+    pattern: &'a [usize],
+}
+
+impl TailSweep<'_> {
+    fn rows(&self) -> usize {
+        self.n - self.offset
+    }
+
+    /// The supernodes of the sweep, first to last, each from the offset on.
+    fn columns(&self) -> impl DoubleEndedIterator<Item = Columns<'_>> {
+        let n_supernodes = self.llt.symbolic().n_supernodes();
+        (self.first_supernode..n_supernodes).map(|s| {
+            let node = self.llt.supernode(s);
+            let size = node.val().ncols();
+            let skip = self.offset.saturating_sub(node.start());
+            let (top, bottom) = node.val().split_at_row(size);
+            Columns {
+                diagonal: top.submatrix(skip, skip, size - skip, size - skip),
+                below: bottom.subcols(skip, size - skip),
+                start: node.start() + skip - self.offset,
+                pattern: node.pattern(),
+            }
+        })
+    }
+
+    /// Y ← L⁻¹ Y over the trailing rows (Y zero above them).
+    fn forward(&self, mut y: MatMut<'_, f64>) {
+        let mut update = Mat::<f64>::zeros(0, 0);
+        for c in self.columns() {
+            let size = c.diagonal.ncols();
+            let mut ys = y.as_mut().subrows_mut(c.start, size);
+            solve_lower_triangular_in_place(c.diagonal, ys.as_mut(), Par::Seq);
+            update.resize_with(c.pattern.len(), y.ncols(), |_, _| 0.0);
+            matmul(
+                update.as_mut(),
+                Accum::Replace,
+                c.below,
+                y.as_ref().subrows(c.start, size),
+                1.0,
+                Par::Seq,
+            );
+            for j in 0..y.ncols() {
+                for (r, &i) in c.pattern.iter().enumerate() {
+                    y[(i - self.offset, j)] -= update[(r, j)];
+                }
+            }
+        }
+    }
+
+    /// Y ← L⁻ᵀ Y over the trailing rows: exact there, as the rows above never enter them.
+    fn backward(&self, mut y: MatMut<'_, f64>) {
+        let mut below = Mat::<f64>::zeros(0, 0);
+        for c in self.columns().rev() {
+            let size = c.diagonal.ncols();
+            below.resize_with(c.pattern.len(), y.ncols(), |_, _| 0.0);
+            for j in 0..y.ncols() {
+                for (r, &i) in c.pattern.iter().enumerate() {
+                    below[(r, j)] = y[(i - self.offset, j)];
+                }
+            }
+            matmul(
+                y.as_mut().subrows_mut(c.start, size),
+                Accum::Add,
+                c.below.transpose(),
+                below.as_ref(),
+                -1.0,
+                Par::Seq,
+            );
+            solve_upper_triangular_in_place(
+                c.diagonal.transpose(),
+                y.as_mut().subrows_mut(c.start, size),
+                Par::Seq,
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::{SparseColMat, Triplet};
+
+    /// The upper triangle of the 5-point Laplacian of an m × m grid plus the identity: sparse,
+    /// positive definite, and with a dense Schur complement on any set of its unknowns.
+    fn laplacian(m: usize) -> SparseColMat<usize, f64> {
+        let mut entries = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                let k = i * m + j;
+                entries.push(Triplet::new(k, k, 5.0));
+                if j + 1 < m {
+                    entries.push(Triplet::new(k, k + 1, -1.0));
+                }
+                if i + 1 < m {
+                    entries.push(Triplet::new(k, k + m, -1.0));
+                }
+            }
+        }
+        SparseColMat::try_new_from_triplets(m * m, m * m, &entries).unwrap()
+    }
+
+    /// The product through the trailing block alone is the full solve read on the trailing
+    /// unknowns (to round-off), for tails that fill a supernode, share one with the unknowns
+    /// ahead, or are a single unknown; and its block of K⁻¹ is the full solve's too.
+    #[test]
+    fn the_trailing_product_is_the_full_solve_on_the_tail() {
+        let a = laplacian(12);
+        let n = a.nrows();
+        for n_tail in [1, 5, 12, 30] {
+            let factor = Factor::new(a.as_ref(), n_tail, "grid").unwrap();
+            let b: Vec<f64> = (0..n_tail).map(|k| 1.0 + (k % 7) as f64).collect();
+            let mut full = Mat::<f64>::zeros(n, 1);
+            for (k, v) in b.iter().enumerate() {
+                full[(n - n_tail + k, 0)] = *v;
+            }
+            factor.solve_in_place(full.as_mut());
+            let mut tail = b.clone();
+            factor.tail_solve_in_place(&mut tail);
+            let t = factor.tail_inverse();
+            for k in 0..n_tail {
+                let x = full[(n - n_tail + k, 0)];
+                assert!((tail[k] - x).abs() < 1e-13 * x.abs(), "{n_tail}: {k}");
+                let tb: f64 = (0..n_tail).map(|j| t[(k, j)] * b[j]).sum();
+                assert!((tb - x).abs() < 1e-13 * x.abs(), "{n_tail}: {k}");
+            }
+        }
+    }
+
+    /// A factor past its limit is refused after the symbolic analysis, before a numeric
+    /// factorisation, with its size and the limit named.
+    #[test]
+    fn a_factor_past_its_limit_is_refused_before_it_is_computed() {
+        let a = laplacian(12);
+        let before = factorisations();
+        let refused = Factor::ordered(a.as_ref(), 3, "grid", Ordering::Amd, 1000);
+        let Err(Error::TooLarge {
+            what, bytes, limit, ..
+        }) = refused
+        else {
+            panic!("not refused");
+        };
+        assert_eq!(factorisations(), before);
+        assert_eq!(limit, 1000);
+        let nnz = Factor::new(a.as_ref(), 3, "grid").unwrap().factor_nnz();
+        assert_eq!(bytes, 8 * nnz as u64);
+        assert!(what.contains(&format!("({nnz} nonzeros)")), "{what}");
     }
 }

@@ -32,17 +32,36 @@ pub enum Condensation {
     /// The dense matrix A = L K⁻¹ Lᵀ from the factor's trailing block (the face unknowns
     /// ordered last).
     Dense,
-    /// One sparse forward and backward solve per product (no face block: AMD on everything).
+    /// One forward and backward solve per product through the factor's trailing block (the
+    /// face unknowns ordered last), nothing dense stored.
     Products,
 }
 
 /// Options of a solid body's build.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SolidSettings {
     /// Dense matrix or products.
     pub condensation: Condensation,
-    /// The fill-reducing ordering.
+    /// The fill-reducing ordering of the unknowns ahead of the contact face's (nested
+    /// dissection by default).
     pub ordering: Ordering,
+    /// The most memory the build may take \[bytes\]: the assembly's estimate is checked
+    /// against it before the assembly, the factor's after its symbolic analysis, before its
+    /// values are allocated (a scene passes its own `memory_limit_mb`).
+    pub memory_limit_bytes: u64,
+}
+
+impl Default for SolidSettings {
+    /// Nested dissection (on the scaling block of `examples/solid_scaling.rs` it needs 0.44
+    /// of AMD's factor flops at 7 465 nodes, 0.31 at 23 653), the influence dense up to
+    /// [`DENSE_POINTS`] points, [`memory::BODY_LIMIT_BYTES`].
+    fn default() -> Self {
+        Self {
+            condensation: Condensation::default(),
+            ordering: Ordering::Dissection,
+            memory_limit_bytes: memory::BODY_LIMIT_BYTES,
+        }
+    }
 }
 
 /// Sizes and wall-clock times of a solid body's build.
@@ -54,6 +73,8 @@ pub struct SolidStats {
     pub unknowns: usize,
     /// Nonzeros of the Cholesky factor.
     pub factor_nnz: usize,
+    /// Floating-point operations of the numeric factorisation.
+    pub factor_flops: f64,
     /// Whether the influence is a dense matrix.
     pub dense: bool,
     /// Element integration and assembly.
@@ -123,16 +144,22 @@ impl SolidBody {
             Condensation::Products => false,
         };
         let face_nodes = model.mesh().nodes_of(&contact);
-        let tail: &[usize] = if dense { &face_nodes } else { &[] };
         if dense {
             memory::require(
                 format!("{name}: a dense influence of {n} contact points"),
                 memory::bytes(&[n, n + 3 * face_nodes.len()], 8),
-                memory::BODY_LIMIT_BYTES,
+                settings.memory_limit_bytes,
                 "apply the influence through the factorisation (condensation = products)",
             )?;
         }
-        let system = System::solid(&model, &name, tail, Pinning::Pin, settings.ordering)?;
+        let system = System::solid(
+            &model,
+            &name,
+            &face_nodes,
+            Pinning::Pin,
+            settings.ordering,
+            settings.memory_limit_bytes,
+        )?;
         let rows: Vec<Row> = samples.iter().map(|s| s.row(model.mesh())).collect();
         let interface = Interface::new(
             Geometry::Surface,
@@ -162,6 +189,7 @@ impl SolidBody {
             nodes: model.mesh().nodes().len(),
             unknowns: system.n_free,
             factor_nnz: system.factor.factor_nnz(),
+            factor_flops: system.factor.flops(),
             dense: dense.is_some(),
             assembly: system.assembly_time,
             factorisation: system.factorisation_time,
@@ -252,25 +280,28 @@ impl SolidBody {
         extra
     }
 
-    /// The influence product through the factorisation: L K⁻¹ Lᵀ f over the free unknowns.
+    /// The influence product through the factorisation: L K⁻¹ Lᵀ f, the face unknowns being
+    /// ordered last, through the factor's trailing block alone
+    /// ([`crate::factor::Factor::tail_solve_in_place`]).
     fn product(&self, force: &[f64], displacement: &mut [f64]) {
-        let mut rhs = Mat::<f64>::zeros(self.system.n_free, 1);
+        let system = &self.system;
+        let first = system.n_free - system.n_tail;
+        let face = |g: usize| match system.dofs[g] {
+            Dof::Free(i) => Some(i - first),
+            _ => None,
+        };
+        let mut face_u = vec![0.0; system.n_tail];
         for (r, f) in self.rows.iter().zip(force) {
             for &(g, c) in &r.entries {
-                if let Dof::Free(i) = self.system.dofs[g] {
-                    rhs[(i, 0)] -= c * f;
+                if let Some(k) = face(g) {
+                    face_u[k] -= c * f;
                 }
             }
         }
-        self.system.factor.solve_in_place(rhs.as_mut());
+        system.factor.tail_solve_in_place(&mut face_u);
         for (d, r) in displacement.iter_mut().zip(&self.rows) {
-            *d = -r
-                .entries
-                .iter()
-                .map(|&(g, c)| match self.system.dofs[g] {
-                    Dof::Free(i) => c * rhs[(i, 0)],
-                    _ => 0.0,
-                })
+            *d = -(r.entries.iter())
+                .filter_map(|&(g, c)| face(g).map(|k| c * face_u[k]))
                 .sum::<f64>();
         }
     }

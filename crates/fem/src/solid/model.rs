@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use contopt_core::{check, Error, Material, Result, StressTensor};
+use contopt_core::{check, memory, Error, Material, Result, StressTensor};
 
 use super::element::MAX_SOLID_NODES;
 use super::mesh::{SolidFace, SolidMesh};
@@ -245,7 +245,14 @@ impl SolidModel {
     /// Solves the supported model under its given loads: nodal displacements (3 per node).
     /// Errors when the supports leave a rigid motion free.
     pub fn solve(&self) -> Result<Vec<f64>> {
-        let system = System::solid(self, "model", &[], Pinning::Refuse, Ordering::Amd)?;
+        let system = System::solid(
+            self,
+            "model",
+            &[],
+            Pinning::Refuse,
+            Ordering::Amd,
+            memory::BODY_LIMIT_BYTES,
+        )?;
         let u = system.solve(&self.forces, None);
         check::all_derived("loads", "the given loads", "the displacements", &u)?;
         Ok(u)

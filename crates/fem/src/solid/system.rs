@@ -26,13 +26,15 @@ const BYTES_PER_ENTRY: u64 = 2 * (16 + 8);
 impl System {
     /// Numbers, assembles and factorises a solid `model`'s stiffness with the unknowns of
     /// `tail_nodes` last, the others ordered by `ordering`. The assembly's memory is checked
-    /// before it is allocated, the factor's after the symbolic analysis.
+    /// against `limit` \[bytes\] before it is allocated, the factor's after the symbolic
+    /// analysis.
     pub fn solid(
         model: &SolidModel,
         name: &str,
         tail_nodes: &[usize],
         pinning: Pinning,
         ordering: Ordering,
+        limit: u64,
     ) -> Result<Self> {
         let mesh = &model.mesh;
         let entries: usize = (0..mesh.n_elements())
@@ -48,7 +50,7 @@ impl System {
                 mesh.n_elements()
             ),
             memory::bytes(&[entries], BYTES_PER_ENTRY),
-            memory::BODY_LIMIT_BYTES,
+            limit,
             "use fewer elements",
         )?;
         let (dofs, modes) = numbering(model, tail_nodes, pinning)?;
@@ -68,9 +70,9 @@ impl System {
                 let mesh = &model.mesh;
                 let elements = (0..mesh.n_elements()).map(|e| mesh.element(e));
                 let order = unknown_order(mesh.nodes(), elements, &dofs, n_free - n_tail);
-                Factor::permuted(matrix.as_ref(), n_tail, name, order)?
+                Factor::permuted(matrix.as_ref(), n_tail, name, order, limit)?
             }
-            _ => Factor::ordered(matrix.as_ref(), n_tail, name, ordering)?,
+            _ => Factor::ordered(matrix.as_ref(), n_tail, name, ordering, limit)?,
         };
         Ok(Self {
             dofs,

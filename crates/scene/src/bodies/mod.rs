@@ -74,6 +74,9 @@ pub struct Placement<'a> {
     pub dir: &'a Path,
     /// The mesh files the scene's bodies read.
     pub meshes: &'a MeshFiles,
+    /// The scene's memory limit (`memory_limit_mb`) \[bytes\]: what a body that learns its
+    /// size only while it is built (a solid's factor) checks itself against.
+    pub memory_limit_bytes: u64,
 }
 
 /// What a body kind does: check itself on a zone without building anything, estimate its

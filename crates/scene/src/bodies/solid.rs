@@ -383,7 +383,8 @@ impl BodyKind for Solid {
 
     /// The assembled stiffness (as the solid's assembly counts it) and, up to
     /// [`DENSE_POINTS`] cells, the dense influence; the factor's size is known only after its
-    /// symbolic analysis, where the solid checks it before allocating.
+    /// symbolic analysis, where the solid checks it against the scene's `memory_limit_mb`
+    /// ([`Placement::memory_limit_bytes`]) before allocating.
     fn memory(&self, at: &Placement) -> Option<u64> {
         let solid = self.imported(at.meshes).ok()?;
         let mesh = &solid.mesh;
@@ -422,7 +423,10 @@ impl BodyKind for Solid {
             self.name(),
             model,
             &samples,
-            SolidSettings::default(),
+            SolidSettings {
+                memory_limit_bytes: at.memory_limit_bytes,
+                ..Default::default()
+            },
         )?))
     }
 

@@ -30,6 +30,15 @@ pub(crate) fn dense_limit(spec: &CaseSpec) -> Result<u64> {
     }
 }
 
+/// The scene's memory limit (`memory_limit_mb`, else [`DEFAULT_MEMORY_LIMIT_BYTES`])
+/// \[bytes\].
+pub(crate) fn limit(spec: &CaseSpec) -> Result<u64> {
+    match spec.memory_limit_mb {
+        None => Ok(DEFAULT_MEMORY_LIMIT_BYTES),
+        Some(mb) => Ok((check::positive("memory_limit_mb", mb)? * MB) as u64),
+    }
+}
+
 /// A case's memory: what it needs, estimated before anything is built, and the scene's limit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Memory {
@@ -47,12 +56,7 @@ pub(crate) fn check(
     at: &Locator,
     meshes: &MeshFiles,
 ) -> std::result::Result<Memory, SceneError> {
-    let limit = match spec.memory_limit_mb {
-        None => DEFAULT_MEMORY_LIMIT_BYTES,
-        Some(mb) => {
-            (check::positive("memory_limit_mb", mb).map_err(|e| at.library("", e))? * MB) as u64
-        }
-    };
+    let limit = limit(spec).map_err(|e| at.library("", e))?;
     let points = layout.points();
     let bodies: Vec<Option<u64>> = (0..spec.body.len())
         .map(|k| {

@@ -164,6 +164,8 @@ pub(crate) fn placement<'a>(
         load: spec.contact.load,
         dir: at.dir(),
         meshes,
+        // Checked positive with the case's budget, before any body is built.
+        memory_limit_bytes: budget::limit(spec).unwrap_or(DEFAULT_MEMORY_LIMIT_BYTES),
     }
 }
 
