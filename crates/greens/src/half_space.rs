@@ -7,7 +7,7 @@ use contopt_core::{
 };
 use faer::Mat;
 
-use crate::fft::{smooth_at_least, Convolution};
+use crate::fft::Convolution;
 
 /// An elastic half-space z ≤ 0 whose surface is divided into a regular grid of
 /// `nx` × `ny` rectangular cells of size `dx` × `dy`; the contact points are the cell
@@ -129,12 +129,21 @@ impl HalfSpace {
         origin: [f64; 2],
     ) -> Result<Self> {
         let interface = Self::cells_interface(nx, ny, dx, dy, origin)?;
-        let kernel = love_kernel(material, nx + 1, ny + 1, dx, dy);
+        let [kx, ky] = Self::kernel_size(nx, ny);
+        let kernel = love_kernel(material, kx, ky, dx, dy);
         Self::with_kernel(name.into(), material, interface, [nx, ny], [dx, dy], kernel)
     }
 
+    /// The kernel values a free `nx` × `ny` grid holds: the cell offsets up to half its
+    /// padded lengths ([`Convolution::free_lengths`]), which its products and preconditioner
+    /// read, and which the parts and coarser grids derived from it read too (their padded
+    /// lengths are no longer).
+    fn kernel_size(nx: usize, ny: usize) -> [usize; 2] {
+        Convolution::free_lengths(nx, ny).map(|p| p / 2 + 1)
+    }
+
     /// The free grid of [`HalfSpace::grid`] on `interface`, with its `kernel` (at least
-    /// (nx + 1) × (ny + 1) values: Love's, or a finer grid's scaled) checked.
+    /// [`HalfSpace::kernel_size`] values: Love's, or a finer grid's scaled) checked.
     fn with_kernel(
         name: String,
         material: Material,
@@ -148,8 +157,9 @@ impl HalfSpace {
             material.e()
         );
         crate::check_matrix("half_space.dx", dx, &what, &kernel)?;
-        check_fft_bound(&kernel, 4 * nx * ny, dx, &what)?;
-        let convolution = Arc::new(Convolution::free(nx, ny, |i, j| kernel[(i, j)]));
+        let [px, py] = Convolution::free_lengths(nx, ny);
+        check_fft_bound(&kernel, px * py, dx, &what)?;
+        let convolution = Arc::new(Convolution::free_fast(nx, ny, |i, j| kernel[(i, j)]));
         Ok(Self {
             name,
             interface,
@@ -290,7 +300,8 @@ impl HalfSpace {
     }
 
     /// The sub-grid of `cx` × `cy` cells starting at cell (`i0`, `j0`): the same kernel, a
-    /// smaller FFT.
+    /// smaller FFT (its padded lengths no longer than this grid's, so the kernel holds the
+    /// offsets it reads).
     fn sub_grid(&self, i0: usize, j0: usize, cx: usize, cy: usize) -> Result<(Self, Vec<usize>)> {
         let index: Vec<usize> = (0..cx * cy)
             .map(|k| (j0 + k / cx) * self.nx + i0 + k % cx)
@@ -304,7 +315,7 @@ impl HalfSpace {
             vec![self.interface.normals()[0]; cx * cy],
         )?;
         let kernel = &self.kernel;
-        let convolution = Arc::new(Convolution::free(cx, cy, |i, j| kernel[(i, j)]));
+        let convolution = Arc::new(Convolution::free_fast(cx, cy, |i, j| kernel[(i, j)]));
         Ok((
             Self {
                 name: self.name.clone(),
@@ -378,14 +389,16 @@ impl HalfSpace {
     /// The free kernel of the `cx` × `cy` grid of cells `fx` × `fy` times this one's. Love's
     /// deflection is of degree 1 in its lengths, so when both sides double the coarse kernel
     /// is this one's halved, at the same cell offsets (no Love evaluation: at 1024² cells those
-    /// take a few FFT pairs' time); else Love's, evaluated.
+    /// take a few FFT pairs' time; the coarse grid's padded lengths are no longer than this
+    /// one's, so this kernel holds its offsets); else Love's, evaluated.
     fn coarse_kernel(&self, fx: usize, fy: usize, cx: usize, cy: usize) -> Mat<f64> {
+        let [kx, ky] = Self::kernel_size(cx, cy);
         if fx == fy {
             let scale = 1.0 / fx as f64;
-            Mat::from_fn(cx + 1, cy + 1, |i, j| scale * self.kernel[(i, j)])
+            Mat::from_fn(kx, ky, |i, j| scale * self.kernel[(i, j)])
         } else {
             let (dx, dy) = (fx as f64 * self.dx, fy as f64 * self.dy);
-            love_kernel(self.material, cx + 1, cy + 1, dx, dy)
+            love_kernel(self.material, kx, ky, dx, dy)
         }
     }
 
@@ -451,10 +464,10 @@ impl ElasticBody for HalfSpace {
         if lo[0] == usize::MAX {
             return None;
         }
-        // Two cells of margin, then sides rounded up to FFT-friendly lengths, the box shifted
-        // to stay on the grid.
+        // Two cells of margin, the box shifted to stay on the grid (its product pads each
+        // side to a fast FFT length, [`Convolution::free_lengths`]).
         let side = |lo: usize, hi: usize, n: usize| {
-            let len = smooth_at_least(hi - lo + 5, n);
+            let len = (hi - lo + 5).min(n);
             let start = lo.saturating_sub(2).min(n - len);
             (start, len)
         };
@@ -571,9 +584,11 @@ mod tests {
             let fine = HalfSpace::grid("g", steel, nx, ny, dx, dy, [0.0; 2]).unwrap();
             let (coarse, _) = fine.coarse_grid().unwrap();
             let (cx, cy) = coarse.cells();
-            let love = love_kernel(steel, cx + 1, cy + 1, coarse.dx, coarse.dy);
-            for i in 0..=cx {
-                for j in 0..=cy {
+            let [kx, ky] = HalfSpace::kernel_size(cx, cy);
+            assert_eq!((coarse.kernel.nrows(), coarse.kernel.ncols()), (kx, ky));
+            let love = love_kernel(steel, kx, ky, coarse.dx, coarse.dy);
+            for i in 0..kx {
+                for j in 0..ky {
                     let (k, l) = (coarse.kernel[(i, j)], love[(i, j)]);
                     assert!(
                         (k - l).abs() <= 1e-14 * l.abs(),
