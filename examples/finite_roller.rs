@@ -667,22 +667,7 @@ struct Line {
 fn half_space(r: &Roller, grid: &Grid, cells: [usize; 2], weight: Option<f64>) -> Result<Line> {
     let [nx, ny] = cells;
     let solver = PolonskyKeer::new(PolonskyKeerSettings::default())?;
-    let state = match weight {
-        None => {
-            let (a, b, gap) = r.bodies(nx, ny, REACH)?;
-            let problem = InterfaceProblem::new(&a, &b, &gap)?;
-            solver.solve(&problem)?
-        }
-        Some(weight) => {
-            let ends = RollerEnds {
-                chamfer_mm: CHAMFER,
-                weight,
-            };
-            let (a, b, gap) = r.free_end_bodies(nx, ny, REACH, &ends)?;
-            let problem = InterfaceProblem::new(&a, &b, &gap)?;
-            solver.solve(&problem)?
-        }
-    };
+    let state = on_half_spaces(r, cells, weight, |problem| solver.solve(problem))?;
     let [dx, dy] = r.cell(nx, ny, REACH)?;
     let overlap = |a: [f64; 2], b: [f64; 2]| (a[1].min(b[1]) - a[0].max(b[0])).max(0.0);
     let first_row = [0.0, grid.ys[1]];
@@ -785,11 +770,22 @@ fn half_space_design(
     let [nx, ny] = cells;
     let [_, dy] = r.cell(nx, ny, REACH)?;
     let solver = PolonskyKeer::new(PolonskyKeerSettings::default())?;
+    on_half_spaces(r, cells, weight, |problem| designed(problem, &solver, dy))
+}
+
+/// `run` on the half-space model of `r` on a full grid of `cells`: its roller's ends free
+/// with the image's `weight`, or a half-space roller.
+fn on_half_spaces<T>(
+    r: &Roller,
+    [nx, ny]: [usize; 2],
+    weight: Option<f64>,
+    run: impl FnOnce(&InterfaceProblem) -> Result<T>,
+) -> Result<T> {
     match weight {
         None => {
             let (a, b, gap) = r.bodies(nx, ny, REACH)?;
             let problem = InterfaceProblem::new(&a, &b, &gap)?;
-            designed(&problem, &solver, dy)
+            run(&problem)
         }
         Some(weight) => {
             let ends = RollerEnds {
@@ -798,7 +794,7 @@ fn half_space_design(
             };
             let (a, b, gap) = r.free_end_bodies(nx, ny, REACH, &ends)?;
             let problem = InterfaceProblem::new(&a, &b, &gap)?;
-            designed(&problem, &solver, dy)
+            run(&problem)
         }
     }
 }

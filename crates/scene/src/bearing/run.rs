@@ -840,10 +840,11 @@ fn named(plan: &BearingPlan, env: &Envelope, k: usize) -> String {
 /// naming it (load case, roller, load, raceway, and the tolerance band's crown it was
 /// solved under), so a bearing of many contacts says which one failed.
 fn unsolved(plan: &BearingPlan, ring: &Ring) -> Option<(Termination, String)> {
+    // States are contact k of band j at j·n + k; one exists only when n > 0.
     let n = ring.env.contacts.len();
     let states = &ring.solved.states;
     let at = states.iter().position(|s| !s.termination.is_solved())?;
-    let band = match at / n.max(1) {
+    let band = match at / n {
         0 => String::new(),
         b => {
             let sign = if b == 1 { '+' } else { '−' };
@@ -853,13 +854,12 @@ fn unsolved(plan: &BearingPlan, ring: &Ring) -> Option<(Termination, String)> {
             )
         }
     };
-    let s = &states[at];
+    let why = states[at].termination.clone().inside(states[at].method);
     let which = format!(
-        "the contact of {}{band} did not converge: {}",
-        named_on(plan, ring, at % n.max(1)),
-        s.termination.clone().inside(s.method)
+        "the contact of {}{band} did not converge: {why}",
+        named_on(plan, ring, at % n)
     );
-    Some((s.termination.clone().inside(s.method), which))
+    Some((why, which))
 }
 
 /// A contact of `ring` named, with its raceway when it is not the solved one's.
