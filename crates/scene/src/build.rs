@@ -202,6 +202,31 @@ mod tests {
         );
     }
 
+    /// A grid without `cell_mm` spans each case's own Hertz radius, so a sweep over the
+    /// sphere's radius builds each case on its own cells: the R = 40 mm case on R = 10 mm's
+    /// cells (1.5 × 0.324 mm across, its a = 0.515 mm) reached the grid's edge and was
+    /// refused. Each p_max within 1 % of Hertz's p₀ (4538 and 1801 MPa); wrong cells would
+    /// miss the second by the contact cut at the edge.
+    #[test]
+    fn a_grid_from_the_gap_follows_each_case() {
+        let text = "name = \"grid-sweep\"\n[sweep]\nkey = \"contact.gap.radius_mm\"\nvalues = \
+                    [10.0, 40.0]\n[contact]\nzone = { kind = \"grid\", cells = [24, 24] }\ngap = \
+                    { kind = \"sphere\", radius_mm = 10.0 }\nload = { force_n = 1000.0 }\n\
+                    [[body]]\nkind = \"half_space\"\nmaterial = { e_mpa = 2.0e5, nu = 0.3 }\n\
+                    [[body]]\nkind = \"rigid\"\n";
+        let scene = Registry::standard()
+            .parse(text, Format::Toml, Path::new("grid-sweep.toml"))
+            .unwrap();
+        let mut run = scene.run();
+        for p0 in [4538.297, 1801.024] {
+            let report = run.next().unwrap().unwrap();
+            assert!(report.limit.is_none(), "{:?}", report.limit);
+            let p_max = report.p_max_mpa.unwrap();
+            assert!((p_max / p0 - 1.0).abs() < 0.01, "{p_max} against {p0}");
+        }
+        assert_eq!(run.builds(), 2);
+    }
+
     /// The bodies are built on the zone's surface: the bed's points are the rings', and the
     /// rigid body above stands on them mirrored.
     #[test]

@@ -22,6 +22,26 @@ pub(crate) struct CaseInput {
     pub named: Option<()>,
     pub params: BTreeMap<String, f64>,
     pub tree: Node,
+    /// The keys a `[[case]]` sets to a table where the scene has one: the table replaces the
+    /// scene's whole, the keys it leaves out gone with it.
+    pub whole: Vec<String>,
+}
+
+/// `e`, a reading error of a case's tree, with a word on why a key is missing when a table
+/// the case set `whole` holds it: `set = { contact = { gap = { … } } }` replaces the scene's
+/// `[contact]`, zone and load included.
+pub(crate) fn explain(whole: &[String], mut e: SceneError) -> SceneError {
+    if let SceneError::Invalid(located) = &mut e {
+        let path = crate::error::dotted(&located.path);
+        let under = |key: &&String| path == **key || path.starts_with(&format!("{key}."));
+        if let Some(key) = whole.iter().find(under) {
+            located.message.push_str(&format!(
+                " (the case sets `{key}` whole, as a table, and the scene's other keys under \
+                 it go with it: set one key by its dotted path, \"{key}.<key>\" = …)"
+            ));
+        }
+    }
+    e
 }
 
 /// The cases of `tree`, whose `sweep` and `case` keys it consumes.
@@ -39,6 +59,7 @@ pub(crate) fn expand(mut tree: Node, at: &Locator) -> Result<Vec<CaseInput>, Sce
             named: None,
             params: BTreeMap::new(),
             tree,
+            whole: vec![],
         }],
     };
     Ok(cases)
@@ -107,6 +128,7 @@ fn swept(tree: &Node, sweep: &Node, at: &Locator) -> Result<Vec<CaseInput>, Scen
                 named: Some(()),
                 params: [(key.clone(), number)].into(),
                 tree: case,
+                whole: vec![],
             })
         })
         .collect()
@@ -164,7 +186,13 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
             };
             let mut case = tree.clone();
             let mut params = BTreeMap::new();
+            let mut whole = vec![];
             for (key, value) in changes {
+                let table =
+                    |node: Option<&Node>| matches!(node.map(Node::value), Some(Value::Table(_)));
+                if table(Some(value)) && table(case.get(key.name())) {
+                    whole.push(key.name().to_string());
+                }
                 case.insert(key.name(), value.clone())
                     .map_err(|e| at.input(e))?;
                 let number = match *value.value() {
@@ -181,6 +209,7 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
                 named: Some(()),
                 params,
                 tree: case,
+                whole,
             })
         })
         .collect()

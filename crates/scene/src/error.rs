@@ -173,6 +173,6 @@ pub fn join(path: &str, field: &str) -> String {
 }
 
 /// A path as the tree takes it: `body[1].cells[0]` → `body.1.cells.0`.
-fn dotted(path: &str) -> String {
+pub(crate) fn dotted(path: &str) -> String {
     path.replace('[', ".").replace(']', "")
 }

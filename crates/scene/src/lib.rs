@@ -397,7 +397,8 @@ impl Case {
         );
         bearing::compose(&mut tree, &whole)?;
         let locator = Locator::new(file, text.clone(), Arc::new(tree), case_name);
-        let spec = CaseSpec::read(&locator.tree, registry).map_err(|e| locator.input(e))?;
+        let spec = CaseSpec::read(&locator.tree, registry)
+            .map_err(|e| cases::explain(&input.whole, locator.input(e)))?;
         let label = if single {
             spec.name.clone()
         } else {

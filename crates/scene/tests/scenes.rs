@@ -55,6 +55,29 @@ fn a_sweep_over_an_integer_key_sets_integers() {
 
 /// Cases that differ only in the controller share one build of their bodies (one
 /// factorisation per body), and each gives what it gives on bodies built for it alone.
+/// A `[[case]]` that sets a table where the scene has one replaces it whole: a key it left
+/// out is missing, and the error says why and how to set one key instead.
+#[test]
+fn a_case_setting_a_table_is_told_it_replaces_it() {
+    let scene = format!(
+        "{}\n[[case]]\nlabel = \"large\"\nset = {{ contact = {{ gap = {{ kind = \"sphere\", \
+         radius_mm = 40.0 }} }} }}\n",
+        text("hertz")
+    );
+    let message = refused(&scene);
+    assert!(
+        message.contains("[large] contact.zone: missing field `zone`")
+            && message.contains("sets `contact` whole")
+            && message.contains("\"contact.<key>\" = …"),
+        "{message}"
+    );
+    let dotted = scene.replace(
+        "contact = { gap = { kind = \"sphere\", radius_mm = 40.0 } }",
+        "\"contact.gap.radius_mm\" = 40.0",
+    );
+    assert!(parse(&dotted).is_ok());
+}
+
 #[test]
 fn cases_that_share_their_bodies_build_once() {
     let scene =

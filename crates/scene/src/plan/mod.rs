@@ -123,29 +123,35 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
     let dense_limit = budget::dense_limit(spec).map_err(|e| at.library("", e))?;
     let memory = budget::check(spec, &layout, solver.as_ref(), at, meshes)?;
     Ok(Plan {
+        key: BuildKey {
+            zone: contact.zone.clone(),
+            layout: layout.clone(),
+            bodies: spec.body.clone(),
+            load: contact.load,
+            memory_limit_bytes: memory.limit_bytes,
+        },
         memory,
         layout,
         e_star,
         hertz,
         roller,
         dense_limit,
-        key: BuildKey {
-            zone: contact.zone.clone(),
-            bodies: spec.body.clone(),
-            load: contact.load,
-        },
         design,
         design_at,
     })
 }
 
-/// What a case's bodies are built from — the zone, the bodies' kinds with their settings, and
-/// the contact's load — compared as values: cases with equal keys share one build.
+/// What a case's bodies are built from — everything [`placement`] hands a body: the zone, its
+/// layout with every size resolved (a grid without `cell_mm` takes its cells from the case's
+/// gap and load), the bodies' kinds with their settings, the contact's load and the memory
+/// limit — compared as values: cases with equal keys share one build.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct BuildKey {
     zone: Chosen<dyn ZoneKind>,
+    layout: Layout,
     bodies: Vec<Chosen<dyn BodyKind>>,
     load: LoadSpec,
+    memory_limit_bytes: u64,
 }
 
 /// Where body `k` stands.
