@@ -11,6 +11,7 @@
 
 mod convert;
 mod dense;
+mod edge;
 mod errors;
 mod kinds;
 mod library;

@@ -16,6 +16,7 @@ use pyo3::types::PyDict;
 
 use crate::convert::{array, finite_array, from_python, to_python};
 use crate::dense::DenseBody;
+use crate::edge::{warn, Cells};
 use crate::errors::{invalid, library_error};
 use crate::termination::Termination;
 use crate::watch::{watched_here, Watch};
@@ -159,9 +160,7 @@ impl HalfSpace {
 /// the first cell's centre and the cell's sides [mm].
 struct OnGrid {
     body: Box<dyn ElasticBody>,
-    shape: [usize; 2],
-    origin: [f64; 2],
-    cell: [f64; 2],
+    cells: Cells,
 }
 
 impl OnGrid {
@@ -170,9 +169,12 @@ impl OnGrid {
         if let Ok(h) = body.extract::<PyRef<'_, HalfSpace>>() {
             return Ok(Self {
                 body: Box::new((*h.body).clone()),
-                shape: [h.ny, h.nx],
-                origin: h.origin,
-                cell: [h.dx, h.dy],
+                cells: Cells {
+                    shape: [h.ny, h.nx],
+                    origin: h.origin,
+                    cell: [h.dx, h.dy],
+                    cuts: [!h.periodic; 2],
+                },
             });
         }
         let d = body.extract::<PyRef<'_, DenseBody>>().map_err(|_| {
@@ -184,9 +186,12 @@ impl OnGrid {
         })?;
         Ok(Self {
             body: Box::new((*d.body).clone()),
-            shape: [d.ny, d.nx],
-            origin: d.origin,
-            cell: d.cell,
+            cells: Cells {
+                shape: [d.ny, d.nx],
+                origin: d.origin,
+                cell: d.cell,
+                cuts: [false; 2],
+            },
         })
     }
 }
@@ -197,10 +202,8 @@ impl OnGrid {
 #[pyclass(module = "contopt", frozen)]
 pub struct Contact {
     problem: InterfaceProblem<'static>,
-    shape: [usize; 2],
-    /// The first cell's centre and the cell's sides [mm].
-    origin: [f64; 2],
-    cell: [f64; 2],
+    /// The grid: its shape (ny, nx), the first cell's centre and the cell's sides [mm].
+    cells: Cells,
     area: Vec<f64>,
     approach: Option<f64>,
 }
@@ -213,7 +216,12 @@ impl Contact {
 
     /// The grid's shape (ny, nx).
     pub(crate) fn grid(&self) -> [usize; 2] {
-        self.shape
+        self.cells.shape
+    }
+
+    /// The grid's cells, whose edge a contact must not reach.
+    pub(crate) fn cells(&self) -> &Cells {
+        &self.cells
     }
 
     /// The cells' centres, C order.
@@ -223,8 +231,12 @@ impl Contact {
 
     /// The index of the cell whose centre is nearest the point `x` of the grid.
     pub(crate) fn indexer(&self) -> impl Fn([f64; 3]) -> usize + '_ {
-        let [ny, nx] = self.shape;
-        let (origin, cell) = (self.origin, self.cell);
+        let Cells {
+            shape: [ny, nx],
+            origin,
+            cell,
+            ..
+        } = self.cells;
         move |x: [f64; 3]| {
             let i = ((x[0] - origin[0]) / cell[0])
                 .round()
@@ -241,18 +253,38 @@ impl Contact {
 impl Contact {
     /// The contact of `body` (a `HalfSpace` or a `DenseBody`) with a rigid indenter whose gap
     /// to it is `gap_mm`, shape (ny, nx) [mm]; give exactly one of `force_n` [N] and
-    /// `approach_mm` [mm].
+    /// `approach_mm` [mm]. `indenter_ends` (`"x"`, `"y"` or `"xy"`) says the indenter ends at
+    /// the grid's edges along those axes (a roller as long as the grid): a contact that
+    /// reaches them is its end, not a grid too small, and is not warned of.
     #[new]
-    #[pyo3(signature = (body, gap_mm, *, force_n=None, approach_mm=None))]
+    #[pyo3(signature = (body, gap_mm, *, force_n=None, approach_mm=None, indenter_ends=None))]
     fn new(
         py: Python<'_>,
         body: &Bound<'_, PyAny>,
         gap_mm: &Bound<'_, PyAny>,
         force_n: Option<f64>,
         approach_mm: Option<f64>,
+        indenter_ends: Option<&str>,
     ) -> PyResult<Self> {
-        let grid = OnGrid::of(body)?;
-        let shape = grid.shape;
+        let mut grid = OnGrid::of(body)?;
+        let ends = match indenter_ends {
+            None => [false; 2],
+            Some("x") => [true, false],
+            Some("y") => [false, true],
+            Some("xy") => [true; 2],
+            Some(other) => {
+                return Err(invalid(
+                    py,
+                    "indenter_ends",
+                    other,
+                    "\"x\", \"y\" or \"xy\"",
+                ));
+            }
+        };
+        for (cut, end) in grid.cells.cuts.iter_mut().zip(ends) {
+            *cut &= !end;
+        }
+        let shape = grid.cells.shape;
         let gap = finite_array(gap_mm, "gap_mm", &shape)?;
         let surface = grid.body.interface();
         let (indenter, gap, approach) = match (force_n, approach_mm) {
@@ -285,9 +317,7 @@ impl Contact {
         Ok(Self {
             area,
             problem,
-            shape,
-            origin: grid.origin,
-            cell: grid.cell,
+            cells: grid.cells,
             approach,
         })
     }
@@ -295,7 +325,8 @@ impl Contact {
     /// The arrays' shape: (ny, nx).
     #[getter]
     fn shape(&self) -> (usize, usize) {
-        (self.shape[0], self.shape[1])
+        let [ny, nx] = self.cells.shape;
+        (ny, nx)
     }
 }
 
@@ -440,7 +471,7 @@ impl Solver {
         start_mpa: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Solution> {
         let start = match start_mpa {
-            Some(s) => Some(finite_array(s, "start_mpa", &contact.shape)?),
+            Some(s) => Some(finite_array(s, "start_mpa", &contact.cells.shape)?),
             None => None,
         };
         let solver = self.solver.as_ref();
@@ -451,7 +482,9 @@ impl Solver {
             (state, clock.elapsed().as_secs_f64())
         })?;
         let state = state.map_err(|e| library_error(py, e))?;
-        Ok(Solution::new(state, contact, seconds))
+        let solution = Solution::new(state, contact, seconds);
+        warn(py, &solution.warnings)?;
+        Ok(solution)
     }
 
     fn __repr__(&self) -> String {
@@ -487,6 +520,8 @@ pub struct Solution {
     approach: Option<f64>,
     /// The solve's own time in Rust [s].
     seconds: f64,
+    /// The model's limits the answer reached (a contact cut by the grid's edge).
+    warnings: Vec<String>,
 }
 
 impl Solution {
@@ -506,8 +541,9 @@ impl Solution {
             .sum();
         Self {
             approach: contact.approach.or(state.approach()),
+            warnings: contact.cells.warnings(&state.pressure),
             state,
-            shape: contact.shape,
+            shape: contact.cells.shape,
             force,
             contact_area,
             seconds,
@@ -594,6 +630,14 @@ impl Solution {
     #[getter]
     fn method(&self) -> &'static str {
         self.state.method.id()
+    }
+
+    /// The model's limits the answer reached, each a sentence (a contact that reaches the
+    /// edge of a grid that is not periodic: its pressure is wrong); each is also raised as a
+    /// `RuntimeWarning`.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
     }
 
     /// The residuals of the answer: equilibrium (relative), penetration [mm] and

@@ -171,7 +171,13 @@ pub fn optimise(
             .and_then(|o| chosen.run(&o.with_observer(watch), solver))
     })?
     .map_err(|e| library_error(py, e))?;
-    Ok(Optimum { found, shape })
+    let warnings = contact.cells().warnings(&found.pressure);
+    crate::edge::warn(py, &warnings)?;
+    Ok(Optimum {
+        found,
+        shape,
+        warnings,
+    })
 }
 
 /// An optimisation's answer: p_max, the gap change, the pressure and the gap on the grid.
@@ -179,6 +185,8 @@ pub fn optimise(
 pub struct Optimum {
     found: Found,
     shape: [usize; 2],
+    /// The model's limits the answer reached (a contact cut by the grid's edge).
+    warnings: Vec<String>,
 }
 
 #[pymethods]
@@ -241,6 +249,13 @@ impl Optimum {
     #[getter]
     fn converged(&self) -> bool {
         self.found.is_converged()
+    }
+
+    /// The model's limits the answer reached, each a sentence (a contact that reaches the
+    /// edge of a grid that is not periodic); each is also raised as a `RuntimeWarning`.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
     }
 
     /// The default settings of the method `kind`.

@@ -6,6 +6,7 @@ import os
 import signal
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -46,6 +47,31 @@ def test_hertz_from_numpy_against_the_closed_form():
     r2 = (x**2 + y**2) / a**2
     closed = p0 * np.sqrt(np.clip(1 - r2, 0, None))
     assert np.max(np.abs(row - closed)) < 0.03 * p0
+
+
+def test_a_contact_cut_by_the_grid_edge_is_said():
+    # a = 1 mm on a 4 mm square: inside, nothing said.
+    body, gap, force = hertz(n=64)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        inside = contopt.Solver().solve(contopt.Contact(body, gap, force_n=force))
+    assert inside.warnings == []
+    # The force of a = 2.5 mm on the same square: the grid ends inside the contact (its
+    # half-side is 2 mm), p_max misses Hertz's by far, and both the solution and Python say so.
+    big = 4 * ESTAR * 2.5**3 / (3 * R)
+    with pytest.warns(RuntimeWarning, match="reaches the grid's edge"):
+        cut = contopt.Solver().solve(contopt.Contact(body, gap, force_n=big))
+    assert len(cut.warnings) == 1 and "% of p_max" in cut.warnings[0]
+    p0 = 3 * big / (2 * math.pi * 2.5**2)
+    assert abs(cut.p_max_mpa / p0 - 1) > 0.1
+    # A periodic grid has no edge.
+    periodic = contopt.HalfSpace(
+        nx=64, ny=64, dx_mm=4 / 64, dy_mm=4 / 64, e_mpa=E, nu=NU, periodic=True
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        repeated = contopt.Solver().solve(contopt.Contact(periodic, gap, force_n=big))
+    assert repeated.warnings == []
 
 
 def test_equilibrium_units_and_shapes():

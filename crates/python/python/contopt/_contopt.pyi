@@ -3,7 +3,7 @@ N; a scene's results name their units (``p_mpa``, ``dh_um``, ``approach_um``).""
 
 from collections.abc import Callable, Mapping
 from os import PathLike
-from typing import Any, Optional, Union
+from typing import Any, Literal, Optional, Union
 
 from typing_extensions import final
 
@@ -162,6 +162,7 @@ class Contact:
         *,
         force_n: Optional[float] = None,
         approach_mm: Optional[float] = None,
+        indenter_ends: Optional[Literal["x", "y", "xy"]] = None,
     ) -> Contact: ...
     @property
     def shape(self) -> tuple[int, int]: ...
@@ -198,6 +199,8 @@ class Solution:
     def iterations(self) -> int: ...
     @property
     def method(self) -> str: ...
+    @property
+    def warnings(self) -> list[str]: ...
     @property
     def residuals(self) -> dict[str, float]: ...
 
@@ -319,6 +322,8 @@ class Optimum:
     def termination(self) -> Termination: ...
     @property
     def converged(self) -> bool: ...
+    @property
+    def warnings(self) -> list[str]: ...
     @staticmethod
     def defaults(kind: str) -> dict[str, Any]: ...
 
