@@ -30,6 +30,8 @@ pub struct Hertz {
     pub p0: f64,
     /// a or b \[mm\].
     pub half_width: f64,
+    /// R, the radius of curvature across the contact whose parabola x²/2R is the gap \[mm\].
+    pub radius: f64,
 }
 
 impl Hertz {
@@ -41,6 +43,7 @@ impl Hertz {
             line: false,
             p0: 3.0 * force / (2.0 * PI * a * a),
             half_width: a,
+            radius: r,
         }
     }
 
@@ -51,6 +54,7 @@ impl Hertz {
             line: false,
             p0: 2.0 * a * e_star / (PI * r),
             half_width: a,
+            radius: r,
         }
     }
 
@@ -61,6 +65,7 @@ impl Hertz {
             line: true,
             p0: 2.0 * q / (PI * b),
             half_width: b,
+            radius: r,
         }
     }
 

@@ -12,7 +12,7 @@ use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 use super::edge::{line_through, points_per_cell, sharp_edge};
 use crate::mesh_surface::MeshSurface;
 use crate::zone::Layout;
-use crate::Case;
+use crate::{Case, Hertz};
 
 /// Cells across the contact's half-width below which its peak is not resolved (a Hertz
 /// pressure on 8 cells per half-width is within about 1 % of its peak).
@@ -27,6 +27,12 @@ const HERTZ_MARGIN: f64 = 1.25;
 
 /// Without Hertz, the zone must grow at least by this factor past an edge the contact reaches.
 const GROWTH: f64 = 1.5;
+
+/// Hertz's half-width beyond this fraction of the radius across the contact leaves the model's
+/// small contact, a ≪ R (Johnson, *Contact Mechanics*, §4.1): there the parabola x²/2R is
+/// 0.25 % short of the circle at the contact's edge, and the strains, of order a/R, are no
+/// longer small.
+pub const SMALL_CONTACT: f64 = 0.1;
 
 /// One edge of a zone: its name, the surface axis it cuts, its position, and its points.
 struct Edge {
@@ -78,11 +84,35 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
             ));
         }
     }
+    report
+        .warnings
+        .extend(case.plan.hertz.and_then(large_contact));
     let layout = &case.plan.layout;
     if let Some(edge) = sharp_edge(layout, points, &carrying, &pressure) {
         report.warnings.push(edge.warning());
     }
     report.warnings.extend(light_cases(report));
+}
+
+/// The warning of a contact whose Hertz half-width exceeds [`SMALL_CONTACT`] of the radius
+/// across it: the answer is the parabola's on a linear body, not the sphere's or the
+/// cylinder's.
+fn large_contact(hertz: Hertz) -> Option<String> {
+    let (a, r) = (hertz.half_width, hertz.radius);
+    let ratio = a / r;
+    (ratio > SMALL_CONTACT).then(|| {
+        // The circle's gap at x = a over the parabola's, less one (the circle ends at x = R).
+        let circle = r - (r * r - a * a).max(0.0).sqrt();
+        let short = 100.0 * (1.0 - a * a / (2.0 * r) / circle);
+        format!(
+            "Hertz's {} = {a:.4} mm is {ratio:.2} of the radius across the contact, R = {r:.4} \
+             mm, more than {SMALL_CONTACT}: the model holds for a contact small beside R — its \
+             gap is the parabola x²/2R ({short:.1} % short of the circle at the contact's edge) \
+             on bodies under small strains, of order a/R — so the answer is the parabola's on a \
+             linear body; a lighter load or a larger radius keeps within it",
+            if hertz.line { "b" } else { "a" },
+        )
+    })
 }
 
 /// A warning for each body of displacement elements whose material is nearly incompressible
@@ -386,7 +416,7 @@ mod tests {
     use contopt_contact::InterfaceProblem;
     use contopt_results::{CaseReport, CaseStatus, EnvelopeCase, Point, RollerReport};
 
-    use super::{judge, light_cases, MIN_CELLS_ACROSS};
+    use super::{judge, large_contact, light_cases, MIN_CELLS_ACROSS};
     use crate::{Case, Format, Registry, Scene};
 
     /// A sphere (R = 20 mm) on a Winkler bed, on `rings` rings over r < 5 mm.
@@ -422,6 +452,26 @@ mod tests {
             })
             .collect();
         (report, problem)
+    }
+
+    /// A steel sphere of R = 10 mm on steel (E* = 115 GPa) under 1 MN touches over
+    /// a = 4.02 mm = 0.40 R: warned, with the parabola 4.2 % short of the circle at r = a
+    /// (R − √(R² − a²) = 0.844 mm against a²/2R = 0.808 mm); a rigid one (E* = 231 GPa),
+    /// a = 3.19 mm, 2.6 %; under 1 kN, a/R = 0.04 is not warned.
+    #[test]
+    fn a_contact_large_beside_its_radius_is_named() {
+        let e_star = 2.1e5 / (2.0 * (1.0 - 0.09));
+        let steel = large_contact(crate::Hertz::sphere(10.0, 1.0e6, e_star)).unwrap();
+        assert!(
+            steel.contains("a = 4.0207 mm is 0.40 of the radius") && steel.contains("(4.2 % short"),
+            "{steel}"
+        );
+        assert!(large_contact(crate::Hertz::sphere(10.0, 1.0e3, e_star)).is_none());
+        let rigid = large_contact(crate::Hertz::sphere(10.0, 1.0e6, 2.0 * e_star)).unwrap();
+        assert!(
+            rigid.contains("0.32 of the radius") && rigid.contains("(2.6 % short"),
+            "{rigid}"
+        );
     }
 
     /// A contact that carries pressure at the zone's rim, where the sphere's gap goes on, is
