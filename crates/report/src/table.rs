@@ -333,7 +333,8 @@ fn tuned_line(label: &str, t: &contopt_results::TunedProfile) -> String {
 /// The largest stresses below the surface of each case's bodies: von Mises and the largest
 /// shear (Tresca) with their depth and position, the largest tension and compression, and the
 /// largest orthogonal shears |τ_xz| and |τ_yz| (the latter with its depth: a roller rolls
-/// along y). Empty when no case asked for them.
+/// along y; "-" where there is none, on a plane or axisymmetric body). Empty when no case
+/// asked for them.
 fn subsurface_table(report: &Report) -> String {
     if report.cases.iter().all(|c| c.subsurface.is_none()) {
         return String::new();
@@ -348,7 +349,7 @@ fn subsurface_table(report: &Report) -> String {
             let p = &b.peaks;
             let _ = writeln!(
                 s,
-                "{:<width$} {:<22} {:>10.1} {:>8.4} {:>16} {:>10.1} {:>8.4} {:>10.1} {:>10.1} {:>8.1} {:>8.1} {:>8.4}",
+                "{:<width$} {:<22} {:>10.1} {:>8.4} {:>16} {:>10.1} {:>8.4} {:>10.1} {:>10.1} {:>8.1} {:>8.1} {:>8}",
                 c.label,
                 b.body,
                 p.von_mises.value_mpa,
@@ -360,7 +361,12 @@ fn subsurface_table(report: &Report) -> String {
                 p.min_principal.value_mpa,
                 p.shear_xz.value_mpa,
                 p.shear_yz.value_mpa,
-                p.shear_yz.depth_mm
+                // A plane or axisymmetric body has no τ_yz: its peak has no depth.
+                if p.shear_yz.value_mpa > 0.0 {
+                    format!("{:.4}", p.shear_yz.depth_mm)
+                } else {
+                    "-".into()
+                }
             );
         }
     }
@@ -611,23 +617,26 @@ mod tests {
             y_mm: -0.25,
             depth_mm,
         };
-        let mut c = case("L1 = 20 mm", Some(4500.0));
-        c.subsurface = Some(SubsurfaceReport {
-            depths_mm: vec![0.1, 0.2],
-            bodies: vec![BodyStresses {
-                body: "half-space".into(),
-                peaks: Peaks {
-                    von_mises: peak(2814.04, 0.156),
-                    tresca: peak(1407.0, 0.1561),
-                    max_principal: peak(120.0, 0.0),
-                    min_principal: peak(-4538.0, 0.0),
-                    shear_xz: peak(10.0, 0.2),
-                    shear_yz: peak(1134.5, 0.0867),
-                },
-                sections: vec![],
-            }],
-        });
-        let text = table(&report(vec![c]));
+        let below = |shear_yz: Peak| {
+            let mut c = case("L1 = 20 mm", Some(4500.0));
+            c.subsurface = Some(SubsurfaceReport {
+                depths_mm: vec![0.1, 0.2],
+                bodies: vec![BodyStresses {
+                    body: "half-space".into(),
+                    peaks: Peaks {
+                        von_mises: peak(2814.04, 0.156),
+                        tresca: peak(1407.0, 0.1561),
+                        max_principal: peak(120.0, 0.0),
+                        min_principal: peak(-4538.0, 0.0),
+                        shear_xz: peak(10.0, 0.2),
+                        shear_yz,
+                    },
+                    sections: vec![],
+                }],
+            });
+            table(&report(vec![c]))
+        };
+        let text = below(peak(1134.5, 0.0867));
         let row = text.lines().last().unwrap();
         assert!(row.starts_with("L1 = 20 mm half-space "), "{text}");
         for figure in [
@@ -643,5 +652,12 @@ mod tests {
         ] {
             assert!(row.contains(figure), "{figure} in {text}");
         }
+        // A plane or axisymmetric body has no τ_yz: its peak's depth is not a place.
+        let text = below(peak(0.0, 40.0));
+        let row = text.lines().last().unwrap();
+        assert!(
+            row.ends_with(" 0.0        -") && !row.contains("40.0000"),
+            "{text}"
+        );
     }
 }
