@@ -36,12 +36,12 @@
 //! parts marked by mdBook anchors.
 //!
 //! ```text
-//! cargo run --release --example finite_roller       # four solid pairs per crown, 13-18 min
-//! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~3 min
-//! cargo run --release --example finite_roller -- 0  # the half-space models only
+//! cargo run --release --example finite_roller       # four solid pairs per crown, 6-7 min
+//! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~1 min
+//! cargo run --release --example finite_roller -- 0  # the half-space models only, ~8 s
 //! ```
 //!
-//! (Wall clock on the shared 2-core machine at load 10–12; about 6 minutes of CPU in all.)
+//! (Wall clock on the shared 2-core machine at load 7–9; 2.6 minutes of CPU in all.)
 
 use std::collections::HashMap;
 use std::time::Instant;
