@@ -15,35 +15,41 @@
 //! last 0.6 mm of the half-length, merged to 0.2–1 mm towards the middle, and its rows across
 //! (0.0225 mm, the first halved by the symmetry plane) to 1.2 b (`CELL_X`, `ROWS`). A cell is
 //! never finer than the faces under it (else the cells would outnumber what the faces can tell
-//! apart). Each cell's displacement is the mean of its body's face over the cell and its force
-//! is spread over the cell, both by 2 × 2 Gauss points on every piece into which the faces'
-//! element edges cut the cell: the influence of a cell is that of its pressure, not of a point
-//! force. The pressure along the centre line — at mid-length, at its peak and where that sits,
-//! and towards the end — is compared with the half-space model's means over the same cells (on
-//! 100 × 41 and 200 × 81 cells over the effective length and ±2.6 b), without free ends and with
-//! the image of weight w at the end faces (`greens::FreeEnds`): 1.37 (the scenes' default),
-//! 1.388 (the finest fit to Hetényi under a Hertz strip), 1.58 and 1.95 (the fits of
+//! apart). Each is the library's cell (`SolidSample::cells`): its displacement the mean of its
+//! body's face over the cell and its force spread over it as a uniform pressure, so the
+//! influence of a cell is that of its pressure, not of a point force. The pressure along the
+//! centre line — at mid-length, at its peak and where that sits, and towards the end — is
+//! compared with the half-space model's means over the same cells (on 100 × 41 and 200 × 81
+//! cells over the effective length and ±2.6 b), without free ends and with the image of
+//! weight w at the end faces (`greens::FreeEnds`): 1.37 (the scenes' default), 1.388 (the
+//! finest fit to Hetényi under a Hertz strip), 1.58 and 1.95 (the fits of
 //! `examples/quarter_space.rs`); and the weight at which each of the half-space model's
 //! figures equals the solids'.
 //!
-//! Point 4, the load split only: the straight roller's crown designed as `roller-study`'s
-//! "optimised L1 = 5 mm" (Ω_v the centre row, v = 1 along the length) with the solids of the
-//! first two resolutions, against the half-space model's design without and with free ends.
+//! Point 4: the straight roller's crown designed as `roller-study`'s "optimised L1 = 5 mm"
+//! (Ω_v the centre row, v = 1 along the length, the rest of each column Ω_nv) with the solids
+//! of every resolution and with the half-space model without and with free ends, each by the
+//! load split and by the linear programme (3.5) on the dense influence; the pressure across
+//! the end column of each design says why the solids' programme is infeasible where it is.
+//!
+//! The output is the book's (`cargo xtask book --only finite_roller`, a slow source), its
+//! parts marked by mdBook anchors.
 //!
 //! ```text
-//! cargo run --release --example finite_roller       # four solid pairs per crown, 13-18 min
-//! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~3 min
-//! cargo run --release --example finite_roller -- 0  # the half-space models only
+//! cargo run --release --example finite_roller       # four solid pairs per crown, 6-7 min
+//! cargo run --release --example finite_roller -- 1  # the coarse pair only, ~1 min
+//! cargo run --release --example finite_roller -- 0  # the half-space models only, ~8 s
 //! ```
 //!
-//! (Wall clock on the shared 2-core machine at load 10–12; about 6 minutes of CPU in all.)
+//! (Wall clock on the shared 2-core machine at load 7–9; 2.6 minutes of CPU in all.)
 
 use std::collections::HashMap;
 use std::time::Instant;
 
-use contopt::faer::Mat;
+use contopt::contact::FreeMode;
 use contopt::fem::solid::{
-    Axis, Condensation, SolidBody, SolidKind, SolidMesh, SolidModel, SolidSample, SolidSettings,
+    Axis, Cell, Condensation, SolidBody, SolidFace, SolidKind, SolidMesh, SolidModel, SolidSample,
+    SolidSettings,
 };
 use contopt::prelude::*;
 use contopt::roller::{Crown, Roller, RollerEnds};
@@ -250,55 +256,32 @@ impl Grid {
         [[self.xs[i], self.xs[i + 1]], [self.ys[j], self.ys[j + 1]]]
     }
 
-    /// Cell k's point and weight.
-    fn point(&self, k: usize) -> ([f64; 3], f64) {
+    /// Cell k as the solids read it: the library's cell, its centre and sides
+    /// (`SolidSample::cells` spreads a force over it and reads its mean).
+    fn cell_of(&self, k: usize) -> Cell {
+        let [x, y] = self.cell(k);
+        Cell::xy(
+            [0.5 * (x[0] + x[1]), 0.5 * (y[0] + y[1]), 0.0],
+            [x[1] - x[0], y[1] - y[0]],
+        )
+    }
+
+    /// Where cell k's gap is taken: its centre, but y = 0 on the first row, the half of the
+    /// half-space grid's centre row that the symmetry plane cuts (the gap at that cell's
+    /// centre, as the half-space model takes it).
+    fn gap_point(&self, k: usize) -> [f64; 2] {
         let [x, y] = self.cell(k);
         let centre_y = if k < self.nx() {
             0.0
         } else {
             0.5 * (y[0] + y[1])
         };
-        (
-            [0.5 * (x[0] + x[1]), centre_y, 0.0],
-            (x[1] - x[0]) * (y[1] - y[0]),
-        )
+        [0.5 * (x[0] + x[1]), centre_y]
     }
 
     /// The outer edge of the grid across \[mm\].
     fn reach(&self) -> f64 {
         self.ys[self.ys.len() - 1]
-    }
-
-    /// The reading points: 2 × 2 Gauss points on each piece of each cell cut by the mesh
-    /// lines `xs`, `ys`, as (cell, point, weight).
-    fn subpoints(&self, xs: &[f64], ys: &[f64]) -> Vec<(usize, [f64; 3], f64)> {
-        let cut = |range: [f64; 2], lines: &[f64]| {
-            let mut at = vec![range[0]];
-            at.extend(
-                lines
-                    .iter()
-                    .filter(|&&l| l > range[0] + ON && l < range[1] - ON),
-            );
-            at.push(range[1]);
-            at
-        };
-        let gauss = 0.5 / 3f64.sqrt();
-        let mut out = vec![];
-        for k in 0..self.len() {
-            let [x, y] = self.cell(k);
-            let (cx, cy) = (cut(x, xs), cut(y, ys));
-            for px in cx.windows(2) {
-                for py in cy.windows(2) {
-                    let (mx, hx) = (0.5 * (px[0] + px[1]), px[1] - px[0]);
-                    let (my, hy) = (0.5 * (py[0] + py[1]), py[1] - py[0]);
-                    for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
-                        let p = [mx + sx * gauss * hx, my + sy * gauss * hy, 0.0];
-                        out.push((k, p, 0.25 * hx * hy));
-                    }
-                }
-            }
-        }
-        out
     }
 }
 
@@ -482,120 +465,54 @@ fn block_mesh(lines: &Lines, res: &Resolution) -> Result<SolidMesh> {
         .map(|q| [along(&xs, q[0]), along(&ys, q[1]), along(&zs, q[2])])
 }
 
-/// A body read on the grid's cells: its influence among the cells, A = M A_s Mᵀ with A_s a
-/// solid's among its reading points and M the cells' means over them, and the rigid modes
-/// given.
-struct CellBody {
-    name: String,
-    interface: Interface,
-    influence: Mat<f64>,
-    modes: Vec<RigidMode>,
-}
-
-impl ElasticBody for CellBody {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn interface(&self) -> &Interface {
-        &self.interface
-    }
-
-    fn apply_influence(&self, force: &[f64], displacement: &mut [f64]) {
-        for (i, u) in displacement.iter_mut().enumerate() {
-            *u = (0..force.len())
-                .map(|j| self.influence[(i, j)] * force[j])
-                .sum();
-        }
-    }
-
-    fn influence_matrix(&self) -> Mat<f64> {
-        self.influence.clone()
-    }
-
-    fn influence_block(&self, points: &[usize]) -> Option<Mat<f64>> {
-        contopt::core::block_among(&self.influence, points)
-    }
-
-    fn load_displacement(&self) -> Result<Vec<f64>> {
-        Ok(vec![0.0; self.interface.len()])
-    }
-
-    fn rigid_modes(&self) -> &[RigidMode] {
-        &self.modes
-    }
-}
-
 /// What a solid's build cost.
 struct Built {
-    body: CellBody,
-    nodes: usize,
+    body: SolidBody,
     seconds: f64,
 }
 
-/// The solid `model` read on the grid's cells at `subpoints` (cell, point, weight) along
-/// `normal` (its outward normal), from its faces `contact`.
+/// The solid `model` read on the grid's cells from its faces `contact`, along `normal` (its
+/// outward normal): each cell's displacement its face's mean over the cell, its force a
+/// uniform pressure over it (`SolidSample::cells`), the influence among the cells dense.
 fn cell_body(
     name: &str,
     model: SolidModel,
-    contact: &[contopt::fem::solid::SolidFace],
+    contact: &[SolidFace],
     grid: &Grid,
-    subpoints: &[(usize, [f64; 3], f64)],
     normal: [f64; 3],
-    modes: Vec<RigidMode>,
 ) -> Result<Built> {
     let start = Instant::now();
-    let nodes = model.mesh().nodes().len();
-    let points: Vec<[f64; 3]> = subpoints.iter().map(|s| s.1).collect();
-    let weights: Vec<f64> = subpoints.iter().map(|s| s.2).collect();
-    let samples = SolidSample::projected(model.mesh(), contact, &points, &weights, normal)?;
+    let cells: Vec<Cell> = (0..grid.len()).map(|k| grid.cell_of(k)).collect();
+    let samples = SolidSample::cells(model.mesh(), contact, &cells, normal)?;
     let settings = SolidSettings {
         condensation: Condensation::Dense,
         ..SolidSettings::default()
     };
-    let solid = SolidBody::sampled(name, model, &samples, settings)?;
-    let a = solid.influence_matrix();
-    drop(solid);
-    // The cells' means: M[c][s] = w_s / W_c over the points s of cell c.
-    let n = grid.len();
-    let cell_weight: Vec<f64> = (0..n).map(|k| grid.point(k).1).collect();
-    let m: Vec<(usize, f64)> = subpoints
-        .iter()
-        .map(|&(c, _, w)| (c, w / cell_weight[c]))
-        .collect();
-    let mut am = Mat::<f64>::zeros(subpoints.len(), n);
-    for (s, &(c, f)) in m.iter().enumerate() {
-        for r in 0..subpoints.len() {
-            am[(r, c)] += a[(r, s)] * f;
-        }
-    }
-    let mut influence = Mat::<f64>::zeros(n, n);
-    for (r, &(c, f)) in m.iter().enumerate() {
-        for d in 0..n {
-            influence[(c, d)] += f * am[(r, d)];
-        }
-    }
-    let (points, weights): (Vec<[f64; 3]>, Vec<f64>) = (0..n).map(|k| grid.point(k)).unzip();
-    let interface = Interface::new(Geometry::Surface, points, weights, vec![normal; n])?;
+    let body = SolidBody::sampled(name, model, &samples, settings)?;
     Ok(Built {
-        body: CellBody {
-            name: name.into(),
-            interface,
-            influence,
-            modes,
-        },
-        nodes,
+        body,
         seconds: start.elapsed().as_secs_f64(),
     })
 }
 
+/// The roller's translation along z, loaded by a quarter of Q: every cell moves into the
+/// roller alike. Its axial plane, held along z in the model, moves as the roller does (the
+/// plane of symmetry between two equal raceways).
+fn translation(points: usize) -> FreeMode {
+    FreeMode {
+        name: "translation of `roller`".into(),
+        points: (0..points).collect(),
+        displacement: vec![1.0; points],
+        load: -0.25 * LOAD,
+    }
+}
+
 /// The two solids of `crown` at resolution `res`, read on the grid's cells: the raceway
 /// block (supported: symmetry planes and its base held along z) and the roller (symmetry
-/// planes, its axial plane held along z and translating, pressed by a quarter of Q).
+/// planes, its axial plane held along z: its translation is the problem's, [`translation`]).
 fn solids(crown: &Crown, res: &Resolution, grid: &Grid) -> Result<[Built; 2]> {
     let lines = Lines::new(res, grid);
     let half = 0.5 * LENGTH;
-    let subpoints = grid.subpoints(&lines.x, &lines.y);
     let reach = grid.reach() + ON;
 
     let mut block = SolidModel::new(block_mesh(&lines, res)?, steel());
@@ -611,15 +528,7 @@ fn solids(crown: &Crown, res: &Resolution, grid: &Grid) -> Result<[Built; 2]> {
     let top = block
         .mesh()
         .faces_where(|p| p[2].abs() < ON && p[0] <= half + ON && p[1] <= reach);
-    let raceway = cell_body(
-        "raceway",
-        block,
-        &top,
-        grid,
-        &subpoints,
-        [0.0, 0.0, 1.0],
-        vec![],
-    )?;
+    let raceway = cell_body("raceway", block, &top, grid, [0.0, 0.0, 1.0])?;
 
     let radius = 0.5 * DIAMETER;
     let mut model = SolidModel::new(roller_mesh(&lines, res, crown)?, steel());
@@ -637,20 +546,7 @@ fn solids(crown: &Crown, res: &Resolution, grid: &Grid) -> Result<[Built; 2]> {
         let on = surface(crown, p[0]).is_ok_and(|s| (r - s).abs() < MERGE);
         p[0] <= half + ON && p[1] <= reach && on
     });
-    let translation = RigidMode {
-        name: "translation".into(),
-        interface_displacement: vec![1.0; grid.len()],
-        load: -0.25 * LOAD,
-    };
-    let roller = cell_body(
-        "roller",
-        model,
-        &lowest,
-        grid,
-        &subpoints,
-        [0.0, 0.0, -1.0],
-        vec![translation],
-    )?;
+    let roller = cell_body("roller", model, &lowest, grid, [0.0, 0.0, -1.0])?;
     Ok([raceway, roller])
 }
 
@@ -695,34 +591,35 @@ fn half_space(r: &Roller, grid: &Grid, cells: [usize; 2], weight: Option<f64>) -
     })
 }
 
-/// The solids' centre line at resolution `res`, with the nodes of each and the time.
-/// and, with `crown`, the crown the load split designs for it (point 4).
+/// The solids' centre line at resolution `res`, with the nodes of each and the time, and,
+/// with `crown`, the crowns designed for it (point 4).
 fn finite(
     r: &Roller,
     grid: &Grid,
     res: &Resolution,
     crown: bool,
-) -> Result<(Line, Option<(Optimum, Interface)>)> {
+) -> Result<(Line, Option<Designs>)> {
     let start = Instant::now();
     let [raceway, roller] = solids(&r.crown, res, grid)?;
     let gap: Vec<f64> = (0..grid.len())
         .map(|k| {
-            let [x, y, _] = grid.point(k).0;
+            let [x, y] = grid.gap_point(k);
             Ok(y * y / (2.0 * r.radius()?) + r.crown.drop(x, LENGTH)?)
         })
         .collect::<Result<_>>()?;
-    let problem = InterfaceProblem::new(&raceway.body, &roller.body, &gap)?;
+    let problem = InterfaceProblem::new(&raceway.body, &roller.body, &gap)?
+        .with_modes(vec![translation(grid.len())])?;
     let solver = ActiveSet::new(ActiveSetSettings::default())?;
     let state = solver.solve(&problem)?;
-    let force: f64 = (0..grid.len())
-        .map(|k| state.pressure[k] * grid.point(k).1)
+    let force: f64 = (state.pressure.iter().zip(problem.weights()))
+        .map(|(p, w)| p * w)
         .sum();
     let line = Line {
         name: format!(
             "solids, {} ({} + {} nodes, {:.0} + {:.0} s, {:.0} s in all; F/4 = {:.1} N)",
             res.name,
-            raceway.nodes,
-            roller.nodes,
+            raceway.body.stats().nodes,
+            roller.body.stats().nodes,
             raceway.seconds,
             roller.seconds,
             start.elapsed().as_secs_f64(),
@@ -730,43 +627,48 @@ fn finite(
         ),
         pressure: state.pressure[..grid.nx()].to_vec(),
     };
-    let optimum = crown
+    let designs = crown
         .then(|| designed(&problem, &solver, grid.dy))
         .transpose()?;
-    Ok((line, optimum))
+    Ok((line, designs))
 }
 
-/// The crown the load split designs (roller-study's "optimised L1 = 5 mm"): Ω_v the centre
-/// row (|y| ≤ `dy`/2), the rest of each column Ω_nv, the gap change a profile along the axis
-/// symmetric about mid-length, v = 1 along the whole length (the cubic controller with
-/// L1 = L2 = l/2).
-fn designed(
-    problem: &InterfaceProblem,
-    solver: &dyn ContactSolver,
+/// A crown designed two ways on one model: by the load split, and by the linear programme
+/// (3.5) on the dense influence, seeded by the split's contact set.
+struct Designs {
+    split: Optimum,
+    programme: Optimum,
+    interface: Interface,
+    /// The half-space grid's row height: Ω_v is |y| ≤ `dy`/2 \[mm\].
     dy: f64,
-) -> Result<(Optimum, Interface)> {
-    let iface = problem.interface();
-    let shape = GapShape::symmetric(iface, 0)?;
-    let regions = (iface.points().iter())
+}
+
+/// The crown roller-study's "optimised L1 = 5 mm" designs: Ω_v the centre row
+/// (|y| ≤ `dy`/2), the rest of each column Ω_nv, the gap change a profile along the axis
+/// symmetric about mid-length, v = 1 along the whole length (the cubic controller with
+/// L1 = L2 = l/2); by the load split and by the linear programme.
+fn designed(problem: &InterfaceProblem, solver: &dyn ContactSolver, dy: f64) -> Result<Designs> {
+    let interface = problem.interface();
+    let shape = GapShape::symmetric(interface, 0)?;
+    let regions = (interface.points().iter())
         .map(|x| match x[1].abs() <= 0.5 * dy {
             true => Region::OmegaV,
             false => Region::OmegaNv,
         })
         .collect();
     let controller = Profile::cubic(0.5 * LENGTH, 0.5 * LENGTH)?;
-    let optimum = Optimisation::new(problem, &shape, &controller)?
-        .with_regions(regions)?
-        .load_split(solver, &LoadSplitSettings::default())?;
-    Ok((optimum, iface.clone()))
+    let optimisation = Optimisation::new(problem, &shape, &controller)?.with_regions(regions)?;
+    Ok(Designs {
+        split: optimisation.load_split(solver, &LoadSplitSettings::default())?,
+        programme: optimisation.linear_programme(solver, &LinearProgrammeSettings::default())?,
+        interface: interface.clone(),
+        dy,
+    })
 }
 
 /// The half-space model's designed crown on `cells`, without free ends or with the image of
 /// `weight`.
-fn half_space_design(
-    r: &Roller,
-    cells: [usize; 2],
-    weight: Option<f64>,
-) -> Result<(Optimum, Interface)> {
+fn half_space_design(r: &Roller, cells: [usize; 2], weight: Option<f64>) -> Result<Designs> {
     let [nx, ny] = cells;
     let [_, dy] = r.cell(nx, ny, REACH)?;
     let solver = PolonskyKeer::new(PolonskyKeerSettings::default())?;
@@ -799,35 +701,97 @@ fn on_half_spaces<T>(
     }
 }
 
-/// The resolutions (the first ones) whose solids also design a crown.
-const DESIGNED: usize = 2;
-
 /// Where the designed crowns' drops are compared: the solids' cell centres towards the end
 /// \[mm\].
 const CROWN_AT: [f64; 6] = [3.65, 4.1, 4.45, 4.65, 4.85, 4.95];
 
-/// A designed crown's p_max and its drop at `CROWN_AT` (the centre row's point nearest each),
-/// as a table row.
-fn crown_row(name: &str, o: &Optimum, iface: &Interface) -> String {
-    let drops: Vec<String> = CROWN_AT
-        .iter()
-        .map(|&at| {
-            let k = (0..iface.len())
-                .filter(|&k| iface.points()[k][1].abs() < ON && iface.points()[k][0] > 0.0)
+/// The end column's cell centre along the axis \[mm\], where the rows across are compared.
+const END_CELL: f64 = 4.95;
+/// The rows across compared at the end column, the centre row's included.
+const ACROSS: usize = 4;
+/// The linear programme's name in the tables.
+const LP: &str = "LP (3.5)";
+
+impl Designs {
+    /// Both designs' rows of the crown's table: p_max, the drop at `CROWN_AT` (the centre
+    /// row's point nearest each), the largest excess of p over v·p_max = p_max on Ω_nv and
+    /// where, and "converged" (the programme's p_max against the split's) or a mark sending to
+    /// the design's ending below the table. A design without a gap change (a programme that
+    /// ended short holds the contact without one) shows only its ending.
+    fn crown_rows(&self, name: &str, notes: &mut Vec<String>) -> Vec<String> {
+        let points = self.interface.points();
+        let centre = |at: f64| {
+            (0..points.len())
+                .filter(|&k| points[k][1].abs() <= 0.5 * self.dy && points[k][0] > 0.0)
                 .min_by(|&a, &b| {
-                    let d = |k: usize| (iface.points()[k][0] - at).abs();
-                    d(a).total_cmp(&d(b))
+                    (points[a][0] - at)
+                        .abs()
+                        .total_cmp(&(points[b][0] - at).abs())
                 })
-                .expect("a centre row");
-            format!("{:.2}", 1e3 * o.gap_change[k])
-        })
-        .collect();
-    format!(
-        "{name} | {:.1} | {} | {:?}",
-        o.p_max,
-        drops.join(" | "),
-        o.termination
-    )
+                .expect("a centre row")
+        };
+        self.each()
+            .map(|(method, o)| {
+                let ends = match o.is_converged() {
+                    true if method == LP => format!(
+                        "converged, p_max / split's − 1 = {:+.1e}",
+                        o.p_max / self.split.p_max - 1.0
+                    ),
+                    true => "converged".to_string(),
+                    false => {
+                        notes.push(format!(
+                            "{}. {name}, {method}: {}",
+                            notes.len() + 1,
+                            o.termination
+                        ));
+                        format!("({})", notes.len())
+                    }
+                };
+                if o.dh_max() <= 0.0 {
+                    let none = vec!["-"; CROWN_AT.len() + 2].join(" | ");
+                    return format!("{name} | {method} | {none} | {ends}");
+                }
+                let drops: Vec<String> = (CROWN_AT.iter())
+                    .map(|&at| format!("{:.2}", 1e3 * o.gap_change[centre(at)]))
+                    .collect();
+                let (excess, k) = (0..points.len())
+                    .filter(|&k| points[k][1] > 0.5 * self.dy && points[k][0] > 0.0)
+                    .map(|k| (o.pressure[k] - o.p_max, k))
+                    .max_by(|a, b| a.0.total_cmp(&b.0))
+                    .expect("an Ω_nv point");
+                let [x, y, _] = points[k];
+                format!(
+                    "{name} | {method} | {:.1} | {} | {excess:+.1} at ({x:.2}, {y:.4}) | {ends}",
+                    o.p_max,
+                    drops.join(" | "),
+                )
+            })
+            .collect()
+    }
+
+    /// The load split's pressure across the end column (x = `END_CELL`) at the rows
+    /// y = j·dy (the solids' first row: its half, [0, dy/2]), and the second row's over the
+    /// first's, as a table row.
+    fn end_row(&self, name: &str) -> String {
+        let points = self.interface.points();
+        let row = |j: usize| {
+            let at = [END_CELL, j as f64 * self.dy];
+            let off = |k: usize| (points[k][0] - at[0]).abs() + (points[k][1] - at[1]).abs();
+            (0..points.len())
+                .filter(|&k| points[k][0] > 0.0 && points[k][1] > -ON)
+                .min_by(|&a, &b| off(a).total_cmp(&off(b)))
+                .expect("a point")
+        };
+        let p = &self.split.pressure;
+        let across: Vec<String> = (0..ACROSS).map(|j| format!("{:.0}", p[row(j)])).collect();
+        let ratio = p[row(1)] / p[row(0)];
+        format!("{name} | {} | {ratio:.4}", across.join(" | "))
+    }
+
+    /// The two designs with their methods' names.
+    fn each(&self) -> impl Iterator<Item = (&'static str, &Optimum)> {
+        [("load split", &self.split), (LP, &self.programme)].into_iter()
+    }
 }
 
 /// A figure that moves less than this with the weight \[MPa\] matches none.
@@ -919,19 +883,51 @@ fn report(grid: &Grid, lines: &[Line]) {
     println!();
 }
 
+/// Prints the crowns designed from the straight roller (point 4): each model's drop and p_max
+/// by both methods with how each ended, then the pressure across the end column.
+fn crowns(designs: &[(String, Designs)]) {
+    let at: Vec<String> = CROWN_AT.iter().map(|x| format!("{x}")).collect();
+    println!("<!-- ANCHOR: crown -->");
+    println!("the crown designed from the straight roller (Ω_v the centre row, v = 1 along the length, the rest of each column Ω_nv): its drop [µm] at x [mm]\n");
+    println!(
+        "model | method | p_max MPa | {} | largest p − p_max on Ω_nv MPa (at x, y mm) | ends",
+        at.join(" | ")
+    );
+    println!("---|---|---{}|---|---", "|---".repeat(at.len()));
+    let mut notes = vec![];
+    for (name, d) in designs {
+        (d.crown_rows(name, &mut notes).iter()).for_each(|row| println!("{row}"));
+    }
+    println!();
+    notes.iter().for_each(|note| println!("{note}"));
+    let rows: Vec<String> = (0..ACROSS)
+        .map(|j| match j {
+            0 => "y = 0".to_string(),
+            1 => "y = dy".to_string(),
+            _ => format!("y = {j} dy"),
+        })
+        .collect();
+    println!("\nthe load split's pressure across the end column (x = {END_CELL} mm) [MPa], at the rows y = j·dy (the solids' first row: its half [0, dy/2]), and the second row's over the first's\n");
+    println!("model | {} | second / first", rows.join(" | "));
+    println!("---{}|---", "|---".repeat(rows.len()));
+    for (name, d) in designs {
+        println!("{}", d.end_row(name));
+    }
+    println!("<!-- ANCHOR_END: crown -->\n");
+}
+
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     contopt::faer::set_global_parallelism(contopt::faer::Par::Seq);
     let levels: usize = std::env::args()
         .nth(1)
         .map_or(Ok(RESOLUTIONS.len()), |a| a.parse())?;
-    for (label, crown) in [
-        ("straight", Crown::Straight),
-        ("ISO/TS 16281", Crown::iso(DIAMETER)?),
+    for (label, anchor, crown) in [
+        ("straight", "straight", Crown::Straight),
+        ("ISO/TS 16281", "iso", Crown::iso(DIAMETER)?),
     ] {
         let r = roller(crown);
         let (b, p0) = r.hertz()?;
         let grid = Grid::new(&r)?;
-        println!("## {label} roller: D = l = {DIAMETER} mm, {CHAMFER} mm chamfers, Q = {LOAD} N; Hertz (line): b = {b:.4} mm, p₀ = {p0:.1} MPa\n");
         let mut lines = vec![];
         for cells in [CELLS, FINE_CELLS] {
             lines.push(half_space(&r, &grid, cells, None)?);
@@ -939,38 +935,28 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                 lines.push(half_space(&r, &grid, cells, Some(w))?);
             }
         }
-        let mut crowns = vec![];
-        if matches!(r.crown, Crown::Straight) {
+        let straight = matches!(r.crown, Crown::Straight);
+        let mut designs = vec![];
+        if straight {
             for weight in [None, Some(1.388)] {
-                let (o, iface) = half_space_design(&r, CELLS, weight)?;
                 let name = match weight {
                     None => "half-space, no free ends".to_string(),
                     Some(w) => format!("half-space, image w = {w}"),
                 };
-                crowns.push(crown_row(&name, &o, &iface));
+                designs.push((name, half_space_design(&r, CELLS, weight)?));
             }
         }
-        for (k, res) in RESOLUTIONS[..levels.min(RESOLUTIONS.len())]
-            .iter()
-            .enumerate()
-        {
-            let design = matches!(r.crown, Crown::Straight) && k < DESIGNED;
-            let (line, crown) = finite(&r, &grid, res, design)?;
-            if let Some((o, iface)) = crown {
-                crowns.push(crown_row(&format!("solids, {}", res.name), &o, &iface));
-            }
+        for res in &RESOLUTIONS[..levels.min(RESOLUTIONS.len())] {
+            let (line, design) = finite(&r, &grid, res, straight)?;
+            designs.extend(design.map(|d| (format!("solids, {}", res.name), d)));
             lines.push(line);
         }
+        println!("<!-- ANCHOR: {anchor} -->");
+        println!("**The {label} roller**: D = l = {DIAMETER} mm, {CHAMFER} mm chamfers, Q = {LOAD} N; Hertz (line): b = {b:.4} mm, p₀ = {p0:.1} MPa\n");
         report(&grid, &lines);
-        if !crowns.is_empty() {
-            let at: Vec<String> = CROWN_AT.iter().map(|x| format!("{x}")).collect();
-            println!("the crown designed by the load split (Ω_v the centre row, v = 1 along the length), from the straight roller: its drop [µm] at x [mm]\n");
-            println!("model | p_max MPa | {} | termination", at.join(" | "));
-            println!("---|---{}|---", "|---".repeat(at.len()));
-            for row in crowns {
-                println!("{row}");
-            }
-            println!();
+        println!("<!-- ANCHOR_END: {anchor} -->\n");
+        if !designs.is_empty() {
+            crowns(&designs);
         }
     }
     Ok(())

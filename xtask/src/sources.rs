@@ -154,6 +154,9 @@ pub const SOURCES: &[Source] = &[
         )),
         ..example(&["--example", "sphere_on_block"], "sphere_on_block", true)
     },
+    // The finite roller on its raceway as two solids against the half-space model, and the
+    // crowns designed with them (solids.md): 6-7 minutes in the release profile.
+    example(&["--example", "finite_roller"], "finite_roller", true),
     // Your own part (own_part.md): the bundled filleted punch, its plots, and its meshes
     // before and after the design.
     scene(
