@@ -46,17 +46,17 @@ impl Roller {
         check::positive("diameter_mm", self.diameter)?;
         check::positive("length_mm", self.length)?;
         let curvature = 2.0 / self.diameter + self.raceway_diameter.map_or(0.0, |d| 2.0 / d);
+        let raceway = self
+            .raceway_diameter
+            .map_or("flat".to_string(), |d| format!("{d} mm"));
         let curvature = check::positive("curvature", curvature).map_err(|_| {
             Error::invalid(
                 "raceway_diameter_mm",
-                format!("{:?}", self.raceway_diameter),
+                &raceway,
                 "an outer ring must be larger than the roller (the pair must be convex)",
             )
         })?;
-        let what = format!(
-            "the effective radius 1/(2/D + 2/D_r) (D_r {:?})",
-            self.raceway_diameter
-        );
+        let what = format!("the effective radius 1/(2/D + 2/D_r) (D_r {raceway})");
         check::derived("diameter_mm", self.diameter, &what, 1.0 / curvature)
     }
 
