@@ -307,13 +307,6 @@ impl SolidBody {
     }
 }
 
-impl SolidModel {
-    /// Every nodal displacement is finite, else the loads or the material are beyond f64.
-    pub(crate) fn check_displacement(&self, u: &[f64]) -> Result<()> {
-        check::all_derived("loads", "the given loads", "the displacements", u)
-    }
-}
-
 /// The contact zone is a non-empty set of boundary faces of the mesh.
 fn check_contact(name: &str, model: &SolidModel, contact: &[SolidFace]) -> Result<()> {
     if contact.is_empty() {

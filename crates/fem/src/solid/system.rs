@@ -1,9 +1,9 @@
 //! The assembled and factorised stiffness system ([`System`]) of a solid, with its free rigid
-//! motions.
+//! motions, and the solve of a supported model through it ([`SolidModel::solve`]).
 
 use std::time::Instant;
 
-use contopt_core::{memory, Error, Result};
+use contopt_core::{check, memory, Error, Result};
 
 use super::model::SolidModel;
 use crate::dissection::unknown_order;
@@ -87,9 +87,39 @@ impl System {
     }
 }
 
+impl SolidModel {
+    /// Solves the supported model under its given loads: nodal displacements (3 per node).
+    /// Errors when the supports leave a rigid motion free.
+    pub fn solve(&self) -> Result<Vec<f64>> {
+        let system = System::solid(
+            self,
+            "model",
+            &[],
+            Pinning::Refuse,
+            Ordering::Amd,
+            memory::BODY_LIMIT_BYTES,
+        )?;
+        let u = system.solve(&self.forces, None);
+        self.check_displacement(&u)?;
+        Ok(u)
+    }
+
+    /// The rigid motions its supports leave free (what [`crate::solid::SolidBody`] pins and
+    /// reports as its rigid modes), without assembling anything: the 3-D counterpart of
+    /// [`crate::FeModel::free_motions`].
+    pub fn free_motions(&self) -> Result<Vec<RigidMotion>> {
+        Ok(numbering(self, &[], Pinning::Pin)?.1)
+    }
+
+    /// Every nodal displacement is finite, else the loads or the material are beyond f64.
+    pub(crate) fn check_displacement(&self, u: &[f64]) -> Result<()> {
+        check::all_derived("loads", "the given loads", "the displacements", u)
+    }
+}
+
 /// Status of every DOF (3·node + axis) with the free unknowns numbered, those of
 /// `tail_nodes` last, and the free rigid motions (pinned, or refused).
-pub(super) fn numbering(
+fn numbering(
     model: &SolidModel,
     tail_nodes: &[usize],
     pinning: Pinning,
