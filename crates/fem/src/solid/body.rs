@@ -80,7 +80,8 @@ pub struct SolidStats {
     pub dense: bool,
     /// Element integration and assembly.
     pub assembly: Duration,
-    /// Ordering, symbolic and numeric factorisation.
+    /// Ordering (with the factor's size counted on the nodes' graph), symbolic and numeric
+    /// factorisation.
     pub factorisation: Duration,
     /// The dense influence matrix (zero for products).
     pub condensation: Duration,
