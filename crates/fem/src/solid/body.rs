@@ -46,9 +46,11 @@ pub struct SolidSettings {
     /// The fill-reducing ordering of the unknowns ahead of the contact face's (nested
     /// dissection by default).
     pub ordering: Ordering,
-    /// The most memory the build may take \[bytes\]: the assembly's estimate is checked
-    /// against it before the assembly, the factor's after its symbolic analysis, before its
-    /// values are allocated (a scene passes its own `memory_limit_mb`).
+    /// The most memory the build may take \[bytes\], checked before anything large is
+    /// allocated: the factor's size counted on the nodes' graph before the assembly (nested
+    /// dissection and natural orderings), the assembly's estimate, and the factor's size again
+    /// after its symbolic analysis, before its values are allocated (a scene passes its own
+    /// `memory_limit_mb`).
     pub memory_limit_bytes: u64,
 }
 
