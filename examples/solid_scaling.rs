@@ -18,10 +18,19 @@
 //! Cholesky; `condense` the dense influence (zero for products); nnz(L) and the numeric
 //! factor's floating-point operations; `load solve` one full solve (the load case); the contact
 //! solve (its products) and its steps; the CPU time of the build (everything before the
-//! contact solve) and of the contact solve; the peak heap of the whole case; p_max. A size whose
-//! factor exceeds the body's memory limit prints the refusal, made after the symbolic analysis
-//! before the factor is allocated. Times in seconds: wall-clock for the phases, CPU for the two
-//! last (the machine is shared; CPU time is what one idle core would take).
+//! contact solve) and of the contact solve; the peak heap of the whole case (the design
+//! included); p_max. A size whose factor exceeds the body's memory limit prints the refusal.
+//! Times in seconds: wall-clock for the phases, CPU for the two last (the machine is shared;
+//! CPU time is what one idle core would take).
+//!
+//! The second table, the design: one influence product through the factor (the mean CPU time
+//! of [`PRODUCTS`] products of the contact's forces after a first) and the heap it allocates
+//! (bytes above the live heap before those products); the roller's crown designed on the
+//! quarter model as the roller study designs it (the load split with Polonsky–Keer, Ω_v the
+//! centre row next to x = 0, the C¹ controller with L1 = L2 = the half-length, the
+//! gap change a profile along the roller's axis), its wall-clock and CPU time, passes and
+//! Polonsky–Keer steps, the crown's largest drop and p_max, and how the load split ended.
+//! `nodesign` leaves the design out.
 
 use std::time::Instant;
 
@@ -34,6 +43,12 @@ use contopt_validation::fixtures::PeakAlloc;
 
 #[global_allocator]
 static ALLOC: PeakAlloc = PeakAlloc;
+
+/// Products timed per size for the product's mean (after a first that sizes the buffers).
+const PRODUCTS: usize = 1000;
+
+/// The load split's tolerance, the roller study's (`examples/roller_scaling.rs`).
+const SPLIT_TOLERANCE: f64 = 1e-8;
 
 /// Block quarter [0, 10] × [0, 16] × [−10, 0] mm.
 const BLOCK: [f64; 3] = [10.0, 16.0, 10.0];
@@ -84,11 +99,14 @@ fn cpu_seconds() -> f64 {
         .map_or(f64::NAN, |ns| ns * 1e-9)
 }
 
+/// One size: prints its row of the first table and returns its row of the second (none when
+/// refused).
 fn run(
     k: f64,
     ordering: Ordering,
     condensation: Condensation,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    design: bool,
+) -> std::result::Result<Option<String>, Box<dyn std::error::Error>> {
     let heap = PeakAlloc::start();
     let build_cpu = cpu_seconds();
     let model = block(k)?;
@@ -106,7 +124,7 @@ fn run(
             let cpu = cpu_seconds() - build_cpu;
             let peak = PeakAlloc::peak_since(heap);
             println!("| {nodes:>6} | refused after {cpu:.1} s CPU, peak {peak:.0} MiB: {e} |");
-            return Ok(());
+            return Ok(None);
         }
         body => body?,
     };
@@ -122,6 +140,13 @@ fn run(
     let state = PolonskyKeer::new(PolonskyKeerSettings::default())?.solve(&problem)?;
     let solve = start.elapsed();
     let solve_cpu = cpu_seconds() - solve_cpu;
+    let forces: Vec<f64> = (state.pressure.iter().zip(body.interface().weights()))
+        .map(|(p, w)| p * w)
+        .collect();
+    let (product, product_heap) = product_cost(&body, &forces);
+    let crown = design
+        .then(|| designed(&problem, body.interface()))
+        .transpose()?;
     let peak = PeakAlloc::peak_since(heap);
     let s = body.stats();
     let p_max = state.pressure.iter().fold(0.0f64, |m, &p| m.max(p));
@@ -146,7 +171,113 @@ fn run(
         p_max,
     );
     assert!(state.is_converged(), "{}", state.termination);
-    Ok(())
+    let design = match crown {
+        Some(d) => format!(
+            "{:>7.2} | {:>6.2} | {:>3} | {:>6} | {:>5.2} | {:>7.1} | {} |",
+            d.seconds,
+            d.cpu,
+            d.optimum.passes.len(),
+            d.optimum.passes.iter().map(|p| p.iterp).sum::<usize>(),
+            1e3 * d.optimum.dh_max(),
+            d.optimum.p_max,
+            ending(&d.optimum),
+        ),
+        None => "– | – | – | – | – | – | – |".into(),
+    };
+    Ok(Some(format!(
+        "| {:>6} | {:>5} | {:>8.1} | {:>4} | {design}",
+        s.nodes,
+        body.interface().len(),
+        1e6 * product,
+        product_heap,
+    )))
+}
+
+/// One influence product's mean CPU time \[s\] over [`PRODUCTS`] products of `force` after a
+/// first (CPU time: a product is short, and wall-clock time on a shared core counts the
+/// waits), and the heap those products allocated \[bytes\]: none, the body's work buffers
+/// being reused.
+fn product_cost(body: &SolidBody, force: &[f64]) -> (f64, usize) {
+    let mut displacement = vec![0.0; force.len()];
+    body.apply_influence(force, &mut displacement);
+    // Reading the CPU time allocates: it is read outside the heap's measurement.
+    let start = cpu_seconds();
+    let live = PeakAlloc::start();
+    for _ in 0..PRODUCTS {
+        body.apply_influence(force, &mut displacement);
+    }
+    let heap = PeakAlloc::peak_since(live) * (1u64 << 20) as f64;
+    let seconds = (cpu_seconds() - start) / PRODUCTS as f64;
+    (seconds, heap.round() as usize)
+}
+
+/// How a load split ended, in a table cell: converged, infeasible by how much on Ω_nv, or
+/// the termination's own words.
+fn ending(optimum: &Optimum) -> String {
+    match (&optimum.termination, optimum.omega_nv_excess) {
+        (Termination::Converged, _) => "converged".into(),
+        (Termination::Infeasible { .. }, Some(excess)) => {
+            format!("infeasible: Ω_nv {excess:.1} MPa over v·p_max")
+        }
+        (other, _) => other.to_string(),
+    }
+}
+
+/// Coordinates closer than this are one \[mm\].
+const ON: f64 = 1e-9;
+
+/// The crown's gap change: one design value per distinct y under the roller (y ≤ the
+/// half-length), the same across the row (a profile along the axis), each point beyond the
+/// roller's end moving with the last (its 1 mm step kept).
+fn crown_shape(iface: &Interface) -> Result<GapShape> {
+    let mut ys: Vec<f64> = (iface.points().iter())
+        .map(|x| x[1])
+        .filter(|&y| y <= HALF_LENGTH + ON)
+        .collect();
+    ys.sort_by(f64::total_cmp);
+    ys.dedup_by(|a, b| (*a - *b).abs() <= ON);
+    let last = ys.len() - 1;
+    let rows = (iface.points().iter())
+        .map(|x| vec![(ys.partition_point(|&y| y < x[1] - ON).min(last), 1.0)])
+        .collect();
+    GapShape::new(ys.iter().map(|&y| [0.0, y, 0.0]).collect(), rows)
+}
+
+/// A crown designed on the quarter model, with its times.
+struct Design {
+    optimum: Optimum,
+    seconds: f64,
+    cpu: f64,
+}
+
+/// The roller's crown designed as the roller study designs it: the load split with
+/// Polonsky–Keer to [`SPLIT_TOLERANCE`], Ω_v the centre row (the points nearest x = 0) under
+/// the roller, Ω_nv the rest, the gap change a profile along the axis ([`crown_shape`]), the
+/// C¹ controller v = 1 up to the roller's end (y = the half-length).
+fn designed(problem: &InterfaceProblem, iface: &Interface) -> Result<Design> {
+    let centre = (iface.points().iter()).fold(f64::INFINITY, |m, x| m.min(x[0]));
+    let regions = (iface.points().iter())
+        .map(|x| match x[0] <= centre + ON && x[1] <= HALF_LENGTH + ON {
+            true => Region::OmegaV,
+            false => Region::OmegaNv,
+        })
+        .collect();
+    let shape = crown_shape(iface)?;
+    let controller = Profile::cubic(HALF_LENGTH, HALF_LENGTH)?.along(1)?;
+    let split = LoadSplitSettings {
+        tolerance: SPLIT_TOLERANCE,
+        max_iterations: 100,
+    };
+    let start = Instant::now();
+    let cpu = cpu_seconds();
+    let optimum = Optimisation::new(problem, &shape, &controller)?
+        .with_regions(regions)?
+        .load_split(&PolonskyKeer::new(PolonskyKeerSettings::default())?, &split)?;
+    Ok(Design {
+        optimum,
+        seconds: start.elapsed().as_secs_f64(),
+        cpu: cpu_seconds() - cpu,
+    })
 }
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
@@ -174,12 +305,20 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     if orderings.is_empty() {
         orderings.push(Ordering::Dissection);
     }
+    let design = !args.iter().any(|a| a == "nodesign");
     println!("| nodes | unknowns | points | ordering | influence | assemble s | factor s | condense s | nnz(L) M | factor GFlop | load solve s | contact s | steps | build CPU s | contact CPU s | peak MiB | p_max MPa |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let mut designs = Vec::new();
     for k in sizes {
         for &ordering in &orderings {
-            run(k, ordering, condensation)?;
+            designs.extend(run(k, ordering, condensation, design)?);
         }
+    }
+    println!();
+    println!("| nodes | points | product CPU µs | product heap B | design s | design CPU s | passes | steps | Δh_max µm | p_max MPa | ending |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for row in designs {
+        println!("{row}");
     }
     Ok(())
 }

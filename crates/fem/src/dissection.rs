@@ -43,7 +43,8 @@ impl Adjacency {
         Self { start, neighbours }
     }
 
-    fn of(&self, node: usize) -> &[usize] {
+    /// The neighbours of `node`, ascending.
+    pub fn of(&self, node: usize) -> &[usize] {
         &self.neighbours[self.start[node]..self.start[node + 1]]
     }
 }
@@ -168,27 +169,16 @@ fn halves(nodes: Vec<usize>, k: usize, cut: Vec<usize>, side: &mut [Side]) -> [V
     [a, b, cut]
 }
 
-/// The leading `n_int` free unknowns of `dofs` (3 per node) in the nested-dissection order of
-/// their nodes, followed by the trailing ones in place: position → unknown, what
-/// [`crate::factor::Factor::permuted`] takes.
-pub(crate) fn unknown_order<'a>(
-    points: &[[f64; 3]],
-    elements: impl Iterator<Item = &'a [usize]>,
-    dofs: &[Dof],
-    n_int: usize,
-) -> Vec<usize> {
-    let graph = Adjacency::of_elements(points.len(), elements);
-    let mut order: Vec<usize> = nested_dissection(points, &graph)
-        .into_iter()
-        .flat_map(|node| 3 * node..3 * node + 3)
+/// The free unknowns of `dofs` (3 per node) node after node in the order `nodes`, each
+/// node's in turn: position → unknown, what [`crate::factor::Factor::permuted`] takes.
+pub(crate) fn unknowns_of(nodes: &[usize], dofs: &[Dof]) -> Vec<usize> {
+    (nodes.iter())
+        .flat_map(|&node| 3 * node..3 * node + 3)
         .filter_map(|g| match dofs[g] {
-            Dof::Free(i) if i < n_int => Some(i),
+            Dof::Free(i) => Some(i),
             _ => None,
         })
-        .collect();
-    let n_free = dofs.iter().filter(|d| matches!(d, Dof::Free(_))).count();
-    order.extend(n_int..n_free);
-    order
+        .collect()
 }
 
 #[cfg(test)]

@@ -46,8 +46,58 @@ pub enum Ordering {
 pub(crate) struct Factor {
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
-    /// The last `n_tail` unknowns of the matrix are the contact face.
-    n_tail: usize,
+    /// Where the trailing unknowns (the last of the matrix: the contact face) sit in the
+    /// factor, from the symbolic analysis.
+    tail: Tail,
+}
+
+/// The trailing supernodes of a factor: the first that holds a trailing unknown, the first
+/// trailing unknown's row in the factor's order (`offset`), and each trailing unknown's row
+/// counted from it.
+struct Tail {
+    first_supernode: usize,
+    offset: usize,
+    positions: Vec<usize>,
+}
+
+impl Tail {
+    fn of(symbolic: &SymbolicCholesky<usize>, n_tail: usize) -> Self {
+        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+            unreachable!("the factorisation is forced supernodal")
+        };
+        let n = symbolic.nrows();
+        let inv = symbolic.perm().map(|p| p.arrays().1);
+        // Positions of the trailing unknowns in the factor's order.
+        let position = |i: usize| inv.map_or(i, |inv| inv[i]);
+        let offset = (n - n_tail..n).map(position).min().unwrap_or(n);
+        let first_supernode = (0..sn.n_supernodes())
+            .find(|&s| sn.supernode_end()[s] > offset)
+            .unwrap_or(sn.n_supernodes());
+        Self {
+            first_supernode,
+            offset,
+            positions: (n - n_tail..n).map(|i| position(i) - offset).collect(),
+        }
+    }
+}
+
+/// The work buffers of products through the trailing block
+/// ([`Factor::tail_solve_in_place`]): the right-hand side over the trailing rows and a
+/// supernode's rows below its diagonal block. Sized by the first product, reused after it.
+#[derive(Debug)]
+pub(crate) struct TailWork {
+    y: Mat<f64>,
+    below: Mat<f64>,
+}
+
+impl Default for TailWork {
+    /// Empty: the first product sizes it.
+    fn default() -> Self {
+        Self {
+            y: Mat::zeros(0, 0),
+            below: Mat::zeros(0, 0),
+        }
+    }
 }
 
 impl Factor {
@@ -137,10 +187,11 @@ impl Factor {
             "use fewer elements (coarser away from the contact)",
         )?;
         let values = vec![0.0; symbolic.len_val()];
+        let tail = Tail::of(&symbolic, n_tail);
         let mut factor = Self {
             symbolic,
             values,
-            n_tail,
+            tail,
         };
         factor.refactor(a, body)?;
         Ok(factor)
@@ -215,12 +266,13 @@ impl Factor {
     /// holds a trailing unknown, so only the trailing supernodes are visited.
     pub fn tail_inverse(&self) -> Mat<f64> {
         let sweep = self.tail_sweep();
-        let mut y = Mat::<f64>::zeros(sweep.rows(), self.n_tail);
-        for (k, &p) in sweep.positions.iter().enumerate() {
+        let n_tail = self.tail.positions.len();
+        let mut y = Mat::<f64>::zeros(sweep.rows(), n_tail);
+        for (k, &p) in sweep.tail.positions.iter().enumerate() {
             y[(p, k)] = 1.0;
         }
-        sweep.forward(y.as_mut());
-        let mut a = Mat::<f64>::zeros(self.n_tail, self.n_tail);
+        sweep.forward(y.as_mut(), &mut Mat::zeros(0, 0));
+        let mut a = Mat::<f64>::zeros(n_tail, n_tail);
         matmul(
             a.as_mut(),
             Accum::Replace,
@@ -235,16 +287,19 @@ impl Factor {
     /// Solves K x = b for a right-hand side `b` that is zero outside the trailing unknowns, and
     /// returns x on them in place of `b` (`n_tail` values: T b, T the trailing block of K⁻¹).
     /// Only the trailing supernodes are visited, forward and backward (eq. 2.22's product
-    /// A f = L T Lᵀ f through the factor at the cost of its trailing block, not of all of L).
-    pub fn tail_solve_in_place(&self, b: &mut [f64]) {
+    /// A f = L T Lᵀ f through the factor at the cost of its trailing block, not of all of L),
+    /// in the buffers of `work`: after the first product with a `work`, none is allocated.
+    pub fn tail_solve_in_place(&self, b: &mut [f64], work: &mut TailWork) {
         let sweep = self.tail_sweep();
-        let mut y = Mat::<f64>::zeros(sweep.rows(), 1);
-        for (&p, &v) in sweep.positions.iter().zip(b.iter()) {
+        let TailWork { y, below } = work;
+        y.resize_with(sweep.rows(), 1, |_, _| 0.0);
+        y.fill(0.0);
+        for (&p, &v) in sweep.tail.positions.iter().zip(b.iter()) {
             y[(p, 0)] = v;
         }
-        sweep.forward(y.as_mut());
-        sweep.backward(y.as_mut());
-        for (&p, v) in sweep.positions.iter().zip(b.iter_mut()) {
+        sweep.forward(y.as_mut(), below);
+        sweep.backward(y.as_mut(), below);
+        for (&p, v) in sweep.tail.positions.iter().zip(b.iter_mut()) {
             *v = y[(p, 0)];
         }
     }
@@ -254,20 +309,10 @@ impl Factor {
         let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else {
             unreachable!("the factorisation is forced supernodal")
         };
-        let n = self.symbolic.nrows();
-        let inv = self.symbolic.perm().map(|p| p.arrays().1);
-        // Positions of the trailing unknowns in the factor's order.
-        let position = |i: usize| inv.map_or(i, |inv| inv[i]);
-        let offset = (n - self.n_tail..n).map(position).min().unwrap_or(n);
-        let first_supernode = (0..sn.n_supernodes())
-            .find(|&s| sn.supernode_end()[s] > offset)
-            .unwrap_or(sn.n_supernodes());
         TailSweep {
             llt: SupernodalLltRef::new(sn, &self.values),
-            first_supernode,
-            offset,
-            n,
-            positions: (n - self.n_tail..n).map(|i| position(i) - offset).collect(),
+            tail: &self.tail,
+            n: self.symbolic.nrows(),
         }
     }
 }
@@ -277,11 +322,8 @@ impl Factor {
 /// relaxed supernode may reach back into the unknowns ahead) is entered at it.
 struct TailSweep<'a> {
     llt: SupernodalLltRef<'a, usize, f64>,
-    first_supernode: usize,
-    offset: usize,
+    tail: &'a Tail,
     n: usize,
-    /// Row of each trailing unknown, counted from `offset`.
-    positions: Vec<usize>,
 }
 
 /// A supernode's columns from the sweep's offset on: its diagonal block, the rows below it,
@@ -295,29 +337,31 @@ struct Columns<'a> {
 
 impl TailSweep<'_> {
     fn rows(&self) -> usize {
-        self.n - self.offset
+        self.n - self.tail.offset
     }
 
     /// The supernodes of the sweep, first to last, each from the offset on.
     fn columns(&self) -> impl DoubleEndedIterator<Item = Columns<'_>> {
         let n_supernodes = self.llt.symbolic().n_supernodes();
-        (self.first_supernode..n_supernodes).map(|s| {
+        let offset = self.tail.offset;
+        (self.tail.first_supernode..n_supernodes).map(move |s| {
             let node = self.llt.supernode(s);
             let size = node.val().ncols();
-            let skip = self.offset.saturating_sub(node.start());
+            let skip = offset.saturating_sub(node.start());
             let (top, bottom) = node.val().split_at_row(size);
             Columns {
                 diagonal: top.submatrix(skip, skip, size - skip, size - skip),
                 below: bottom.subcols(skip, size - skip),
-                start: node.start() + skip - self.offset,
+                start: node.start() + skip - offset,
                 pattern: node.pattern(),
             }
         })
     }
 
-    /// Y ← L⁻¹ Y over the trailing rows (Y zero above them).
-    fn forward(&self, mut y: MatMut<'_, f64>) {
-        let mut update = Mat::<f64>::zeros(0, 0);
+    /// Y ← L⁻¹ Y over the trailing rows (Y zero above them); `update` holds a supernode's
+    /// update of the rows below it.
+    fn forward(&self, mut y: MatMut<'_, f64>, update: &mut Mat<f64>) {
+        let offset = self.tail.offset;
         for c in self.columns() {
             let size = c.diagonal.ncols();
             let mut ys = y.as_mut().subrows_mut(c.start, size);
@@ -333,21 +377,22 @@ impl TailSweep<'_> {
             );
             for j in 0..y.ncols() {
                 for (r, &i) in c.pattern.iter().enumerate() {
-                    y[(i - self.offset, j)] -= update[(r, j)];
+                    y[(i - offset, j)] -= update[(r, j)];
                 }
             }
         }
     }
 
-    /// Y ← L⁻ᵀ Y over the trailing rows: exact there, as the rows above never enter them.
-    fn backward(&self, mut y: MatMut<'_, f64>) {
-        let mut below = Mat::<f64>::zeros(0, 0);
+    /// Y ← L⁻ᵀ Y over the trailing rows: exact there, as the rows above never enter them;
+    /// `below` holds Y on a supernode's rows below it.
+    fn backward(&self, mut y: MatMut<'_, f64>, below: &mut Mat<f64>) {
+        let offset = self.tail.offset;
         for c in self.columns().rev() {
             let size = c.diagonal.ncols();
             below.resize_with(c.pattern.len(), y.ncols(), |_, _| 0.0);
             for j in 0..y.ncols() {
                 for (r, &i) in c.pattern.iter().enumerate() {
-                    below[(r, j)] = y[(i - self.offset, j)];
+                    below[(r, j)] = y[(i - offset, j)];
                 }
             }
             matmul(
@@ -393,12 +438,16 @@ mod tests {
 
     /// The product through the trailing block alone is the full solve read on the trailing
     /// unknowns (to round-off), for tails that fill a supernode, share one with the unknowns
-    /// ahead, or are a single unknown; and its block of K⁻¹ is the full solve's too.
+    /// ahead, or are a single unknown, in one work set reused from product to product; and
+    /// its block of K⁻¹ is the full solve's too.
     #[test]
     fn the_trailing_product_is_the_full_solve_on_the_tail() {
         let a = laplacian(12);
         let n = a.nrows();
-        for n_tail in [1, 5, 12, 30] {
+        // One work set for every tail, largest first: what a product leaves in it must not
+        // reach the next.
+        let mut work = TailWork::default();
+        for n_tail in [30, 12, 5, 1] {
             let factor = Factor::new(a.as_ref(), n_tail, "grid").unwrap();
             let b: Vec<f64> = (0..n_tail).map(|k| 1.0 + (k % 7) as f64).collect();
             let mut full = Mat::<f64>::zeros(n, 1);
@@ -407,7 +456,13 @@ mod tests {
             }
             factor.solve_in_place(full.as_mut());
             let mut tail = b.clone();
-            factor.tail_solve_in_place(&mut tail);
+            factor.tail_solve_in_place(&mut tail, &mut work);
+            let mut again = b.clone();
+            factor.tail_solve_in_place(&mut again, &mut work);
+            assert_eq!(
+                tail, again,
+                "{n_tail}: a reused work set changed the product"
+            );
             let t = factor.tail_inverse();
             for k in 0..n_tail {
                 let x = full[(n - n_tail + k, 0)];

@@ -6,7 +6,8 @@
 use std::time::{Duration, Instant};
 
 use contopt_core::{
-    check, memory, BodyFields, ElasticBody, Error, GapShape, Geometry, Interface, Result, RigidMode,
+    check, memory, BodyFields, ElasticBody, Error, GapShape, Geometry, Interface, Result,
+    RigidMode, Spares,
 };
 
 use faer::Mat;
@@ -16,7 +17,7 @@ use super::model::SolidModel;
 use super::precondition::HalfSpaceInverse;
 use super::sample::{Row, SolidSample};
 use super::system::Pinning;
-use crate::factor::Ordering;
+use crate::factor::{Ordering, TailWork};
 use crate::system::{Dof, System};
 
 /// Below this many contact points the influence is condensed to a dense matrix by default
@@ -45,9 +46,11 @@ pub struct SolidSettings {
     /// The fill-reducing ordering of the unknowns ahead of the contact face's (nested
     /// dissection by default).
     pub ordering: Ordering,
-    /// The most memory the build may take \[bytes\]: the assembly's estimate is checked
-    /// against it before the assembly, the factor's after its symbolic analysis, before its
-    /// values are allocated (a scene passes its own `memory_limit_mb`).
+    /// The most memory the build may take \[bytes\], checked before anything large is
+    /// allocated: the factor's size counted on the nodes' graph before the assembly (nested
+    /// dissection and natural orderings), the assembly's estimate, and the factor's size again
+    /// after its symbolic analysis, before its values are allocated (a scene passes its own
+    /// `memory_limit_mb`).
     pub memory_limit_bytes: u64,
 }
 
@@ -79,7 +82,8 @@ pub struct SolidStats {
     pub dense: bool,
     /// Element integration and assembly.
     pub assembly: Duration,
-    /// Ordering, symbolic and numeric factorisation.
+    /// Ordering (with the factor's size counted on the nodes' graph), symbolic and numeric
+    /// factorisation.
     pub factorisation: Duration,
     /// The dense influence matrix (zero for products).
     pub condensation: Duration,
@@ -105,6 +109,16 @@ pub struct SolidBody {
     stats: SolidStats,
     /// Built at the first preconditioned step.
     preconditioner: std::sync::OnceLock<Option<HalfSpaceInverse>>,
+    /// The products' work buffers, a set per product running at once.
+    work: Spares<ProductWork>,
+}
+
+/// The buffers of one influence product through the factor: the face's forces and
+/// displacements, and the trailing sweep's.
+#[derive(Debug, Default)]
+struct ProductWork {
+    face: Vec<f64>,
+    tail: TailWork,
 }
 
 impl SolidBody {
@@ -208,6 +222,7 @@ impl SolidBody {
             gap_shape,
             stats,
             preconditioner: std::sync::OnceLock::new(),
+            work: Spares::default(),
         };
         if let Some(a) = &body.dense {
             let flat: Vec<f64> = (0..n)
@@ -282,15 +297,24 @@ impl SolidBody {
 
     /// The influence product through the factorisation: L K⁻¹ Lᵀ f, the face unknowns being
     /// ordered last, through the factor's trailing block alone
-    /// ([`crate::factor::Factor::tail_solve_in_place`]).
+    /// ([`crate::factor::Factor::tail_solve_in_place`]), in a spare set of work buffers:
+    /// a body used by one thread allocates nothing after its first product.
     fn product(&self, force: &[f64], displacement: &mut [f64]) {
+        self.work.with(ProductWork::default, |work| {
+            self.product_in(force, displacement, work)
+        });
+    }
+
+    fn product_in(&self, force: &[f64], displacement: &mut [f64], work: &mut ProductWork) {
         let system = &self.system;
         let first = system.n_free - system.n_tail;
         let face = |g: usize| match system.dofs[g] {
             Dof::Free(i) => Some(i - first),
             _ => None,
         };
-        let mut face_u = vec![0.0; system.n_tail];
+        let face_u = &mut work.face;
+        face_u.clear();
+        face_u.resize(system.n_tail, 0.0);
         for (r, f) in self.rows.iter().zip(force) {
             for &(g, c) in &r.entries {
                 if let Some(k) = face(g) {
@@ -298,19 +322,12 @@ impl SolidBody {
                 }
             }
         }
-        system.factor.tail_solve_in_place(&mut face_u);
+        system.factor.tail_solve_in_place(face_u, &mut work.tail);
         for (d, r) in displacement.iter_mut().zip(&self.rows) {
             *d = -(r.entries.iter())
                 .filter_map(|&(g, c)| face(g).map(|k| c * face_u[k]))
                 .sum::<f64>();
         }
-    }
-}
-
-impl SolidModel {
-    /// Every nodal displacement is finite, else the loads or the material are beyond f64.
-    pub(crate) fn check_displacement(&self, u: &[f64]) -> Result<()> {
-        check::all_derived("loads", "the given loads", "the displacements", u)
     }
 }
 

@@ -8,6 +8,7 @@
 mod body;
 mod element;
 mod fields;
+mod fill;
 mod mesh;
 mod model;
 mod precondition;

@@ -5,14 +5,12 @@
 
 use std::collections::BTreeMap;
 
-use contopt_core::{check, memory, Error, Material, Result, StressTensor};
+use contopt_core::{check, Error, Material, Result, StressTensor};
 
 use super::element::MAX_SOLID_NODES;
 use super::mesh::{SolidFace, SolidMesh};
 use super::sample::SolidSample;
-use super::system::{numbering, Pinning};
-use crate::factor::Ordering;
-use crate::system::{RigidMotion, System};
+use crate::system::RigidMotion;
 
 /// A direction of space.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -240,29 +238,6 @@ impl SolidModel {
             xz: s(0, 2),
             yz: s(1, 2),
         })
-    }
-
-    /// Solves the supported model under its given loads: nodal displacements (3 per node).
-    /// Errors when the supports leave a rigid motion free.
-    pub fn solve(&self) -> Result<Vec<f64>> {
-        let system = System::solid(
-            self,
-            "model",
-            &[],
-            Pinning::Refuse,
-            Ordering::Amd,
-            memory::BODY_LIMIT_BYTES,
-        )?;
-        let u = system.solve(&self.forces, None);
-        check::all_derived("loads", "the given loads", "the displacements", &u)?;
-        Ok(u)
-    }
-
-    /// The rigid motions its supports leave free (what [`crate::solid::SolidBody`] pins and
-    /// reports as its rigid modes), without assembling anything: the 3-D counterpart of
-    /// [`crate::FeModel::free_motions`].
-    pub fn free_motions(&self) -> Result<Vec<RigidMotion>> {
-        Ok(numbering(self, &[], Pinning::Pin)?.1)
     }
 
     /// The displacement of `motion` along the outward normal at the contact points of each of
