@@ -5,8 +5,7 @@ use std::collections::BTreeMap;
 use contopt_core::{check, Error, Result, GEOMETRY_TOLERANCE};
 
 use crate::element::{lagrange2, GAUSS3};
-use crate::system::Numbering;
-use crate::{Analysis, Face, Material, Mesh, RigidMotion};
+use crate::{Analysis, Face, Material, Mesh};
 
 /// A displacement component: x (= r in axisymmetry) or y (= z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -239,15 +238,6 @@ impl FeModel {
         fp.jacobian = t[0].hypot(t[1]);
         fp.normal = [t[1] / fp.jacobian, -t[0] / fp.jacobian];
         fp
-    }
-
-    /// The rigid-body motions its supports leave free: some of the x and y translations and
-    /// the rotation about the centroid in a plane analysis, the axial translation in
-    /// axisymmetry (none for a held model). A body built of the model floats in them (its
-    /// rigid modes), so a contact must hold each ([`RigidMotion::along_normals`] says whether
-    /// it moves the contact faces). Nothing is assembled.
-    pub fn free_motions(&self) -> Result<Vec<RigidMotion>> {
-        Ok(Numbering::new(self, &[], false)?.modes)
     }
 
     /// Total given load vector (length 2·nodes), for resultants and rigid-mode loads.

@@ -153,6 +153,18 @@ impl Numbering {
     }
 }
 
+impl FeModel {
+    /// The rigid-body motions its supports leave free: some of the x and y translations and
+    /// the rotation about the centroid in a plane analysis, the axial translation in
+    /// axisymmetry (none for a held model). A body built of the model floats in them (its
+    /// rigid modes), so a contact must hold each ([`RigidMotion::along_normals`] says whether
+    /// it moves the contact faces). Nothing is assembled. (Here, beside the numbering that
+    /// finds them, so that the model does not import the system built of it.)
+    pub fn free_motions(&self) -> Result<Vec<RigidMotion>> {
+        Ok(Numbering::new(self, &[], false)?.modes)
+    }
+}
+
 impl System {
     /// Assembles and factorises `model`'s stiffness, the unknowns of `tail_nodes` last, after
     /// checking the memory of a body condensed to `face_points` contact points
