@@ -7,9 +7,9 @@ use std::collections::{HashMap, HashSet};
 use contopt_core::{Error, Result};
 use contopt_fem::Face;
 
-use crate::import::{linear, Body};
+use crate::body::Body;
 use crate::msh::GmshMesh;
-use crate::types;
+use crate::types::{self, linear};
 
 /// A named physical group of points (0-D) or curves (1-D) on an imported body.
 #[derive(Clone, Debug, PartialEq)]

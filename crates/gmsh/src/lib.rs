@@ -82,6 +82,7 @@
 //! then `gmsh part.geo -2 -format msh41 -o part.msh`. The repository's `meshes/` folder holds
 //! examples with their `.geo` sources.
 
+mod body;
 mod cursor;
 mod extent;
 mod geometry;

@@ -7,8 +7,9 @@ use std::collections::HashMap;
 use contopt_core::{Error, Result};
 use contopt_fem::solid::{element_fault, SolidFace, SolidKind, SolidMesh};
 
-use crate::import::{linear, physical_names_listed};
+use crate::import::physical_names_listed;
 use crate::msh::{ElementBlock, GmshMesh};
+use crate::types::linear;
 use crate::types::ElementType;
 
 /// Gmsh's 10-node tetrahedron.

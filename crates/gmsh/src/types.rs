@@ -3,6 +3,8 @@
 //! node count, polygons, polyhedra and XFEM elements, are left out: a file holding one is
 //! refused).
 
+use contopt_core::Error;
+
 /// One of Gmsh's element types.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ElementType {
@@ -165,6 +167,15 @@ const TYPES: [ElementType; 110] = [
     ElementType::new(132, "Pyramid 1", 3, 1),
     ElementType::new(137, "Tetrahedron 16", 3, 16),
 ];
+
+/// The error of a linear element: the mesh must be of order 2.
+pub(crate) fn linear(source: &str, tag: u64, t: ElementType) -> Error {
+    Error::Mesh(format!(
+        "{source}: Gmsh element {tag} is of {t}, a linear element: contopt's elements are \
+         quadratic: set `Mesh.ElementOrder = 2;` (and `Mesh.SecondOrderIncomplete = 1;` for \
+         8-node quadrilaterals), or run `gmsh -order 2`"
+    ))
+}
 
 #[cfg(test)]
 mod tests {

@@ -4,8 +4,8 @@
 use std::f64::consts::PI;
 
 use super::{check_chain, committed, group};
+use crate::body::Body;
 use crate::geometry::{self, Orientation};
-use crate::import::Body;
 use crate::{Group, Surfaces};
 use contopt_fem::ElementKind as Kind;
 

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 
 use contopt_fem::Face;
 
-use crate::import::Body;
+use crate::body::Body;
 use crate::{GmshMesh, Group};
 
 /// The committed mesh `meshes/NAME`.
