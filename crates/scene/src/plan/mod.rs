@@ -91,11 +91,6 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         .map_err(|e| at.library("contact.zone", e))?;
     let length = layout.line_length();
     let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
-    for (k, body) in spec.body.iter().enumerate() {
-        let place = placement(spec, &layout, k, at, meshes);
-        body.check(&place)
-            .map_err(|e| at.library(&format!("body[{k}]"), e))?;
-    }
     if layout.symmetric().contains(&true) && !contact.gap.measured() {
         return Err(at.at(
             "contact.zone.symmetry",
@@ -104,6 +99,11 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
              \"measured\" }): a gap's shape, its Hertz figures and the contact's force are the \
              whole contact's",
         ));
+    }
+    for (k, body) in spec.body.iter().enumerate() {
+        let place = placement(spec, &layout, k, at, meshes);
+        body.check(&place)
+            .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
     let faces = measured_faces(spec, &layout, at, meshes)?;
     // Two meshes paired on a zone of meshes may be pressed by their interference alone.
