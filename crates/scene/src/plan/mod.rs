@@ -258,7 +258,7 @@ fn measured_faces(
     }
     let [wx, wy] = layout.half_extent();
     let tolerance = OVERLAP * 2.0 * wx.hypot(wy);
-    let overlaps = (total.iter().enumerate()).filter(|(_, &h)| !(h >= -tolerance));
+    let overlaps = (total.iter().enumerate()).filter(|(_, &h)| h < -tolerance || h.is_nan());
     if let Some((i, &h)) = overlaps.min_by(|a, b| a.1.total_cmp(b.1)) {
         let x = surface.points()[i];
         return Err(at.at(
