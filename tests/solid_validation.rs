@@ -184,9 +184,8 @@ fn half_space_sphere_on_a_solid_block() {
 /// (measured −0.49 %), the fit of Hertz's cell means, which finds the edge to a cell, within
 /// 2 % (measured −1.64 %). On the half-space grid, exact for these cells, the two estimates
 /// give +0.27 % and −1.08 %: the rest is the solids' (`cargo run --release --example
-/// sphere_on_block` gives the tables).
-/// E* off by 2 would move p₀ by 26 % and a by 21 %; the cells read at their centres alone
-/// (no sub-rule) gave p₀ −7.8 %.
+/// sphere_on_block` gives the tables). E* twice as large would move p₀ by +59 % and a by
+/// −21 %; the cells read at their centres alone (no sub-rule) gave p₀ −7.8 %.
 #[test]
 fn solid_sphere_on_solid_block_against_hertz() {
     let path = concat!(
@@ -207,9 +206,10 @@ fn solid_sphere_on_solid_block_against_hertz() {
 /// between their faces (the sphere's curved face gives its shape). Against Hertz: the centre
 /// cell's pressure within 1 % of Hertz's mean over it (measured +0.15 %), the contact radius
 /// by the cells' second moment within 1 % (measured −0.49 %), the load the pressures carry
-/// the sphere's quarter (to the meshed top's area), and the initial gap in each cell within 1 % of Hertz's
-/// r²/2R, the cell's mean (the quadratic faces' geometry), where it is under 2a. The
-/// program above gives the same figures; E* off by 2 would move p₀ by 26 %.
+/// the sphere's quarter (to the meshed top's area), and the initial gap in each cell within
+/// 1 % of Hertz's r²/2R, the cell's mean (the quadratic faces' geometry), where it is under
+/// 2a. The program above gives the same figures; E* twice as large would move p₀ by +59 %
+/// and a by −21 %.
 #[test]
 fn solid_sphere_on_solid_block_as_a_scene() {
     use contopt_validation::closed_form::{hertz_cell_mean, sphere_radius_from_moment};

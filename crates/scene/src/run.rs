@@ -229,7 +229,8 @@ impl Case {
     /// imported meshes, whose interface is the first body's face nodes, the measured gap or
     /// the gap's shape at the pairing's points, each weighted onto the nodes (∫ N¹ₖ h dS / w̃ₖ,
     /// [`contopt_fem::ContactPairing::project`]). A measured gap on a grid is the distance
-    /// between the bodies' meshed faces that the plan found ([`crate::bodies::BodyKind::face_shape`]).
+    /// between the bodies' meshed faces, which the plan found
+    /// ([`crate::bodies::BodyKind::face_shape`]).
     pub fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
         let at = &self.locator;
         let contact = &self.spec.contact;

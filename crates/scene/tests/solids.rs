@@ -155,8 +155,9 @@ fn refused(name: &str, cases: Vec<(Edits, &str, Vec<&str>)>) {
 
 /// Two solids meshed apart on a quarter grid (the bundled `solid-sphere-on-block`): a face
 /// that does not cover the grid, faces that overlap (the sphere put below the block: its face
-/// reaches up through the block's top, most in the outer cell, by its mean of r²/2R), a half-space on a grid of one quadrant, and a gap's
-/// shape there are refused at their key, file and line.
+/// reaches up through the block's top, most in the outer cell, by its mean of r²/2R), a
+/// half-space on a grid of one quadrant, and a gap's shape there are refused at their key,
+/// file and line.
 #[test]
 fn errors_of_two_solids_on_a_grid_name_the_key() {
     let swapped = r#"[
