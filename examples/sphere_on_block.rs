@@ -1,10 +1,11 @@
 //! Hertz's point contact between two solids meshed apart in Gmsh: a quarter of a steel sphere
 //! (R = 20 mm) on a quarter of a steel block, at several resolutions of the contact
 //! (`contopt_validation::solids`): p₀ (the centre cell against Hertz's mean over it) and the
-//! contact radius (fitted to every cell as Hertz's cell means) against Hertz, with the
-//! sub-rules k of the two bodies and, last, the fit at the cells' centres of earlier versions.
-//! The convergence table of the book's chapter "Parts in three dimensions" (`cargo xtask book
-//! --only sphere_on_block`).
+//! contact radius (the cells' second moment; the fit of Hertz's cell means beside it) against
+//! Hertz, with the sub-rules k of the two bodies and, last, the fit at the cells' centres of
+//! earlier versions. Then the two estimates of a on Hertz solved on the half-space grid, whose
+//! influence is exact: their own error on cells of each size. The convergence tables of the
+//! book's chapter "Parts in three dimensions" (`cargo xtask book --only sphere_on_block`).
 //!
 //! ```text
 //! python3 meshes/generate.py --bench target/gmsh-bench   # once (pip install gmsh)
@@ -15,10 +16,13 @@
 
 use std::time::Instant;
 
-use contopt_validation::solids::sphere_on_block;
+use contopt_validation::solids::{half_space_estimates, sphere_on_block};
 
 /// Element sizes at the contact of the bench meshes (`meshes/bench/solid-sphere-on-block-*.geo`).
 const FINE: [&str; 5] = ["0.4", "0.18", "0.13", "0.09", "0.06"];
+
+/// Cells per contact radius of the half-space grid's table.
+const CELLS_PER_A: [usize; 7] = [3, 4, 5, 6, 8, 12, 16];
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let root = env!("CARGO_MANIFEST_DIR");
@@ -36,16 +40,18 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     }
     println!(
         "| size at contact mm | nodes | cells | k block, sphere | p₀ MPa (centre cell) \
-         | p₀/Hertz − 1 | a mm (cell fit) | a/Hertz − 1 | cell fit's p₀ | at centres: p₀, a \
-         | time s |"
+         | p₀/Hertz − 1 | a mm (second moment) | a/Hertz − 1 | cell fit: a, p₀ \
+         | half-space grid, same cells: a (moment), a (fit) | at centres: p₀, a | time s |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (size, path) in meshes {
         let start = Instant::now();
         let c = sphere_on_block(&path)?;
+        let took = start.elapsed().as_secs_f64();
+        let same = half_space_estimates(c.cell)?;
         println!(
-            "| {size} | {} | {} | {}, {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:+.1} % | {:+.1} %, {:+.1} % \
-             | {:.1} |",
+            "| {size} | {} | {} | {}, {} | {:.1} | {:+.2} % | {:.4} | {:+.2} % | {:+.2} %, {:+.1} % \
+             | {:+.2} %, {:+.2} % | {:+.1} %, {:+.1} % | {:.1} |",
             c.nodes,
             c.points,
             c.sub_rule[0],
@@ -54,10 +60,26 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             100.0 * (c.p0[0] / c.p0[1] - 1.0),
             c.a[0],
             100.0 * (c.a[0] / c.a[1] - 1.0),
-            100.0 * (c.fitted_p0 / c.p0[1] - 1.0),
+            100.0 * (c.fitted[1] / c.a[1] - 1.0),
+            100.0 * (c.fitted[0] / c.p0[1] - 1.0),
+            100.0 * (same[0] - 1.0),
+            100.0 * (same[1] - 1.0),
             100.0 * (c.centres[0] / c.p0[1] - 1.0),
             100.0 * (c.centres[1] / c.a[1] - 1.0),
-            start.elapsed().as_secs_f64()
+            took
+        );
+    }
+    println!();
+    println!(
+        "| half-space grid: cells per a | a/Hertz − 1 (second moment) | a/Hertz − 1 (cell fit) |"
+    );
+    println!("|---|---|---|");
+    for n in CELLS_PER_A {
+        let [moment, fitted] = half_space_estimates(1.0 / n as f64)?;
+        println!(
+            "| {n} | {:+.2} % | {:+.2} % |",
+            100.0 * (moment - 1.0),
+            100.0 * (fitted - 1.0)
         );
     }
     Ok(())

@@ -5,8 +5,9 @@
 //! its nodes (so that the pair's influence is definite), each cell as its mean
 //! ([`SolidSample::cells`]), the sphere over the same cells along the block's normal
 //! ([`SolidSample::facing`]); the initial gap is each cell's mean distance between the meshed
-//! faces ([`SolidSample::initial_gap`]). The cells' pressures are compared with Hertz's means
-//! over the same cells.
+//! faces ([`SolidSample::initial_gap`]). The centre cell's pressure is compared with Hertz's
+//! mean over it, and the contact radius is the one of the Hertz pressure with the cells' second
+//! moment ([`sphere_radius_from_moment`]).
 
 use contopt_contact::{ActiveSet, ActiveSetSettings, ContactSolver, InterfaceProblem};
 use contopt_core::{ElasticBody, Error, Material, Result};
@@ -14,8 +15,11 @@ use contopt_fem::solid::{
     Axis, Cell, SolidBody, SolidFace, SolidMesh, SolidModel, SolidSample, SolidSettings,
 };
 use contopt_gmsh::Volumes;
+use contopt_greens::HalfSpace;
 
-use crate::closed_form::{contact_modulus, fit_sphere_cells, hertz_cell_mean, HertzSphere};
+use crate::closed_form::{
+    contact_modulus, fit_sphere_cells, hertz_cell_mean, sphere_radius_from_moment, HertzSphere,
+};
 
 /// The sphere's radius and the contact radius aimed at \[mm\].
 pub const RADIUS: f64 = 20.0;
@@ -37,14 +41,17 @@ pub struct HertzCheck {
     /// p₀ from the centre cell: its pressure over Hertz's mean of p/p₀ on it (0.99 of p₀ on
     /// the bundled mesh's cells), and Hertz's p₀ \[MPa\].
     pub p0: [f64; 2],
-    /// The contact radius fitted to every cell's pressure as Hertz's cell means
-    /// ([`fit_sphere_cells`]), and Hertz's a \[mm\].
+    /// The contact radius of the Hertz pressure with the cells' second moment about the axis
+    /// ([`sphere_radius_from_moment`]), and Hertz's a \[mm\].
     pub a: [f64; 2],
-    /// p₀ of the same fit \[MPa\].
-    pub fitted_p0: f64,
+    /// p₀ \[MPa\] and a \[mm\] of Hertz's cell means fitted to every cell's pressure
+    /// ([`fit_sphere_cells`]): the contact's edge found to a cell.
+    pub fitted: [f64; 2],
     /// p₀ \[MPa\] and a \[mm\] of the line p² = p₀²(1 − r²/a²) through the loaded cells'
     /// pressures at their centres, the estimate of earlier versions.
     pub centres: [f64; 2],
+    /// The cells' side \[mm\].
+    pub cell: f64,
     /// The largest sub-rule k of the block's cells and of the sphere's.
     pub sub_rule: [usize; 2],
 }
@@ -92,7 +99,8 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
         .map(|(x, &p)| ([x[0], x[1]], h, p))
         .collect();
     let no_fit = || Error::invalid("pressure", "all zero", "a contact to fit Hertz's sphere to");
-    let (p0, a) = fit_sphere_cells(&cells).ok_or_else(no_fit)?;
+    let fitted = fit_sphere_cells(&cells).ok_or_else(no_fit)?;
+    let a = sphere_radius_from_moment(&cells).ok_or_else(no_fit)?;
     let centres = fit_centres(&cells).ok_or_else(no_fit)?;
     // The centre cell's pressure against Hertz's mean over it.
     let centre = (cells.iter())
@@ -105,10 +113,40 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
         points: points.len(),
         p0: [centre.2 / centre_mean, hertz.peak_pressure(CONTACT_RADIUS)],
         a: [a, CONTACT_RADIUS],
-        fitted_p0: p0,
+        fitted: [fitted.0, fitted.1],
         centres,
+        cell: h,
         sub_rule: [rule(&first), rule(&second)],
     })
+}
+
+/// Hertz's sphere between two steel half-spaces solved on the half-space grid, square cells of
+/// side `h` \[mm\] over [−1.6a, 1.6a]², the axis at a cell's corner as in the solids' quarter:
+/// the contact radius by the cells' second moment ([`sphere_radius_from_moment`]) and by the
+/// fit of Hertz's cell means ([`fit_sphere_cells`]) \[mm\]. The grid's influence is exact
+/// for uniform cell pressures, so what is left is the estimators' own error on cells of that
+/// size.
+pub fn half_space_estimates(h: f64) -> Result<[f64; 2]> {
+    let hertz = HertzSphere {
+        radius: RADIUS,
+        modulus: contact_modulus(&[steel(), steel()]),
+    };
+    let n = 2 * (CANDIDATES * CONTACT_RADIUS / h).ceil() as usize;
+    let origin = -0.5 * (n - 1) as f64 * h;
+    let grid = |name| HalfSpace::grid(name, steel(), n, n, h, h, [origin, origin]);
+    let block = grid("block")?;
+    let sphere = (grid("sphere")?.upper()).pressed(hertz.force(CONTACT_RADIUS))?;
+    let gap = hertz.gaps(block.interface());
+    let problem = InterfaceProblem::new(&block, &sphere, &gap)?;
+    let state = ActiveSet::new(ActiveSetSettings::default())?.solve(&problem)?;
+    let cells: Vec<([f64; 2], f64, f64)> = (block.interface().points().iter())
+        .zip(&state.pressure)
+        .map(|(x, &p)| ([x[0], x[1]], h, p))
+        .collect();
+    let no_fit = || Error::invalid("pressure", "all zero", "a contact to fit Hertz's sphere to");
+    let moment = sphere_radius_from_moment(&cells).ok_or_else(no_fit)?;
+    let fitted = fit_sphere_cells(&cells).ok_or_else(no_fit)?;
+    Ok([moment, fitted.1])
 }
 
 /// p₀ and a from the least-squares line p² = p₀² − (p₀/a)² r² through the loaded cells'

@@ -154,6 +154,7 @@ every_bundled_scene!(
     filleted_punch: "filleted-punch",
     shrink_fit: "shrink-fit",
     sphere_on_solid_block: "sphere-on-solid-block",
+    solid_sphere_on_block: "solid-sphere-on-block",
 );
 
 /// The first field of a CSV row (RFC 4180: quoted when it holds a comma or a quote, quotes

@@ -46,6 +46,7 @@ bundled!(
     "filleted-punch"["../meshes/filleted-punch.msh"],
     "shrink-fit"["../meshes/shrink-fit.msh"],
     "sphere-on-solid-block"["../meshes/solid-block-on-grid.msh"],
+    "solid-sphere-on-block"["../meshes/solid-sphere-on-block.msh"],
 );
 
 /// The bundled scene `name`.

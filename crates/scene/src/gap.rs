@@ -327,22 +327,26 @@ impl GapKind for FlatPunch {
     }
 }
 
-/// The distance between two imported meshes along the first body's normal n¹ (eq. 2.1), read
-/// as the first body's field: the default of two `fe_mesh` bodies.
+/// The distance between the bodies' faces as meshed, along the first body's normal n¹ (eq.
+/// 2.1): between two imported meshes on a zone of meshes, read as the first body's field (the
+/// default of two `fe_mesh` bodies), or over a grid's cells between the faces the bodies bring
+/// (a solid's, [`crate::bodies::BodyKind::face_shape`]; a body without one has its face on the
+/// grid's plane).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Measured {}
 
 impl GapKind for Measured {
-    /// A zone of imported meshes only.
+    /// A zone of imported meshes, or a grid.
     fn check(&self, zone: &Chosen<dyn ZoneKind>) -> Result<()> {
-        match zone.downcast::<MeshZone>() {
-            Some(_) => Ok(()),
-            None => Err(Error::invalid(
+        match (zone.downcast::<MeshZone>(), zone.downcast::<GridZone>()) {
+            (None, None) => Err(Error::invalid(
                 "kind",
                 "measured",
-                "is the distance between two imported meshes: a zone of kind \"mesh\"",
+                "is the distance between the bodies' meshed faces: two imported meshes on a \
+                 zone of kind \"mesh\", or a solid on a zone of kind \"grid\"",
             )),
+            _ => Ok(()),
         }
     }
 
@@ -356,7 +360,7 @@ impl GapKind for Measured {
         Err(Error::invalid(
             "kind",
             "measured",
-            "has no formula: the pairing of the two meshes measures it",
+            "has no formula: it is measured between the meshed faces",
         ))
     }
 

@@ -228,7 +228,9 @@ impl Case {
     /// where the gap is open for good (beyond a flat punch's rim), out of reach. Between two
     /// imported meshes, whose interface is the first body's face nodes, the measured gap or
     /// the gap's shape at the pairing's points, each weighted onto the nodes (∫ N¹ₖ h dS / w̃ₖ,
-    /// [`contopt_fem::ContactPairing::project`]).
+    /// [`contopt_fem::ContactPairing::project`]). A measured gap on a grid is the distance
+    /// between the bodies' meshed faces, which the plan found
+    /// ([`crate::bodies::BodyKind::face_shape`]).
     pub fn initial_gap(&self, built: &Built) -> Result<Vec<f64>, SceneError> {
         let at = &self.locator;
         let contact = &self.spec.contact;
@@ -254,9 +256,24 @@ impl Case {
                     .map_err(|e| at.library("contact.gap", e))?;
                 projected.into_iter().map(|h| h - approach).collect()
             }
-            None => (self.gap_shape(built)?.into_iter())
-                .map(|h| reach(h - approach))
-                .collect(),
+            None => match &self.plan.faces {
+                Some(faces) if faces.len() == built.first().interface().len() => {
+                    faces.iter().map(|h| h - approach).collect()
+                }
+                Some(faces) => {
+                    return Err(at.at(
+                        "contact.gap",
+                        format!(
+                            "the meshed faces were measured at {} points, the bodies have {}",
+                            faces.len(),
+                            built.first().interface().len()
+                        ),
+                    ))
+                }
+                None => (self.gap_shape(built)?.into_iter())
+                    .map(|h| reach(h - approach))
+                    .collect(),
+            },
         })
     }
 

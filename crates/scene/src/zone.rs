@@ -71,6 +71,23 @@ pub struct GridZone {
     /// a sphere both ways).
     #[serde(default)]
     pub cell_mm: Option<[f64; 2]>,
+    /// The bodies' planes of symmetry through the axis, `["x"]` for the plane x = 0, `["x",
+    /// "y"]` for both (default none): the grid then starts at the plane and covers x ≥ 0 (y ≥
+    /// 0), a half or a quarter of the contact, which the bodies model with symmetry planes of
+    /// their own (solids, with a measured gap); contact at the plane is no limit of the zone,
+    /// and the forces and figures are the part's.
+    #[serde(default)]
+    pub symmetry: Vec<GridSymmetry>,
+}
+
+/// A plane of symmetry of a grid zone's bodies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GridSymmetry {
+    /// The plane x = 0.
+    X,
+    /// The plane y = 0.
+    Y,
 }
 
 /// A zone of rings.
@@ -177,13 +194,15 @@ impl Surface {
 /// A zone with every size known: a grid's cell size resolved from the gap when not given.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Layout {
-    /// `nx` × `ny` cells of `dx` × `dy`, the first cell's centre at `origin`.
+    /// `nx` × `ny` cells of `dx` × `dy`, the first cell's centre at `origin`; `symmetric`
+    /// along x (y) when it starts at the bodies' plane of symmetry x = 0 (y = 0).
     Grid {
         nx: usize,
         ny: usize,
         dx: f64,
         dy: f64,
         origin: [f64; 2],
+        symmetric: [bool; 2],
     },
     /// Ring radii from 0 to the rim.
     Rings(Vec<f64>),
@@ -206,6 +225,7 @@ impl Layout {
                 dx,
                 dy,
                 origin,
+                ..
             } => HalfSpace::cells_interface(*nx, *ny, *dx, *dy, *origin),
             Layout::Rings(edges) => AxisymmetricHalfSpace::rings_interface(edges),
             Layout::Strips { edges, thickness } => HalfPlane::strips_interface(edges, *thickness),
@@ -226,10 +246,24 @@ impl Layout {
         }
     }
 
-    /// How far the zone reaches from its centre along each surface axis \[mm\] (x or r, y).
+    /// How far the zone reaches from its centre along each surface axis \[mm\] (x or r, y);
+    /// a grid that starts at a plane of symmetry, from the plane.
     pub fn half_extent(&self) -> [f64; 2] {
         match self {
-            Layout::Grid { nx, ny, dx, dy, .. } => [0.5 * *nx as f64 * dx, 0.5 * *ny as f64 * dy],
+            Layout::Grid {
+                nx,
+                ny,
+                dx,
+                dy,
+                symmetric,
+                ..
+            } => {
+                let reach = |n: usize, d: f64, from_plane: bool| match from_plane {
+                    true => n as f64 * d,
+                    false => 0.5 * n as f64 * d,
+                };
+                [reach(*nx, *dx, symmetric[0]), reach(*ny, *dy, symmetric[1])]
+            }
             Layout::Rings(edges) => [edges.last().copied().unwrap_or(0.0), 0.0],
             Layout::Strips { edges, .. } => [edges.last().copied().unwrap_or(0.0), 0.0],
             Layout::Faces(f) => [f.radius_mm, 0.0],
@@ -279,6 +313,15 @@ impl Layout {
         }
     }
 
+    /// Whether the zone starts at the bodies' plane of symmetry x = 0, y = 0 (a grid's
+    /// `symmetry`): contact there is no limit of the zone.
+    pub fn symmetric(&self) -> [bool; 2] {
+        match self {
+            Layout::Grid { symmetric, .. } => *symmetric,
+            _ => [false; 2],
+        }
+    }
+
     /// The zone as a grid, when it is one.
     pub fn grid(&self) -> Option<(usize, usize, f64, f64, [f64; 2])> {
         match *self {
@@ -288,6 +331,7 @@ impl Layout {
                 dx,
                 dy,
                 origin,
+                ..
             } => Some((nx, ny, dx, dy, origin)),
             _ => None,
         }
@@ -313,15 +357,21 @@ impl ZoneKind for GridZone {
                 )
             })?,
         };
+        let symmetric = [GridSymmetry::X, GridSymmetry::Y].map(|p| self.symmetry.contains(&p));
+        let first = |n: usize, d: f64, from_plane: bool| match from_plane {
+            true => 0.5 * d,
+            false => -0.5 * (n as f64 - 1.0) * d,
+        };
         Ok(Layout::Grid {
             nx,
             ny,
             dx: cell[0],
             dy: cell[1],
             origin: [
-                -0.5 * (nx as f64 - 1.0) * cell[0],
-                -0.5 * (ny as f64 - 1.0) * cell[1],
+                first(nx, cell[0], symmetric[0]),
+                first(ny, cell[1], symmetric[1]),
             ],
+            symmetric,
         })
     }
 
@@ -440,6 +490,7 @@ pub(crate) fn unread() -> Chosen<dyn ZoneKind> {
     let grid = Arc::new(GridZone {
         cells: [0, 0],
         cell_mm: None,
+        symmetry: vec![],
     });
     Chosen::new("none", serde_json::Value::Null, grid.clone(), grid)
 }

@@ -8,13 +8,13 @@ use contopt_scene::{Format, Scene, SceneError, BUNDLED};
 
 /// The bundled sphere on a solid block with `edits`, read as the file in `scenes/`.
 fn scene(edits: &[(&str, Option<&str>)]) -> Result<Scene, SceneError> {
-    let text = BUNDLED
-        .iter()
-        .find(|b| b.name == "sphere-on-solid-block")
-        .unwrap()
-        .text;
-    let file =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere-on-solid-block.toml");
+    bundled("sphere-on-solid-block", edits)
+}
+
+/// The bundled scene `name` with `edits`, read as the file in `scenes/`.
+fn bundled(name: &str, edits: &[(&str, Option<&str>)]) -> Result<Scene, SceneError> {
+    let text = BUNDLED.iter().find(|b| b.name == name).unwrap().text;
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
     Scene::parse_with(text, Format::Toml, &file, edits)
 }
 
@@ -71,12 +71,33 @@ fn errors_of_the_mesh_and_its_groups_name_the_key() {
         (
             vec![("body.0.contact", Some("\"bottom\""))],
             "body[0].contact",
-            vec!["off the zone's plane z = 0"],
+            vec!["off the zone's plane z = 0", "kind = \"measured\""],
         ),
         (
             vec![("contact.zone.cell_mm", Some("[1.0, 1.0]"))],
             "body[0].contact",
             vec!["no face under the grid's cell", "\"top\""],
+        ),
+        (
+            vec![("contact.zone.symmetry", Some(r#"["x"]"#))],
+            "contact.zone.symmetry",
+            vec!["measured", "whole contact"],
+        ),
+        (
+            vec![
+                ("contact.zone.symmetry", Some(r#"["x"]"#)),
+                ("contact.gap", Some(r#"{ kind = "measured" }"#)),
+            ],
+            "body[0].mesh",
+            vec!["reaches x = -5 mm across the grid's plane of symmetry x = 0"],
+        ),
+        (
+            vec![
+                ("contact.gap", Some(r#"{ kind = "measured" }"#)),
+                ("body.0", Some(r#"{ kind = "rigid" }"#)),
+            ],
+            "contact.gap",
+            vec!["meshed faces", "kind \"solid\""],
         ),
         (
             vec![("body.0.mesh", Some("\"../meshes/paper-punch.msh\""))],
@@ -114,15 +135,71 @@ fn errors_of_the_mesh_and_its_groups_name_the_key() {
             ],
         ),
     ];
+    refused("sphere-on-solid-block", cases);
+}
+
+/// Each scene `name` with the edits of a case is refused at its key, in the scene's file and
+/// line, with its words.
+fn refused(name: &str, cases: Vec<(Edits, &str, Vec<&str>)>) {
     for (edits, key, needles) in cases {
-        let message = scene(&edits).expect_err(key).to_string();
+        let message = bundled(name, &edits).expect_err(key).to_string();
         assert!(
-            message.contains("sphere-on-solid-block.toml:")
-                && message.contains(&format!(" {key}: ")),
+            message.contains(&format!("{name}.toml:")) && message.contains(&format!(" {key}: ")),
             "{key}: {message}"
         );
         for needle in needles {
             assert!(message.contains(needle), "{key}: {needle:?} in {message}");
         }
     }
+}
+
+/// Two solids meshed apart on a quarter grid (the bundled `solid-sphere-on-block`): a face
+/// that does not cover the grid, faces that overlap (the sphere put below the block: its face
+/// reaches up through the block's top, most in the outer cell, by its mean of r²/2R), a
+/// half-space on a grid of one quadrant, and a gap's shape there are refused at their key,
+/// file and line.
+#[test]
+fn errors_of_two_solids_on_a_grid_name_the_key() {
+    let swapped = r#"[
+  { kind = "solid", mesh = "../meshes/solid-sphere-on-block.msh", volume = "sphere",
+    contact = "sphere_face", extent_mm = [20.0, 20.0, 20.0],
+    material = { e_mpa = 2.0e5, nu = 0.3 }, symmetry = ["sphere_x0", "sphere_y0"],
+    loads = [{ group = "sphere_top", pressure_mpa = 5.0 }] },
+  { kind = "solid", mesh = "../meshes/solid-sphere-on-block.msh", volume = "block",
+    contact = "block_top", extent_mm = [10.0, 10.0, 10.0],
+    material = { e_mpa = 2.0e5, nu = 0.3 }, symmetry = ["block_x0", "block_y0"],
+    supports = [{ group = "block_bottom", fix = ["x", "y", "z"] }] },
+]"#;
+    let cases: Vec<(Edits, &str, Vec<&str>)> = vec![
+        (
+            vec![("contact.zone.cell_mm", Some("[2.0, 2.0]"))],
+            "body[0].contact",
+            vec!["no face under the grid's cell", "\"block_top\""],
+        ),
+        (
+            vec![("body", Some(swapped))],
+            "contact.gap",
+            vec![
+                "meshed faces overlap by 1.1084e-1 mm",
+                "centred at (1.4857142857142858, 1.4857142857142858) mm",
+            ],
+        ),
+        (
+            vec![(
+                "body.0",
+                Some(r#"{ kind = "half_space", material = { e_mpa = 2.0e5, nu = 0.3 } }"#),
+            )],
+            "body[0].kind",
+            vec!["Green's functions", "symmetry"],
+        ),
+        (
+            vec![(
+                "contact.gap",
+                Some(r#"{ kind = "sphere", radius_mm = 20.0 }"#),
+            )],
+            "contact.zone.symmetry",
+            vec!["measured"],
+        ),
+    ];
+    refused("solid-sphere-on-block", cases);
 }

@@ -98,6 +98,14 @@ impl BodyKind for HalfSpaceBody {
                 ))
             }
         }
+        if at.layout.symmetric().contains(&true) {
+            return Err(misplaced(
+                at,
+                "a half-space's Green's functions load only the cells of its grid, and a grid \
+                 with `symmetry` holds a half or a quarter of the contact: give the whole grid \
+                 (no `symmetry`)",
+            ));
+        }
         if let (Some(_), false) = (self.free_ends, grid) {
             return Err(Error::invalid(
                 "free_ends",
@@ -168,6 +176,7 @@ impl BodyKind for HalfSpaceBody {
                 dx,
                 dy,
                 origin,
+                ..
             } => match self.free_ends {
                 None => {
                     let grid = HalfSpace::grid(name, material, *nx, *ny, *dx, *dy, *origin)?;

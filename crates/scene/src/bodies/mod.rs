@@ -9,7 +9,9 @@
 //! Winkler bed) take the zone's surface, or their partner's on finite-element faces. An
 //! imported body (`fe_mesh`) brings its own mesh and offers its model to a zone of imported
 //! meshes, which pairs two of them before either is condensed ([`BodyKind::part`]). A solid
-//! (`solid`) brings its own 3-D mesh and stands on a grid, read at its cells.
+//! (`solid`) brings its own 3-D mesh and stands on a grid, read at its cells; with a measured
+//! gap it supplies its face's shape ([`BodyKind::face_shape`]), so that two solids meshed
+//! apart meet on one grid.
 
 mod fe;
 mod fe_mesh;
@@ -77,6 +79,11 @@ pub struct Placement<'a> {
     /// The scene's memory limit (`memory_limit_mb`) \[bytes\]: what a body that learns its
     /// size only while it is built (a solid's factor) checks itself against.
     pub memory_limit_bytes: u64,
+    /// Whether the gap is measured between the bodies' faces (`contact.gap = { kind =
+    /// "measured" }`): a body that brings a face of its own then lies where its mesh puts it,
+    /// and its face's shape is counted in the gap ([`BodyKind::face_shape`]); otherwise its
+    /// face lies on the zone's surface and the gap kind describes the shapes.
+    pub measured: bool,
 }
 
 /// What a body kind does: check itself on a zone without building anything, estimate its
@@ -127,6 +134,19 @@ pub trait BodyKind: Send + Sync {
     /// two such bodies before either is condensed, since the second is sampled where the
     /// first body's normals meet it. `None` for the kinds that mesh a zone or stand on one.
     fn part(&self, _meshes: &MeshFiles, _analysis: Analysis) -> Option<Result<MeshPart>> {
+        None
+    }
+
+    /// Where its contact face lies, as meshed, at each of the zone's points: its distance from
+    /// the zone's surface along the body's outward normal, positive away from the partner
+    /// \[mm\]. A measured gap on a zone that defines its own surface (a grid) is the sum of
+    /// the two bodies' face shapes (eq. 2.1: the distance between the faces along n¹), so that
+    /// a kind that brings its face (a solid whose contact face is curved) supplies its shape,
+    /// and its partner's face is the zone's surface or its own. `None` (the default) for a
+    /// body whose face is the zone's surface (a half-space, a rigid body, a bed) and for any
+    /// body when the gap is not measured ([`Placement::measured`]); checked without building
+    /// anything.
+    fn face_shape(&self, _at: &Placement) -> Option<Result<Vec<f64>>> {
         None
     }
 

@@ -1,17 +1,21 @@
 //! A solid part read from a Gmsh mesh (`kind = "solid"`): 10-node tetrahedra, 20- or 27-node
 //! hexahedra, with named surface groups for its contact face, its supports, its symmetry
 //! planes and its loads ([`contopt_fem::solid`]). It stands on a grid zone, either side: its
-//! contact face lies on the zone's plane z = 0 and is read over the grid's cells, each cell's
-//! mean pressure and displacement ([`SolidSample::cells`]), so that it pairs cell for cell
-//! with a half-space, a rigid body or another solid on the same grid, the zone's gap between
-//! them.
+//! contact face is read along z over the grid's cells, each cell's mean pressure and
+//! displacement ([`SolidSample::cells`]), so that it pairs cell for cell with a half-space, a
+//! rigid body or another solid on the same grid. Its face lies on the zone's plane z = 0 and
+//! the zone's gap describes the bodies' shapes; or, with the gap `measured`, it lies where
+//! its mesh puts it (a sphere's curved face), and its face's distance from the plane in each
+//! cell, the cell's mean, is its share of the gap ([`BodyKind::face_shape`]): two solids
+//! meshed apart meet on one grid.
 //!
 //! Everything the scene names is checked when the scene is read, nothing assembled: the file
 //! (relative to the scene's folder, [`crate::meshes`]), the volume group, each surface group
 //! (present, not empty, on this solid's boundary: Gmsh's import refuses the rest, naming the
 //! element or the group), the extent against the size the scene states (a mesh drawn in
 //! metres is 1000 times too small), each symmetry group (a plane across x, y or z), and the
-//! contact face against the grid (it lies under every cell, on the plane z = 0).
+//! contact face against the grid (it lies along z under every cell, on the plane z = 0
+//! unless the gap is measured).
 
 use contopt_core::{check, memory, ElasticBody, Error, Interface, Material, Result};
 use contopt_fem::solid::{
@@ -101,7 +105,8 @@ pub struct Solid {
     /// The 3-D physical group of its elements (default: every volume of the file).
     #[serde(default)]
     pub volume: Option<String>,
-    /// The surface group of its contact face, on the zone's plane z = 0.
+    /// The surface group of its contact face, on the zone's plane z = 0 (anywhere along z
+    /// under the grid with a measured gap).
     pub contact: String,
     /// The size of the part [x, y, z] \[mm\] as the user knows it: the mesh's bounding box
     /// must agree within 1 % (Gmsh has no units).
@@ -205,8 +210,8 @@ impl Solid {
 
     /// The contact face read over the grid's cells, along the body's outward normal (+z
     /// below the zone, −z above): each cell's mean on a sub-rule of its faces
-    /// ([`SolidSample::cells`]), every sub-point on a face of the contact group and the face
-    /// on the plane z = 0 there.
+    /// ([`SolidSample::cells`]), every sub-point on a face of the contact group, and the face
+    /// on the plane z = 0 there unless the gap is measured ([`Placement::measured`]).
     fn samples(&self, at: &Placement, solid: &ImportedSolid) -> Result<Vec<SolidSample>> {
         let surface = at
             .layout
@@ -238,6 +243,9 @@ impl Solid {
                 ),
                 other => other,
             })?;
+        if at.measured {
+            return Ok(samples);
+        }
         let size = self.extent_mm.iter().fold(0.0f64, |m, &e| m.max(e));
         let off = (samples.iter()).find_map(|s| {
             (s.parts.iter())
@@ -251,12 +259,36 @@ impl Solid {
                 format!(
                     "lies {} mm off the zone's plane z = 0 in the cell centred at ({}, {}) mm: \
                      the solid's contact face lies on z = 0 (move the part in Gmsh), and the \
-                     zone's gap describes the bodies' shapes",
+                     zone's gap describes the bodies' shapes; or, for a face whose shape the \
+                     mesh gives, contact.gap = {{ kind = \"measured\" }}",
                     part.offset, s.point[0], s.point[1]
                 ),
             ));
         }
         Ok(samples)
+    }
+
+    /// On a grid that starts at a plane of symmetry (x = 0, y = 0), the solid is the part on
+    /// the grid's side of it: a solid that reaches across is a whole body on a half zone.
+    fn check_symmetric(&self, at: &Placement, solid: &ImportedSolid) -> Result<()> {
+        let [lo, hi] = solid.mesh.bounding_box();
+        let size = (0..3).fold(0.0f64, |m, c| m.max(hi[c] - lo[c]));
+        let symmetric = at.layout.symmetric();
+        match (0..2).find(|&c| symmetric[c] && lo[c] < -ON_PLANE * size) {
+            Some(c) => Err(Error::invalid(
+                "mesh",
+                format!("{:?}", self.mesh),
+                format!(
+                    "reaches {} = {} mm across the grid's plane of symmetry {} = 0 \
+                     (contact.zone.symmetry): the solid on such a grid is its part on the \
+                     grid's side, held on the plane ({{ symmetry = [\"…\"] }})",
+                    ["x", "y"][c],
+                    lo[c],
+                    ["x", "y"][c]
+                ),
+            )),
+            None => Ok(()),
+        }
     }
 
     /// Every rigid motion its supports and symmetry planes leave free can be held by the
@@ -376,6 +408,7 @@ impl BodyKind for Solid {
     fn check(&self, at: &Placement) -> Result<()> {
         self.grid(at)?;
         let solid = self.imported(at.meshes)?;
+        self.check_symmetric(at, &solid)?;
         let model = self.model(&solid)?;
         self.check_held(&solid, &model)?;
         self.samples(at, &solid).map(drop)
@@ -398,6 +431,17 @@ impl BodyKind for Solid {
             false => Some(0),
         };
         memory::sum(&[memory::bytes(&[entries], BYTES_PER_ENTRY), dense])
+    }
+
+    /// With a measured gap, its face's distance from the zone's plane in each cell (the cell's
+    /// mean along the body's outward normal, away from its partner): −offset of
+    /// [`SolidSample`], so that two solids' shapes add up to [`SolidSample::initial_gap`].
+    fn face_shape(&self, at: &Placement) -> Option<Result<Vec<f64>>> {
+        at.measured.then(|| {
+            let solid = self.imported(at.meshes)?;
+            let samples = self.samples(at, &solid)?;
+            Ok(samples.iter().map(|s| -s.offset).collect())
+        })
     }
 
     fn owns_surface(&self) -> bool {
@@ -438,9 +482,9 @@ impl BodyKind for Solid {
         Some(self.material)
     }
 
-    /// A half-space's (1 − ν²)/E: the solid's contact face is flat (on the zone's plane), so
-    /// it is a block standing in for a half-space, stiffer as it is finite; Hertz's figure
-    /// with it is the nominal one.
+    /// A half-space's (1 − ν²)/E: near the contact a solid is a body standing in for a
+    /// half-space (a block, a sphere), stiffer as it is finite; Hertz's figure with it is the
+    /// nominal one.
     fn compliance(&self, _zone: &Chosen<dyn ZoneKind>) -> Option<f64> {
         Some(self.material.contact_compliance())
     }

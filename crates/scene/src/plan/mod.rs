@@ -22,7 +22,7 @@ use crate::meshes::MeshFiles;
 use crate::methods::{Check, Design};
 use crate::reference::Hertz;
 use crate::spec::CaseSpec;
-use crate::zone::{Layout, ZoneKind};
+use crate::zone::{Layout, MeshZone, ZoneKind};
 use crate::SceneError;
 use pair::{check_load, check_pair};
 
@@ -38,6 +38,9 @@ pub(crate) struct Plan {
     pub hertz: Option<Hertz>,
     /// A roller gap's roller, its crown built.
     pub roller: Option<Roller>,
+    /// A measured gap on a grid: the distance between the bodies' meshed faces at the zone's
+    /// points \[mm\] ([`measured_faces`]).
+    pub faces: Option<Vec<f64>>,
     /// The memory limit of dense matrices \[bytes\].
     pub dense_limit: u64,
     /// The case's memory estimate and limit, checked.
@@ -88,16 +91,28 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
         .map_err(|e| at.library("contact.zone", e))?;
     let length = layout.line_length();
     let hertz = e_star.and_then(|e| contact.gap.hertz(&contact.zone, e, force, approach, length));
+    if layout.symmetric().contains(&true) && !contact.gap.measured() {
+        return Err(at.at(
+            "contact.zone.symmetry",
+            "a grid with symmetry holds a half or a quarter of bodies that model the symmetry \
+             with their own meshes, the gap measured between them (contact.gap = { kind = \
+             \"measured\" }): a gap's shape, its Hertz figures and the contact's force are the \
+             whole contact's",
+        ));
+    }
     for (k, body) in spec.body.iter().enumerate() {
         let place = placement(spec, &layout, k, at, meshes);
         body.check(&place)
             .map_err(|e| at.library(&format!("body[{k}]"), e))?;
     }
+    let faces = measured_faces(spec, &layout, at, meshes)?;
+    // Two meshes paired on a zone of meshes may be pressed by their interference alone.
+    let interference = contact.gap.measured() && matches!(layout, Layout::Mesh(_));
     check_load(
         [&spec.body[0], &spec.body[1]],
         &contact.zone,
         contact.load,
-        contact.gap.measured(),
+        interference,
     )
     .map_err(|e| at.library("", e))?;
     let floating = floats(spec, &layout);
@@ -129,12 +144,14 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
             bodies: spec.body.clone(),
             load: contact.load,
             memory_limit_bytes: memory.limit_bytes,
+            measured: contact.gap.measured(),
         },
         memory,
         layout,
         e_star,
         hertz,
         roller,
+        faces,
         dense_limit,
         design,
         design_at,
@@ -143,8 +160,9 @@ pub(crate) fn plan(spec: &CaseSpec, at: &Locator, meshes: &MeshFiles) -> Result<
 
 /// What a case's bodies are built from — everything [`placement`] hands a body: the zone, its
 /// layout with every size resolved (a grid without `cell_mm` takes its cells from the case's
-/// gap and load), the bodies' kinds with their settings, the contact's load and the memory
-/// limit — compared as values: cases with equal keys share one build.
+/// gap and load), the bodies' kinds with their settings, the contact's load, the memory limit
+/// and whether the gap is measured between the bodies' faces — compared as values: cases with
+/// equal keys share one build.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct BuildKey {
     zone: Chosen<dyn ZoneKind>,
@@ -152,6 +170,7 @@ pub(crate) struct BuildKey {
     bodies: Vec<Chosen<dyn BodyKind>>,
     load: LoadSpec,
     memory_limit_bytes: u64,
+    measured: bool,
 }
 
 /// Where body `k` stands.
@@ -172,17 +191,20 @@ pub(crate) fn placement<'a>(
         meshes,
         // Checked positive with the case's budget, before any body is built.
         memory_limit_bytes: budget::limit(spec).unwrap_or(DEFAULT_MEMORY_LIMIT_BYTES),
+        measured: spec.contact.gap.measured(),
     }
 }
 
-/// The measured gap is the distance between two imported meshes: it needs both.
+/// The measured gap on a zone of imported meshes is the distance between two of them: it needs
+/// both. (On a grid, [`measured_faces`].)
 fn check_measured(
     spec: &CaseSpec,
     surveyed: Option<&MeshSurface>,
     at: &Locator,
 ) -> Result<(), SceneError> {
     let paired = surveyed.is_some_and(|s| s.paired);
-    if spec.contact.gap.measured() && !paired {
+    let meshes = spec.contact.zone.downcast::<MeshZone>().is_some();
+    if spec.contact.gap.measured() && meshes && !paired {
         return Err(at.at(
             "contact.gap",
             "the measured gap is the distance between two imported meshes: both bodies of \
@@ -190,6 +212,76 @@ fn check_measured(
         ));
     }
     Ok(())
+}
+
+/// The meshed faces may overlap by this fraction of the zone's size (the round-off of the
+/// meshes' coordinates); more is refused.
+const OVERLAP: f64 = 1e-6;
+
+/// A measured gap on a zone of its own surface (a grid): the distance between the bodies'
+/// faces as meshed at the zone's points, the sum of their face shapes
+/// ([`BodyKind::face_shape`]; a body without one has its face on the zone's surface). One
+/// body at least brings its face, and the faces do not overlap. `None` for other gaps and for
+/// a zone of imported meshes, whose pairing measures the gap.
+fn measured_faces(
+    spec: &CaseSpec,
+    layout: &Layout,
+    at: &Locator,
+    meshes: &MeshFiles,
+) -> Result<Option<Vec<f64>>, SceneError> {
+    let Some(Ok(surface)) = layout.surface() else {
+        return Ok(None);
+    };
+    if !spec.contact.gap.measured() {
+        return Ok(None);
+    }
+    let mut total = vec![0.0; surface.len()];
+    let mut brought = false;
+    for (k, body) in spec.body.iter().enumerate() {
+        let place = placement(spec, layout, k, at, meshes);
+        let Some(shape) = body.face_shape(&place) else {
+            continue;
+        };
+        let key = format!("body[{k}]");
+        let shape = shape.map_err(|e| at.library(&key, e))?;
+        if shape.len() != total.len() {
+            return Err(at.at(
+                &key,
+                format!(
+                    "its face's shape has {} values for the zone's {} points",
+                    shape.len(),
+                    total.len()
+                ),
+            ));
+        }
+        total.iter_mut().zip(&shape).for_each(|(t, h)| *t += h);
+        brought = true;
+    }
+    if !brought {
+        return Err(at.at(
+            "contact.gap",
+            "the measured gap is the distance between the bodies' meshed faces: on a grid, a \
+             body that brings its face (kind \"solid\"), or two imported meshes on a zone of \
+             kind \"mesh\" (give another gap's shape)",
+        ));
+    }
+    let [wx, wy] = layout.half_extent();
+    let tolerance = OVERLAP * 2.0 * wx.hypot(wy);
+    let overlaps = (total.iter().enumerate()).filter(|(_, &h)| h < -tolerance || h.is_nan());
+    if let Some((i, &h)) = overlaps.min_by(|a, b| a.1.total_cmp(b.1)) {
+        let x = surface.points()[i];
+        return Err(at.at(
+            "contact.gap",
+            format!(
+                "the bodies' meshed faces overlap by {:.4e} mm in the cell centred at ({}, {}) \
+                 mm (more than the {tolerance:.1e} mm of round-off): place the parts in Gmsh \
+                 so that they touch, not overlap; an interference between solids on a grid is \
+                 not read",
+                -h, x[0], x[1]
+            ),
+        ));
+    }
+    Ok(Some(total))
 }
 
 /// The pair's modulus 1/E* = Σ compliance, when both bodies give theirs and it is positive.

@@ -55,8 +55,9 @@ pub(super) fn points_per_cell(layout: &Layout) -> usize {
 
 /// The sharp edge where the pressure peaks, if it does: along each surface axis of the zone,
 /// on the line of points through the peak, the peak lies in the last cell of its carrying run
-/// and stands [`RISE`] times above the cell inward from it. The low end of rings and faces is
-/// the axis (or plane) of symmetry, not an edge; an imported mesh's faces are not judged.
+/// and stands [`RISE`] times above the cell inward from it. The low end of rings and faces, and
+/// of a grid along an axis of its `symmetry`, is the axis (or plane) of symmetry, not an edge;
+/// an imported mesh's faces are not judged.
 pub(super) fn sharp_edge(
     layout: &Layout,
     points: &[[f64; 3]],
@@ -64,14 +65,14 @@ pub(super) fn sharp_edge(
     pressure: &[f64],
 ) -> Option<SharpEdge> {
     let peak = peak_index(pressure)?;
-    let (axes, symmetric_low): (&[(usize, &'static str)], bool) = match layout {
-        Layout::Grid { .. } => (&[(0, "x"), (1, "y")], false),
-        Layout::Strips { .. } => (&[(0, "x")], false),
-        Layout::Rings(_) => (&[(0, "r")], true),
+    let (axes, symmetric_low): (&[(usize, &'static str)], [bool; 2]) = match layout {
+        Layout::Grid { symmetric, .. } => (&[(0, "x"), (1, "y")], *symmetric),
+        Layout::Strips { .. } => (&[(0, "x")], [false; 2]),
+        Layout::Rings(_) => (&[(0, "r")], [true; 2]),
         Layout::Faces(f) if f.analysis == contopt_fem::Analysis::Axisymmetric => {
-            (&[(0, "r")], true)
+            (&[(0, "r")], [true; 2])
         }
-        Layout::Faces(_) => (&[(0, "x")], true),
+        Layout::Faces(_) => (&[(0, "x")], [true; 2]),
         Layout::Mesh(_) => return None,
     };
     let m = points_per_cell(layout);
@@ -83,7 +84,7 @@ pub(super) fn sharp_edge(
         // low end (unless that is the axis).
         let (lo, hi) = if k + m > end {
             (k.saturating_sub(2 * m - 1).max(start), k.checked_sub(m)?)
-        } else if k < start + m && !(symmetric_low && start == 0) {
+        } else if k < start + m && !(symmetric_low[axis] && start == 0) {
             (k + m, (k + 2 * m - 1).min(end))
         } else {
             return None;

@@ -40,6 +40,8 @@ struct Edge {
     axis: usize,
     extent: f64,
     points: Vec<usize>,
+    /// A grid's low edge on the bodies' plane of symmetry.
+    on_symmetry_plane: bool,
 }
 
 /// Judges a case's limits into its report.
@@ -191,6 +193,10 @@ fn edge_reached(
         if rim_is_a_body && edge.axis == 0 {
             continue;
         }
+        // A grid's edge on the bodies' plane of symmetry is the middle of the contact.
+        if edge.on_symmetry_plane {
+            continue;
+        }
         let reached = edge.points.iter().copied().find(|&i| {
             carrying[i]
                 && case
@@ -334,6 +340,7 @@ fn edges(layout: &Layout, points: &[[f64; 3]]) -> Vec<Edge> {
             axis,
             extent: outer.abs(),
             points: near,
+            on_symmetry_plane: !high && layout.symmetric()[axis],
         }
     };
     match layout {
@@ -356,7 +363,8 @@ fn edges(layout: &Layout, points: &[[f64; 3]]) -> Vec<Edge> {
 
 /// How many cells span the contact's half-width through the largest pressure, in the
 /// direction where they are fewest (on a grid, the smaller of the two counts: a roller's
-/// contact may be long across and short along its axis).
+/// contact may be long across and short along its axis; from the plane of a grid's
+/// `symmetry`, all of the run).
 fn resolution(
     layout: &Layout,
     points: &[[f64; 3]],
@@ -373,8 +381,12 @@ fn resolution(
         line.iter().filter(|&&i| carrying[i]).count() as f64
     };
     match layout {
-        Layout::Grid { dx, dy, .. } => {
-            let cells = [0.5 * count(1), 0.5 * count(0)];
+        Layout::Grid {
+            dx, dy, symmetric, ..
+        } => {
+            // From the plane of symmetry, the carrying run is the half-width itself.
+            let half = |axis: usize, n: f64| if symmetric[axis] { n } else { 0.5 * n };
+            let cells = [half(0, count(1)), half(1, count(0))];
             let axis = if cells[0] <= cells[1] { 0 } else { 1 };
             Some(Resolution {
                 along: ["x", "y"][axis].into(),
