@@ -524,8 +524,7 @@ impl<'w> Descent<'w> {
         } = &mut *self.ws;
         cg.residual(problem, groups, p);
         cg.direction(problem, groups, self.conjugate, &mut self.gz_old);
-        previous.copy_from_slice(p);
-        let entered = cg.step(problem, groups, p, self.kappa)?;
+        let entered = cg.step(problem, groups, p, previous, self.kappa)?;
         self.conjugate = !entered;
         groups.restore(problem.weights(), &cg.d, p);
         Ok(entered)
@@ -534,18 +533,20 @@ impl<'w> Descent<'w> {
     /// The step's change of the pressure, Σ wᵢ |Δpᵢ| over the load (or the carried force).
     fn change(&self, problem: &InterfaceProblem) -> f64 {
         let (w, p) = (problem.weights(), &self.ws.p);
+        let (carried, moved) = p
+            .iter()
+            .zip(&self.ws.previous)
+            .zip(w)
+            .fold((0.0, 0.0), |(carried, moved), ((a, b), w)| {
+                (carried + a * w, moved + w * (a - b).abs())
+            });
         let scale = self
             .ws
             .groups
             .total_load()
-            .max(p.iter().zip(w).map(|(p, w)| p * w).sum::<f64>())
+            .max(carried)
             .max(f64::MIN_POSITIVE);
-        p.iter()
-            .zip(&self.ws.previous)
-            .zip(w)
-            .map(|((a, b), w)| w * (a - b).abs())
-            .sum::<f64>()
-            / scale
+        moved / scale
     }
 
     /// Returns to the pressure before the last step.
@@ -672,22 +673,27 @@ impl Buffers {
     /// pressure −τ·dᵢ of that step. τ converts a gap into a pressure only when t is a gap (no
     /// preconditioner); a preconditioned t is a pressure and τ a pure number, so the gap is
     /// turned into a pressure by the point's own stiffness 1/κ, −τ·dᵢ/κ, and the step is the
-    /// same in any consistent units. When τ = 0, −dᵢ/κ. Returns whether any entered; fails
-    /// when the operator is not positive on the contact set.
+    /// same in any consistent units. When τ = 0, −dᵢ/κ. The pressure before the move is
+    /// kept in `previous`. Returns whether any entered; fails when the operator is not
+    /// positive on the contact set. The direction's forces W t are in `forces`
+    /// ([`Buffers::direction`] put them there).
     fn step(
         &mut self,
         problem: &InterfaceProblem,
         groups: &Groups,
         p: &mut [f64],
+        previous: &mut [f64],
         kappa: f64,
     ) -> std::result::Result<bool, Stall> {
         let w = problem.weights();
-        for ((f, t), w) in self.forces.iter_mut().zip(&self.t).zip(w) {
-            *f = t * w;
-        }
         problem.apply_influence_with(&self.forces, &mut self.r, &mut self.spare);
-        let curvature = self.dot(w, &self.r, &self.t);
-        let along = self.dot(w, &self.d, &self.t);
+        let (mut curvature, mut along) = (0.0, 0.0);
+        for i in 0..w.len() {
+            if self.contact[i] {
+                curvature += w[i] * self.r[i] * self.t[i];
+                along += w[i] * self.d[i] * self.t[i];
+            }
+        }
         let tau = if along == 0.0 {
             0.0
         } else if curvature > 0.0 {
@@ -695,11 +701,6 @@ impl Buffers {
         } else {
             return Err(Stall::NotPositive { curvature });
         };
-        for i in 0..p.len() {
-            if self.contact[i] {
-                p[i] = (p[i] - tau * self.t[i]).max(0.0);
-            }
-        }
         let enter = match (tau > 0.0, self.preconditioned) {
             (true, false) => tau,
             (true, true) => tau / kappa,
@@ -707,7 +708,10 @@ impl Buffers {
         };
         let mut entered = false;
         for i in 0..p.len() {
-            if !self.contact[i] && groups.may_enter(i) && self.d[i] < 0.0 {
+            previous[i] = p[i];
+            if self.contact[i] {
+                p[i] = (p[i] - tau * self.t[i]).max(0.0);
+            } else if groups.may_enter(i) && self.d[i] < 0.0 {
                 p[i] = -enter * self.d[i];
                 entered = true;
             }
@@ -715,31 +719,30 @@ impl Buffers {
         Ok(entered)
     }
 
-    /// Σ over the contact set of wᵢ aᵢ bᵢ.
-    fn dot(&self, w: &[f64], a: &[f64], b: &[f64]) -> f64 {
-        (0..w.len())
-            .filter(|&i| self.contact[i])
-            .map(|i| w[i] * a[i] * b[i])
-            .sum()
-    }
-
-    /// The contact set of `p` and the gap residual d, with the modes' amplitudes fitted on it.
+    /// The contact set of `p` and the gap residual d, with the modes' amplitudes fitted on it
+    /// ([`Groups::amplitudes`]); and in `forces`, d masked to the contact set (the
+    /// preconditioner's input). Each of its passes over the points does what it can at once.
     fn residual(&mut self, problem: &InterfaceProblem, groups: &mut Groups, p: &[f64]) {
         let w = problem.weights();
-        for ((f, p), w) in self.forces.iter_mut().zip(p).zip(w) {
+        for (((f, c), &p), w) in self.forces.iter_mut().zip(&mut self.contact).zip(p).zip(w) {
             *f = p * w;
+            *c = p > 0.0;
         }
         problem.apply_influence_with(&self.forces, &mut self.d, &mut self.spare);
         problem.add_free_gap(&mut self.d);
-        for (c, &p) in self.contact.iter_mut().zip(p) {
-            *c = p > 0.0;
+        groups.amplitudes(w, &self.d, &self.contact);
+        for i in 0..w.len() {
+            self.d[i] += groups.motion(i);
+            self.forces[i] = if self.contact[i] { self.d[i] } else { 0.0 };
         }
-        groups.fit(w, &mut self.d, &self.contact);
     }
 
-    /// The next search direction t: the residual on the contact set, preconditioned when the
-    /// problem offers an approximate inverse (forces turned into pressures), projected so that
-    /// the modes' loads do not change, and conjugated by Polak–Ribière unless restarted.
+    /// The next search direction t: the residual on the contact set (in `forces`, from
+    /// [`Buffers::residual`]), preconditioned when the problem offers an approximate inverse
+    /// (forces turned into pressures), projected so that the modes' loads do not change
+    /// ([`Groups::shift`]), and conjugated by Polak–Ribière unless restarted; its forces W t
+    /// left in `forces` for the step's product. Four passes over the points: each projection's
+    /// sums are gathered while its vector is written, and applied with the next pass's work.
     fn direction(
         &mut self,
         problem: &InterfaceProblem,
@@ -749,39 +752,51 @@ impl Buffers {
     ) {
         let w = problem.weights();
         let n = w.len();
-        // The masked residual, in the forces' buffer (free until the step).
-        for i in 0..n {
-            self.forces[i] = if self.contact[i] { self.d[i] } else { 0.0 };
-        }
         self.preconditioned = problem.precondition(&self.forces, &self.contact, &mut self.z);
-        if self.preconditioned {
-            for i in 0..n {
-                self.z[i] = if self.contact[i] {
-                    self.z[i] / w[i]
-                } else {
-                    0.0
-                };
+        groups.clear_sums();
+        for i in 0..n {
+            self.z[i] = match (self.contact[i], self.preconditioned) {
+                (false, _) => 0.0,
+                (true, true) => self.z[i] / w[i],
+                (true, false) => self.forces[i],
+            };
+            if self.contact[i] {
+                groups.add(w, i, self.z[i]);
             }
-        } else {
-            self.z.copy_from_slice(&self.forces);
         }
-        groups.project(w, &mut self.z, &self.contact);
-        let gz = self.dot(w, &self.d, &self.z);
+        // The projected z, with gᵀz and Polak–Ribière's gᵀz of the last residual.
+        let (mut gz, mut gz_last) = (0.0, 0.0);
+        for i in 0..n {
+            if self.contact[i] {
+                self.z[i] -= groups.shift(i);
+                gz += w[i] * self.d[i] * self.z[i];
+                gz_last += w[i] * self.d_previous[i] * self.z[i];
+            }
+        }
         let beta = if conjugate && *gz_old != 0.0 {
-            ((gz - self.dot(w, &self.d_previous, &self.z)) / *gz_old).max(0.0)
+            ((gz - gz_last) / *gz_old).max(0.0)
         } else {
             0.0
         };
+        groups.clear_sums();
         for i in 0..n {
             self.t[i] = if self.contact[i] {
                 self.z[i] + beta * self.t[i]
             } else {
                 0.0
             };
+            if self.contact[i] {
+                groups.add(w, i, self.t[i]);
+            }
         }
-        groups.project(w, &mut self.t, &self.contact);
+        for i in 0..n {
+            if self.contact[i] {
+                self.t[i] -= groups.shift(i);
+            }
+            self.forces[i] = self.t[i] * w[i];
+            self.d_previous[i] = self.d[i];
+        }
         *gz_old = gz;
-        self.d_previous.copy_from_slice(&self.d);
     }
 }
 
@@ -900,29 +915,41 @@ impl Groups {
         }
     }
 
-    /// Removes from `v` its W-projection on the modes over the contact set:
-    /// vᵢ −= rᵢ Σ w r v / Σ w r², so that Σ wᵢ rᵢ vᵢ = 0 for every mode.
-    fn project(&mut self, w: &[f64], v: &mut [f64], contact: &[bool]) {
-        if self.target.is_empty() {
-            return;
-        }
-        self.sums(w, |i| v[i], |i| contact[i]);
-        for i in 0..w.len() {
-            let k = self.owner[i];
-            if k != NONE && contact[i] && self.den[k] > 0.0 {
-                v[i] -= self.r[i] * self.num[k] / self.den[k];
-            }
+    /// Starts the sums of a projection ([`Groups::shift`]) afresh.
+    fn clear_sums(&mut self) {
+        self.num.fill(0.0);
+        self.den.fill(0.0);
+    }
+
+    /// Adds point i, of value `v` and on the contact set, to the sums of a projection:
+    /// num\[k\] += wᵢ rᵢ v, den\[k\] += wᵢ rᵢ² for its mode k.
+    fn add(&mut self, w: &[f64], i: usize, v: f64) {
+        let k = self.owner[i];
+        if k != NONE {
+            self.num[k] += w[i] * self.r[i] * v;
+            self.den[k] += w[i] * self.r[i] * self.r[i];
         }
     }
 
-    /// Adds to `d` the modes' motion R λ with the amplitudes of [`Groups::amplitudes`].
-    fn fit(&mut self, w: &[f64], d: &mut [f64], contact: &[bool]) {
-        self.amplitudes(w, d, contact);
-        for i in 0..d.len() {
-            let k = self.owner[i];
-            if k != NONE {
-                d[i] += self.r[i] * self.lambda[k];
-            }
+    /// What the W-projection on the modes over the contact set removes from point i's value,
+    /// once every point's is in the sums ([`Groups::add`]): rᵢ Σ w r v / Σ w r², so that
+    /// Σ wᵢ rᵢ vᵢ = 0 for every mode afterwards (eq. 2.10).
+    fn shift(&self, i: usize) -> f64 {
+        let k = self.owner[i];
+        if k != NONE && self.den[k] > 0.0 {
+            self.r[i] * self.num[k] / self.den[k]
+        } else {
+            0.0
+        }
+    }
+
+    /// The modes' motion at point i, (R λ)ᵢ, with the amplitudes of [`Groups::amplitudes`].
+    fn motion(&self, i: usize) -> f64 {
+        let k = self.owner[i];
+        if k != NONE {
+            self.r[i] * self.lambda[k]
+        } else {
+            0.0
         }
     }
 
@@ -932,18 +959,21 @@ impl Groups {
     fn amplitudes(&mut self, w: &[f64], d: &[f64], contact: &[bool]) {
         self.sums(w, |i| d[i], |i| contact[i]);
         self.extreme.fill(f64::NAN);
-        for i in 0..d.len() {
-            let k = self.owner[i];
-            if k != NONE && self.den[k] == 0.0 {
-                let bound = -d[i] / self.r[i];
-                let e = self.extreme[k];
-                self.extreme[k] = if e.is_nan() {
-                    bound
-                } else if self.r[i] > 0.0 {
-                    e.max(bound)
-                } else {
-                    e.min(bound)
-                };
+        // Only a mode without contact needs the pass for its bound.
+        if self.den.contains(&0.0) {
+            for i in 0..d.len() {
+                let k = self.owner[i];
+                if k != NONE && self.den[k] == 0.0 {
+                    let bound = -d[i] / self.r[i];
+                    let e = self.extreme[k];
+                    self.extreme[k] = if e.is_nan() {
+                        bound
+                    } else if self.r[i] > 0.0 {
+                        e.max(bound)
+                    } else {
+                        e.min(bound)
+                    };
+                }
             }
         }
         for k in 0..self.target.len() {
