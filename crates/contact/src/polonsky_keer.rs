@@ -283,7 +283,7 @@ impl PolonskyKeer {
         ws: &mut PolonskyKeerWorkspace,
     ) -> Result<()> {
         let cold = !warm || ws.p.iter().all(|&v| v <= 0.0);
-        if !cold || problem.len() < NESTED_POINTS || flat_seed(problem, ws) {
+        if !cold || problem.len() < NESTED_POINTS || flat_seed(problem) {
             return self.solve_cropped(problem, warm, watch, ws);
         }
         let Some(coarse) = ws.derived.coarse(problem) else {
@@ -404,19 +404,18 @@ impl PolonskyKeer {
 /// `warm`), or (a cold start, or a start without pressure) within [`SEED_FRACTION`] of the
 /// free gap's range above its lowest point.
 fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) {
-    let n = problem.len();
     if warm && ws.p.iter().any(|&v| v > 0.0) {
         ws.keep.clear();
         ws.keep.extend(ws.p.iter().map(|&v| v > 0.0));
         return;
     }
-    let g = &mut ws.previous;
-    refill(g, n, 0.0);
-    problem.add_free_gap(g);
-    let (lo, hi) = range(g);
+    let (lo, hi) = range(problem.free_gaps());
     ws.keep.clear();
-    ws.keep
-        .extend(g.iter().map(|&h| h <= lo + SEED_FRACTION * (hi - lo)));
+    ws.keep.extend(
+        problem
+            .free_gaps()
+            .map(|h| h <= lo + SEED_FRACTION * (hi - lo)),
+    );
 }
 
 /// Whether a cold start's seed ([`seed`]: the points within [`SEED_FRACTION`] of the free
@@ -428,24 +427,20 @@ fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) 
 /// its contact set lies a cell inside the face, whose rim, where the pressure is singular,
 /// then starts from zero. Measured on the peers' flat punch (`halfspace_peers --one-row punch
 /// N`, book: performance chapter): from the uniform start 13, 15, 17 steps at 256², 1024²,
-/// 2048² cells against 15, 17, 18 fine steps after the coarser grids' 34, 53, 62. Uses
-/// `ws.previous` for the free gap.
-fn flat_seed(problem: &InterfaceProblem, ws: &mut PolonskyKeerWorkspace) -> bool {
-    let g = &mut ws.previous;
-    refill(g, problem.len(), 0.0);
-    problem.add_free_gap(g);
-    let (lo, hi) = range(g);
+/// 2048² cells against 15, 17, 18 fine steps after the coarser grids' 34, 53, 62. Reads
+/// the free gap without a buffer: a whole-grid vector held through the coarser grids' solves
+/// would add to the peak.
+fn flat_seed(problem: &InterfaceProblem) -> bool {
+    let (lo, hi) = range(problem.free_gaps());
     let (seed, flat) = (lo + SEED_FRACTION * (hi - lo), lo + PLATEAU * (hi - lo));
-    g.iter().all(|&h| h <= flat || h > seed)
+    problem.free_gaps().all(|h| h <= flat || h > seed)
 }
 
 /// The least and greatest of `values`.
-fn range(values: &[f64]) -> (f64, f64) {
-    values
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
-            (a.min(h), b.max(h))
-        })
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), h| {
+        (a.min(h), b.max(h))
+    })
 }
 
 /// Marks in `ws.keep` the points of a solved part (`ws.index`) and those outside it that the
