@@ -409,13 +409,13 @@ fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) 
         ws.keep.extend(ws.p.iter().map(|&v| v > 0.0));
         return;
     }
-    let (lo, hi) = range(problem.free_gaps());
+    let g = &mut ws.previous;
+    refill(g, problem.len(), 0.0);
+    problem.add_free_gap(g);
+    let (lo, hi) = range(g.iter().copied());
     ws.keep.clear();
-    ws.keep.extend(
-        problem
-            .free_gaps()
-            .map(|h| h <= lo + SEED_FRACTION * (hi - lo)),
-    );
+    ws.keep
+        .extend(g.iter().map(|&h| h <= lo + SEED_FRACTION * (hi - lo)));
 }
 
 /// Whether a cold start's seed ([`seed`]: the points within [`SEED_FRACTION`] of the free
