@@ -293,6 +293,15 @@ impl<'a> InterfaceProblem<'a> {
         g
     }
 
+    /// The free gap g = h + f¹ + f² point by point, for reading it without a buffer.
+    pub(crate) fn free_gaps(&self) -> impl Iterator<Item = f64> + '_ {
+        let load = self.load_gap.as_deref();
+        self.initial_gap
+            .iter()
+            .enumerate()
+            .map(move |(i, h)| h + load.map_or(0.0, |f| f[i]))
+    }
+
     /// Adds the free gap g = h + f¹ + f² to `gap` (one value per point), for loops that must
     /// not allocate.
     pub(crate) fn add_free_gap(&self, gap: &mut [f64]) {
