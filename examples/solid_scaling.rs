@@ -1,9 +1,9 @@
 //! How a solid body's build and contact solve grow with its size: a quarter of a steel block
 //! (symmetry planes x = 0 and y = 0, bottom clamped) of 20-node hexahedra graded towards the
 //! contact, pressed by a rigid roller quarter (R = 5 mm, half-length 5 mm, F/4 = 2500 N)
-//! along y over a top region of 2 × 6 mm, read on cells (two per contact face across the
-//! roller, one along it; see [`CELLS_PER_FACE`]), each point its cell's mean and its force a
-//! uniform pressure over the cell, as the roller study reads its half-spaces. The influence is
+//! along y over a top region of 2 × 6 mm, read on cells (one per contact face; see
+//! [`face_cells`]), each point its cell's mean and its force a uniform pressure over the
+//! cell, as the roller study reads its half-spaces. The influence is
 //! applied through the sparse factorisation: the face's unknowns ordered last, each product a
 //! forward and backward solve through the factor's trailing block, so the matrix-free
 //! Polonsky–Keer solver runs on it unchanged. The table of the book's performance chapter
@@ -94,48 +94,36 @@ fn block(k: f64) -> Result<SolidModel> {
 /// The block's outward normal on its top face, along which the roller presses.
 const UP: [f64; 3] = [0.0, 0.0, 1.0];
 
-/// Cells per contact face across the roller (along x) and along it (along y). A cell's
-/// displacement is its face's mean over it, so the influence among N cells has rank at most
-/// the face nodes' count: an 8-node face holds about 3 nodes of its own (4 corners shared by
-/// 4 faces, 4 mid-sides by 2), so more than 3 cells per face make the influence singular and
-/// the cells' pressures undetermined — the faces' 9 Gauss points are 3 times that many, whence
-/// their alternating pressures. Two across (a line across n faces holds 2n + 1 nodes: the
-/// finest the faces tell apart, where the pressure varies fastest) and one along (the
-/// pressure is nearly uniform along the roller) keep 2 per face.
-const CELLS_PER_FACE: [usize; 2] = [2, 1];
-
-/// The contact region read on cells, [`CELLS_PER_FACE`] of each contact face's extent in x
-/// and y (the faces are the block's top, axis-aligned rectangles), as the roller study reads
-/// its half-spaces: each point a cell's mean, its force a uniform pressure over the cell
+/// The contact region read on cells, one per contact face (the face's extent in x and y: the
+/// faces are the block's top, axis-aligned rectangles), as the roller study reads its
+/// half-spaces: each point a cell's mean, its force a uniform pressure over the cell
 /// (`SolidSample::cells`), the centre row (Ω_v) the cells next to x = 0.
+///
+/// A cell is never finer than the face under it (as in `examples/finite_roller.rs`). The
+/// influence among the cells has rank at most the faces' node count, about 3 per 8-node face
+/// (4 corners shared by 4 faces, 4 mid-sides by 2): the faces' 9 Gauss points made it
+/// singular and their pressures alternate. Two cells per face across the roller keep it
+/// regular but still let the pressure alternate between each face's two cells.
 fn face_cells(model: &SolidModel, contact: &[SolidFace]) -> Vec<Cell> {
     let mesh = model.mesh();
-    let [nx, ny] = CELLS_PER_FACE;
-    let mut cells = Vec::with_capacity(contact.len() * nx * ny);
-    for &face in contact {
-        let xs = mesh.face_nodes(face).into_iter().map(|a| mesh.nodes()[a]);
-        let (lo, hi) = xs.fold(
-            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-            |(lo, hi), x| {
-                (
-                    [lo[0].min(x[0]), lo[1].min(x[1])],
-                    [hi[0].max(x[0]), hi[1].max(x[1])],
-                )
-            },
-        );
-        let size = [(hi[0] - lo[0]) / nx as f64, (hi[1] - lo[1]) / ny as f64];
-        for j in 0..ny {
-            for i in 0..nx {
-                let centre = [
-                    lo[0] + (i as f64 + 0.5) * size[0],
-                    lo[1] + (j as f64 + 0.5) * size[1],
-                    0.0,
-                ];
-                cells.push(Cell::xy(centre, size));
-            }
-        }
-    }
-    cells
+    (contact.iter())
+        .map(|&face| {
+            let xs = mesh.face_nodes(face).into_iter().map(|a| mesh.nodes()[a]);
+            let (lo, hi) = xs.fold(
+                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                |(lo, hi), x| {
+                    (
+                        [lo[0].min(x[0]), lo[1].min(x[1])],
+                        [hi[0].max(x[0]), hi[1].max(x[1])],
+                    )
+                },
+            );
+            Cell::xy(
+                [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.0],
+                [hi[0] - lo[0], hi[1] - lo[1]],
+            )
+        })
+        .collect()
 }
 
 /// CPU time of the calling thread so far \[s\] (Linux: the first field of
