@@ -1,7 +1,9 @@
 //! How a solid body's build and contact solve grow with its size: a quarter of a steel block
 //! (symmetry planes x = 0 and y = 0, bottom clamped) of 20-node hexahedra graded towards the
 //! contact, pressed by a rigid roller quarter (R = 5 mm, half-length 5 mm, F/4 = 2500 N)
-//! along y over a top region of 2 × 6 mm, sampled at its faces' Gauss points. The influence is
+//! along y over a top region of 2 × 6 mm, read on cells (one per contact face; see
+//! [`face_cells`]), each point its cell's mean and its force a uniform pressure over the
+//! cell, as the roller study reads its half-spaces. The influence is
 //! applied through the sparse factorisation: the face's unknowns ordered last, each product a
 //! forward and backward solve through the factor's trailing block, so the matrix-free
 //! Polonsky–Keer solver runs on it unchanged. The table of the book's performance chapter
@@ -35,7 +37,8 @@
 use std::time::Instant;
 
 use contopt::fem::solid::{
-    Axis, Condensation, SolidBody, SolidKind, SolidMesh, SolidModel, SolidSettings,
+    Axis, Cell, Condensation, SolidBody, SolidFace, SolidKind, SolidMesh, SolidModel, SolidSample,
+    SolidSettings,
 };
 use contopt::fem::Ordering;
 use contopt::prelude::*;
@@ -88,6 +91,41 @@ fn block(k: f64) -> Result<SolidModel> {
     Ok(model)
 }
 
+/// The block's outward normal on its top face, along which the roller presses.
+const UP: [f64; 3] = [0.0, 0.0, 1.0];
+
+/// The contact region read on cells, one per contact face (the face's extent in x and y: the
+/// faces are the block's top, axis-aligned rectangles), as the roller study reads its
+/// half-spaces: each point a cell's mean, its force a uniform pressure over the cell
+/// (`SolidSample::cells`), the centre row (Ω_v) the cells next to x = 0.
+///
+/// A cell is never finer than the face under it (as in `examples/finite_roller.rs`). The
+/// influence among the cells has rank at most the faces' node count, about 3 per 8-node face
+/// (4 corners shared by 4 faces, 4 mid-sides by 2): the faces' 9 Gauss points made it
+/// singular and their pressures alternate. Two cells per face across the roller keep it
+/// regular but still let the pressure alternate between each face's two cells.
+fn face_cells(model: &SolidModel, contact: &[SolidFace]) -> Vec<Cell> {
+    let mesh = model.mesh();
+    (contact.iter())
+        .map(|&face| {
+            let xs = mesh.face_nodes(face).into_iter().map(|a| mesh.nodes()[a]);
+            let (lo, hi) = xs.fold(
+                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                |(lo, hi), x| {
+                    (
+                        [lo[0].min(x[0]), lo[1].min(x[1])],
+                        [hi[0].max(x[0]), hi[1].max(x[1])],
+                    )
+                },
+            );
+            Cell::xy(
+                [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.0],
+                [hi[0] - lo[0], hi[1] - lo[1]],
+            )
+        })
+        .collect()
+}
+
 /// CPU time of the calling thread so far \[s\] (Linux: the first field of
 /// `/proc/thread-self/schedstat`, nanoseconds on the CPU), NaN where it cannot be read. The
 /// machine is shared: wall-clock times of a run that waits for the core say little, its CPU
@@ -119,7 +157,8 @@ fn run(
         ..Default::default()
     };
     let nodes = model.mesh().nodes().len();
-    let body = match SolidBody::new("block", model, &contact, settings) {
+    let samples = SolidSample::cells(model.mesh(), &contact, &face_cells(&model, &contact), UP)?;
+    let body = match SolidBody::sampled("block", model, &samples, settings) {
         Err(e @ Error::TooLarge { .. }) => {
             let cpu = cpu_seconds() - build_cpu;
             let peak = PeakAlloc::peak_since(heap);
