@@ -45,7 +45,8 @@ pub struct HertzCheck {
     /// p₀ \[MPa\] and a \[mm\] of the line p² = p₀²(1 − r²/a²) through the loaded cells'
     /// pressures at their centres, the estimate of earlier versions.
     pub centres: [f64; 2],
-    /// The largest sub-rule k of the block's cells and of the sphere's.
+    /// The largest sub-rule k (sub-points along a cell's side) of the block's cells and of the
+    /// sphere's.
     pub sub_rule: [usize; 2],
 }
 
@@ -99,7 +100,11 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
         .min_by(|a, b| a.0[0].hypot(a.0[1]).total_cmp(&b.0[0].hypot(b.0[1])))
         .ok_or_else(no_fit)?;
     let centre_mean = hertz_cell_mean(centre.0, centre.1, CONTACT_RADIUS);
-    let rule = |s: &[SolidSample]| s.iter().map(SolidSample::sub_rule).max().unwrap_or(1);
+    let rule = |s: &[SolidSample]| {
+        (s.iter().flat_map(SolidSample::sub_rule))
+            .max()
+            .unwrap_or(1)
+    };
     Ok(HertzCheck {
         nodes: block.mesh.nodes().len() + sphere.mesh.nodes().len(),
         points: points.len(),
