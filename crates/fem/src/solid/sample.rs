@@ -70,10 +70,11 @@ impl Cell {
 
     /// The points of its sub-rule, the cell's mean: k₀ × k₁ equal parts (kᵢ along side i),
     /// each read at Gauss–Legendre's 2 × 2 points (equal weights), 2k₀ × 2k₁ points along
-    /// side 0 first; a point's centre alone. On a part within one face the rule is exact for
-    /// the face's fields (biquadratic on a 9-node face, quadratic on the others: cubics are
-    /// exact); on a part across a face's edge it is a product rule over the field's kink, the
-    /// part's error shrinking as the parts do.
+    /// side 0 first; a point's centre alone. On a part within one flat, straight-edged face the
+    /// rule is exact for the face's fields (biquadratic on a 9-node face, quadratic on the
+    /// others: cubics are exact), on a curved one to the order of its curvature; on a part
+    /// across a face's edge it is a product rule over the field's kink, the part's error
+    /// shrinking as the parts do.
     fn sub_points(&self, k: [usize; 2]) -> Vec<[f64; 3]> {
         if self.sides == [[0.0; 3]; 2] {
             return vec![self.centre];
