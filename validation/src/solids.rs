@@ -52,7 +52,8 @@ pub struct HertzCheck {
     pub centres: [f64; 2],
     /// The cells' side \[mm\].
     pub cell: f64,
-    /// The largest sub-rule k of the block's cells and of the sphere's.
+    /// The largest sub-rule k (parts along a cell's side) of the block's cells and of the
+    /// sphere's.
     pub sub_rule: [usize; 2],
 }
 
@@ -107,7 +108,11 @@ pub fn sphere_on_block(path: &str) -> Result<HertzCheck> {
         .min_by(|a, b| a.0[0].hypot(a.0[1]).total_cmp(&b.0[0].hypot(b.0[1])))
         .ok_or_else(no_fit)?;
     let centre_mean = hertz_cell_mean(centre.0, centre.1, CONTACT_RADIUS);
-    let rule = |s: &[SolidSample]| s.iter().map(SolidSample::sub_rule).max().unwrap_or(1);
+    let rule = |s: &[SolidSample]| {
+        (s.iter().flat_map(SolidSample::sub_rule))
+            .max()
+            .unwrap_or(1)
+    };
     Ok(HertzCheck {
         nodes: block.mesh.nodes().len() + sphere.mesh.nodes().len(),
         points: points.len(),

@@ -20,4 +20,4 @@ pub use element::{FaceKind, SolidKind, MAX_FACE_NODES, MAX_SOLID_NODES};
 pub use mesh::{element_fault, ElementFault, FacePoint, SolidFace, SolidMesh};
 pub use model::{Axis, SolidModel};
 pub use precondition::PRECONDITIONED_POINTS;
-pub use sample::{Cell, SolidSample, SubSample, MAX_SUB_RULE, SUB_POINTS_PER_FACE};
+pub use sample::{Cell, SolidSample, SubSample, MAX_SUB_PARTS, SUB_PARTS_PER_FACE};
