@@ -181,8 +181,8 @@ fn half_space_sphere_on_a_solid_block() {
 /// by a pressure on its top and floating along z, the two read cell for cell on a grid of
 /// 7 × 7 cells, each cell's mean over a sub-rule of its faces ([`SolidSample::cells`],
 /// [`SolidSample::facing`]). The centre cell's pressure within 1 % of Hertz's mean over that
-/// cell (measured +0.15 %); the contact radius by the cells' second moment within 1 %
-/// (measured −0.49 %), the fit of Hertz's cell means, which finds the edge to a cell, within
+/// cell (measured +0.24 %); the contact radius by the cells' second moment within 1 %
+/// (measured −0.48 %), the fit of Hertz's cell means, which finds the edge to a cell, within
 /// 2 % (measured −1.64 %). On the half-space grid, exact for these cells, the two estimates
 /// give +0.27 % and −1.08 %: the rest is the solids' (`cargo run --release --example
 /// sphere_on_block` gives the tables). E* twice as large would move p₀ by +59 % and a by
@@ -205,8 +205,8 @@ fn solid_sphere_on_solid_block_against_hertz() {
 /// The same sphere on the same block as a scene (`scenes/solid-sphere-on-block.toml`): two
 /// bodies of kind `solid` on a quarter grid (`symmetry = ["x", "y"]`), the gap measured
 /// between their faces (the sphere's curved face gives its shape). Against Hertz: the centre
-/// cell's pressure within 1 % of Hertz's mean over it (measured +0.15 %), the contact radius
-/// by the cells' second moment within 1 % (measured −0.49 %), the load the pressures carry
+/// cell's pressure within 1 % of Hertz's mean over it (measured +0.24 %), the contact radius
+/// by the cells' second moment within 1 % (measured −0.48 %), the load the pressures carry
 /// the sphere's quarter (to the meshed top's area), and the initial gap in each cell within
 /// 1 % of Hertz's r²/2R, the cell's mean (the quadratic faces' geometry), where it is under
 /// 2a. The program above gives the same figures; E* twice as large would move p₀ by +59 %
