@@ -150,6 +150,16 @@ pub trait BodyKind: Send + Sync {
         None
     }
 
+    /// How many independent pressures it can carry over the zone's points, where that is fewer
+    /// than the points: a body read as means over its faces (a solid on cells finer than its
+    /// faces, [`SolidBody`](contopt_fem::solid::SolidBody)) has an influence of rank at most
+    /// its faces' node count, singular beyond it, and against a rigid partner the pressure is
+    /// then not determined. `None` (the default): one per point. Checked without building
+    /// anything.
+    fn carried_pressures(&self, _at: &Placement) -> Option<Result<usize>> {
+        None
+    }
+
     /// Whether it brings a mesh of its own, which a zone of imported meshes pairs
     /// ([`BodyKind::part`]).
     fn imported(&self) -> bool {

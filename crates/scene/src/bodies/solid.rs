@@ -19,7 +19,7 @@
 
 use contopt_core::{check, memory, ElasticBody, Error, Interface, Material, Result};
 use contopt_fem::solid::{
-    Axis, Cell, SolidBody, SolidModel, SolidSample, SolidSettings, DENSE_POINTS,
+    Axis, Cell, SolidBody, SolidFace, SolidModel, SolidSample, SolidSettings, DENSE_POINTS,
 };
 use contopt_gmsh::ImportedSolid;
 use serde::{Deserialize, Serialize};
@@ -442,6 +442,21 @@ impl BodyKind for Solid {
             let samples = self.samples(at, &solid)?;
             Ok(samples.iter().map(|s| -s.offset).collect())
         })
+    }
+
+    /// The nodes of the contact faces its cells' sub-points meet: a cell's mean normal
+    /// displacement (the faces flat on the grid's plane) is a sum over their normal
+    /// displacements, so the influence among the cells has rank at most their count.
+    fn carried_pressures(&self, at: &Placement) -> Option<Result<usize>> {
+        let nodes = || -> Result<usize> {
+            let solid = self.imported(at.meshes)?;
+            let samples = self.samples(at, &solid)?;
+            let faces: Vec<SolidFace> = (samples.iter())
+                .flat_map(|s| s.parts.iter().map(|p| p.face))
+                .collect();
+            Ok(solid.mesh.nodes_of(&faces).len())
+        };
+        Some(nodes())
     }
 
     fn owns_surface(&self) -> bool {
