@@ -11,13 +11,31 @@
 
 use contopt_core::{Error, Result};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
 };
 use faer::sparse::linalg::{SupernodalThreshold, SymbolicSupernodalParams};
-use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::{FaerError, SymbolicSparseColMatRef};
 use faer::Side;
 
 use crate::dissection::Adjacency;
+
+/// The supernodal symbolic Cholesky analysis of the upper triangle `pattern` in its own order,
+/// without relaxed supernodes: the factor whose values [`factor_values`] counts.
+fn unrelaxed(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+) -> Result<SymbolicCholesky<usize>, FaerError> {
+    factorize_symbolic_cholesky(
+        pattern,
+        Side::Upper,
+        SymmetricOrdering::Identity,
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            supernodal_params: SymbolicSupernodalParams { relax: None },
+            ..Default::default()
+        },
+    )
+}
 
 /// The values of the supernodal Cholesky factor, without relaxation, of the unknowns of
 /// `nodes` eliminated in that order (position → node; each node's `free[node]` unknowns in
@@ -52,17 +70,7 @@ pub(super) fn factor_values(
         col_ptr.push(row_idx.len());
     }
     let pattern = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-    let symbolic = factorize_symbolic_cholesky(
-        pattern,
-        Side::Upper,
-        SymmetricOrdering::Identity,
-        CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            supernodal_params: SymbolicSupernodalParams { relax: None },
-            ..Default::default()
-        },
-    )
-    .map_err(|e| Error::Singular {
+    let symbolic = unrelaxed(pattern).map_err(|e| Error::Singular {
         body: body.into(),
         detail: format!("symbolic analysis of the nodes' graph failed: {e:?}"),
     })?;
@@ -138,17 +146,7 @@ mod tests {
             }
         }
         let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs).unwrap();
-        let symbolic = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Upper,
-            SymmetricOrdering::Identity,
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                supernodal_params: SymbolicSupernodalParams { relax: None },
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let symbolic = unrelaxed(pattern.as_ref()).unwrap();
         assert_eq!(counted, symbolic.len_val() as u64);
         // Fill happened: the count is more than the graph's own upper triangle.
         assert!(counted > pairs.len() as u64, "{counted} {}", pairs.len());
