@@ -326,6 +326,13 @@ fn peer_grid(n: usize) -> (HalfSpace, Vec<f64>, HertzSphere) {
     (body, gap, hertz)
 }
 
+/// The peers' flat punch on `body`'s grid: a = 1 mm, the surface outside recessed by 1 mm.
+fn punch_gap(body: &HalfSpace) -> Vec<f64> {
+    (body.interface().points().iter())
+        .map(|x| if x[0].hypot(x[1]) <= 1.0 { 0.0 } else { 1.0 })
+        .collect()
+}
+
 /// The largest pressure difference of two states over the second's p_max.
 fn pressure_difference(a: &ContactState, b: &ContactState) -> f64 {
     a.pressure
@@ -631,12 +638,7 @@ fn flat_punch_on_a_grid() {
         radius: 1.0,
         modulus: hertz.modulus,
     };
-    let gap: Vec<f64> = body
-        .interface()
-        .points()
-        .iter()
-        .map(|x| if x[0].hypot(x[1]) <= 1.0 { 0.0 } else { 1.0 })
-        .collect();
+    let gap = punch_gap(&body);
     let st = indent(&polonsky_keer(), &body, &gap, Drive::Force(1000.0));
     let centre = (64 * 128) + 64;
     let p_centre = punch.pressure(1000.0, 0.0);
@@ -712,12 +714,7 @@ fn a_flat_punchs_cold_start_runs_on_its_own_grid() {
     let mut steps = vec![];
     for n in [32, 64, 128] {
         let (body, _, _) = peer_grid(n);
-        let gap: Vec<f64> = body
-            .interface()
-            .points()
-            .iter()
-            .map(|x| if x[0].hypot(x[1]) <= 1.0 { 0.0 } else { 1.0 })
-            .collect();
+        let gap = punch_gap(&body);
         let indenter =
             RigidBody::pressed("punch", body.interface(), [0.0, 0.0, 1.0], 1000.0).unwrap();
         let problem = InterfaceProblem::new(&body, &indenter, &gap).unwrap();
