@@ -877,9 +877,11 @@ impl ElasticBody for Unpreconditioned<'_> {
 /// 20 mm long, 10 mm thick), its shear layer spreading a load over ℓ = √(G_p/k) = 2 mm and
 /// 10 mm: Polonsky–Keer with the bed's exact inverse on the contact set (A_CC⁻¹, a Schur
 /// complement of its tridiagonal stiffness) and without any agree with the dense active set
-/// to 1e-8 of p_max, and the inverse pays: at most half the steps (measured 46 against 653
-/// and 117 against 308). The whole inverse masked to the set took 232 steps against 228
-/// without, which this would catch.
+/// to 1e-8 of p_max, and the inverse pays: at most two thirds of the steps (measured 45
+/// against 587 and 116 against 225; 46 against 632 and 117 against 286 before the gap
+/// residual moved with the step's product instead of a product of its own, which shortens the
+/// unpreconditioned iteration more). The whole inverse masked to the set took 232 steps
+/// against 228 without, which this would catch.
 #[test]
 fn pasternak_bed_exact_inverse_pays() {
     let strips = HalfPlane::strips_interface(&uniform(-10.0, 10.0, 1000), 10.0).unwrap();
@@ -910,7 +912,7 @@ fn pasternak_bed_exact_inverse_pays() {
         }
         let (exact, none) = (states[0].iterations, states[1].iterations);
         assert!(
-            2 * exact <= none,
+            3 * exact <= 2 * none,
             "G_p = {shear}: {exact} steps against {none}"
         );
     }
