@@ -1,5 +1,5 @@
 use std::f64::consts::PI;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use contopt_core::{
     check, memory, ElasticBody, Error, Geometry, InfluenceShape, Interface, Material, Result,
@@ -36,6 +36,10 @@ pub struct HalfSpace {
     /// periodic one. Shared by the grid's sub-grids ([`ElasticBody::restrict`]).
     kernel: Arc<Mat<f64>>,
     convolution: Arc<Convolution>,
+    /// A free grid's preconditioner, the circulant on its own grid ([`Convolution::folded`]),
+    /// planned by the first call: the whole grid of a solve that runs on its parts never
+    /// needs its own.
+    folded: Arc<OnceLock<Convolution>>,
     /// The free translation of a pressed body ([`HalfSpace::pressed`]), or none.
     modes: Vec<RigidMode>,
     /// (1 − ν²)/E: the kernel is this times one of the grid's geometry alone.
@@ -168,6 +172,7 @@ impl HalfSpace {
             periodic: false,
             kernel: Arc::new(kernel),
             convolution,
+            folded: Default::default(),
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
             material,
@@ -220,6 +225,7 @@ impl HalfSpace {
             periodic: true,
             kernel: Arc::new(kernel),
             convolution,
+            folded: Default::default(),
             modes: vec![],
             compliance: (1.0 - material.nu().powi(2)) / material.e(),
             material,
@@ -325,6 +331,7 @@ impl HalfSpace {
                 periodic: false,
                 kernel: self.kernel.clone(),
                 convolution,
+                folded: Default::default(),
                 modes: self
                     .modes
                     .iter()
@@ -508,7 +515,14 @@ impl ElasticBody for HalfSpace {
     }
 
     fn precondition(&self, displacement: &[f64], force: &mut [f64]) -> bool {
-        self.convolution.apply_inverse(displacement, force);
+        if self.periodic {
+            self.convolution.apply_inverse(displacement, force);
+        } else {
+            let kernel = &self.kernel;
+            self.folded
+                .get_or_init(|| Convolution::folded(self.nx, self.ny, |i, j| kernel[(i, j)]))
+                .apply_inverse(displacement, force);
+        }
         true
     }
 
@@ -753,8 +767,8 @@ mod tests {
         assert!(e.to_string().contains("FFT product"), "{e}");
     }
 
-    /// The padded circulant of a free grid is positive (its inverse preconditions), also for
-    /// long cells and odd sides, where a period with zeros at the distances n (the padding's
+    /// The padded circulant of a free grid, and the one on its own grid, are positive (the
+    /// latter's inverse preconditions), also for long cells and odd sides, where a period with zeros at the distances n (the padding's
     /// middle) has negative eigenvalues as large as its median ones; the product is the same.
     #[test]
     fn padded_circulant_is_positive() {
@@ -775,6 +789,9 @@ mod tests {
             });
             let k00 = kernel[(0, 0)];
             assert!(periodic.smallest_eigenvalue() > 0.05 * k00, "{nx} x {ny}");
+            // The preconditioner's circulant on the field's own grid, too.
+            let folded = Convolution::folded(nx, ny, |i, j| kernel[(i, j)]);
+            assert!(folded.smallest_eigenvalue() > 0.05 * k00, "{nx} x {ny}");
             if (nx, ny) != (41, 40) {
                 assert!(gap.smallest_eigenvalue() < 0.0, "{nx} x {ny}");
             }
