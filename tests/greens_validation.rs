@@ -677,8 +677,9 @@ fn steps_per_level(problem: &InterfaceProblem) -> (ContactState, Vec<usize>) {
 }
 
 /// The cold start's nested grids keep the costly steps nearly flat: on the peers' Hertz case
-/// from 32² to 128² cells the steps on the given grid are 12, 13, 16 (to 10⁻¹²; at most 17,
-/// and at most 4 more over 16 times the points), while each coarser grid, a quarter of the
+/// from 32² to 128² cells the steps on the given grid are 13, 15, 16 (to 10⁻¹²; at most 17,
+/// and at most 4 more over 16 times the points; 12, 13, 16 with the padded circulant's inverse
+/// as the preconditioner), while each coarser grid, a quarter of the
 /// points, adds its own 4–10; every step is counted in the state's. (Without the coarse
 /// grids a cold start takes 15, 18, 22 steps there, all on the given grid.)
 #[test]
@@ -707,8 +708,9 @@ fn polonsky_keers_fine_steps_do_not_grow_with_the_grid() {
 /// The peers' flat punch (a = 1 mm, 1000 N): a cold start whose seed is the punch's face
 /// runs on the given grid alone (no coarser grid, whose mean gaps would pull the contact set a
 /// cell inside the face), in steps that grow little with the grid from 32² to 128²
-/// cells (to 10⁻¹²): 10, 11, 13 (at most 14, and at most 4 more over 16 times the points); the
-/// book's peers' case takes 13, 15 and 17 from 256² to 2048².
+/// cells (to 10⁻¹²): 10, 12, 14 (at most 14, and at most 4 more over 16 times the points; 10,
+/// 11, 13 with the padded circulant's inverse as the preconditioner); the book's peers' case
+/// takes 14, 16 and 17 from 256² to 2048².
 #[test]
 fn a_flat_punchs_cold_start_runs_on_its_own_grid() {
     let mut steps = vec![];
