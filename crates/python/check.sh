@@ -15,6 +15,6 @@ fi
 "$venv/bin/python" -m pip install -q --disable-pip-version-check \
   "maturin>=1.9.4,<2" pytest numpy mypy matplotlib
 VIRTUAL_ENV="$venv" "$venv/bin/maturin" develop -q -m crates/python/Cargo.toml
-cargo build -q -p contopt-cli --bin contopt
+cargo build -q --workspace --bin contopt
 CONTOPT_BIN="${CARGO_TARGET_DIR:-$PWD/target}/debug/contopt" \
   "$venv/bin/python" -m pytest -q crates/python/tests "$@"
