@@ -7,6 +7,12 @@
 //! differs from the files in the book: the book cannot drift from the code. Timings are masked
 //! (`<time>`) before comparing, since they are the machine's, not the code's. The slow
 //! benchmarks are regenerated only without `--check`, in the release profile.
+//!
+//! The programs are built by one `cargo build --workspace` and run from the target folder: the
+//! whole workspace's dependency features, those `cargo test --workspace` builds with, so that the
+//! check reuses the test build's binaries. `cargo run -p contopt-cli` would resolve the features
+//! of that package alone (the Python package's pyo3 and numpy add some to syn and
+//! matrixmultiply), and the workspace would compile again from serde_derive up.
 
 mod mask;
 mod sources;
@@ -59,7 +65,7 @@ fn book(check: bool, only: Option<&str>) -> Result<usize, String> {
     let root = workspace_root()?;
     let generated = root.join(GENERATED);
     std::fs::create_dir_all(&generated).map_err(|e| format!("{}: {e}", generated.display()))?;
-    let mut drifted = 0;
+    let mut sources = Vec::new();
     for source in SOURCES.iter().filter(|s| only.is_none_or(|o| o == s.name)) {
         if check && source.slow {
             eprintln!(
@@ -74,10 +80,15 @@ fn book(check: bool, only: Option<&str>) -> Result<usize, String> {
                 continue;
             }
         }
+        sources.push(source);
+    }
+    let binaries = build(&root, &sources, !check)?;
+    let mut drifted = 0;
+    for source in sources {
         eprintln!("run  {}", source.name);
         // Relative to the workspace, so that what the command prints does not depend on it.
         let out = Path::new(SCRATCH);
-        let printed = run(&root, source, !check, out)?;
+        let printed = run(&root, &binaries, source, out)?;
         if !check {
             copy_plots(source, &root, &root.join(out))?;
         }
@@ -113,20 +124,63 @@ fn copy_plots(source: &Source, root: &Path, out: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Runs one source through cargo (release when `release`), its results folder `out` in place
-/// of `{out}` in its arguments, returning its standard output.
-fn run(root: &Path, source: &Source, release: bool, out: &Path) -> Result<String, String> {
-    let mut command = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
-    command.current_dir(root).args(["run", "--quiet"]);
-    if release {
-        command.arg("--release");
+/// Builds the programs of `sources` (release when `release`) in one `cargo build --workspace`,
+/// returning the folder they are built in.
+fn build(root: &Path, sources: &[&Source], release: bool) -> Result<PathBuf, String> {
+    let mut programs: Vec<&[&str]> = sources.iter().map(|s| s.cargo_args).collect();
+    programs.sort_unstable();
+    programs.dedup();
+    if !programs.is_empty() {
+        let mut command = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+        command
+            .current_dir(root)
+            .args(["build", "--quiet", "--workspace"]);
+        if release {
+            command.arg("--release");
+        }
+        let status = command
+            .args(programs.concat())
+            .status()
+            .map_err(|e| format!("cannot start cargo: {e}"))?;
+        if !status.success() {
+            return Err(format!(
+                "cargo build of the book's sources failed ({status})"
+            ));
+        }
     }
+    // This program runs from `<target>/debug/`: its programs are built beside it.
+    let exe = std::env::current_exe().map_err(|e| format!("where xtask runs from: {e}"))?;
+    let target = exe
+        .parent()
+        .and_then(Path::parent)
+        .ok_or_else(|| format!("{}: no target folder above it", exe.display()))?;
+    Ok(target.join(if release { "release" } else { "debug" }))
+}
+
+/// The program `source` runs, built in `binaries`: its example, or the named binary.
+fn program(binaries: &Path, source: &Source) -> Result<PathBuf, String> {
+    let file = |name: &str| format!("{name}{}", std::env::consts::EXE_SUFFIX);
+    match source.cargo_args {
+        ["--example", name] => Ok(binaries.join("examples").join(file(name))),
+        ["--bin", name] => Ok(binaries.join(file(name))),
+        other => Err(format!(
+            "{}: cargo arguments {other:?} name neither an example nor a binary",
+            source.name
+        )),
+    }
+}
+
+/// Runs one source's program from `binaries`, its results folder `out` in place of `{out}` in
+/// its arguments, returning its standard output.
+fn run(root: &Path, binaries: &Path, source: &Source, out: &Path) -> Result<String, String> {
+    let program = program(binaries, source)?;
     let out = out.to_string_lossy();
     let args = source.args.iter().map(|a| a.replace("{out}", &out));
-    command.args(source.cargo_args).arg("--").args(args);
-    let output = command
+    let output = Command::new(&program)
+        .current_dir(root)
+        .args(args)
         .output()
-        .map_err(|e| format!("{}: cannot start cargo: {e}", source.name))?;
+        .map_err(|e| format!("{}: cannot start {}: {e}", source.name, program.display()))?;
     if !output.status.success() {
         return Err(format!(
             "{} failed ({}):\n{}",

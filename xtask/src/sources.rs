@@ -14,7 +14,7 @@ pub enum Folder {
 pub struct Source {
     /// The name of its generated file, `book/src/generated/<name>.txt`.
     pub name: &'static str,
-    /// What `cargo run` runs (`--example X`, or `-p contopt-cli`).
+    /// The program it runs, as `cargo build` selects it: `--example X`, or `--bin contopt`.
     pub cargo_args: &'static [&'static str],
     /// Its arguments; `{out}` stands for a scratch results folder.
     pub args: &'static [&'static str],
@@ -51,7 +51,7 @@ const fn scene(
 ) -> Source {
     Source {
         name,
-        cargo_args: &["-p", "contopt-cli"],
+        cargo_args: &["--bin", "contopt"],
         args,
         slow,
         folder: Folder::Results,
