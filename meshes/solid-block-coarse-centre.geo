@@ -1,8 +1,8 @@
 // A steel block 4 x 4 x 2 mm (x, y in [-2, 2], z in [-2, 0]) in 10-node tetrahedra whose top
 // face is meshed coarse at its centre (0.5 mm across |x|, |y| < 0.5) and fine around it (0.1
 // mm out to |x|, |y| < 1): a face with many nodes under a grid of 24 x 24 cells of 0.07 mm
-// (1108 nodes against 576 cells) and few where a sphere presses it (25 nodes under the 196
-// cells of the centre). The case of crates/scene/tests/solids.rs where a count of the face's
+// (815 face nodes against 576 cells) and few where a sphere presses it (58 within |x|, |y| <=
+// 0.5 mm, under 196 of the cells). The case of crates/scene/tests/solids.rs where a count of the face's
 // nodes under the whole grid passes while the pressure at the centre is not determined.
 SetFactory("OpenCASCADE");
 Box(1) = {-2, -2, -2, 4, 4, 2};
