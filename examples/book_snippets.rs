@@ -51,6 +51,23 @@ fn sphere_on_grid() -> Result<()> {
         state.termination,
         1e3 * state.approach().unwrap_or(0.0)
     );
+    // ANCHOR: greens_edge
+    // The grid ends inside the contact? (None: the half-space holds it; the indenter ends with
+    // the grid along neither axis.)
+    if let Some(edge) = body.edge_reached(&state.pressure, [false, false])? {
+        eprintln!("warning: {}", edge.warning());
+    }
+    // ANCHOR_END: greens_edge
+    assert_eq!(body.edge_reached(&state.pressure, [false, false])?, None);
+    let heavier = RigidBody::pressed("indenter", body.interface(), [0.0, 0.0, 1.0], 8.0 * force)?;
+    let heavy = InterfaceProblem::new(&body, &heavier, &gap)?;
+    let cut = PolonskyKeer::new(PolonskyKeerSettings::default())?.solve(&heavy)?;
+    let edge = body.edge_reached(&cut.pressure, [false, false])?;
+    println!(
+        "{} N on the same grid: {}",
+        8.0 * force,
+        edge.map_or("inside".into(), |e| e.warning())
+    );
     Ok(())
 }
 

@@ -173,7 +173,8 @@ impl OnGrid {
                     shape: [h.ny, h.nx],
                     origin: h.origin,
                     cell: [h.dx, h.dy],
-                    cuts: [!h.periodic; 2],
+                    grid: Some(h.body.clone()),
+                    indenter_ends: [false; 2],
                 },
             });
         }
@@ -190,7 +191,8 @@ impl OnGrid {
                 shape: [d.ny, d.nx],
                 origin: d.origin,
                 cell: d.cell,
-                cuts: [false; 2],
+                grid: None,
+                indenter_ends: [false; 2],
             },
         })
     }
@@ -281,9 +283,7 @@ impl Contact {
                 ));
             }
         };
-        for (cut, end) in grid.cells.cuts.iter_mut().zip(ends) {
-            *cut &= !end;
-        }
+        grid.cells.indenter_ends = ends;
         let shape = grid.cells.shape;
         let gap = finite_array(gap_mm, "gap_mm", &shape)?;
         let surface = grid.body.interface();

@@ -707,7 +707,7 @@ mod tests {
                     max_principal: peak,
                     min_principal: peak,
                     shear_xz: peak,
-                    shear_yz: peak,
+                    shear_yz: Some(peak),
                 },
                 sections: vec![SectionField {
                     section,

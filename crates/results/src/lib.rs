@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 8;
+pub const SCHEMA_VERSION: u32 = 9;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -627,8 +627,10 @@ pub struct Peaks {
     /// Largest orthogonal shear |τ_xz| (it reverses as a contact rolls along x; a plane or
     /// axisymmetric body's in-plane shear).
     pub shear_xz: Peak,
-    /// Largest orthogonal shear |τ_yz| (rolling along y: a roller on a grid along x).
-    pub shear_yz: Peak,
+    /// Largest orthogonal shear |τ_yz| (rolling along y: a roller on a grid along x); null
+    /// where τ_yz is zero at every point evaluated (a plane or axisymmetric body has none), a
+    /// peak that is nowhere.
+    pub shear_yz: Option<Peak>,
 }
 
 /// Where a criterion is largest, and its value.
@@ -665,7 +667,7 @@ impl From<contopt_core::StressPeaks> for Peaks {
             max_principal: p.max_principal.into(),
             min_principal: p.min_principal.into(),
             shear_xz: p.shear_xz.into(),
-            shear_yz: p.shear_yz.into(),
+            shear_yz: (p.shear_yz.value != 0.0).then(|| p.shear_yz.into()),
         }
     }
 }

@@ -86,3 +86,30 @@ fn a_report_conforms_and_broken_ones_do_not() {
         );
     }
 }
+
+/// A plane or axisymmetric body's stresses have no τ_yz: its peak is null in the report, not
+/// a value of 0 at the last point searched (an axisymmetric block's bottom, 40 mm down); a
+/// grid's τ_yz keeps its value and place.
+#[test]
+fn a_shear_that_is_zero_everywhere_has_no_peak() {
+    use contopt_core::{StressPeaks, StressTensor};
+    use contopt_results::Peaks;
+    let peaks = |yz: f64| {
+        let mut peaks = StressPeaks::default();
+        for (k, depth) in [0.25, 40.0].into_iter().enumerate() {
+            let s = StressTensor {
+                zz: -1.0 - k as f64,
+                xz: 0.3,
+                yz,
+                ..Default::default()
+            };
+            peaks.record(&s, 0.0, 0.0, depth);
+        }
+        Peaks::from(peaks)
+    };
+    assert_eq!(peaks(0.0).shear_yz, None);
+    let shear = peaks(0.2).shear_yz.expect("a τ_yz peak");
+    assert_eq!((shear.value_mpa, shear.depth_mm), (0.2, 0.25));
+    let json = serde_json::to_value(peaks(0.0)).unwrap();
+    assert!(json["shear_yz"].is_null(), "{json}");
+}

@@ -59,9 +59,9 @@ pub use bearing_spec::{
     BearingLoadSpec, BearingObjective, BearingSpec, RacewaySpec, FREE_END_WEIGHT,
 };
 pub use bodies::{
-    misplaced, own_surface, BodyKind, Direction, FeBase, FeBlock, FeMesh, FePunch, FreeEndsSpec,
-    GroupLoad, GroupSupport, HalfSpaceBody, Placement, PunchLoad, Rigid, Side, Solid, SolidAxis,
-    SolidLoad, SolidSupport, Support, Takes, WinklerBed,
+    misplaced, own_surface, BodyKind, Carried, Direction, FeBase, FeBlock, FeMesh, FePunch,
+    FreeEndsSpec, GroupLoad, GroupSupport, HalfSpaceBody, Placement, PunchLoad, Rigid, Side, Solid,
+    SolidAxis, SolidLoad, SolidSupport, Support, Takes, WinklerBed,
 };
 pub use build::Built;
 pub use bundled::{Bundled, BUNDLED};

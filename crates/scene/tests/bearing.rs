@@ -255,7 +255,11 @@ fn the_bundled_bearing_on_a_coarse_grid() {
         report.warnings
     );
     let sub = report.subsurface.as_ref().unwrap();
-    let shear = sub.bodies[0].peaks.shear_yz.value_mpa;
+    let shear = sub.bodies[0]
+        .peaks
+        .shear_yz
+        .expect("a roller's τ_yz")
+        .value_mpa;
     assert!(
         (shear / (0.25 * worst) - 1.0).abs() < 0.08,
         "{shear} vs {worst}"

@@ -3376,8 +3376,10 @@ fn subsurface_numbers(r: &CaseReport, out: &mut Vec<(String, f64)>) {
             ("max_principal", p.max_principal),
             ("min_principal", p.min_principal),
             ("shear_xz", p.shear_xz),
-            ("shear_yz", p.shear_yz),
-        ] {
+        ]
+        .into_iter()
+        .chain(p.shear_yz.map(|q| ("shear_yz", q)))
+        {
             for v in [peak.value_mpa, peak.x_mm, peak.y_mm, peak.depth_mm] {
                 out.push((format!("subsurface.peaks.{name}"), v));
             }

@@ -41,24 +41,81 @@ fn the_bundled_sphere_on_a_solid_block_against_hertz() {
 /// A rigid sphere on the block: its 24 × 24 cells of 0.07 mm lie on faces with 225 nodes, so
 /// the block's influence among them is singular and, the sphere adding no compliance, the
 /// pressure is not determined (solved anyway, p_max was 10 105 MPa against Hertz's 3 104):
-/// refused at the block with both counts. 12 × 12 cells of 0.14 mm (144 ≤ 225) are read.
+/// refused at the block, 351 = 576 − 225 of the points dependent. 12 × 12 cells of 0.14 mm
+/// (144 ≤ 225 in all) are refused too: 7 of them repeat others where the faces widen towards
+/// the grid's edge (a count over the whole face passed them, and their solve was within 1 %,
+/// the contact inside the faces of 0.16 mm); 8 × 8 cells of 0.21 mm are read.
 #[test]
 fn a_rigid_partner_on_cells_finer_than_the_faces_is_refused() {
     let rigid = [("body.1", Some("{ kind = \"rigid\", name = \"sphere\" }"))];
     let message = scene(&rigid).expect_err("undetermined").to_string();
     assert!(
         message.contains(" body[0]: ")
-            && message.contains("576 points have 225 nodes")
+            && message.contains("351 of the zone's 576 points")
+            && message.contains("rank 225")
             && message.contains("not determined"),
         "{message}"
     );
-    let coarser = [
-        ("contact.zone.cells", Some("[12, 12]")),
-        ("contact.zone.cell_mm", Some("[0.14, 0.14]")),
-    ];
-    scene(&[rigid.as_slice(), coarser.as_slice()].concat()).unwrap();
+    let cells = |n: &'static str, mm: &'static str| {
+        let mut edits = rigid.to_vec();
+        edits.extend([
+            ("contact.zone.cells", Some(n)),
+            ("contact.zone.cell_mm", Some(mm)),
+        ]);
+        scene(&edits)
+    };
+    let message = cells("[12, 12]", "[0.14, 0.14]").expect_err("undetermined");
+    assert!(
+        message.to_string().contains("7 of the zone's 144 points"),
+        "{message}"
+    );
+    cells("[8, 8]", "[0.21, 0.21]").unwrap();
     // The half-space sphere adds its own compliance: the bundled 576 cells are read.
     scene(&[]).unwrap();
+}
+
+/// A block meshed fine around the contact and coarse under it
+/// (meshes/solid-block-coarse-centre.geo: 0.5 mm faces within |x|, |y| < 0.5 mm, 0.1 mm around
+/// them) has more face nodes under the 24 × 24 cells than cells (815 against 576), so a count
+/// over the whole grid passed it; against a rigid sphere its influence is singular under the
+/// sphere, and Polonsky–Keer "converged" to p_max 22 250 MPa against Hertz's 1 955 (500 N,
+/// R = 25 mm). Refused at the block: 98 points dependent, all within a cell of the coarse
+/// faces' ±0.5 mm (the grid reaches ±0.84 mm); on 3 × 3 cells of 0.3 mm there, no finer than
+/// the faces, every point is its own.
+#[test]
+fn a_face_coarse_only_under_the_contact_is_refused_there() {
+    let block = [
+        ("contact.load", Some("{ force_n = 500.0 }")),
+        (
+            "body.0.mesh",
+            Some("\"../meshes/solid-block-coarse-centre.msh\""),
+        ),
+        ("body.0.extent_mm", Some("[4.0, 4.0, 2.0]")),
+        ("body.1", Some("{ kind = \"rigid\", name = \"sphere\" }")),
+    ];
+    let message = scene(&block).expect_err("undetermined").to_string();
+    let centred = message
+        .split("centred in x ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("{message}"));
+    let bounds: Vec<f64> = (centred.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-')))
+        .filter_map(|w| w.parse().ok())
+        .take(4)
+        .collect();
+    assert!(
+        message.contains(" body[0]: ")
+            && message.contains("of the zone's 576 points")
+            && message.contains("not determined")
+            && bounds.len() == 4
+            && message.contains("98 of the zone's 576 points")
+            && bounds.iter().all(|b| b.abs() < 0.5 + 0.07),
+        "{bounds:?}: {message}"
+    );
+    let coarse = [
+        ("contact.zone.cells", Some("[3, 3]")),
+        ("contact.zone.cell_mm", Some("[0.3, 0.3]")),
+    ];
+    scene(&[block.as_slice(), coarse.as_slice()].concat()).unwrap();
 }
 
 /// Edits of a scene: dotted keys and their TOML values.

@@ -12,6 +12,7 @@ mod fill;
 mod mesh;
 mod model;
 mod precondition;
+mod rank;
 mod sample;
 mod system;
 
@@ -20,4 +21,5 @@ pub use element::{FaceKind, SolidKind, MAX_FACE_NODES, MAX_SOLID_NODES};
 pub use mesh::{element_fault, ElementFault, FacePoint, SolidFace, SolidMesh};
 pub use model::{Axis, SolidModel};
 pub use precondition::PRECONDITIONED_POINTS;
+pub use rank::{dependent_samples, DEPENDENT};
 pub use sample::{Cell, SolidSample, SubSample, MAX_SUB_PARTS, SUB_PARTS_PER_FACE};

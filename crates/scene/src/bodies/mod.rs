@@ -38,6 +38,22 @@ pub use rigid::Rigid;
 pub use solid::{Solid, SolidAxis, SolidLoad, SolidSupport};
 pub use winkler::WinklerBed;
 
+/// The pressures a body carries over the zone's points ([`BodyKind::carried_pressures`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Carried {
+    /// The points whose read-out is a combination of the points' before them (in the zone's
+    /// order): the rank of the body's influence is the points' count less theirs. Empty when
+    /// every point carries its own pressure.
+    pub dependent: Vec<usize>,
+    /// The box of the dependent points' centres, [low, high] (x, y) \[mm\] (empty, low
+    /// above high, when none are).
+    pub region_mm: [[f64; 2]; 2],
+    /// The zone's points whose centres lie in that box (none when it is empty).
+    pub region_points: usize,
+    /// The face nodes those points are read from.
+    pub region_nodes: usize,
+}
+
 /// Which side of the zone a body is on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Side {
@@ -150,13 +166,14 @@ pub trait BodyKind: Send + Sync {
         None
     }
 
-    /// How many independent pressures it can carry over the zone's points, where that is fewer
-    /// than the points: a body read as means over its faces (a solid on cells finer than its
-    /// faces, [`SolidBody`](contopt_fem::solid::SolidBody)) has an influence of rank at most
-    /// its faces' node count, singular beyond it, and against a rigid partner the pressure is
-    /// then not determined. `None` (the default): one per point. Checked without building
-    /// anything.
-    fn carried_pressures(&self, _at: &Placement) -> Option<Result<usize>> {
+    /// Which of the zone's points carry no pressure of their own: a body read as means over
+    /// its faces (a solid, [`SolidBody`](contopt_fem::solid::SolidBody)) has the influence
+    /// C = S K⁻¹ Sᵀ, S the points' read-out of its face nodes, singular wherever the points'
+    /// rows of S are dependent (cells finer than the faces under them, anywhere on the face),
+    /// and against a rigid partner the pressure there is then not determined. `None` (the
+    /// default): a body whose influence is definite, every point its own. Checked without
+    /// building anything.
+    fn carried_pressures(&self, _at: &Placement) -> Option<Result<Carried>> {
         None
     }
 

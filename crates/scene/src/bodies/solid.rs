@@ -19,13 +19,14 @@
 
 use contopt_core::{check, memory, ElasticBody, Error, Interface, Material, Result};
 use contopt_fem::solid::{
-    Axis, Cell, SolidBody, SolidFace, SolidModel, SolidSample, SolidSettings, DENSE_POINTS,
+    dependent_samples, Axis, Cell, SolidBody, SolidFace, SolidModel, SolidSample, SolidSettings,
+    DENSE_POINTS,
 };
 use contopt_gmsh::ImportedSolid;
 use serde::{Deserialize, Serialize};
 
 use super::held::{self, Holding};
-use super::{misplaced, BodyKind, Placement, Side, Takes};
+use super::{misplaced, BodyKind, Carried, Placement, Side, Takes};
 use crate::chosen::Chosen;
 use crate::mesh_surface::FreeMotion;
 use crate::meshes::MeshFiles;
@@ -444,19 +445,38 @@ impl BodyKind for Solid {
         })
     }
 
-    /// The nodes of the contact faces its cells' sub-points meet: a cell's mean normal
-    /// displacement (the faces flat on the grid's plane) is a sum over their normal
-    /// displacements, so the influence among the cells has rank at most their count.
-    fn carried_pressures(&self, at: &Placement) -> Option<Result<usize>> {
-        let nodes = || -> Result<usize> {
+    /// The cells whose means of the contact faces' normal displacement (the faces flat on the
+    /// grid's plane) are combinations of other cells' ([`dependent_samples`]: the rank of the
+    /// read-out S, and so of the influence S K⁻¹ Sᵀ among the cells), with the box they lie
+    /// in and the cells and face nodes there.
+    fn carried_pressures(&self, at: &Placement) -> Option<Result<Carried>> {
+        let carried = || -> Result<Carried> {
             let solid = self.imported(at.meshes)?;
             let samples = self.samples(at, &solid)?;
-            let faces: Vec<SolidFace> = (samples.iter())
+            let dependent = dependent_samples(&solid.mesh, &samples);
+            let [lo, hi] = (dependent.iter().map(|&i| samples[i].point)).fold(
+                [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]],
+                |[lo, hi], p| {
+                    [
+                        [lo[0].min(p[0]), lo[1].min(p[1])],
+                        [hi[0].max(p[0]), hi[1].max(p[1])],
+                    ]
+                },
+            );
+            let region: Vec<&SolidSample> = (samples.iter())
+                .filter(|s| (0..2).all(|c| s.point[c] >= lo[c] && s.point[c] <= hi[c]))
+                .collect();
+            let faces: Vec<SolidFace> = (region.iter())
                 .flat_map(|s| s.parts.iter().map(|p| p.face))
                 .collect();
-            Ok(solid.mesh.nodes_of(&faces).len())
+            Ok(Carried {
+                dependent,
+                region_mm: [lo, hi],
+                region_points: region.len(),
+                region_nodes: solid.mesh.nodes_of(&faces).len(),
+            })
         };
-        Some(nodes())
+        Some(carried())
     }
 
     fn owns_surface(&self) -> bool {

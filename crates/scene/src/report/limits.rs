@@ -7,6 +7,7 @@
 
 use contopt_contact::InterfaceProblem;
 use contopt_core::stress::peak_index;
+use contopt_greens::CARRIES;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
 use super::edge::{line_through, points_per_cell, sharp_edge};
@@ -17,10 +18,6 @@ use crate::{Case, Hertz};
 /// Cells across the contact's half-width below which its peak is not resolved (a Hertz
 /// pressure on 8 cells per half-width is within about 1 % of its peak).
 pub const MIN_CELLS_ACROSS: f64 = 8.0;
-
-/// A point carries pressure when it holds more than this fraction of p_max (round-off of
-/// the solvers' exact zeros).
-const CARRIES: f64 = 1e-6;
 
 /// A zone must reach this many Hertz half-widths to hold the contact with a margin.
 const HERTZ_MARGIN: f64 = 1.25;
@@ -177,7 +174,10 @@ fn untouched(case: &Case) -> String {
 }
 
 /// The first edge of the zone where the contact carries pressure and the gap goes on beyond
-/// it, as a limit with the size the zone needs.
+/// it, as a limit with the size the zone needs: on every layout, each edge point's gap asked
+/// whether it goes on (a library user's bare grid has
+/// [`HalfSpace::edge_reached`](contopt_greens::HalfSpace::edge_reached), its indenter's ends
+/// given by axis).
 fn edge_reached(
     case: &Case,
     points: &[[f64; 3]],
