@@ -96,8 +96,9 @@ impl std::fmt::Debug for Convolution {
 
 impl Convolution {
     /// Plans the transforms of a `px` × `py` grid holding an `nx` × `ny` field, read `reach`
-    /// columns beyond it each side.
-    fn plan(nx: usize, ny: usize, [px, py]: [usize; 2], reach: usize) -> Self {
+    /// columns beyond it each side; with a set of work buffers when `work`, else the first
+    /// product that finds none free makes one ([`Spares::with`]).
+    fn plan(nx: usize, ny: usize, [px, py]: [usize; 2], reach: usize, work: bool) -> Self {
         let Plans {
             r2c,
             c2r,
@@ -119,7 +120,9 @@ impl Convolution {
             scratch: scratch_len,
             work: Spares::default(),
         };
-        conv.work = Spares::new(conv.new_work());
+        if work {
+            conv.work = Spares::new(conv.new_work());
+        }
         conv
     }
 
@@ -159,8 +162,12 @@ impl Convolution {
     /// of the padded grid's transforms. Measured on the flat punch (`halfspace_peers --one-row
     /// punch N`, CPU): 14, 16, 17 steps at 256², 1024², 2048² against 13, 15, 17 with the
     /// padded circulant's inverse, 0.47 against 0.53 s at 1024², 2.28 against 2.52 s at 2048².
+    ///
+    /// It holds no work buffers of its own: its products borrow a lender's
+    /// ([`Convolution::apply_inverse_in`]), so that it adds only its spectrum, a quarter of
+    /// the field's values, to the grid's memory.
     pub fn folded(nx: usize, ny: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
-        Self::padded(nx, ny, [fast_length(nx), fast_length(ny)], 0, kernel)
+        Self::padded_with(nx, ny, [fast_length(nx), fast_length(ny)], 0, false, kernel)
     }
 
     /// The padded lengths of [`Convolution::free_fast`]: [`fast_length`] of 2nx and of 2ny.
@@ -209,19 +216,28 @@ impl Convolution {
         reach: usize,
         kernel: impl Fn(usize, usize) -> f64,
     ) -> Self {
-        let mut conv = Self::plan(nx, ny, [px, py], reach);
+        Self::padded_with(nx, ny, [px, py], reach, true, kernel)
+    }
+
+    /// [`Convolution::padded`], with a set of work buffers of its own when `work`.
+    fn padded_with(
+        nx: usize,
+        ny: usize,
+        [px, py]: [usize; 2],
+        reach: usize,
+        work: bool,
+        kernel: impl Fn(usize, usize) -> f64,
+    ) -> Self {
+        let mut conv = Self::plan(nx, ny, [px, py], reach, work);
         let distance = |i: usize, period: usize| i.min(period - i);
-        // The padded kernel fills all py rows: transform it whole, once.
+        // The padded kernel fills all py rows, row py − j the same as row j: its rows up to
+        // py/2 transformed along x, once; the columns read the others' mirror images.
         let cx = px / 2 + 1;
         let hy = py / 2 + 1;
-        let mut spectra = vec![Complex::new(0.0, 0.0); cx * py];
-        let Work {
-            mut row,
-            mut block,
-            mut scratch,
-            ..
-        } = conv.new_work();
-        for j in 0..py {
+        let mut spectra = vec![Complex::new(0.0, 0.0); cx * hy];
+        let (mut row, mut block) = (vec![0.0; px], vec![Complex::new(0.0, 0.0); py]);
+        let mut scratch = vec![Complex::new(0.0, 0.0); conv.scratch];
+        for j in 0..hy {
             for (i, v) in row.iter_mut().enumerate() {
                 *v = kernel(distance(i, px), distance(j, py));
             }
@@ -230,10 +246,10 @@ impl Convolution {
                 .expect("buffer lengths match the plan");
         }
         let mut spectrum = vec![0.0; cx * hy];
-        let column = &mut block[..py];
+        let column = &mut block[..];
         for i in 0..cx {
             for (j, c) in column.iter_mut().enumerate() {
-                *c = spectra[j * cx + i];
+                *c = spectra[distance(j, py) * cx + i];
             }
             conv.forward_y.process_with_scratch(column, &mut scratch);
             for (s, c) in spectrum[i * hy..(i + 1) * hy].iter_mut().zip(column.iter()) {
@@ -247,7 +263,7 @@ impl Convolution {
     /// The periodic (circular) convolution on the nx × ny grid whose spectrum at the signed
     /// frequency indices (i, j) is `spectrum(i, j)` (even in each index).
     pub fn periodic(nx: usize, ny: usize, spectrum: impl Fn(isize, isize) -> f64) -> Self {
-        let mut conv = Self::plan(nx, ny, [nx, ny], 0);
+        let mut conv = Self::plan(nx, ny, [nx, ny], 0, true);
         let signed = |k: usize, n: usize| {
             if 2 * k <= n {
                 k as isize
@@ -278,7 +294,25 @@ impl Convolution {
     /// The circulant approximate inverse: output = kernel⁻¹ ∗ input, for preconditioning
     /// (modes the kernel does not resist, such as the mean of a periodic grid, are dropped).
     pub fn apply_inverse(&self, input: &[f64], output: &mut [f64]) {
-        self.convolve(|s| if s > 0.0 { 1.0 / s } else { 0.0 }, input, output);
+        self.convolve(inverse, input, output);
+    }
+
+    /// [`Convolution::apply_inverse`] in the work buffers of `lender`, a convolution of the
+    /// same field whose transforms are at least as long (a grid's padded product lending to
+    /// its [`Convolution::folded`] preconditioner); in buffers of its own otherwise.
+    pub fn apply_inverse_in(&self, lender: &Convolution, input: &[f64], output: &mut [f64]) {
+        let fits = (self.nx, self.ny) == (lender.nx, lender.ny)
+            && self.px <= lender.px
+            && self.py <= lender.py
+            && self.scratch <= lender.scratch;
+        if fits {
+            lender.work.with(
+                || lender.new_work(),
+                |work| self.convolve_on(work, inverse, input, output),
+            );
+        } else {
+            self.apply_inverse(input, output);
+        }
     }
 
     fn convolve(&self, multiplier: impl Fn(f64) -> f64, input: &[f64], output: &mut [f64]) {
@@ -298,12 +332,12 @@ impl Convolution {
     ) {
         let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
         let (cx, hy) = (px / 2 + 1, py / 2 + 1);
-        let Work {
-            row,
-            rows,
-            block,
-            scratch,
-        } = work;
+        // A lender's buffers may be longer ([`Convolution::apply_inverse_in`]): each is cut to
+        // this grid's lengths.
+        let row = &mut work.row[..px];
+        let rows = &mut work.rows[..cx * ny];
+        let block = &mut work.block[..BLOCK * py];
+        let scratch = &mut work.scratch[..self.scratch];
         for (j, spectrum) in rows.chunks_exact_mut(cx).enumerate() {
             row[..nx].copy_from_slice(&input[j * nx..(j + 1) * nx]);
             row[nx..].fill(0.0);
@@ -360,6 +394,16 @@ impl Convolution {
                 *o = r * scale;
             }
         }
+    }
+}
+
+/// The circulant inverse's multiplier of a spectrum value: its reciprocal where positive,
+/// 0 for modes the kernel does not resist (the mean of a periodic grid).
+fn inverse(s: f64) -> f64 {
+    if s > 0.0 {
+        1.0 / s
+    } else {
+        0.0
     }
 }
 

@@ -521,7 +521,7 @@ impl ElasticBody for HalfSpace {
             let kernel = &self.kernel;
             self.folded
                 .get_or_init(|| Convolution::folded(self.nx, self.ny, |i, j| kernel[(i, j)]))
-                .apply_inverse(displacement, force);
+                .apply_inverse_in(&self.convolution, displacement, force);
         }
         true
     }
