@@ -77,14 +77,15 @@ pub(crate) fn fill(report: &mut CaseReport, case: &Case, problem: &InterfaceProb
 /// face (10⁻⁶ to 10⁻³ µm), its load on the other two, near twice the field there (a rigid
 /// cylinder on a plane-stress block: p_max 1303 MPa against Hertz's 731, as converged). There
 /// the pressure is read as the faces' field ([`InterfaceProblem::recovered_pressure`]: the
-/// same nodal forces, the least Σ wᵢpᵢ² of them, the paper's C⁰ field of eq. 2.9), clipped at
-/// zero where the fit dips below it at a contact's edge. Otherwise, as the design left it.
+/// same nodal forces, the least Σ wᵢpᵢ² of them, the paper's C⁰ field of eq. 2.9), as it is:
+/// at a contact's edge it may dip a little below zero (clipped, it would no longer carry the
+/// nodal forces, by 1 % of p_max on Table 2). Otherwise, as the design left it.
 fn shown_pressure(case: &Case, problem: &InterfaceProblem, pressure: &[f64]) -> Vec<f64> {
     let zone = &case.spec.contact.zone;
     let free = matches!(case.plan.layout, Layout::Faces(_))
         && (case.spec.body.iter()).all(|b| b.owns_surface() || b.compliance(zone) == Some(0.0));
     match free.then(|| problem.recovered_pressure(pressure)) {
-        Some(Ok(field)) => field.into_iter().map(|p| p.max(0.0)).collect(),
+        Some(Ok(field)) => field,
         _ => pressure.to_vec(),
     }
 }
