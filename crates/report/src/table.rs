@@ -270,34 +270,29 @@ fn roller_table(report: &Report) -> String {
 
 /// The table of a roller envelope: per case, p_max under each load and tilt (`*` marks edge
 /// loading) and the worst; the tuned profiles' parameters below. Empty without an envelope.
+/// A case whose envelope differs from the heading above it (other load factors or tilts, or
+/// another number of them) gets a heading of its own, so that each figure stands under its
+/// own load and tilt.
 fn envelope_table(report: &Report, width: usize) -> String {
-    let Some(first) = report
-        .cases
-        .iter()
-        .filter_map(|c| c.roller.as_ref())
-        .find(|r| !r.envelope.is_empty())
-    else {
-        return String::new();
-    };
-    let nominal = first.envelope[0].load_n;
-    let mut s = format!(
-        "\np_max MPa over the envelope (* edge loading)\n{:<width$}",
-        "case"
-    );
-    for e in &first.envelope {
-        let head = format!(
-            "{}Q {:+.0}′",
-            load_factor(e.load_n / nominal),
-            e.tilt_arcmin
-        );
-        let _ = write!(s, " {head:>10}");
-    }
-    let _ = writeln!(s, " {:>10}", "worst");
+    let mut s = String::new();
+    let mut heading: Option<Vec<String>> = None;
     let mut tuned = String::new();
     for c in &report.cases {
         let Some(r) = c.roller.as_ref().filter(|r| !r.envelope.is_empty()) else {
             continue;
         };
+        let heads = envelope_heads(r);
+        if heading.as_ref() != Some(&heads) {
+            if heading.is_none() {
+                s += "\np_max MPa over the envelope (* edge loading)\n";
+            }
+            let _ = write!(s, "{:<width$}", "case");
+            for head in &heads {
+                let _ = write!(s, " {head:>10}");
+            }
+            let _ = writeln!(s, " {:>10}", "worst");
+            heading = Some(heads);
+        }
         let _ = write!(s, "{:<width$}", c.label);
         for e in &r.envelope {
             let mark = if e.edge_loading { "*" } else { " " };
@@ -310,6 +305,21 @@ fn envelope_table(report: &Report, width: usize) -> String {
         }
     }
     s + &tuned
+}
+
+/// The column headings of a case's envelope: each load as a multiple of the case's own (its
+/// first) and its tilt.
+fn envelope_heads(r: &contopt_results::RollerReport) -> Vec<String> {
+    let nominal = r.envelope[0].load_n;
+    (r.envelope.iter())
+        .map(|e| {
+            format!(
+                "{}Q {:+.0}′",
+                load_factor(e.load_n / nominal),
+                e.tilt_arcmin
+            )
+        })
+        .collect()
 }
 
 /// A tuned crown's parameters: Fujiwara–Kawase's K1, K2 and z_m, or a circular crown's
@@ -600,6 +610,90 @@ mod tests {
             lines[envelope + 3],
             "ISO/TS 16281: K1 = 1.1000, K2 = 0.5000, z_m = 7.2500 µm (40 crowns searched)"
         );
+    }
+
+    /// Cases whose envelopes differ (a case that sets its own `[envelope]`, or another
+    /// load's factors) each get their envelope's heading: a case of one load under a heading
+    /// of two put its worst under the second load's column (`1.0Q +0′  0.05Q +0′` over
+    /// `455.4  455.4`, the second the worst), and a case of other loads under another case's
+    /// factors.
+    #[test]
+    fn each_envelope_has_its_own_heading() {
+        let envelope = |load_n: f64, p_max_mpa: f64| EnvelopeCase {
+            load_n,
+            tilt_arcmin: 0.0,
+            p_max_mpa,
+            p_max_at_mm: [0.0, 0.0],
+            edge_loading: false,
+            approach_um: 5.0,
+            cells_across: 20.0,
+            centre_line: vec![],
+        };
+        let roller = |label: &str, envelope: Vec<EnvelopeCase>| {
+            let mut c = case(label, Some(envelope[0].p_max_mpa));
+            let worst = envelope.iter().map(|e| e.p_max_mpa).fold(0.0, f64::max);
+            c.roller = Some(RollerReport {
+                p_max_at_mm: [0.0, 0.0],
+                edge_loading: false,
+                half_width_mm: [0.1, 0.1],
+                crown_drop_end_um: 1.0,
+                envelope,
+                worst_p_max_mpa: Some(worst),
+                tuned: None,
+            });
+            c
+        };
+        let text = table(&report(vec![
+            roller(
+                "two",
+                vec![envelope(8000.0, 2104.4), envelope(400.0, 607.1)],
+            ),
+            roller("alone", vec![envelope(400.0, 455.4)]),
+            roller(
+                "three",
+                vec![
+                    envelope(400.0, 455.4),
+                    envelope(200.0, 300.0),
+                    envelope(600.0, 520.0),
+                ],
+            ),
+            roller(
+                "two again",
+                vec![envelope(4000.0, 1500.0), envelope(200.0, 400.0)],
+            ),
+        ]));
+        let lines: Vec<&str> = text
+            .lines()
+            .skip_while(|l| !l.starts_with("p_max MPa over the envelope"))
+            .collect();
+        let at = |label: &str| lines.iter().position(|l| l.starts_with(label)).unwrap();
+        let heading = |row: usize| {
+            let above = lines[..row].iter().rev().find(|l| l.starts_with("case"));
+            above
+                .unwrap()
+                .split_whitespace()
+                .skip(1)
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let last = at("two again");
+        assert_eq!(heading(at("two ")), "1.0Q +0′ 0.05Q +0′ worst", "{text}");
+        assert_eq!(heading(at("alone")), "1.0Q +0′ worst", "{text}");
+        assert_eq!(
+            heading(at("three")),
+            "1.0Q +0′ 0.5Q +0′ 1.5Q +0′ worst",
+            "{text}"
+        );
+        assert_eq!(heading(last), "1.0Q +0′ 0.05Q +0′ worst", "{text}");
+        // Every figure of a row stands under its heading's column.
+        for row in [at("two "), at("alone"), at("three"), last] {
+            let head = lines[..row]
+                .iter()
+                .rev()
+                .find(|l| l.starts_with("case"))
+                .unwrap();
+            assert_eq!(head.chars().count(), lines[row].chars().count(), "{text}");
+        }
     }
 
     /// The largest stresses below the surface by case and body, in MPa and mm.

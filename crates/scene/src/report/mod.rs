@@ -61,7 +61,7 @@ pub(crate) fn complete(report: &mut CaseReport, found: Found) -> Result<(), Scen
         None => problem,
     };
     let rigid = designed.rigid.clone();
-    figures::fill(report, &problem, designed);
+    figures::fill(report, case, &problem, designed);
     limits::judge(report, case, &problem);
     below_surface(report, case, built).map_err(|e| at.library("output.subsurface", e))?;
     if own_contact {
