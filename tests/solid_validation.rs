@@ -79,6 +79,40 @@ fn rigid_plate_on_a_column_is_uniform() {
     }
 }
 
+/// Below the column's surface under the rigid plate (`ElasticBody::subsurface`, the peaks
+/// over the nodes): uniaxial strain, σ_zz = −p and σ_xx = σ_yy = −νp/(1 − ν) everywhere, so
+/// von Mises p(1 − 2ν)/(1 − ν), Tresca half of it, σ₁ = −νp/(1 − ν) and σ₃ = −p at every
+/// node, to round-off; each element kind. (A solid used to answer none, and a scene's
+/// `[output.subsurface]` printed an empty table for it.)
+#[test]
+fn column_under_a_plate_below_the_surface() {
+    let (force, nu) = (1600.0, 0.3);
+    let p = force / 16.0;
+    let lateral = -nu * p / (1.0 - nu);
+    for kind in SolidKind::ALL {
+        let block = column(kind, SolidSettings::default());
+        let plate = RigidBody::pressed("plate", block.interface(), [0.0, 0.0, 1.0], force).unwrap();
+        let gap = vec![0.0; block.interface().len()];
+        let st = solve(&InterfaceProblem::new(&block, &plate, &gap).unwrap());
+        let found = block
+            .subsurface(&st.pressure, &SubsurfaceRequest::default())
+            .unwrap()
+            .unwrap_or_else(|| panic!("{kind:?}: no stresses below the surface"));
+        let peaks = found.peaks;
+        for (name, got, want) in [
+            ("von Mises", peaks.von_mises.value, lateral + p),
+            ("Tresca", peaks.tresca.value, 0.5 * (lateral + p)),
+            ("σ1", peaks.max_principal.value, lateral),
+            ("σ3", peaks.min_principal.value, -p),
+        ] {
+            assert!(
+                (got / want - 1.0).abs() < 1e-8,
+                "{kind:?} {name}: {got} vs {want}"
+            );
+        }
+    }
+}
+
 /// The dense influence and the products through the factorisation are one operator (to
 /// round-off), and the solid's rigid mode is found: a block floating along z.
 #[test]
@@ -129,7 +163,9 @@ fn orderings_give_one_operator() {
 /// cell for cell. Against Hertz with E* of the pair: p₀ within 3 % (measured +1.07 %, the
 /// cells' means read at Gauss points on their parts; a midpoint rule six times as fine gives
 /// +1.02 %, the midpoint rule of earlier versions −0.65 %, the cells' centres −1.3 %) and the
-/// load from the pressures exact (the block is 16a wide and 8a deep, finite).
+/// load from the pressures exact (the block is 16a wide and 8a deep, finite); below the
+/// surface, the block's von Mises peak over its nodes within 3 % of Hertz's 0.62 p₀, at the
+/// node nearest 0.48a.
 #[test]
 fn half_space_sphere_on_a_solid_block() {
     let (a, radius) = (1.0, 50.0);
@@ -174,6 +210,22 @@ fn half_space_sphere_on_a_solid_block() {
     );
     assert!((load / force - 1.0).abs() < 1e-9);
     assert!((p0 / hertz.peak_pressure(a) - 1.0).abs() < 0.03);
+    let below = block
+        .subsurface(&st.pressure, &SubsurfaceRequest::default())
+        .unwrap()
+        .unwrap();
+    // Hertz's largest von Mises stress, 0.62 p₀ at 0.48a on the axis (ν = 0.3; Johnson §3.4),
+    // at the block's nodes (measured 0.620 p₀ at 0.41a, the node nearest 0.48a: the nodes lie
+    // 0.21a, 0.40a and 0.65a deep there).
+    let mises = below.peaks.von_mises;
+    let p0 = hertz.peak_pressure(a);
+    println!(
+        "von Mises {} p0 at depth {} a",
+        mises.value / p0,
+        mises.depth / a
+    );
+    assert!((mises.value / (0.62 * p0) - 1.0).abs() < 0.03, "{mises:?}");
+    assert!((mises.depth / a - 0.48).abs() < 0.15, "{mises:?}");
 }
 
 /// Hertz's sphere on a block, both solids meshed apart in Gmsh (the bundled

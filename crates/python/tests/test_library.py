@@ -74,6 +74,36 @@ def test_a_contact_cut_by_the_grid_edge_is_said():
     assert repeated.warnings == []
 
 
+def test_a_contact_on_too_few_cells_is_said():
+    # a = 1 mm over cells of 0.5 mm (2 per radius): p_max 4 % below Hertz's p0, said with
+    # the direction and the cell size that resolves it.
+    body, gap, force = hertz(n=8)
+    with pytest.warns(RuntimeWarning, match="spans 2.0 cells, fewer than 8"):
+        coarse = contopt.Solver().solve(contopt.Contact(body, gap, force_n=force))
+    assert len(coarse.warnings) == 1 and "cells of at most 0.1250 mm" in coarse.warnings[0]
+    p0 = 3 * force / (2 * math.pi)
+    assert coarse.p_max_mpa < 0.97 * p0
+    # 8 cells per radius: nothing said.
+    body, gap, force = hertz(n=32)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fine = contopt.Solver().solve(contopt.Contact(body, gap, force_n=force))
+    assert fine.warnings == []
+    # A roller as long as the grid touches all along it: only the width across is counted.
+    roller = contopt.HalfSpace(nx=8, ny=64, dx_mm=0.5, dy_mm=0.005, e_mpa=E, nu=NU)
+    line = contopt.Contact(roller, roller.y_mm**2 / 10.0, force_n=400.0, indenter_ends="x")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert contopt.Solver().solve(line).warnings == []
+
+
+def test_bodies_that_do_not_touch_are_said():
+    body, gap, _ = hertz(n=32)
+    with pytest.warns(RuntimeWarning, match="no cell carries pressure"):
+        apart = contopt.Solver().solve(contopt.Contact(body, gap, approach_mm=-1e-3))
+    assert apart.p_max_mpa == 0 and len(apart.warnings) == 1
+
+
 def test_equilibrium_units_and_shapes():
     nx, ny, dx, dy = 48, 32, 0.05, 0.04
     body = contopt.HalfSpace(nx=nx, ny=ny, dx_mm=dx, dy_mm=dy, e_mpa=E, nu=NU)

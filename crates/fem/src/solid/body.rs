@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use contopt_core::{
     check, memory, BodyFields, ElasticBody, Error, GapShape, Geometry, Interface, Result,
-    RigidMode, Spares,
+    RigidMode, Spares, Subsurface, SubsurfaceRequest,
 };
 
 use faer::Mat;
@@ -463,6 +463,17 @@ impl ElasticBody for SolidBody {
 
     fn rigid_modes(&self) -> &[RigidMode] {
         &self.rigid_modes
+    }
+
+    /// The peaks of each criterion over every node of the mesh under `pressure` and the
+    /// body's given loads ([`SolidBody::nodal_subsurface`]); the request's depths and sections
+    /// do not apply to a mesh, which has its own points below the surface.
+    fn subsurface(
+        &self,
+        pressure: &[f64],
+        _request: &SubsurfaceRequest,
+    ) -> Result<Option<Subsurface>> {
+        self.nodal_subsurface(pressure).map(Some)
     }
 
     /// The mesh, the nodal displacements and the nodal stresses, for ParaView
