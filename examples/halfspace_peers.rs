@@ -144,8 +144,9 @@ const PAIR_RUNS: usize = 5;
 /// The fastest of at least [`PAIR_RUNS`] influence products on the whole grid in wall time, and
 /// their mean CPU time over at least [`PAIR_CPU`] \[s\]: one padded FFT
 /// pair (forward and inverse over the 2N × 2N grid) with the spectrum's product, the unit of a
-/// Polonsky–Keer step (which applies three such on its part of the grid: the residual's
-/// product, the preconditioner and the direction's product).
+/// Polonsky–Keer step (which applies on its part of the grid the direction's product, the
+/// preconditioner over the part's own, unpadded grid, and the residual's product only after a
+/// step that changed the contact set).
 fn fft_pair_seconds(body: &HalfSpace) -> [f64; 2] {
     let n = body.interface().len();
     let force: Vec<f64> = (0..n).map(|i| (i % 7) as f64).collect();
