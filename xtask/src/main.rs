@@ -42,11 +42,32 @@ fn main() -> ExitCode {
         eprintln!("unknown task {task:?}; the one task is `book`");
         return ExitCode::from(2);
     }
-    let check = rest.iter().any(|a| a == "--check");
-    let only = rest
+    // An unknown flag is refused, not ignored: `cargo xtask book --help` would otherwise
+    // regenerate the whole book in place; so is `--only` without a source's name.
+    let usage = "usage: cargo xtask book [--check] [--only NAME]";
+    let only_at = rest.iter().position(|a| a == "--only");
+    let unknown = rest
         .iter()
-        .position(|a| a == "--only")
-        .and_then(|k| rest.get(k + 1));
+        .enumerate()
+        .find(|&(k, a)| a != "--check" && a != "--only" && Some(k) != only_at.map(|o| o + 1));
+    if let Some((k, flag)) = unknown {
+        eprintln!("unknown argument {flag:?} (at {k}); {usage}");
+        return ExitCode::from(2);
+    }
+    let check = rest.iter().any(|a| a == "--check");
+    let only = match only_at.map(|k| rest.get(k + 1)) {
+        None => None,
+        Some(Some(name)) if SOURCES.iter().any(|s| s.name == name.as_str()) => Some(name),
+        Some(name) => {
+            let names: Vec<&str> = SOURCES.iter().map(|s| s.name).collect();
+            let given = name.map_or("nothing".to_string(), |n| format!("{n:?}"));
+            eprintln!(
+                "--only needs a source's name, not {given}; the sources: {}; {usage}",
+                names.join(", ")
+            );
+            return ExitCode::from(2);
+        }
+    };
     match book(check, only.map(String::as_str)) {
         Ok(0) => ExitCode::SUCCESS,
         Ok(drifted) => {

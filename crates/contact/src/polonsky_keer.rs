@@ -832,7 +832,7 @@ impl Buffers {
 const NONE: usize = usize::MAX;
 /// Relative difference between a mode's carried force and its load within which the
 /// pressure is not rescaled: round-off of the sums over the points (2–5·10⁻¹⁴ after the
-/// flat punch's steps at 1024² cells), far below the steps' own tolerance.
+/// flat punch's steps at 1024² cells), no larger than the steps' default tolerance.
 const LOAD_ROUND_OFF: f64 = 1e-12;
 
 /// The free rigid modes in the form the iteration uses: the mode of each point, its rᵢ, and
