@@ -51,9 +51,10 @@ const NESTED_TOLERANCE: f64 = 1e-6;
 /// an FFT grid, and the preconditioner's; the gap residual moves with the step's product
 /// (conjugate gradients' recursive residual) and costs a product of its own only after a step
 /// in which a point left the contact set or entered it. When the problem can be restricted
-/// ([`InterfaceProblem::restrict`]: a grid's bounding box), the solve runs where contact can occur (where a warm start carries pressure,
-/// or within a quarter of the gap's range of its lowest point) and is checked on the whole
-/// interface with one product; the part grows until no point outside it penetrates.
+/// ([`InterfaceProblem::restrict`]: a grid's bounding box), the solve runs where contact can
+/// occur (where a warm start carries pressure, or within a quarter of the gap's range of its
+/// lowest point) and is checked on the whole interface with one product; the part grows until
+/// no point outside it penetrates.
 #[derive(Clone, Copy, Debug)]
 pub struct PolonskyKeer {
     settings: PolonskyKeerSettings,

@@ -147,8 +147,8 @@ impl Convolution {
     /// repetition, positive like the kernel; with zeros there (a gap in the period) its spectrum
     /// turns negative at some frequencies (anisotropic cells, odd sides), and its inverse would
     /// be no approximation of the operator's there (the preconditioner of a free grid is the
-    /// circulant on its own grid, [`Convolution::folded`], with the kernel's own values). (The grids use [`Convolution::free_fast`]; this
-    /// one's padding is the tests' reference.)
+    /// circulant on its own grid, [`Convolution::folded`], with the kernel's own values). (The
+    /// grids use [`Convolution::free_fast`]; this one's padding is the tests' reference.)
     #[cfg(test)]
     pub fn free(nx: usize, ny: usize, kernel: impl Fn(usize, usize) -> f64) -> Self {
         Self::padded(nx, ny, [2 * nx, 2 * ny], 0, kernel)

@@ -768,8 +768,9 @@ mod tests {
     }
 
     /// The padded circulant of a free grid, and the one on its own grid, are positive (the
-    /// latter's inverse preconditions), also for long cells and odd sides, where a period with zeros at the distances n (the padding's
-    /// middle) has negative eigenvalues as large as its median ones; the product is the same.
+    /// latter's inverse preconditions), also for long cells and odd sides, where a period with
+    /// zeros at the distances n (the padding's middle) has negative eigenvalues as large as its
+    /// median ones; the product is the same.
     #[test]
     fn padded_circulant_is_positive() {
         let steel = Material::new(2e5, 0.3).unwrap();
