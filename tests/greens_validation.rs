@@ -707,10 +707,10 @@ fn polonsky_keers_fine_steps_do_not_grow_with_the_grid() {
 
 /// The peers' flat punch (a = 1 mm, 1000 N): a cold start whose seed is the punch's face
 /// runs on the given grid alone (no coarser grid, whose mean gaps would pull the contact set a
-/// cell inside the face), in steps that grow little with the grid from 32² to 128²
-/// cells (to 10⁻¹²): 10, 12, 14 (at most 14, and at most 4 more over 16 times the points; 10,
-/// 11, 13 with the padded circulant's inverse as the preconditioner); the book's peers' case
-/// takes 14, 16 and 17 from 256² to 2048².
+/// cell inside the face), from the load spread over the face (not over the part, its bounding
+/// box), in steps that grow little with the grid from 32² to 128² cells (to 10⁻¹²): 8, 10, 12
+/// (at most 12, and at most 4 more over 16 times the points; 10, 12, 14 from the load spread
+/// over the box); the book's peers' case takes 12, 13, 14, 16 and 17 from 256² to 4096².
 #[test]
 fn a_flat_punchs_cold_start_runs_on_its_own_grid() {
     let mut steps = vec![];
@@ -725,7 +725,7 @@ fn a_flat_punchs_cold_start_runs_on_its_own_grid() {
         assert_eq!(levels, [state.iterations], "a coarser start");
         steps.push(state.iterations);
     }
-    assert!(steps.iter().all(|&k| k <= 14), "{steps:?}");
+    assert!(steps.iter().all(|&k| k <= 12), "{steps:?}");
     assert!(steps[2] <= steps[0] + 4, "{steps:?}");
 }
 
@@ -879,11 +879,12 @@ impl ElasticBody for Unpreconditioned<'_> {
 /// 20 mm long, 10 mm thick), its shear layer spreading a load over ℓ = √(G_p/k) = 2 mm and
 /// 10 mm: Polonsky–Keer with the bed's exact inverse on the contact set (A_CC⁻¹, a Schur
 /// complement of its tridiagonal stiffness) and without any agree with the dense active set
-/// to 1e-8 of p_max, and the inverse pays: at most two thirds of the steps (measured 45
-/// against 587 and 116 against 225; 46 against 632 and 117 against 286 before the gap
-/// residual moved with the step's product instead of a product of its own, which shortens the
-/// unpreconditioned iteration more). The whole inverse masked to the set took 232 steps
-/// against 228 without, which this would catch.
+/// to 1e-8 of p_max, and the inverse pays: at most half the steps (measured 31 against 587
+/// and 53 against 225: the preconditioned iteration starts from the load on its seed, the
+/// bare one from the load spread over the whole bed; 45 and 116 when both started from the
+/// spread, which held only two thirds once the gap residual moved with the step's product
+/// and shortened the bare iteration from 286 steps to 225). The whole inverse masked to the
+/// set took 232 steps against 228 without, which this would catch.
 #[test]
 fn pasternak_bed_exact_inverse_pays() {
     let strips = HalfPlane::strips_interface(&uniform(-10.0, 10.0, 1000), 10.0).unwrap();
@@ -914,7 +915,7 @@ fn pasternak_bed_exact_inverse_pays() {
         }
         let (exact, none) = (states[0].iterations, states[1].iterations);
         assert!(
-            3 * exact <= 2 * none,
+            2 * exact <= none,
             "G_p = {shear}: {exact} steps against {none}"
         );
     }

@@ -418,10 +418,16 @@ fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) 
     let g = &mut ws.previous;
     refill(g, problem.len(), 0.0);
     problem.add_free_gap(g);
-    let (lo, hi) = range(g.iter().copied());
+    let top = seed_level(problem);
     ws.keep.clear();
-    ws.keep
-        .extend(g.iter().map(|&h| h <= lo + SEED_FRACTION * (hi - lo)));
+    ws.keep.extend(g.iter().map(|&h| h <= top));
+}
+
+/// The greatest free gap of a cold start's seed: [`SEED_FRACTION`] of the gap's range above
+/// its lowest point.
+fn seed_level(problem: &InterfaceProblem) -> f64 {
+    let (lo, hi) = range(problem.free_gaps());
+    lo + SEED_FRACTION * (hi - lo)
 }
 
 /// Whether a cold start's seed ([`seed`]: the points within [`SEED_FRACTION`] of the free
@@ -432,14 +438,24 @@ fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) 
 /// its cells, so the cells astride the face's edge stand off (by up to the step's height) and
 /// its contact set lies a cell inside the face, whose rim, where the pressure is singular,
 /// then starts from zero. Measured on the peers' flat punch (`halfspace_peers --one-row punch
-/// N`, book: performance chapter): from the uniform start 13, 15, 17 steps at 256², 1024²,
-/// 2048² cells against 15, 17, 18 fine steps after the coarser grids' 34, 53, 62. Reads
+/// N`, book: performance chapter): from the uniform start on the face 12, 14, 16 steps at
+/// 256², 1024², 2048² cells; the nested start took 15, 17, 18 fine steps after the coarser
+/// grids' 34, 53, 62 (with the padded circulant inverse as the preconditioner). Reads
 /// the free gap without a buffer: a whole-grid vector held through the coarser grids' solves
 /// would add to the peak.
 fn flat_seed(problem: &InterfaceProblem) -> bool {
+    flat_face(problem).is_some()
+}
+
+/// The greatest gap of the flat face that is a cold start's seed ([`flat_seed`]), if it is
+/// one: the lowest gap plus its round-off ([`PLATEAU`] of the gap's range).
+fn flat_face(problem: &InterfaceProblem) -> Option<f64> {
     let (lo, hi) = range(problem.free_gaps());
-    let (seed, flat) = (lo + SEED_FRACTION * (hi - lo), lo + PLATEAU * (hi - lo));
-    problem.free_gaps().all(|h| h <= flat || h > seed)
+    let (seed, flat) = (seed_level(problem), lo + PLATEAU * (hi - lo));
+    problem
+        .free_gaps()
+        .all(|h| h <= flat || h > seed)
+        .then_some(flat)
 }
 
 /// The least and greatest of `values`.
@@ -501,7 +517,9 @@ impl<'w> Descent<'w> {
         if warm {
             ws.p.iter_mut().for_each(|v| *v = v.max(0.0));
         } else {
-            ws.groups.initial(w, &ws.cg.d, kappa, &mut ws.p);
+            let over = flat_face(problem)
+                .or_else(|| ws.cg.offers_inverse(problem).then(|| seed_level(problem)));
+            ws.groups.initial(w, &ws.cg.d, over, kappa, &mut ws.p);
         }
         ws.groups.restore(w, &ws.cg.d, &mut ws.p);
         refill(&mut ws.previous, problem.len(), 0.0);
@@ -666,6 +684,17 @@ impl Buffers {
         refill(&mut self.spare, n, 0.0);
     }
 
+    /// Whether `problem` offers an approximate inverse ([`InterfaceProblem::precondition`]),
+    /// asked once of zero gaps on every point, in the buffers (prepared, which it leaves so).
+    fn offers_inverse(&mut self, problem: &InterfaceProblem) -> bool {
+        self.contact.fill(true);
+        // t is zero until the first direction.
+        let offers = problem.precondition(&self.t, &self.contact, &mut self.z);
+        self.contact.fill(false);
+        self.z.fill(0.0);
+        offers
+    }
+
     /// κ: a point's displacement under unit pressure on itself, for seeding pressures from
     /// gaps (a uniform pressure would not do: it moves a periodic grid not at all).
     fn self_compliance(&mut self, problem: &InterfaceProblem) -> Result<f64> {
@@ -675,6 +704,7 @@ impl Buffers {
         problem.apply_influence_with(&self.forces, &mut self.r, &mut self.spare);
         problem::compliance(self.r[0])
     }
+
     /// Moves `p` along the direction t by the residual's component over the curvature, clipped
     /// at p = 0, and lets the penetrating points outside the contact set re-enter with the
     /// pressure −τ·dᵢ of that step. τ converts a gap into a pressure only when t is a gap (no
@@ -870,11 +900,22 @@ impl Groups {
         }
     }
 
-    /// The modes of `problem` in this form; fails on modes the iteration cannot hold.
+    /// The modes of `problem` in this form; fails on modes the iteration cannot hold. One mode
+    /// moving every point alike (`uniform`) needs no per-point table: `owner` and `r` stay
+    /// empty (two vectors of the points' size fewer at the solve's peak: 34 MiB of Hertz's
+    /// 2048² part).
     fn prepare(&mut self, problem: &InterfaceProblem) -> Result<()> {
         let (n, modes) = (problem.len(), problem.modes());
-        refill(&mut self.owner, n, NONE);
-        refill(&mut self.r, n, 0.0);
+        self.uniform = match modes {
+            [mode] if mode.points.len() == n => {
+                let r = mode.displacement.first().copied();
+                r.filter(|&r| mode.displacement.iter().all(|&v| v == r))
+            }
+            _ => None,
+        };
+        let table = if self.uniform.is_some() { 0 } else { n };
+        refill(&mut self.owner, table, NONE);
+        refill(&mut self.r, table, 0.0);
         let unsupported = |name: &str, why: &str| {
             Error::invalid(
                 format!("rigid mode `{name}`"),
@@ -896,6 +937,9 @@ impl Groups {
                     "pulls the bodies apart: compressive contact cannot carry it",
                 ));
             }
+            if self.uniform.is_some() {
+                continue;
+            }
             for (&i, &v) in mode.points.iter().zip(&mode.displacement) {
                 if self.owner[i] != NONE {
                     return Err(unsupported(&mode.name, "shares points with another mode"));
@@ -916,13 +960,6 @@ impl Groups {
             refill(v, m, 0.0);
         }
         refill(&mut self.seed, m, NONE);
-        self.uniform = match modes {
-            [mode] if mode.points.len() == n => {
-                let r = mode.displacement.first().copied();
-                r.filter(|&r| mode.displacement.iter().all(|&v| v == r))
-            }
-            _ => None,
-        };
         Ok(())
     }
 
@@ -947,15 +984,39 @@ impl Groups {
         self.mode_of(i).is_none_or(|(k, _)| self.target[k] != 0.0)
     }
 
-    /// A first pressure: each loaded mode's load spread uniformly over its points; elsewhere
-    /// the overlap −g over κ.
-    fn initial(&mut self, w: &[f64], g: &[f64], kappa: f64, p: &mut Vec<f64>) {
-        self.sums(w, |_| 1.0, |_| true);
+    /// A first pressure from the free gap `g`: each loaded mode's load spread uniformly over
+    /// its points whose gap is at most `over` (all its points when `over` is `None` or none
+    /// of them is that low); elsewhere the overlap −g over κ. The caller passes the flat face
+    /// when the seed is one ([`flat_face`]): a flat punch's part is its face's bounding box,
+    /// whose corners the load spread over the whole box loaded only for the first steps to
+    /// clip (two fine steps more at every size from 256² to 2048², `halfspace_peers --one-row
+    /// punch N`). Otherwise the seed ([`seed_level`]) when the problem is preconditioned: the
+    /// Pasternak bed's exact inverse took 116 and 45 steps from the whole spread, 53 and 31
+    /// from the seed; and all points when it is not, which the bare iteration needs (225
+    /// steps from the whole spread, 819 from the seed).
+    fn initial(&mut self, w: &[f64], g: &[f64], face: Option<f64>, kappa: f64, p: &mut Vec<f64>) {
+        let on_face = |i: usize| face.is_none_or(|top| g[i] <= top);
+        // num: Σ w r over a mode's points on the face; den: over all its points.
+        self.clear_sums();
+        for i in 0..w.len() {
+            if let Some((k, r)) = self.mode_of(i) {
+                self.den[k] += w[i] * r;
+                if on_face(i) {
+                    self.num[k] += w[i] * r;
+                }
+            }
+        }
         p.clear();
-        p.extend((0..w.len()).map(|i| match self.mode_of(i) {
-            None => (-g[i]).max(0.0) / kappa,
-            Some((k, _)) if self.num[k] != 0.0 => (self.target[k] / self.num[k]).max(0.0),
-            _ => 0.0,
+        p.extend((0..w.len()).map(|i| {
+            match self.mode_of(i) {
+                None => (-g[i]).max(0.0) / kappa,
+                Some((k, _)) if self.num[k] != 0.0 && on_face(i) => self.target[k] / self.num[k],
+                Some((k, _)) if self.num[k] == 0.0 && self.den[k] != 0.0 => {
+                    self.target[k] / self.den[k]
+                }
+                _ => 0.0,
+            }
+            .max(0.0)
         }));
     }
 
