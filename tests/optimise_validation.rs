@@ -564,11 +564,10 @@ fn optimised_roller_crown_by_the_load_split() {
 /// 5 mm on 50 × 27 to 400 × 209 cells converges to 1e-8 in at most 10 updates on every grid
 /// (the exponents read from each column's contact; with exponents from secants of the first
 /// updates L1 = 3 mm took 11 on 50 × 27, and L1 = 5 mm 12 on 200 × 105 and 16 on 800 × 417),
-/// and for L1 = 0 and 3 mm in no more on 400 × 209 and 800 × 417 than on 200 × 105 (L1 = 0:
-/// 9, 9, 8; L1 = 3 mm: 9, 9, 9). For L1 = 5 mm the inexact solves' paths decide one update
-/// either way (8, 9, 9, 10 from 50 × 27 to 400 × 209; 8, 9, 10, 10 with the padded circulant's
-/// inverse as the preconditioner; 9 on both before the gap residual moved with the step's
-/// product): only the bound of 10 holds there. The columns a few points
+/// and in no more on 400 × 209 (and 800 × 417 for L1 = 0 and 3 mm) than on 200 × 105
+/// (L1 = 0: 9, 9, 8; L1 = 3 mm: 9, 9, 9; L1 = 5 mm: 10, 10): the updates of exact solves,
+/// which the inexact solves' forcing of 5·10⁻⁴ keeps (with 10⁻³, L1 = 5 mm took 9 on
+/// 200 × 105 and 10 on 400 × 209, which this would catch). The columns a few points
 /// wide at the roller's ends take their own contact's exponent (with the line contact's ½
 /// there, 800 × 417 took 11 updates against 9).
 #[test]
@@ -584,7 +583,7 @@ fn the_load_splits_updates_do_not_grow_with_the_grid() {
             updates.push(opt.passes.len());
         }
         assert!(
-            l1 == 5.0 || updates[2..].iter().all(|&u| u <= updates[2]),
+            updates[2..].iter().all(|&u| u <= updates[2]),
             "L1 = {l1}: {updates:?}"
         );
     }
@@ -613,7 +612,7 @@ impl Observer for SolveTolerances {
 /// The load split's inexact solves: the roller's crown on 100 × 53 cells (L1 = 3 mm) solved
 /// with Polonsky–Keer's tolerance loosened to 10⁻³ of each update's miss is the crown of exact
 /// solves (p_max within 10⁻⁹, Δh within 10⁻⁹ of its largest: the split's tolerance is 10⁻⁸)
-/// in no more updates and under two thirds of their conjugate-gradient steps (57 against 93);
+/// in no more updates and under two thirds of their conjugate-gradient steps (56 against 91);
 /// the updates before the last solve to looser tolerances, the last to at most 10⁻² of the
 /// split's tolerance.
 #[test]
