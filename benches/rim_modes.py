@@ -1,0 +1,197 @@
+"""Why the flat punch's conjugate-gradient steps grow with the grid: the rim's modes.
+
+The rigid flat punch (radius a = N/4 cells on an N x N grid, as `halfspace_peers`) in
+contact everywhere under its face is the linear system A p = 1 on the face's cells D, A the
+half-space's influence of uniform pressure on square cells (Love's formula, E* = 1). Our
+Polonsky-Keer preconditions it with the circulant inverse of the kernel masked to D,
+P = R K^-1 R^T. This script measures, on the peers' geometry:
+
+  * dense, N = 32 to 128: the spectrum of P A on D (its condition number, how many
+    eigenvalues stand above 1.5 times the least, and the share of the top eigenvector on the
+    outermost ring of cells, "the rim");
+  * matrix-free (FFT), N = 64 to 1024: the steps of preconditioned conjugate gradients from
+    the load spread over the face, to the solver's stop (sum |dp| / sum p < 1e-10), with P
+    alone, with the rim deflated (Z: the outermost cells, or 2 x 2 blocks of them; A Z
+    restricted by the kernel, each step one product A z more), and from a coarser grid's
+    exact answer (nested start).
+
+Run with numpy and scipy (the peers' venv has both):
+
+    /path/to/venv/bin/python benches/rim_modes.py
+
+Figures from it are in the book's performance chapter ("The flat punch's fine steps").
+"""
+
+import numpy as np
+from scipy.ndimage import distance_transform_edt
+
+TOLERANCE = 1e-10
+
+
+def love(x, y, a, b):
+    """Displacement at (x, y) under unit pressure on [-a, a] x [-b, b], times pi E*."""
+
+    def f(u, v):
+        r = np.sqrt(u * u + v * v)
+        return u * np.log(v + r) + v * np.log(u + r)
+
+    return (f(x + a, y + b) - f(x + a, y - b) - f(x - a, y + b) + f(x - a, y - b)) / np.pi
+
+
+def grid(n):
+    """The padded kernel, its spectrum, the face's mask and each face cell's distance in
+    cells to the nearest cell outside it (1 on the rim)."""
+    m = 2 * n
+    idx = np.arange(m)
+    idx = np.where(idx < n, idx, idx - m)
+    x, y = np.meshgrid(idx * 1.0, idx * 1.0, indexing="ij")
+    kernel = love(x, y, 0.5, 0.5)
+    c = np.arange(n) - n / 2 + 0.5
+    cx, cy = np.meshgrid(c, c, indexing="ij")
+    face = cx**2 + cy**2 <= (n / 4) ** 2
+    return kernel, np.fft.rfft2(kernel), face, distance_transform_edt(face)
+
+
+def operators(n):
+    kernel, spectrum, face, dist = grid(n)
+    m = 2 * n
+
+    def a(x):
+        padded = np.zeros((m, m))
+        padded[:n, :n] = x
+        return np.fft.irfft2(np.fft.rfft2(padded) * spectrum, s=(m, m))[:n, :n] * face
+
+    def p(r):
+        padded = np.zeros((m, m))
+        padded[:n, :n] = r * face
+        return np.fft.irfft2(np.fft.rfft2(padded) / spectrum, s=(m, m))[:n, :n] * face
+
+    return kernel, face, dist, a, p
+
+
+def spectrum_of_pa(n):
+    """The face's cells, the eigenvalues of P A, the top eigenvector's share on the rim, the
+    rim's cells, and the condition numbers of P A with P less the exact Schur correction
+    through a band of exterior cells (K^-1_DE (K^-1_EE)^-1 K^-1_ED, E the cells outside the
+    face within 1, 2 and 4 cells of it): how much of the excess lies just outside the rim."""
+    kernel, spectrum, face, dist = grid(n)
+    m = 2 * n
+    inverse = np.fft.irfft2(1.0 / spectrum, s=(m, m))
+    padded = np.zeros((m, m), dtype=bool)
+    padded[:n, :n] = face
+    outside = distance_transform_edt(~padded)
+    pts = np.argwhere(face)
+
+    def block(k, rows, cols):
+        di = rows[:, 0][:, None] - cols[:, 0][None, :]
+        dj = rows[:, 1][:, None] - cols[:, 1][None, :]
+        return k[di % m, dj % m]
+
+    a = block(kernel, pts, pts)
+    prec = block(inverse, pts, pts)
+    lower = np.linalg.cholesky(prec)
+    values, vectors = np.linalg.eigh(lower.T @ a @ lower)
+    top = lower @ vectors[:, -1]
+    rim = dist[pts[:, 0], pts[:, 1]] <= 1.0
+    share = np.sum(top[rim] ** 2) / np.sum(top**2)
+    banded = []
+    for width in [1, 2, 4]:
+        band = np.argwhere((outside > 0) & (outside <= width))
+        coupling = block(inverse, pts, band)
+        corrected = prec - coupling @ np.linalg.solve(block(inverse, band, band), coupling.T)
+        c = np.linalg.cholesky(0.5 * (corrected + corrected.T))
+        e = np.linalg.eigvalsh(c.T @ a @ c)
+        banded.append(e.max() / e.min())
+    return len(pts), values, share, rim.sum(), banded
+
+
+def deflation(kernel, face, dist, n, block):
+    """The rim's cells grouped in block x block squares: their indices, each one's group and
+    E = Z^T A Z."""
+    m = 2 * n
+    ij = np.argwhere(dist == 1.0)
+    label = (ij[:, 0] // block) * (n // block + 1) + (ij[:, 1] // block)
+    _, group = np.unique(label, return_inverse=True)
+    groups = group.max() + 1
+    di = ij[:, 0][:, None] - ij[:, 0][None, :]
+    dj = ij[:, 1][:, None] - ij[:, 1][None, :]
+    z = np.zeros((len(ij), groups))
+    z[np.arange(len(ij)), group] = 1.0
+    e = z.T @ kernel[di % m, dj % m] @ z
+    return (ij[:, 0], ij[:, 1]), group, groups, e
+
+
+def pcg(a, p, b, x, defl=None, tolerance=TOLERANCE):
+    """Preconditioned conjugate gradients (deflated when `defl` is given) to `tolerance` on
+    the step's change; returns the steps and the answer."""
+
+    def project(z):
+        if defl is None:
+            return z
+        at, group, groups, e = defl
+        mu = np.linalg.solve(e, np.bincount(group, weights=a(z)[at], minlength=groups))
+        z = z.copy()
+        z[at] -= mu[group]
+        return z
+
+    if defl is not None:
+        at, group, groups, e = defl
+        mu = np.linalg.solve(e, np.bincount(group, weights=(b - a(x))[at], minlength=groups))
+        x = x.copy()
+        x[at] += mu[group]
+    r = b - a(x)
+    z = project(p(r))
+    d, rz = z.copy(), np.sum(r * z)
+    for step in range(1, 500):
+        ad = a(d)
+        alpha = rz / np.sum(d * ad)
+        x = x + alpha * d
+        r = r - alpha * ad
+        if np.abs(alpha * d).sum() / np.abs(x).sum() < tolerance:
+            return step, x
+        z = project(p(r))
+        rz, old = np.sum(r * z), rz
+        d = z + (rz / old) * d
+    return step, x
+
+
+def nested_start(n):
+    """The coarser grid's answer (its own face, cells twice as wide, solved to 1e-13), each
+    fine cell taking its coarse cell's pressure or, off the coarse face, the nearest coarse
+    face cell's."""
+    _, face_c, _, a_c, p_c = operators(n // 2)
+    b = face_c * 1.0
+    _, coarse = pcg(a_c, p_c, b, b, tolerance=1e-13)
+    _, nearest = distance_transform_edt(~face_c, return_indices=True)
+    return np.kron(coarse[nearest[0], nearest[1]], np.ones((2, 2)))
+
+
+def main():
+    print(
+        "dense: N, face cells, rim cells, cond(PA), eigenvalues > 1.5 min, top's share on the"
+        " rim; cond with the Schur correction through 1, 2, 4 exterior cells"
+    )
+    for n in [32, 64, 96, 128]:
+        cells, values, share, rim, banded = spectrum_of_pa(n)
+        print(
+            f"{n:5d} {cells:6d} {rim:5d} {values.max() / values.min():7.3f}"
+            f" {np.sum(values > 1.5 * values.min()):4d} {share:6.3f} "
+            + " ".join(f"{c:6.3f}" for c in banded)
+        )
+    print("steps to 1e-10: N, P alone, rim deflated (cells), (2 x 2 blocks: groups), nested start")
+    for n in [64, 128, 256, 512, 1024]:
+        kernel, face, dist, a, p = operators(n)
+        b = face * 1.0
+        uniform = face * (face.sum() / a(b).sum())
+        steps = lambda start, defl=None: pcg(a, p, b, start, defl)[0]
+        cells = deflation(kernel, face, dist, n, 1)
+        blocks = deflation(kernel, face, dist, n, 2)
+        start = nested_start(n) * face
+        start *= np.sum(b * start) / np.sum(start * a(start))
+        print(
+            f"{n:5d} {steps(uniform):4d} {steps(uniform, cells):4d} ({cells[2]})"
+            f" {steps(uniform, blocks):4d} ({blocks[2]}) {steps(start):4d}"
+        )
+
+if __name__ == "__main__":
+    main()
