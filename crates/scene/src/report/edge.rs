@@ -20,6 +20,9 @@ pub(super) struct SharpEdge {
     pub along: &'static str,
     /// The peak's position along that axis, mm.
     pub at_mm: f64,
+    /// On a grid, the peak's other surface coordinate, named: along x on a punch's rim the
+    /// edge's x alone is no place (the rim's point at x = −0.21 mm is at y = ±0.77 mm).
+    pub across: Option<(&'static str, f64)>,
     /// The peak, MPa.
     pub p_mpa: f64,
     /// The largest pressure a cell inward from the peak, MPa.
@@ -29,15 +32,20 @@ pub(super) struct SharpEdge {
 impl SharpEdge {
     /// The warning a case carries.
     pub fn warning(&self) -> String {
+        let place = match self.across {
+            Some((other, at)) => format!(
+                "{} = {:+.4} mm, {other} = {at:+.4} mm, the edge across {}",
+                self.along, self.at_mm, self.along
+            ),
+            None => format!("{} = {:+.4} mm", self.along, self.at_mm),
+        };
         format!(
-            "the pressure rises to its peak at the contact's edge ({} = {:+.4} mm: {:.1} MPa, \
+            "the pressure rises to its peak at the contact's edge ({place}: {:.1} MPa, \
              {:.2} times the {:.1} MPa a cell inward): the contact ends at a sharp edge (a \
              punch's rim, a body's end), where the elastic pressure is singular, so p_max is the \
              value on these cells and grows as they shrink; the load, the approach and the \
              pressure away from the edge do not; round the edge (a fillet, a crown or a profile) \
              for a peak that converges",
-            self.along,
-            self.at_mm,
             self.p_mpa,
             self.p_mpa / self.inward_mpa,
             self.inward_mpa
@@ -93,9 +101,14 @@ pub(super) fn sharp_edge(
             return None;
         }
         let inward_mpa = (lo..=hi).map(|j| pressure[line[j]]).fold(0.0f64, f64::max);
+        let across = match layout {
+            Layout::Grid { .. } => Some((axes[1 - axis].1, points[peak][1 - axis])),
+            _ => None,
+        };
         (pressure[peak] > RISE * inward_mpa && inward_mpa > 0.0).then(|| SharpEdge {
             along,
             at_mm: points[peak][axis],
+            across,
             p_mpa: pressure[peak],
             inward_mpa,
         })
@@ -127,4 +140,35 @@ fn run(line: &[usize], carrying: &[bool], k: usize) -> (usize, usize) {
         end += 1;
     }
     (start, end)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a grid the warning names the peak's point, not only its coordinate along the line
+    /// it ends: a disc of radius 3 cells whose peak sits on the rim at (−2, 2), three times the
+    /// cell inward along x, is said at x = −2 and y = +2, the edge across x.
+    #[test]
+    fn a_grids_sharp_edge_is_named_by_its_point() {
+        let layout = Layout::Grid {
+            nx: 7,
+            ny: 7,
+            dx: 1.0,
+            dy: 1.0,
+            origin: [-3.0, -3.0],
+            symmetric: [false; 2],
+        };
+        let points: Vec<[f64; 3]> = (0..49)
+            .map(|k| [(k % 7) as f64 - 3.0, (k / 7) as f64 - 3.0, 0.0])
+            .collect();
+        let carrying: Vec<bool> = points.iter().map(|x| x[0].hypot(x[1]) <= 3.0).collect();
+        let mut pressure: Vec<f64> = carrying.iter().map(|&c| f64::from(u8::from(c))).collect();
+        pressure[5 * 7 + 1] = 3.0;
+        let edge = sharp_edge(&layout, &points, &carrying, &pressure).expect("a sharp edge");
+        assert_eq!((edge.along, edge.at_mm), ("x", -2.0));
+        assert_eq!(edge.across, Some(("y", 2.0)));
+        let said = edge.warning();
+        assert!(said.contains("x = -2.0000 mm, y = +2.0000 mm"), "{said}");
+    }
 }
