@@ -62,6 +62,9 @@ const fn scene(
 
 /// Every source, in the order of the book.
 pub const SOURCES: &[Source] = &[
+    // The chapters' Rust snippets (examples/book_snippets.rs), run: each asserts its own
+    // answer, and what they print is checked like any source's.
+    example(&["--example", "book_snippets"], "book_snippets", false),
     Source {
         plots: &[("results/circular_load/surface.svg", "circular_load.svg")],
         ..example(&["--example", "circular_load"], "circular_load", false)
