@@ -994,14 +994,14 @@ impl Groups {
     /// Pasternak bed's exact inverse took 116 and 45 steps from the whole spread, 53 and 31
     /// from the seed; and all points when it is not, which the bare iteration needs (225
     /// steps from the whole spread, 819 from the seed).
-    fn initial(&mut self, w: &[f64], g: &[f64], face: Option<f64>, kappa: f64, p: &mut Vec<f64>) {
-        let on_face = |i: usize| face.is_none_or(|top| g[i] <= top);
-        // num: Σ w r over a mode's points on the face; den: over all its points.
+    fn initial(&mut self, w: &[f64], g: &[f64], over: Option<f64>, kappa: f64, p: &mut Vec<f64>) {
+        let low = |i: usize| over.is_none_or(|top| g[i] <= top);
+        // num: Σ w r over a mode's points that low; den: over all its points.
         self.clear_sums();
         for i in 0..w.len() {
             if let Some((k, r)) = self.mode_of(i) {
                 self.den[k] += w[i] * r;
-                if on_face(i) {
+                if low(i) {
                     self.num[k] += w[i] * r;
                 }
             }
@@ -1010,7 +1010,7 @@ impl Groups {
         p.extend((0..w.len()).map(|i| {
             match self.mode_of(i) {
                 None => (-g[i]).max(0.0) / kappa,
-                Some((k, _)) if self.num[k] != 0.0 && on_face(i) => self.target[k] / self.num[k],
+                Some((k, _)) if self.num[k] != 0.0 && low(i) => self.target[k] / self.num[k],
                 Some((k, _)) if self.num[k] == 0.0 && self.den[k] != 0.0 => {
                     self.target[k] / self.den[k]
                 }
