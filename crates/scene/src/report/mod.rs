@@ -96,6 +96,9 @@ fn below_surface(report: &mut CaseReport, case: &Case, built: &Built) -> contopt
         &pressure,
         roller,
     )?;
+    if let Some(found) = &report.subsurface {
+        report.warnings.extend(subsurface::shallow_peaks(found));
+    }
     report.time("subsurface", started);
     Ok(())
 }

@@ -17,6 +17,12 @@ const DEFAULT_DEPTH_HALF_WIDTHS: f64 = 2.0;
 const SAME_SECTION: f64 = 0.5;
 /// Coordinates closer than this \[mm\] are one (round-off).
 const DISTINCT_MM: f64 = 1e-12;
+/// Depths within this fraction of each other are one (round-off of depths k·d/n).
+const SAME_DEPTH: f64 = 1e-9;
+/// A von Mises peak this near the surface, in depths sampled, is a surface singularity's (or
+/// above the depths asked): a sharp edge's stresses peak at the first depth or the second,
+/// depending on where the cells lie about the edge.
+const SHALLOW_DEPTHS: usize = 2;
 
 /// The stresses below every body that computes them (a rigid body does not), under the
 /// contact pressure `pressure` at the interface points. `shared` says the second body's
@@ -74,6 +80,36 @@ pub(crate) fn own_order(
         own[j] = pressure[i];
     }
     Ok(own)
+}
+
+/// A warning for each body whose von Mises peak lies within the [`SHALLOW_DEPTHS`] shallowest
+/// depths sampled (or above them: a finite-element body's surface node): there the stresses
+/// are either singular (a sharp edge: a punch's rim, a straight roller's end, where the
+/// elastic stresses grow without bound) or peak above the depths asked, and the value grows as
+/// the cells and depths shrink — a flat punch's rim on 40², 80² and 160² cells gave 511, 620
+/// and 1042 MPa, each at its shallowest depth; the bundled straight roller's end peaks at the
+/// second. A smooth contact's peak lies well below (Hertz's at 0.48 a; the crowned rollers'
+/// at the fifth depth or deeper).
+pub(crate) fn shallow_peaks(report: &SubsurfaceReport) -> Vec<String> {
+    let Some(&shallow) = report.depths_mm.get(SHALLOW_DEPTHS - 1) else {
+        return vec![];
+    };
+    report
+        .bodies
+        .iter()
+        .filter(|b| b.peaks.von_mises.depth_mm <= shallow * (1.0 + SAME_DEPTH))
+        .map(|b| {
+            let peak = &b.peaks.von_mises;
+            format!(
+                "{}'s von Mises stress peaks at the shallowest depths sampled ({:.1} MPa at \
+                 {:.4} mm, x, y = {:+.4}, {:+.4} mm): the stresses there are singular (a sharp \
+                 edge, where they grow without bound as the cells and depths shrink) or peak \
+                 above the depths asked; round the edge, or sample depths nearer the surface, \
+                 for a peak that converges",
+                b.body, peak.value_mpa, peak.depth_mm, peak.x_mm, peak.y_mm
+            )
+        })
+        .collect()
 }
 
 /// The depths and sections of the scene, with their defaults from the contact area.
@@ -193,4 +229,58 @@ fn default_sections(interface: &Interface, pressure: &[f64], roller: bool) -> Ve
             at: x,
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use contopt_results::{BodyStresses, Peak, Peaks, SubsurfaceReport};
+
+    use super::shallow_peaks;
+
+    /// A body's peaks with von Mises `value` at `depth` mm (the other criteria alike).
+    fn body(name: &str, value: f64, depth: f64) -> BodyStresses {
+        let peak = Peak {
+            value_mpa: value,
+            x_mm: 0.5,
+            y_mm: -0.25,
+            depth_mm: depth,
+        };
+        BodyStresses {
+            body: name.into(),
+            peaks: Peaks {
+                von_mises: peak,
+                tresca: peak,
+                max_principal: peak,
+                min_principal: peak,
+                shear_xz: peak,
+                shear_yz: None,
+            },
+            sections: vec![],
+        }
+    }
+
+    /// A von Mises peak at the shallowest depths sampled (a punch's rim) is named with its
+    /// value and place; one below them (Hertz's, at 0.48 a) is not; depths k·d/n that round
+    /// off count as their own; a single depth sampled judges nothing.
+    #[test]
+    fn a_peak_at_the_shallowest_depth_is_named() {
+        let depths_mm: Vec<f64> = (1..=50).map(|k| 1.0 * k as f64 / 50.0).collect();
+        let report = SubsurfaceReport {
+            depths_mm: depths_mm.clone(),
+            bodies: vec![
+                body("block", 1042.3, 0.04 * (1.0 + 1e-15)),
+                body("sphere", 1400.0, 0.06),
+            ],
+        };
+        let said = shallow_peaks(&report);
+        assert_eq!(said.len(), 1, "{said:?}");
+        assert!(said[0].starts_with("block's von Mises"), "{said:?}");
+        assert!(said[0].contains("1042.3 MPa at 0.0400 mm"), "{said:?}");
+        assert!(said[0].contains("x, y = +0.5000, -0.2500 mm"), "{said:?}");
+        let none = SubsurfaceReport {
+            depths_mm: vec![0.5],
+            bodies: vec![body("block", 1.0, 0.0)],
+        };
+        assert!(shallow_peaks(&none).is_empty());
+    }
 }
