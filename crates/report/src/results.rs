@@ -312,14 +312,12 @@ fn pressure_map(report: &Report, case: &CaseReport) -> io::Result<Option<Figure>
         report.scene,
         of_case(report, case)
     );
-    heat_map(
-        &title,
-        "x [mm] (along the axis)",
-        "y [mm]",
-        "p [MPa]",
-        &points,
-    )
-    .map(Some)
+    // Only a roller's x runs along an axis of the bodies.
+    let x = match case.roller {
+        Some(_) => "x [mm] (along the axis)",
+        None => "x [mm]",
+    };
+    heat_map(&title, x, "y [mm]", "p [MPa]", &points).map(Some)
 }
 
 /// The centre-line pressure of a roller under each load and tilt of its envelope.
