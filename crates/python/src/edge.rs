@@ -7,8 +7,8 @@
 //!   grid: `Contact(…, indenter_ends="x")`). A `DenseBody` is whatever its matrix says: its
 //!   points are all of it, and it has no edge to reach;
 //! - a contact whose half-width, where it ends inside the grid, spans fewer than
-//!   [`MIN_CELLS_ACROSS`] cells through its peak is not resolved (a rigid sphere on 4 × 4
-//!   cells of a/1.3 gives p_max 7 % below Hertz's p₀);
+//!   [`MIN_CELLS_ACROSS`] cells (the patch of carrying cells around its peak) is not resolved
+//!   (a rigid sphere on 4 × 4 cells of a/1.3 gives p_max 7 % below Hertz's p₀);
 //! - no cell carrying pressure: the bodies do not touch.
 
 use std::ffi::CString;
@@ -57,29 +57,20 @@ impl Cells {
         }
     }
 
-    /// The contact's half-width in cells along x and y through the peak (half the carrying
-    /// run of the row and of the column there), counted only along an axis where the run
-    /// ends inside the grid (a contact across the whole grid, at an indenter's ends or
+    /// The contact's half-width in cells along x and y: half the number of columns and of rows
+    /// that the patch of carrying cells around the peak occupies (its cells joined by their
+    /// sides, across a period's edge on a periodic grid), counted only along an axis where the
+    /// patch ends inside the grid (a contact across the whole grid, at an indenter's ends or
     /// around a period, has no edge there to resolve): a warning when the fewer of them is
-    /// below [`MIN_CELLS_ACROSS`].
+    /// below [`MIN_CELLS_ACROSS`]. The whole patch, not the row through the peak: a flat
+    /// punch peaks at its rim, where that row is a short chord of a well-resolved contact.
     fn resolution(&self, pressure: &[f64], p_max: f64) -> Option<String> {
-        let [ny, nx] = self.shape;
         let peak = (0..pressure.len()).max_by(|&a, &b| pressure[a].total_cmp(&pressure[b]))?;
-        let (pi, pj) = (peak % nx, peak / nx);
-        let carries = |i: usize, j: usize| pressure[j * nx + i] > CARRIES * p_max;
-        let run = |along: usize| -> Option<f64> {
-            let n = [nx, ny][along];
-            let at = |t: usize| match along {
-                0 => carries(t, pj),
-                _ => carries(pi, t),
-            };
-            let count = (0..n).filter(|&t| at(t)).count();
-            (count < n).then_some(0.5 * count as f64)
-        };
-        let (along, cells) = [run(0), run(1)]
-            .into_iter()
-            .enumerate()
-            .filter_map(|(axis, c)| c.map(|c| (axis, c)))
+        let carries: Vec<bool> = pressure.iter().map(|&p| p > CARRIES * p_max).collect();
+        let spans = self.patch_spans(&carries, peak);
+        let (along, cells) = (0..2)
+            .filter(|&axis| spans[axis] < self.shape[1 - axis])
+            .map(|axis| (axis, 0.5 * spans[axis] as f64))
             .min_by(|a, b| a.1.total_cmp(&b.1))?;
         let half_width = cells * self.cell[along];
         (cells < MIN_CELLS_ACROSS).then(|| {
@@ -91,6 +82,42 @@ impl Cells {
                 half_width / MIN_CELLS_ACROSS
             )
         })
+    }
+
+    /// The numbers of columns and rows [along x, along y] occupied by the cells marked in
+    /// `carries` that are joined to cell `start` by their sides (a flood fill; across the
+    /// grid's edges when it is periodic).
+    fn patch_spans(&self, carries: &[bool], start: usize) -> [usize; 2] {
+        let [ny, nx] = self.shape;
+        let periodic = self.grid.as_ref().is_some_and(|g| g.is_periodic());
+        let step = |t: usize, n: usize, up: bool| match (up, periodic) {
+            (true, _) if t + 1 < n => Some(t + 1),
+            (true, true) => Some(0),
+            (false, _) if t > 0 => Some(t - 1),
+            (false, true) => Some(n - 1),
+            _ => None,
+        };
+        let (mut seen, mut stack) = (vec![false; carries.len()], vec![start]);
+        let (mut columns, mut rows) = (vec![false; nx], vec![false; ny]);
+        seen[start] = true;
+        while let Some(k) = stack.pop() {
+            let (i, j) = (k % nx, k / nx);
+            (columns[i], rows[j]) = (true, true);
+            let sides = [
+                step(i, nx, true).map(|i| j * nx + i),
+                step(i, nx, false).map(|i| j * nx + i),
+                step(j, ny, true).map(|j| j * nx + i),
+                step(j, ny, false).map(|j| j * nx + i),
+            ];
+            for next in sides.into_iter().flatten() {
+                if carries[next] && !seen[next] {
+                    seen[next] = true;
+                    stack.push(next);
+                }
+            }
+        }
+        let count = |marks: &[bool]| marks.iter().filter(|&&m| m).count();
+        [count(&columns), count(&rows)]
     }
 }
 

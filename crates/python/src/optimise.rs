@@ -93,15 +93,23 @@ fn gap_shape(
     GapShape::new(nodes, rows).map_err(|e| library_error(py, e))
 }
 
-/// A mask of the grid's shape, or all points.
+/// A mask of the grid's shape (booleans, or the numbers 0 and 1), or all points. Any other
+/// number is refused with its index: a controller's 0.8 given as Ω_v is no mask.
 fn mask(given: Option<&Bound<'_, PyAny>>, key: &str, shape: [usize; 2]) -> PyResult<Vec<bool>> {
-    match given {
-        Some(m) => Ok(finite_array(m, key, &shape)?
-            .iter()
-            .map(|&f| f != 0.0)
-            .collect()),
-        None => Ok(vec![true; shape[0] * shape[1]]),
+    let Some(m) = given else {
+        return Ok(vec![true; shape[0] * shape[1]]);
+    };
+    let values = finite_array(m, key, &shape)?;
+    if let Some(k) = values.iter().position(|&f| f != 0.0 && f != 1.0) {
+        let at = [k / shape[1], k % shape[1]];
+        return Err(invalid(
+            m.py(),
+            &format!("{key}{at:?}"),
+            values[k],
+            "a boolean mask (True/False, or 1/0)",
+        ));
     }
+    Ok(values.iter().map(|&f| f == 1.0).collect())
 }
 
 /// The optimum initial gap of `contact` under the controller's values `v` (shape (ny, nx), the

@@ -97,6 +97,21 @@ def test_a_contact_on_too_few_cells_is_said():
         assert contopt.Solver().solve(line).warnings == []
 
 
+def test_a_flat_punch_on_enough_cells_is_not_said_unresolved():
+    # A flat punch of radius a = 1 mm on cells of 3/64 mm (21 per radius): its peak is a rim
+    # cell, where the row through the peak is a short chord (12 cells); the contact itself
+    # spans 43 cells, so nothing is said of its resolution. Sneddon's approach F/(2aE*):
+    # +0.3 % measured.
+    n, a, force = 64, 1.0, 1000.0
+    body = contopt.HalfSpace(nx=n, ny=n, dx_mm=3 / n, dy_mm=3 / n, e_mpa=E, nu=NU)
+    gap = np.where(np.hypot(body.x_mm, body.y_mm) <= a, 0.0, 1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        punch = contopt.Solver().solve(contopt.Contact(body, gap, force_n=force))
+    assert punch.warnings == []
+    assert punch.approach_mm == pytest.approx(force / (2 * a * ESTAR), rel=1e-2)
+
+
 def test_bodies_that_do_not_touch_are_said():
     body, gap, _ = hertz(n=32)
     with pytest.warns(RuntimeWarning, match="no cell carries pressure"):

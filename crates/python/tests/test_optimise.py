@@ -81,3 +81,13 @@ def test_a_crown_along_x_by_the_load_split_and_bad_input():
     with pytest.raises(contopt.InputError):
         contopt.optimise(contact, np.ones(body.shape), tolerance=-1.0)
     assert contopt.Optimum.defaults("load_split")["tolerance"] > 0
+    # A mask holds booleans (or 1/0): a controller's values given as Ω_v are refused with the
+    # index, where every nonzero value used to count as True.
+    with pytest.raises(contopt.InputError, match=r"omega_v\[0, 0\] = 0.5"):
+        contopt.optimise(
+            contact, np.ones(body.shape), gap_shape="x", omega_v=np.full(body.shape, 0.5)
+        )
+    ones = contopt.optimise(
+        contact, np.ones(body.shape), gap_shape="x", omega_v=centre.astype(int)
+    )
+    assert np.array_equal(ones.pressure_mpa, optimum.pressure_mpa)

@@ -8,6 +8,7 @@ mod dense;
 mod derived;
 mod modes;
 mod operator;
+mod reciprocity;
 
 use std::sync::Arc;
 
@@ -115,6 +116,8 @@ impl<'a> InterfaceProblem<'a> {
         let (s1, s2) = (b1.interface(), b2.interface());
         let pair = s1.partners(s2, b1.name(), b2.name())?;
         check_partners(b1, b2, &pair)?;
+        reciprocity::check(b1)?;
+        reciprocity::check(b2)?;
         check::gap(initial_gap, s1.len())?;
         let (f1, f2) = (b1.load_displacement()?, b2.load_displacement()?);
         let load_gap: Vec<f64> = pair
