@@ -179,7 +179,7 @@ fn swept_value(value: &Node, integer: bool) -> Result<(Node, f64), String> {
 /// same kind sets its keys one by one, keeping the scene's others (`optimisation = { controller
 /// = { l1_mm = 20.0 } }` keeps the method and L2); any other value, or a table naming another
 /// `kind` than the scene's, replaces the scene's value; `tables` notes which it did.
-pub(crate) fn put(
+fn put(
     case: &mut Node,
     path: &str,
     value: &Node,
