@@ -22,22 +22,40 @@ pub(crate) struct CaseInput {
     pub named: Option<()>,
     pub params: BTreeMap<String, f64>,
     pub tree: Node,
-    /// The keys a `[[case]]` sets to a table where the scene has one: the table replaces the
-    /// scene's whole, the keys it leaves out gone with it.
-    pub whole: Vec<String>,
+    /// What a `[[case]]` did to the scene's tables ([`put`]), for its errors to say.
+    pub tables: Tables,
 }
 
-/// `e`, a reading error of a case's tree, with a word on why a key is missing when a table
-/// the case set `whole` holds it: `set = { contact = { gap = { … } } }` replaces the scene's
-/// `[contact]`, zone and load included.
-pub(crate) fn explain(whole: &[String], mut e: SceneError) -> SceneError {
+/// The tables of the scene a `[[case]]` set: merged key by key, or replaced whole.
+#[derive(Default)]
+pub(crate) struct Tables {
+    /// Set to a table of another `kind` than the scene's: the table replaces the scene's
+    /// whole, the keys it leaves out gone with it.
+    whole: Vec<String>,
+    /// Set to a table of the same kind (or of none): its keys merged into the scene's.
+    merged: Vec<String>,
+}
+
+/// `e`, a reading error of a case's tree, with a word on what the case did to the table it
+/// is in: a table of another `kind` replaced the scene's (`set = { contact = { zone = { kind =
+/// "rings" } } }` drops the grid's sizes), or the case's keys were merged into the scene's (a
+/// choice written under its name, `load = { approach_mm = … }` over `{ force_n = … }`, is then
+/// two choices).
+pub(crate) fn explain(tables: &Tables, mut e: SceneError) -> SceneError {
     if let SceneError::Invalid(located) = &mut e {
         let path = crate::error::dotted(&located.path);
         let under = |key: &&String| path == **key || path.starts_with(&format!("{key}."));
-        if let Some(key) = whole.iter().find(under) {
+        if let Some(key) = tables.whole.iter().find(under) {
             located.message.push_str(&format!(
-                " (the case sets `{key}` whole, as a table, and the scene's other keys under \
-                 it go with it: set one key by its dotted path, \"{key}.<key>\" = …)"
+                " (the case sets `{key}` to a table of another `kind`, which replaces the \
+                 scene's whole: the scene's keys under it do not carry over to another kind, \
+                 so give the new kind's keys in the case)"
+            ));
+        } else if let Some(key) = tables.merged.iter().find(|key| path == **key) {
+            located.message.push_str(&format!(
+                " (the case's keys of `{key}` are merged into the scene's, key by key: a choice \
+                 written under its name is not switched to another this way; name it by its \
+                 `kind`, or set it in each case rather than in the scene)"
             ));
         }
     }
@@ -59,7 +77,7 @@ pub(crate) fn expand(mut tree: Node, at: &Locator) -> Result<Vec<CaseInput>, Sce
             named: None,
             params: BTreeMap::new(),
             tree,
-            whole: vec![],
+            tables: Tables::default(),
         }],
     };
     Ok(cases)
@@ -128,7 +146,7 @@ fn swept(tree: &Node, sweep: &Node, at: &Locator) -> Result<Vec<CaseInput>, Scen
                 named: Some(()),
                 params: [(key.clone(), number)].into(),
                 tree: case,
-                whole: vec![],
+                tables: Tables::default(),
             })
         })
         .collect()
@@ -157,6 +175,33 @@ fn swept_value(value: &Node, integer: bool) -> Result<(Node, f64), String> {
     Ok((Node::from(number as i64).with_span(value.span()), number))
 }
 
+/// Puts a case's `value` at `path` of its tree: a table where the scene has a table of the
+/// same kind sets its keys one by one, keeping the scene's others (`optimisation = { controller
+/// = { l1_mm = 20.0 } }` keeps the method and L2); any other value, or a table naming another
+/// `kind` than the scene's, replaces the scene's value; `tables` notes which it did.
+fn put(
+    case: &mut Node,
+    path: &str,
+    value: &Node,
+    tables: &mut Tables,
+) -> Result<(), contopt_input::InputError> {
+    let (Value::Table(entries), Some(Value::Table(_))) =
+        (value.value(), case.get(path).map(Node::value))
+    else {
+        return case.insert(path, value.clone()).map(drop);
+    };
+    let kind = |node: Option<&Node>| node.and_then(|n| n.get("kind")).map(Node::value).cloned();
+    let named = kind(Some(value));
+    if named.is_some() && named != kind(case.get(path)) {
+        tables.whole.push(path.to_string());
+        return case.set(path, value.clone()).map(drop);
+    }
+    tables.merged.push(path.to_string());
+    entries
+        .iter()
+        .try_for_each(|(key, entry)| put(case, &format!("{path}.{}", key.name()), entry, tables))
+}
+
 /// One case per `[[case]]`: its `label` and the dotted keys it `set`s, with their values.
 fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>, SceneError> {
     let Value::Array(items) = list.value() else {
@@ -177,6 +222,15 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
                 Some(Value::String(label)) if !label.trim().is_empty() => label.clone(),
                 _ => return Err(at.at(&format!("{path}.label"), "give each case a label")),
             };
+            if let Some(c) = label.chars().find(|c| c.is_control()) {
+                return Err(at.at(
+                    &format!("{path}.label"),
+                    format!(
+                        "{c:?} in {label:?}: a label is one line of text, without control \
+                         characters (it heads the printed table's rows)"
+                    ),
+                ));
+            }
             if !seen.insert(label.clone()) {
                 return Err(at.at(&format!("{path}.label"), format!("a second case {label:?}")));
             }
@@ -186,15 +240,9 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
             };
             let mut case = tree.clone();
             let mut params = BTreeMap::new();
-            let mut whole = vec![];
+            let mut tables = Tables::default();
             for (key, value) in changes {
-                let table =
-                    |node: Option<&Node>| matches!(node.map(Node::value), Some(Value::Table(_)));
-                if table(Some(value)) && table(case.get(key.name())) {
-                    whole.push(key.name().to_string());
-                }
-                case.insert(key.name(), value.clone())
-                    .map_err(|e| at.input(e))?;
+                put(&mut case, key.name(), value, &mut tables).map_err(|e| at.input(e))?;
                 let number = match *value.value() {
                     Value::Integer(i) => Some(i as f64),
                     Value::Float(f) => Some(f),
@@ -209,7 +257,7 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
                 named: Some(()),
                 params,
                 tree: case,
-                whole,
+                tables,
             })
         })
         .collect()

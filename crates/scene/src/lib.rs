@@ -398,7 +398,7 @@ impl Case {
         bearing::compose(&mut tree, &whole)?;
         let locator = Locator::new(file, text.clone(), Arc::new(tree), case_name);
         let spec = CaseSpec::read(&locator.tree, registry)
-            .map_err(|e| cases::explain(&input.whole, locator.input(e)))?;
+            .map_err(|e| cases::explain(&input.tables, locator.input(e)))?;
         let label = if single {
             spec.name.clone()
         } else {

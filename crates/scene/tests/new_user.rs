@@ -261,6 +261,33 @@ fn subsurface_stresses_under_the_papers_punch() {
     );
 }
 
+/// A steel sphere on an aluminium half-space, both half-spaces of their own Poisson's ratio:
+/// each gets its own stresses below the surface, and each its own label (both were
+/// "half-space", their rows of one `subsurface_1.csv` told apart by nothing). The steel's
+/// Tresca is Hertz's 0.31 p₀ (ν = 0.3) within the coarse grid's 3 %.
+#[test]
+fn two_half_spaces_have_stresses_of_their_own() {
+    let aluminium = "material = { e_mpa = 7.0e4, nu = 0.33 }";
+    let steel = "kind = \"half_space\"\nmaterial = { e_mpa = 2.1e5, nu = 0.3 }";
+    let scene = sphere(500.0, 40, 0.05)
+        .replace("material = { e_mpa = 2.0e5, nu = 0.3 }", aluminium)
+        .replace("kind = \"rigid\"", steel)
+        + "[output.subsurface]\nmax_depth_mm = 0.66\ndepths = 12\n";
+    let report = parse(&scene).unwrap().cases()[0].run().unwrap();
+    let sub = report
+        .subsurface
+        .as_ref()
+        .expect("stresses below the surface");
+    let names: Vec<&str> = sub.bodies.iter().map(|b| b.body.as_str()).collect();
+    assert_eq!(names, ["half-space (below)", "half-space (above)"]);
+    let p0 = report.hertz.as_ref().expect("Hertz's figures").p0_mpa;
+    let steel = sub.bodies[1].peaks.tresca.value_mpa;
+    assert!(
+        (steel / (0.31 * p0) - 1.0).abs() < 0.03,
+        "{steel} against {p0}"
+    );
+}
+
 /// `pressure_mpa = nan` in a swept scene: the error names the key and its own line, not the
 /// sweep's key (it was "sweep value 0.0 for optimisation.controller.l1_mm: invalid type: null").
 #[test]

@@ -53,31 +53,115 @@ fn a_sweep_over_an_integer_key_sets_integers() {
     );
 }
 
-/// Cases that differ only in the controller share one build of their bodies (one
-/// factorisation per body), and each gives what it gives on bodies built for it alone.
-/// A `[[case]]` that sets a table where the scene has one replaces it whole: a key it left
-/// out is missing, and the error says why and how to set one key instead.
+/// `scene` with a `[[case]]` of `label` that sets `set` (a TOML inline table's inside).
+fn with_case(scene: &str, label: &str, set: &str) -> String {
+    format!("{scene}\n[[case]]\nlabel = {label:?}\nset = {{ {set} }}\n")
+}
+
+/// A `[[case]]` that sets a table where the scene has one sets the keys it names, key by key,
+/// and keeps the scene's others: the scene's TOLH (2·10⁻⁶ mm²) stays in a case that sets
+/// another method setting or the controller (it fell back to the default 0.5·10⁻⁶ mm²), the
+/// zone and load in a case that sets the gap. A table naming another `kind` is another
+/// choice, with that kind's own keys: it replaces the scene's.
 #[test]
-fn a_case_setting_a_table_is_told_it_replaces_it() {
-    let scene = format!(
-        "{}\n[[case]]\nlabel = \"large\"\nset = {{ contact = {{ gap = {{ kind = \"sphere\", \
-         radius_mm = 40.0 }} }} }}\n",
-        text("hertz")
+fn a_case_setting_a_table_sets_its_keys_only() {
+    let sweep =
+        "[sweep]\nkey = \"optimisation.controller.l1_mm\"\nvalues = [0.0, 20.0, 30.0, 40.0, 50.0]";
+    let base = text("paper-table1")
+        .replace(sweep, "")
+        .replace("tolh_mm2 = 0.5e-6", "tolh_mm2 = 2e-6");
+    let cases = [
+        ("iterations", "optimisation.method.max_iterations = 7"),
+        (
+            "controller",
+            "optimisation = { controller = { l1_mm = 20.0 } }",
+        ),
+        (
+            "programme",
+            "\"optimisation.method\" = { kind = \"linear_programme\" }",
+        ),
+        (
+            "dotted",
+            "\"optimisation.method\" = { kind = \"given_load\", max_iterations = 9 }",
+        ),
+    ];
+    let studied = cases
+        .iter()
+        .fold(base, |text, (label, set)| with_case(&text, label, set));
+    let scene = parse(&studied).unwrap();
+    let method = |k: usize| scene.cases()[k].input()["optimisation"]["method"].clone();
+    let controller = |k: usize| scene.cases()[k].input()["optimisation"]["controller"].clone();
+    assert_eq!(method(0)["given_load"]["tolh_mm2"], 2e-6, "{}", method(0));
+    assert_eq!(method(0)["given_load"]["max_iterations"], 7);
+    assert_eq!(method(1)["given_load"]["tolh_mm2"], 2e-6, "{}", method(1));
+    assert_eq!(controller(1)["cubic"]["l1_mm"], 20.0, "{}", controller(1));
+    assert_eq!(controller(1)["cubic"]["l2_mm"], 50.0, "{}", controller(1));
+    let programme = method(2)
+        .as_object()
+        .map(|m| m.keys().cloned().collect::<Vec<_>>());
+    assert_eq!(programme, Some(vec!["linear_programme".to_string()]));
+    assert_eq!(method(3)["given_load"]["tolh_mm2"], 2e-6, "{}", method(3));
+    assert_eq!(
+        method(3)["given_load"]["max_iterations"],
+        9,
+        "{}",
+        method(3)
+    );
+
+    let large = with_case(
+        text("hertz"),
+        "large",
+        "contact = { gap = { radius_mm = 40.0 } }",
+    );
+    let scene = parse(&large).unwrap();
+    let contact = scene.cases()[0].input()["contact"].clone();
+    assert_eq!(contact["gap"]["sphere"]["radius_mm"], 40.0, "{contact}");
+    assert_eq!(contact["load"]["force_n"], 1000.0, "{contact}");
+}
+
+/// A case's label is one line: a line break in it split the printed table's row and the
+/// error lines that name the case (it ran, exit 3, the row broken in two).
+#[test]
+fn a_label_with_a_line_break_is_refused() {
+    let scene = with_case(
+        text("hertz"),
+        "2 kN\nheavy",
+        "\"contact.load.force_n\" = 2000.0",
     );
     let message = refused(&scene);
     assert!(
-        message.contains("[large] contact.zone: missing field `zone`")
-            && message.contains("sets `contact` whole")
-            && message.contains("\"contact.<key>\" = …"),
+        message.contains("mine.toml:")
+            && message.contains("case[0].label")
+            && message.contains("control"),
         "{message}"
     );
-    let dotted = scene.replace(
-        "contact = { gap = { kind = \"sphere\", radius_mm = 40.0 } }",
-        "\"contact.gap.radius_mm\" = 40.0",
-    );
-    assert!(parse(&dotted).is_ok());
 }
 
+/// A table of another kind replaces the scene's whole: a key of the scene's table it leaves
+/// out is missing, and the error says why. A choice written under its name (a load) merged
+/// into the scene's another is two choices, refused with why.
+#[test]
+fn a_case_setting_another_kind_is_told_it_replaces_the_table() {
+    let rings = with_case(
+        text("hertz"),
+        "rings",
+        "contact = { zone = { kind = \"rings\" } }",
+    );
+    let message = refused(&rings);
+    assert!(
+        message.contains("[rings] contact.zone") && message.contains("another `kind`"),
+        "{message}"
+    );
+    let set = "contact = { load = { approach_mm = 0.01 } }";
+    let message = refused(&with_case(text("hertz"), "approach", set));
+    assert!(
+        message.contains("[approach] contact.load") && message.contains("merged into the scene's"),
+        "{message}"
+    );
+}
+
+/// Cases that differ only in the controller share one build of their bodies (one
+/// factorisation per body), and each gives what it gives on bodies built for it alone.
 #[test]
 fn cases_that_share_their_bodies_build_once() {
     let scene =

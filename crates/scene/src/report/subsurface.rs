@@ -44,13 +44,14 @@ pub(crate) fn compute(
         bodies: vec![],
     };
     let count = if shared { 1 } else { 2 };
+    let names = labels(bodies);
     for (k, body) in bodies[..count].iter().enumerate() {
         let own = own_order(bodies, k, pressure)?;
         if let Some(found) = body.subsurface(&own, &request)? {
             let name = if shared {
                 format!("{} and {}", bodies[0].name(), bodies[1].name())
             } else {
-                body.name().to_string()
+                names[k].clone()
             };
             report.bodies.push(BodyStresses {
                 body: name,
@@ -60,6 +61,18 @@ pub(crate) fn compute(
         }
     }
     Ok(Some(report))
+}
+
+/// The bodies' names as their own stresses are labelled: two bodies of one name (two unnamed
+/// half-spaces of different Poisson's ratios) are told apart by their side of the zone, the
+/// first below it.
+fn labels(bodies: [&dyn ElasticBody; 2]) -> [String; 2] {
+    let names = bodies.map(|b| b.name().to_string());
+    if names[0] != names[1] {
+        return names;
+    }
+    let [below, above] = names;
+    [format!("{below} (below)"), format!("{above} (above)")]
 }
 
 /// The pressure at body `k`'s points in its own order: the first body's as given (the
