@@ -426,8 +426,14 @@ fn seed(problem: &InterfaceProblem, warm: bool, ws: &mut PolonskyKeerWorkspace) 
 /// The greatest free gap of a cold start's seed: [`SEED_FRACTION`] of the gap's range above
 /// its lowest point.
 fn seed_level(problem: &InterfaceProblem) -> f64 {
+    gap_levels(problem).0
+}
+
+/// The seed's greatest free gap ([`seed_level`]) and the flat face's (the lowest gap plus its
+/// round-off, [`PLATEAU`] of the gap's range), from one pass over the gaps.
+fn gap_levels(problem: &InterfaceProblem) -> (f64, f64) {
     let (lo, hi) = range(problem.free_gaps());
-    lo + SEED_FRACTION * (hi - lo)
+    (lo + SEED_FRACTION * (hi - lo), lo + PLATEAU * (hi - lo))
 }
 
 /// Whether a cold start's seed ([`seed`]: the points within [`SEED_FRACTION`] of the free
@@ -450,8 +456,7 @@ fn flat_seed(problem: &InterfaceProblem) -> bool {
 /// The greatest gap of the flat face that is a cold start's seed ([`flat_seed`]), if it is
 /// one: the lowest gap plus its round-off ([`PLATEAU`] of the gap's range).
 fn flat_face(problem: &InterfaceProblem) -> Option<f64> {
-    let (lo, hi) = range(problem.free_gaps());
-    let (seed, flat) = (seed_level(problem), lo + PLATEAU * (hi - lo));
+    let (seed, flat) = gap_levels(problem);
     problem
         .free_gaps()
         .all(|h| h <= flat || h > seed)
