@@ -9,13 +9,17 @@
 //! - a contact whose half-width, where it ends inside the grid, spans fewer than
 //!   [`MIN_CELLS_ACROSS`] cells (the patch of carrying cells around its peak) is not resolved
 //!   (a rigid sphere on 4 × 4 cells of a/1.3 gives p_max 7 % below Hertz's p₀);
+//! - a contact whose pressure rises to its peak at its own edge (a flat punch's rim, the end of
+//!   a roller as long as the grid) ends at a sharp edge, where the elastic pressure is
+//!   singular: p_max is the value on these cells and grows as they shrink (the scenes' check,
+//!   [`contopt_scene::sharp_edge_warning`]);
 //! - no cell carrying pressure: the bodies do not touch.
 
 use std::ffi::CString;
 use std::sync::Arc;
 
 use contopt_greens::CARRIES;
-use contopt_scene::MIN_CELLS_ACROSS;
+use contopt_scene::{Layout, MIN_CELLS_ACROSS};
 use pyo3::exceptions::PyRuntimeWarning;
 use pyo3::prelude::*;
 
@@ -36,7 +40,7 @@ impl Cells {
     /// What the answer `pressure` [MPa] (C order) says of the grid's limits: the boundary
     /// cell that carries the most, when one carries any
     /// ([`contopt_greens::HalfSpace::edge_reached`]); otherwise the resolution of the contact
-    /// through its peak, or that no cell carries pressure.
+    /// through its peak and a peak at a sharp edge; or that no cell carries pressure.
     pub fn warnings(&self, pressure: &[f64]) -> Vec<String> {
         let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
         if p_max <= 0.0 {
@@ -53,8 +57,42 @@ impl Cells {
         });
         match reached {
             Some(edge) => vec![edge.warning()],
-            None => self.resolution(pressure, p_max).into_iter().collect(),
+            None => (self.resolution(pressure, p_max).into_iter())
+                .chain(self.sharp_edge(pressure, p_max))
+                .collect(),
         }
+    }
+
+    /// The scenes' warning of a peak at a sharp edge ([`contopt_scene::sharp_edge_warning`]),
+    /// the grid's cells as a scene's grid zone. A periodic grid's contact that carries on the
+    /// grid's boundary runs on across it, where the check would see the contact end: it is not
+    /// judged.
+    fn sharp_edge(&self, pressure: &[f64], p_max: f64) -> Option<String> {
+        let ([ny, nx], [dx, dy], origin) = (self.shape, self.cell, self.origin);
+        let periodic = self.grid.as_ref().is_some_and(|g| g.is_periodic());
+        let on_boundary = |k: usize| {
+            let (i, j) = (k % nx, k / nx);
+            i == 0 || j == 0 || i + 1 == nx || j + 1 == ny
+        };
+        let wraps = (0..pressure.len()).any(|k| on_boundary(k) && pressure[k] > CARRIES * p_max);
+        if periodic && wraps {
+            return None;
+        }
+        let layout = Layout::Grid {
+            nx,
+            ny,
+            dx,
+            dy,
+            origin,
+            symmetric: [false; 2],
+        };
+        let points: Vec<[f64; 3]> = (0..pressure.len())
+            .map(|k| {
+                let (i, j) = (k % nx, k / nx);
+                [origin[0] + i as f64 * dx, origin[1] + j as f64 * dy, 0.0]
+            })
+            .collect();
+        contopt_scene::sharp_edge_warning(&layout, &points, pressure)
     }
 
     /// The contact's half-width in cells along x and y: half the number of columns and of rows

@@ -78,7 +78,7 @@ pub use plan::{Memory, DEFAULT_MEMORY_LIMIT_BYTES};
 pub use reference::{ClosedForm, Hertz, ReferenceCase};
 pub use region::OmegaVSpec;
 pub use registry::{Chosen, Registry, SolverKind};
-pub use report::{MIN_CELLS_ACROSS, PENETRATION_WARNING};
+pub use report::{sharp_edge_warning, MIN_CELLS_ACROSS, PENETRATION_WARNING};
 pub use run::Run;
 pub use spec::{CaseSpec, ContactSpec, LoadSpec, OptimisationSpec, OutputSpec};
 pub use subsurface::{SectionSpec, SubsurfaceSpec};

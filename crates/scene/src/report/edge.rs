@@ -5,6 +5,7 @@
 //! zero at its edge instead.
 
 use contopt_core::stress::peak_index;
+use contopt_greens::CARRIES;
 
 use crate::zone::Layout;
 
@@ -51,6 +52,21 @@ impl SharpEdge {
             self.inward_mpa
         )
     }
+}
+
+/// The warning of a contact on `layout` whose pressure \[MPa\] at its `points` peaks at a
+/// sharp edge — on the line of points through the peak, the peak in the last cell of its
+/// carrying run (cells above [`CARRIES`] of the peak), standing 5 % above the cell inward — as
+/// a scene's report says it: the scenes' own check, for a caller with a grid and a pressure of
+/// its own (the Python package's solves and designs on a `HalfSpace` or `DenseBody` grid).
+pub fn sharp_edge_warning(
+    layout: &Layout,
+    points: &[[f64; 3]],
+    pressure: &[f64],
+) -> Option<String> {
+    let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+    let carrying: Vec<bool> = pressure.iter().map(|&p| p > CARRIES * p_max).collect();
+    sharp_edge(layout, points, &carrying, pressure).map(|edge| edge.warning())
 }
 
 /// Points of a layout that share one cell along a line: the three Gauss points of a face.

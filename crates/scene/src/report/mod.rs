@@ -22,6 +22,7 @@ use std::time::Instant;
 use contopt_contact::InterfaceProblem;
 use contopt_results::CaseReport;
 
+pub use edge::sharp_edge_warning;
 pub use figures::PENETRATION_WARNING;
 pub use limits::MIN_CELLS_ACROSS;
 
