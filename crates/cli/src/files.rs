@@ -8,18 +8,74 @@ use std::path::{Path, PathBuf};
 /// The list of the files a run wrote, kept in the folder for the next run.
 pub const MANIFEST: &str = ".contopt-results";
 
-/// Refuses an `--out` that names something other than a folder (a regular file, say), before
-/// anything is solved.
+/// Refuses an `--out` that names something other than a folder (a regular file, a link to
+/// nothing, a path through a file), before anything is solved.
 pub fn check_out(out: &Path) -> Result<()> {
-    match std::fs::metadata(out) {
-        Ok(m) if !m.is_dir() => Err(Error::new(
-            ErrorKind::AlreadyExists,
+    let refused = |kind, why: &str| {
+        Err(Error::new(
+            kind,
             format!(
-                "--out {} is a file, not a folder: give the folder the results go to",
+                "--out {} {why}: give the folder the results go to",
                 out.display()
             ),
+        ))
+    };
+    match std::fs::metadata(out) {
+        Ok(m) if !m.is_dir() => refused(ErrorKind::AlreadyExists, "is a file, not a folder"),
+        Ok(_) => Ok(()),
+        Err(e) if e.kind() == ErrorKind::NotFound => match std::fs::symlink_metadata(out) {
+            Ok(_) => refused(ErrorKind::NotFound, "is a symbolic link to nothing"),
+            Err(_) => Ok(()),
+        },
+        Err(e) => refused(e.kind(), &format!("cannot be a folder ({e})")),
+    }
+}
+
+/// Refuses, before anything is solved, an output place that [`ResultsDir::create`] would
+/// refuse once the cases are solved: `out` as [`check_out`] does, and each of the nested
+/// `folders` below it (the scene's, then a shard's) that is a symbolic link or not a folder,
+/// or whose name leads elsewhere. The same checks as `create`'s, on what exists now.
+pub fn check_place(out: &Path, folders: &[&str]) -> Result<()> {
+    check_out(out)?;
+    let mut dir = out.to_path_buf();
+    for name in folders {
+        check_name(name)?;
+        dir.push(name);
+        if !existing_folder(&dir)? {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a folder name that is not a plain name ([`contopt_scene::check_name`]).
+fn check_name(name: &str) -> Result<()> {
+    contopt_scene::check_name(name).map_err(|reason| {
+        Error::new(
+            ErrorKind::InvalidInput,
+            format!("the scene name {name:?} {reason}"),
+        )
+    })
+}
+
+/// Whether `dir` is a folder (false when it is missing), refusing a symbolic link there and
+/// anything else that is not a folder.
+fn existing_folder(dir: &Path) -> Result<bool> {
+    match std::fs::symlink_metadata(dir) {
+        Ok(m) if m.file_type().is_symlink() => Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!(
+                "{} is a symbolic link: results are not written through links",
+                dir.display()
+            ),
         )),
-        _ => Ok(()),
+        Ok(m) if !m.is_dir() => Err(Error::new(
+            ErrorKind::AlreadyExists,
+            format!("{} exists and is not a folder", dir.display()),
+        )),
+        Ok(_) => Ok(true),
+        Err(e) if e.kind() == ErrorKind::NotFound => Ok(false),
+        Err(e) => Err(e),
     }
 }
 
@@ -34,33 +90,11 @@ impl ResultsDir {
     /// again here, for callers that did not parse a scene) and `out/name` is not a symbolic
     /// link.
     pub fn create(out: &Path, name: &str) -> Result<Self> {
-        contopt_scene::check_name(name).map_err(|reason| {
-            Error::new(
-                ErrorKind::InvalidInput,
-                format!("the scene name {name:?} {reason}"),
-            )
-        })?;
+        check_name(name)?;
         std::fs::create_dir_all(out)?;
         let dir = out.join(name);
-        match std::fs::symlink_metadata(&dir) {
-            Ok(m) if m.file_type().is_symlink() => {
-                return Err(Error::new(
-                    ErrorKind::InvalidInput,
-                    format!(
-                        "{} is a symbolic link: results are not written through links",
-                        dir.display()
-                    ),
-                ))
-            }
-            Ok(m) if !m.is_dir() => {
-                return Err(Error::new(
-                    ErrorKind::AlreadyExists,
-                    format!("{} exists and is not a folder", dir.display()),
-                ))
-            }
-            Ok(_) => {}
-            Err(e) if e.kind() == ErrorKind::NotFound => std::fs::create_dir(&dir)?,
-            Err(e) => return Err(e),
+        if !existing_folder(&dir)? {
+            std::fs::create_dir(&dir)?;
         }
         Ok(Self {
             dir,

@@ -4,7 +4,8 @@
 //!   bar on stderr when it is a terminal, and writes the files of
 //!   [`contopt_report::write()`] to `DIR/<name>/` (`result.json`, `interface.csv`, the charts as
 //!   SVG and PNG, a finite-element case's fields for ParaView as `.vtu`), then prints a table (or, with `--json`, the report as one JSON document on
-//!   stdout). Files go only into `DIR/<name>/`, never through a symbolic link.
+//!   stdout). Files go only into `DIR/<name>/`, never through a symbolic link; a place they
+//!   could not go to is refused before anything is solved.
 //! - `contopt run <scene> --shard K/N`: runs shard K (from 0) of N of the scene's cases, one
 //!   task of a job array, into `DIR/<name>/shard_K_of_N/` (`partial.json` and the files of its
 //!   cases); `contopt merge DIR/<name>` joins the shards into exactly the files one run writes
@@ -269,7 +270,11 @@ struct Print {
 
 /// Runs every case (or a shard's), writes the results and prints them; the exit code.
 fn run(scene: &Scene, print: Print, out: &Path, shard: Option<Shard>, jobs: usize) -> ExitCode {
-    if let Err(e) = files::check_out(out) {
+    let shard_folder = shard.map(|s| s.folder());
+    let folders: Vec<&str> = std::iter::once(scene.name.as_str())
+        .chain(shard_folder.as_deref())
+        .collect();
+    if let Err(e) = files::check_place(out, &folders) {
         eprintln!("error: {e}");
         return ExitCode::from(EXIT_WRITE);
     }

@@ -104,6 +104,50 @@ fn out_naming_a_file_is_refused_before_solving() {
     assert_eq!(std::fs::read_to_string(&taken).unwrap(), "mine");
 }
 
+/// An output place the results could not go to is refused before anything is solved (each
+/// used to solve every case first, then be refused): a scene folder `<out>/hertz` that is a
+/// symbolic link, reached directly or by a path through `..`; a shard's folder that is one;
+/// an `--out` that is a link to nothing (which said `File exists`). Exit 4, one line, and no
+/// report on stdout even with `--json` (a run that solved prints its report before it
+/// writes); the link's target untouched.
+#[cfg(unix)]
+#[test]
+fn a_linked_results_folder_is_refused_before_solving() {
+    let here = scratch(BIN, "out-link");
+    let elsewhere = here.join("elsewhere");
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let out = here.join("out");
+    std::fs::create_dir_all(out.join("sub")).unwrap();
+    std::os::unix::fs::symlink(&elsewhere, out.join("hertz")).unwrap();
+    let through_dots = out.join("sub").join("..");
+    let shards = here.join("shards");
+    std::fs::create_dir_all(shards.join("hertz")).unwrap();
+    std::os::unix::fs::symlink(&elsewhere, shards.join("hertz").join("shard_0_of_2")).unwrap();
+    let dangling = here.join("dangling");
+    std::os::unix::fs::symlink(here.join("nowhere"), &dangling).unwrap();
+    let runs: [(&Path, &[&str], &str); 4] = [
+        (&out, &[], "hertz is a symbolic link"),
+        (&through_dots, &[], "hertz is a symbolic link"),
+        (
+            &shards,
+            &["--shard", "0/2"],
+            "shard_0_of_2 is a symbolic link",
+        ),
+        (&dangling, &[], "--out"),
+    ];
+    for (place, extra, said) in runs {
+        let output = contopt()
+            .args(["run", "--bundled", "hertz", "--json", "--out"])
+            .arg(place)
+            .args(extra)
+            .output()
+            .unwrap();
+        let err = fails_with(&output, 4, &[said, "symbolic link"]);
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
+}
+
 /// A rigid sphere (R = 50 mm, steel) at 20 kN on a half-space grid of 100 × 100 cells of
 /// 0.025 mm: Hertz's contact (a = 1.51 mm) runs off the ±1.25 mm grid. It used to report a
 /// p_max 59 % above Hertz's with exit 0; now the run exits 3 with the limit's message on
