@@ -83,8 +83,11 @@ pub enum CaseStatus {
 pub struct CaseReport {
     /// The case's label, the same in tables, files and charts (`L1 = 20 mm`, `ISO/TS 16281`).
     pub label: String,
-    /// The keys the case changed from the scene (a sweep's key, a `[[case]]`'s numbers), as
-    /// dotted paths of the scene, with their values.
+    /// The numbers the case changed from the scene, by their dotted paths of the scene, with
+    /// their values: a sweep's key, or each number a `[[case]]` sets, however it is written
+    /// (a table's keys each by its path, `optimisation.method.max_iterations`; an array's
+    /// entries by index, `contact.zone.cells.0`). Values that are not numbers (a kind) are
+    /// in `input` only.
     pub params: BTreeMap<String, f64>,
     /// The case's inputs as they were resolved: the scene with the case's values put in and
     /// every default written out. It reads back as a scene.

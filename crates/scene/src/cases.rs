@@ -243,14 +243,7 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
             let mut tables = Tables::default();
             for (key, value) in changes {
                 put(&mut case, key.name(), value, &mut tables).map_err(|e| at.input(e))?;
-                let number = match *value.value() {
-                    Value::Integer(i) => Some(i as f64),
-                    Value::Float(f) => Some(f),
-                    _ => None,
-                };
-                if let Some(number) = number {
-                    params.insert(key.name().to_string(), number);
-                }
+                numbers(key.name(), value, &mut params);
             }
             Ok(CaseInput {
                 label,
@@ -261,4 +254,31 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
             })
         })
         .collect()
+}
+
+/// Each number a case's `value` at `path` sets, into `params` by its dotted path: a table's
+/// key by key, an array's by index, as a dotted path reaches them (`set = { optimisation =
+/// { method = { max_iterations = 7 } } }` is `optimisation.method.max_iterations`,
+/// `contact.zone.cells = [32, 48]` is `contact.zone.cells.0` and `.1`). Values that are not
+/// numbers (a kind, a name, a flag) are the case's `input`'s only.
+fn numbers(path: &str, value: &Node, params: &mut BTreeMap<String, f64>) {
+    match value.value() {
+        Value::Integer(i) => {
+            params.insert(path.to_string(), *i as f64);
+        }
+        Value::Float(f) => {
+            params.insert(path.to_string(), *f);
+        }
+        Value::Table(entries) => {
+            for (key, entry) in entries {
+                numbers(&format!("{path}.{}", key.name()), entry, params);
+            }
+        }
+        Value::Array(items) => {
+            for (k, item) in items.iter().enumerate() {
+                numbers(&format!("{path}.{k}"), item, params);
+            }
+        }
+        _ => {}
+    }
 }

@@ -119,6 +119,64 @@ fn a_case_setting_a_table_sets_its_keys_only() {
     assert_eq!(contact["load"]["force_n"], 1000.0, "{contact}");
 }
 
+/// A case's `params` name each number it sets by its dotted path, with its value, however the
+/// case writes it: a dotted key (a TOML table), a table, a table of another kind, an array (by
+/// index, as a dotted path indexes one). They used to list only a number set at the top of
+/// `set`: a case setting `optimisation.method.max_iterations = 7` had no params at all. A
+/// value that is not a number (a kind) is not one; the case's `input` holds it.
+#[test]
+fn a_cases_params_name_every_number_it_sets() {
+    let sweep =
+        "[sweep]\nkey = \"optimisation.controller.l1_mm\"\nvalues = [0.0, 20.0, 30.0, 40.0, 50.0]";
+    let cases = [
+        ("dotted", "optimisation.method.max_iterations = 7"),
+        (
+            "table",
+            "optimisation = { controller = { l1_mm = 20.0, l2_mm = 40.0 } }",
+        ),
+        (
+            "another kind",
+            "\"optimisation.method\" = { kind = \"linear_programme\" }",
+        ),
+        ("quoted", "\"optimisation.controller.l1_mm\" = 30.0"),
+    ];
+    let studied = cases.iter().fold(
+        text("paper-table1").replace(sweep, ""),
+        |text, (label, set)| with_case(&text, label, set),
+    );
+    let scene = parse(&studied).unwrap();
+    let params = |k: usize| {
+        let case = &scene.cases()[k];
+        case.params
+            .iter()
+            .map(|(k, v)| (k.as_str(), *v))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(params(0), [("optimisation.method.max_iterations", 7.0)]);
+    assert_eq!(
+        params(1),
+        [
+            ("optimisation.controller.l1_mm", 20.0),
+            ("optimisation.controller.l2_mm", 40.0)
+        ]
+    );
+    assert_eq!(params(2), []);
+    assert_eq!(params(3), [("optimisation.controller.l1_mm", 30.0)]);
+
+    let cells = with_case(text("hertz"), "cells", "contact.zone.cells = [32, 48]");
+    let scene = parse(&cells).unwrap();
+    let params: Vec<_> = scene.cases()[0].params.clone().into_iter().collect();
+    assert_eq!(
+        params,
+        [
+            ("contact.zone.cells.0".to_string(), 32.0),
+            ("contact.zone.cells.1".to_string(), 48.0)
+        ]
+    );
+    let input = scene.cases()[0].input();
+    assert_eq!(input["contact"]["zone"]["grid"]["cells"][1], 48, "{input}");
+}
+
 /// A case's label is one line: a line break in it split the printed table's row and the
 /// error lines that name the case (it ran, exit 3, the row broken in two).
 #[test]
