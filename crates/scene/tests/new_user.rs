@@ -171,8 +171,9 @@ fn a_contact_of_a_few_cells_warns_with_the_number() {
 /// A rigid cylinder (R = 10 mm) as long as its grid (4 mm), at 10 kN on a half-space: its
 /// straight ends are sharp edges, where the pressure is singular. The old answer was a p_max
 /// three times Hertz's line p₀ (4182 MPa) with no word, and a larger one on finer cells; now
-/// each case names the edge, and its p_max grows by about √2 per halving of the cells while the
-/// pressure at the middle does not move.
+/// each case names the edge, and Hertz's p₀ beside it as the line contact's (a cylinder without
+/// ends: the pressure along its middle, not its ends'), and its p_max grows by about √2 per
+/// halving of the cells while the pressure at the middle does not move.
 #[test]
 fn a_peak_at_a_sharp_edge_is_named() {
     let run = |cells: usize| {
@@ -195,7 +196,17 @@ kind = "rigid"
         let report = parse(&text).unwrap().cases()[0].run().unwrap();
         assert!(report.is_solved(), "{:?}", report.termination);
         let warning = report.warnings.iter().find(|w| w.contains("sharp edge"));
-        assert!(warning.is_some(), "{:?}", report.warnings);
+        let warning = warning.unwrap_or_else(|| panic!("{:?}", report.warnings));
+        // Hertz's p₀ reported beside the case is the line contact's: the warning says so, and
+        // how far the end's peak stands above it (it used to say nothing of it).
+        let p0 = report.hertz.as_ref().unwrap().p0_mpa;
+        let times = report.p_max_mpa.unwrap() / p0;
+        let said = format!("Hertz's p₀ = {p0:.1} MPa beside the case is the line contact's");
+        assert!(warning.contains(&said), "{warning}");
+        assert!(
+            warning.contains(&format!("{times:.2} times it")),
+            "{warning}"
+        );
         let middle = (report.interface.iter())
             .filter(|q| q.x_mm[0].abs() < cell)
             .map(|q| q.p_mpa)

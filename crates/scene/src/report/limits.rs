@@ -10,7 +10,7 @@ use contopt_core::stress::peak_index;
 use contopt_greens::CARRIES;
 use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
-use super::edge::{line_through, points_per_cell, sharp_edge};
+use super::edge::{line_through, points_per_cell, sharp_edge, SharpEdge};
 use crate::mesh_surface::MeshSurface;
 use crate::zone::Layout;
 use crate::{Case, Hertz};
@@ -88,9 +88,28 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
         .extend(case.plan.hertz.and_then(large_contact));
     let layout = &case.plan.layout;
     if let Some(edge) = sharp_edge(layout, points, &carrying, &pressure) {
-        report.warnings.push(edge.warning());
+        let beside = case.plan.hertz.and_then(|h| line_contact_beside(h, &edge));
+        report
+            .warnings
+            .push(edge.warning() + &beside.unwrap_or_default());
     }
     report.warnings.extend(light_cases(report));
+}
+
+/// What a sharp edge's warning adds where Hertz's nominal line contact is reported beside the
+/// case: its p₀ is a cylinder's without ends, the pressure along the middle of a long contact,
+/// which the peak at a finite cylinder's end is not (1.5–2 times it on the cells of a usual
+/// grid, and more on finer ones).
+fn line_contact_beside(hertz: Hertz, edge: &SharpEdge) -> Option<String> {
+    (hertz.line && hertz.p0 > 0.0).then(|| {
+        format!(
+            "; Hertz's p₀ = {:.1} MPa beside the case is the line contact's, a cylinder's \
+             without ends: it is the pressure along the middle, and the peak at this edge, \
+             {:.2} times it, is no Hertz figure",
+            hertz.p0,
+            edge.p_mpa / hertz.p0
+        )
+    })
 }
 
 /// The warning of a contact whose Hertz half-width exceeds [`SMALL_CONTACT`] of the radius
