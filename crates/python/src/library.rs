@@ -302,7 +302,13 @@ impl Contact {
                 return Err(invalid(py, "approach_mm", approach, "a finite value"));
             }
             _ => {
-                let given = format!("force_n={force_n:?}, approach_mm={approach_mm:?}");
+                // As Python writes them: None, or the float's repr.
+                let python = |v: Option<f64>| v.map_or("None".into(), |v| format!("{v:?}"));
+                let given = format!(
+                    "{} (and approach_mm = {})",
+                    python(force_n),
+                    python(approach_mm)
+                );
                 return Err(invalid(
                     py,
                     "force_n",

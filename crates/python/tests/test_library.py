@@ -223,6 +223,19 @@ def test_bad_arrays_and_loads(make, key):
     assert isinstance(raised.value, ValueError)
 
 
+def test_both_loads_or_neither_are_named_in_pythons_words():
+    # The values as Python writes them: it said "force_n=Some(1.0), approach_mm=Some(0.1)".
+    body, gap, _ = hertz(n=16)
+    for kwargs, value in [
+        (dict(force_n=1.0, approach_mm=0.1), "1.0 (and approach_mm = 0.1)"),
+        (dict(), "None (and approach_mm = None)"),
+    ]:
+        with pytest.raises(contopt.InputError) as raised:
+            contopt.Contact(body, gap, **kwargs)
+        assert raised.value.key == "force_n" and raised.value.value == value
+        assert "Some(" not in str(raised.value)
+
+
 def test_nan_is_located():
     body, gap, _ = hertz(n=16)
     gap[3, 5] = np.nan
