@@ -222,6 +222,40 @@ kind = "rigid"
     );
 }
 
+/// A rigid cylinder as long as its grid (6 mm on 12 cells of 0.5 mm, R = 5 mm, 2 kN): its
+/// contact runs the zone's whole length, where the cylinder itself ends, so the length has no
+/// edge of the contact to resolve: the resolution is judged across it, Hertz's b = 0.1356 mm
+/// on cells of 0.0125 mm. It used to say "the contact's half-width along x (3.0000 mm) spans
+/// 6.0 cells, fewer than 8: its peak is not resolved; refine the zone", though finer cells
+/// along the length resolve nothing more (the Python package's check already skipped it).
+#[test]
+fn a_contact_along_the_whole_zone_is_judged_across_it() {
+    let text = r#"name = "cylinder"
+[contact]
+zone = { kind = "grid", cells = [12, 41], cell_mm = [0.5, 0.0125] }
+gap = { kind = "cylinder", radius_mm = 5.0 }
+load = { force_n = 2000.0 }
+
+[[body]]
+kind = "half_space"
+material = { e_mpa = 1.05e5, nu = 0.3 }
+
+[[body]]
+kind = "rigid"
+"#;
+    let report = parse(text).unwrap().cases()[0].run().unwrap();
+    assert!(report.is_solved(), "{:?}", report.termination);
+    let unresolved = report.warnings.iter().find(|w| w.contains("not resolved"));
+    assert!(unresolved.is_none(), "{:?}", report.warnings);
+    let resolution = report.resolution.as_ref().unwrap();
+    assert_eq!(resolution.along, "y", "{resolution:?}");
+    let b = report.hertz.as_ref().unwrap().half_width_mm;
+    assert!(
+        (resolution.half_width_mm / b - 1.0).abs() < 0.25,
+        "{resolution:?} against b = {b}"
+    );
+}
+
 /// A sphere pressed 10⁻⁹ mm into a grid whose cell centres miss its apex: no point carries
 /// pressure. It used to report p_max 0 and nothing else; now the case warns, with Hertz's
 /// contact in cells (a = 7·10⁻⁵ mm against cells of 0.02 mm).

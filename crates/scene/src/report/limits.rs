@@ -383,7 +383,8 @@ fn edges(layout: &Layout, points: &[[f64; 3]]) -> Vec<Edge> {
 /// How many cells span the contact's half-width through the largest pressure, in the
 /// direction where they are fewest (on a grid, the smaller of the two counts: a roller's
 /// contact may be long across and short along its axis; from the plane of a grid's
-/// `symmetry`, all of the run).
+/// `symmetry`, all of the run). A grid's run across the whole zone, which a body ends there (a
+/// cylinder as long as the zone), is not counted: `None` when both are.
 fn resolution(
     layout: &Layout,
     points: &[[f64; 3]],
@@ -401,12 +402,23 @@ fn resolution(
     };
     match layout {
         Layout::Grid {
-            dx, dy, symmetric, ..
+            nx,
+            ny,
+            dx,
+            dy,
+            symmetric,
+            ..
         } => {
             // From the plane of symmetry, the carrying run is the half-width itself.
             let half = |axis: usize, n: f64| if symmetric[axis] { n } else { 0.5 * n };
-            let cells = [half(0, count(1)), half(1, count(0))];
-            let axis = if cells[0] <= cells[1] { 0 } else { 1 };
+            let counts = [count(1), count(0)];
+            let cells = [half(0, counts[0]), half(1, counts[1])];
+            // A run across the whole zone ends where a body ends (a cylinder as long as the
+            // zone, which the zone's edges did not cut): no edge of the contact to resolve.
+            let within = |axis: usize| counts[axis] < [*nx, *ny][axis] as f64;
+            let axis = (0..2)
+                .filter(|&axis| within(axis))
+                .min_by(|&a, &b| cells[a].total_cmp(&cells[b]))?;
             Some(Resolution {
                 along: ["x", "y"][axis].into(),
                 half_width_mm: cells[axis] * [*dx, *dy][axis],
