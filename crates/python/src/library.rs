@@ -526,7 +526,8 @@ pub struct Solution {
     approach: Option<f64>,
     /// The solve's own time in Rust [s].
     seconds: f64,
-    /// The model's limits the answer reached (a contact cut by the grid's edge).
+    /// The model's limits the answer reached (a contact cut by the grid's edge, on too few
+    /// cells, peaking at a sharp edge).
     warnings: Vec<String>,
 }
 
@@ -639,8 +640,9 @@ impl Solution {
     }
 
     /// The model's limits the answer reached, each a sentence (a contact that reaches the
-    /// edge of a grid that is not periodic: its pressure is wrong); each is also raised as a
-    /// `RuntimeWarning`.
+    /// edge of a grid that is not periodic: its pressure is wrong; one on too few cells; a
+    /// peak at a sharp edge, a punch's rim, whose value depends on the cells); each is also
+    /// raised as a `RuntimeWarning`.
     #[getter]
     fn warnings(&self) -> Vec<String> {
         self.warnings.clone()

@@ -260,7 +260,8 @@ impl Optimum {
     }
 
     /// The model's limits the answer reached, each a sentence (a contact that reaches the
-    /// edge of a grid that is not periodic); each is also raised as a `RuntimeWarning`.
+    /// edge of a grid that is not periodic, one on too few cells, a peak at a sharp edge);
+    /// each is also raised as a `RuntimeWarning`.
     #[getter]
     fn warnings(&self) -> Vec<String> {
         self.warnings.clone()
