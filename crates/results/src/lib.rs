@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 9;
+pub const SCHEMA_VERSION: u32 = 10;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -137,6 +137,10 @@ pub struct CaseReport {
     pub resolution: Option<Resolution>,
     /// The passes of the optimisation (Table 2's columns); empty without one.
     pub passes: Vec<Pass>,
+    /// The steps of a contact analysis's solve, each method's at each level, and Kalker's
+    /// counts; null for a design (its passes count their solves) and for a solve that ended
+    /// in an error (`termination` says which).
+    pub solve: Option<SolveSteps>,
     /// The fields at the interface points.
     pub interface: Vec<Point>,
     /// Wall time of the stages \[ms\]: `build`, then `solve`, `optimise`, `search`,
@@ -234,6 +238,37 @@ pub struct Pass {
     pub iterp: usize,
     /// Kalker's penetration checks of the pass's contact solves (the paper's `iterd`).
     pub iterd: usize,
+}
+
+/// The steps of one contact solve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct SolveSteps {
+    /// The steps of each method the solve ran, by level: the solver's own at level 0
+    /// (Polonsky–Keer's on the zone's grid, the augmented Lagrangian's Uzawa updates, the
+    /// QP's interior-point steps), each method it runs one level deeper (Polonsky–Keer's
+    /// nested start: each coarser grid one level more; the augmented Lagrangian's Kalker
+    /// solves); by level, outermost first, and within a level in the order they first ran.
+    pub steps: Vec<MethodSteps>,
+    /// Kalker's solves on a contact set (the paper's `iterp`); 0 for a solver without
+    /// Kalker's iteration (Polonsky–Keer, the QP).
+    pub iterp: usize,
+    /// Kalker's penetration checks (the paper's `iterd`); 0 as `iterp`.
+    pub iterd: usize,
+}
+
+/// The steps one method took at one level of a solve.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct MethodSteps {
+    /// The method.
+    pub method: Method,
+    /// Its level: 0 for the solver, one more for each method that runs it.
+    pub level: usize,
+    /// Its steps (iterations) at that level, summed over its runs there.
+    pub steps: usize,
 }
 
 /// The fields at one interface point.
@@ -696,6 +731,7 @@ impl CaseReport {
             hertz: None,
             resolution: None,
             passes: vec![],
+            solve: None,
             interface: vec![],
             timings_ms: BTreeMap::new(),
             roller: None,

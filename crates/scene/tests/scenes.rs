@@ -414,6 +414,67 @@ fn a_run_reports_to_its_observer() {
     assert_eq!(stopped.termination, Termination::Stopped { after: 2 });
 }
 
+/// A contact analysis reports its solve's steps by method and level, as its observer saw
+/// them, and Kalker's counts: Polonsky–Keer's on the zone's grid and its nested start's
+/// coarser grids apart; the augmented Lagrangian's Uzawa updates and its Kalker solves.
+#[test]
+fn a_contact_analysis_reports_its_steps_by_level() {
+    for (solver, inner) in [
+        ("\"polonsky_keer\"", Method::PolonskyKeer),
+        (
+            "{ kind = \"augmented_lagrangian\", c_mpa_per_mm = 2e6 }",
+            Method::Kalker,
+        ),
+    ] {
+        let edits = [
+            ("contact.zone.cells", Some("[24, 24]")),
+            ("contact.zone.cell_mm", Some("[0.04, 0.04]")),
+            ("output", None),
+            ("solver", Some(solver)),
+        ];
+        let scene = Scene::bundled_with("hertz", &edits).unwrap();
+        let seen = RefCell::new(std::collections::BTreeMap::new());
+        let watch = |e: &Event| {
+            if e.end.is_none() {
+                *seen.borrow_mut().entry((e.level, e.method)).or_insert(0) += 1;
+            }
+            Flow::Continue
+        };
+        let report = scene.cases()[0].run_observed(&watch).unwrap();
+        assert!(report.is_solved(), "{solver}: {}", report.message);
+        let solve = report.solve.expect("an analysis reports its solve");
+        let mut reported: Vec<_> = solve
+            .steps
+            .iter()
+            .map(|s| ((s.level, s.method), s.steps))
+            .collect();
+        reported.sort();
+        let seen: Vec<_> = seen.into_inner().into_iter().collect();
+        assert_eq!(reported, seen, "{solver}");
+        let deeper: usize = solve
+            .steps
+            .iter()
+            .filter(|s| s.level > 0)
+            .map(|s| s.steps)
+            .sum();
+        assert!(
+            solve
+                .steps
+                .iter()
+                .any(|s| s.level == 1 && s.method == inner)
+                && deeper > 0,
+            "{solver}: {:?}",
+            solve.steps
+        );
+        if inner == Method::Kalker {
+            assert_eq!(deeper, solve.iterp, "{solver}: each Kalker solve is a step");
+            assert!(solve.iterd >= 1 && solve.iterd <= solve.iterp);
+        } else {
+            assert_eq!([solve.iterp, solve.iterd], [0, 0]);
+        }
+    }
+}
+
 /// A scene written in JSON reads as its TOML, and its errors are placed in the JSON text.
 #[test]
 fn json_scenes_read_as_toml_ones() {
