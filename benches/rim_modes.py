@@ -14,6 +14,8 @@ P = R K^-1 R^T. This script measures, on the peers' geometry:
     alone, with the rim deflated (Z: the outermost cells, or 2 x 2 blocks of them; A Z
     restricted by the kernel, each step one product A z more), and from a coarser grid's
     exact answer (nested start);
+  * P less the Schur correction with K^-1's kernel cut off beyond 8 cells (local: the
+    residual near the rim and a sparse solve on the band);
   * the edge-weighted forms of P (after the modified operators that invert the single layer
     exactly on a disk, Hiptmair, Jerez-Hanckes and Urzua-Torres): W^-1 P W with W = diag(sqrt
     of each cell's distance to the face's edge, d - 1/2 in cells), whose spectrum has a real
@@ -30,6 +32,8 @@ Figures from it are in the book's performance chapter ("The flat punch's fine st
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve
 from scipy.ndimage import distance_transform_edt
+from scipy.sparse import csc_matrix
+from scipy.sparse.linalg import factorized
 
 TOLERANCE = 1e-10
 
@@ -224,6 +228,37 @@ def schur_band(n, width):
     return apply
 
 
+def local_schur_band(n, width, reach):
+    """`schur_band` with K^-1's kernel cut off beyond `reach` cells (it falls like 1/r^3): the
+    correction then reads the residual on the face's cells within `reach` of the band only,
+    and the band's own block is sparse."""
+    _, spectrum, face, dist = grid(n)
+    m = 2 * n
+    inverse, outside = exterior(n)
+    band = np.argwhere((outside > 0) & (outside <= width))
+    near = np.argwhere(face & (dist <= reach + 1))
+
+    def cut(rows, cols):
+        di = rows[:, 0][:, None] - cols[:, 0][None, :]
+        dj = rows[:, 1][:, None] - cols[:, 1][None, :]
+        values = inverse[di % m, dj % m]
+        values[di * di + dj * dj > reach * reach] = 0.0
+        return csc_matrix(values)
+
+    solve = factorized(cut(band, band))
+    coupling = cut(band, near)
+    at = (near[:, 0], near[:, 1])
+
+    def p(r):
+        padded = np.zeros((m, m))
+        padded[:n, :n] = r * face
+        y = np.fft.irfft2(np.fft.rfft2(padded) / spectrum, s=(m, m))[:n, :n] * face
+        y[at] -= coupling.T @ solve(coupling @ r[at])
+        return y
+
+    return p
+
+
 def nested_start(n):
     """The coarser grid's answer (its own face, cells twice as wide, solved to 1e-13), each
     fine cell taking its coarse cell's pressure or, off the coarse face, the nearest coarse
@@ -257,7 +292,7 @@ def main():
     print(
         "steps to 1e-10: N, P alone, rim deflated (cells), (2 x 2 blocks: groups), nested start,"
         " P with the Schur correction through 4 exterior cells (up to 512: its band is dense),"
-        " W^-1 P W, the symmetric mean"
+        " the same with K^-1 cut off beyond 8 cells, W^-1 P W, the symmetric mean"
     )
     for n in [64, 128, 256, 512, 1024]:
         kernel, face, dist, a, p = operators(n)
@@ -273,6 +308,7 @@ def main():
         print(
             f"{n:5d} {steps(uniform):4d} {steps(uniform, cells):4d} ({cells[2]})"
             f" {steps(uniform, blocks):4d} ({blocks[2]}) {steps(start):4d} {schur:>4}"
+            f" {pcg(a, local_schur_band(n, 4, 8), b, uniform)[0]:4d}"
             f" {pcg(a, left, b, uniform)[0]:4d} {pcg(a, mean, b, uniform)[0]:4d}"
         )
 
