@@ -63,6 +63,7 @@ pub(crate) fn complete(report: &mut CaseReport, found: Found) -> Result<(), Scen
     let rigid = designed.rigid.clone();
     figures::fill(report, case, &problem, designed);
     limits::judge(report, case, &problem);
+    limits::coarse_elements(report, [built.first(), built.second()]);
     below_surface(report, case, built).map_err(|e| at.library("output.subsurface", e))?;
     if own_contact {
         fields::compute(report, case, built, &problem, &rigid);
