@@ -554,6 +554,7 @@ mod tests {
             edge_loading: edge,
             approach_um: 5.0,
             cells_across: 20.0,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let mut roller = case("ISO/TS 16281", Some(1500.0));
@@ -627,6 +628,7 @@ mod tests {
             edge_loading: false,
             approach_um: 5.0,
             cells_across: 20.0,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let roller = |label: &str, envelope: Vec<EnvelopeCase>| {

@@ -494,3 +494,59 @@ kind = "active_set"
         );
     }
 }
+
+/// A roller pair on a grid sized for 2 kN (Fujiwara–Kawase's crown fixed, so that every load
+/// sees the same roller) with an envelope of `factors` of its load.
+fn roller_envelope(factors: &str) -> String {
+    format!(
+        r#"name = "envelope"
+[contact]
+zone = {{ kind = "grid", cells = [30, 25] }}
+gap = {{ kind = "roller", diameter_mm = 10.0, length_mm = 10.0, profile = {{ kind = "fujiwara_kawase", k1 = 1.0, k2 = 0.5, z_m_mm = 0.02 }} }}
+load = {{ force_n = 2000.0 }}
+
+[[body]]
+kind = "half_space"
+material = {{ e_mpa = 2.1e5, nu = 0.3 }}
+
+[[body]]
+kind = "half_space"
+material = {{ e_mpa = 2.1e5, nu = 0.3 }}
+
+[envelope]
+load_factors = {factors}
+tilts_arcmin = [0.0]
+"#
+    )
+}
+
+/// An envelope's load case whose contact outgrows the grid across: 12 times the load the grid
+/// is sized for (±3 Hertz half-widths of 2 kN) widens Hertz's b by √12 = 3.5, off the grid. It
+/// was solved on the cut grid to p_max 11 924 MPa (the same load on its own grid: 4 877 MPa),
+/// its worst p_max reported as the envelope's with exit 0; now the case is outside the model,
+/// naming the envelope's case, the edge and the reach its load needs. 1.5 times the load
+/// stays within the grid.
+#[test]
+fn an_envelope_case_that_outgrows_its_grid_is_outside_the_model() {
+    let heavy = parse(&roller_envelope("[1.0, 12.0]")).unwrap().cases()[0]
+        .run()
+        .unwrap();
+    assert_eq!(
+        heavy.status,
+        CaseStatus::OutsideModel,
+        "{:?}",
+        heavy.warnings
+    );
+    let limit = heavy.limit.as_ref().expect("a limit");
+    assert!(limit.message.contains("24000.0 N"), "{limit:?}");
+    assert!(limit.edge.starts_with("y = "), "{limit:?}");
+    let b = heavy.hertz.as_ref().unwrap().half_width_mm;
+    assert!(
+        limit.needed_mm >= 12f64.sqrt() * b,
+        "{limit:?} against b = {b}"
+    );
+    let within = parse(&roller_envelope("[1.0, 1.5]")).unwrap().cases()[0]
+        .run()
+        .unwrap();
+    assert_eq!(within.status, CaseStatus::Solved, "{:?}", within.limit);
+}

@@ -417,6 +417,7 @@ pub(crate) fn roller_report(
                 edge_loading: f.edge_loading,
                 approach_um: f.approach_um,
                 cells_across: f.cells_across,
+                edge_across_mpa: f.edge_across_mpa,
                 centre_line: f
                     .centre_line
                     .iter()

@@ -64,6 +64,7 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
         Layout::Mesh(surface) => end_reached(case, surface, points, &pressure, &carrying),
         _ => edge_reached(case, points, &pressure, &carrying, p_max),
     };
+    let reached = reached.or_else(|| envelope_edge(report, case, points));
     if let Some(limit) = reached {
         report.status = CaseStatus::OutsideModel;
         report.limit = Some(limit);
@@ -152,6 +153,53 @@ fn light_cases(report: &CaseReport) -> Vec<String> {
             )
         })
         .collect()
+}
+
+/// The first of an envelope's load cases past the case's own (judged above) whose contact
+/// reaches the grid's outermost rows across, as a limit: a case far heavier than the load the
+/// grid was sized for (±`reach_b` Hertz half-widths of the case's own load) is cut by the grid
+/// there, so its pressure, the envelope's worst p_max and a crown designed for it are wrong.
+/// The reach it needs is Hertz's half-width at its load, b ∝ √Q. A bearing's rollers are
+/// judged by its design, each on its own grid.
+fn envelope_edge(report: &CaseReport, case: &Case, points: &[[f64; 3]]) -> Option<ModelLimit> {
+    let roller = report
+        .roller
+        .as_ref()
+        .filter(|_| report.bearing.is_none())?;
+    let own = roller.envelope.first()?;
+    let reached = (roller.envelope.iter().skip(1))
+        .find(|e| e.p_max_mpa > 0.0 && e.edge_across_mpa > CARRIES * e.p_max_mpa)?;
+    let edge = edges(&case.plan.layout, points)
+        .into_iter()
+        .find(|e| e.axis == 1)?;
+    let share = reached.load_n / own.load_n;
+    let (needed, why) = match case.plan.hertz {
+        Some(h) => {
+            let b = h.half_width * share.sqrt();
+            let needed = (HERTZ_MARGIN * b).max(GROWTH * edge.extent);
+            (needed, format!(" (Hertz's b = {b:.4} mm at its load)"))
+        }
+        None => (GROWTH * edge.extent, String::new()),
+    };
+    let name = format!("y = ±{:.4} mm", edge.extent);
+    let message = format!(
+        "the envelope's case of {:.1} N ({share:.3} of the load the grid is sized for) at \
+         {:+.1}′ reaches the zone's edge {name} (p = {:.4e} MPa there, {:.0} % of its p_max): \
+         the zone ends inside its contact, so its pressure, the envelope's worst p_max and all \
+         that follows from them are wrong; the zone must reach at least {needed:.4} mm from \
+         its centre{why}: {}",
+        reached.load_n,
+        reached.tilt_arcmin,
+        reached.edge_across_mpa,
+        100.0 * reached.edge_across_mpa / reached.p_max_mpa,
+        widen(case, 1)
+    );
+    Some(ModelLimit {
+        edge: name,
+        extent_mm: edge.extent,
+        needed_mm: needed,
+        message,
+    })
 }
 
 /// The warning of a case whose zone carries no pressure: the bodies do not touch, or touch
@@ -580,6 +628,7 @@ mod tests {
             edge_loading: false,
             approach_um: 1.0,
             cells_across,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let mut report = CaseReport::new("roller", &Default::default(), serde_json::Value::Null);
