@@ -26,6 +26,9 @@ pub(crate) struct CaseInput {
     pub tables: Tables,
 }
 
+/// The keys of the scene as a whole, which no case sets.
+const SCENE_KEYS: [&str; 2] = ["name", "description"];
+
 /// The tables of the scene a `[[case]]` set: merged key by key, or replaced whole.
 #[derive(Default)]
 pub(crate) struct Tables {
@@ -238,6 +241,14 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
                 Some(Value::Table(entries)) => entries.as_slice(),
                 _ => return Err(at.at(&format!("{path}.set"), "give the keys the case sets")),
             };
+            if let Some((key, _)) = changes.iter().find(|(k, _)| SCENE_KEYS.contains(&k.name())) {
+                return Err(at.at(
+                    &format!("{path}.set.{}", key.name()),
+                    "is the scene's, one for all its cases (the name names the results folder, \
+                     the description heads the report): set it at the top of the scene, and \
+                     tell the cases apart by their labels",
+                ));
+            }
             let mut case = tree.clone();
             let mut params = BTreeMap::new();
             let mut tables = Tables::default();

@@ -137,6 +137,24 @@ fn a_label_with_a_line_break_is_refused() {
     );
 }
 
+/// A scene's `name` names its one results folder and its `description` heads its report: a
+/// case that set them renamed the whole scene's folder (the first case: `contopt run` wrote
+/// every case into `results/other/`) or was ignored (a later case), both without a word. Now
+/// refused at the case's key.
+#[test]
+fn a_case_cannot_rename_the_scene() {
+    for (set, key) in [
+        ("name = \"other\"", "case[0].set.name"),
+        ("description = \"mine\"", "case[0].set.description"),
+    ] {
+        let message = refused(&with_case(text("hertz"), "renamed", set));
+        assert!(
+            message.contains("mine.toml:") && message.contains(key) && message.contains("scene's"),
+            "{message}"
+        );
+    }
+}
+
 /// A table of another kind replaces the scene's whole: a key of the scene's table it leaves
 /// out is missing, and the error says why. A choice written under its name (a load) merged
 /// into the scene's another is two choices, refused with why.
