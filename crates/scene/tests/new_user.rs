@@ -551,6 +551,26 @@ fn an_envelope_case_that_outgrows_its_grid_is_outside_the_model() {
     assert_eq!(within.status, CaseStatus::Solved, "{:?}", within.limit);
 }
 
+/// A roller grid whose cells the scene gives (`cell_mm`) is not sized by `reach_b`: the limit
+/// of a contact that reaches its edge across said "raise contact.gap.reach_b", which changes
+/// nothing there (reach_b = 6 gave the same grid and the same limit); now it says to give more
+/// or larger cells. A grid sized by the roller keeps the advice.
+#[test]
+fn a_roller_grid_of_given_cells_is_widened_by_its_cells() {
+    let sized = roller_envelope("[1.0]").replace(
+        "cells = [30, 25] }",
+        "cells = [30, 21], cell_mm = [0.3333, 0.01] }",
+    );
+    let report = parse(&sized).unwrap().cases()[0].run().unwrap();
+    let limit = report.limit.as_ref().expect("a limit");
+    assert!(limit.message.contains("more or larger cells"), "{limit:?}");
+    assert!(!limit.message.contains("reach_b"), "{limit:?}");
+    let heavy = parse(&roller_envelope("[1.0, 12.0]")).unwrap().cases()[0]
+        .run()
+        .unwrap();
+    assert!(heavy.limit.unwrap().message.contains("reach_b"));
+}
+
 /// A rigid flat punch of radius 0.3 mm at 1 kN on 32 × 32 cells of 0.025 mm, its face designed
 /// by the load split for an even pressure (a constant controller), Ω_v given by `omega_v` (or
 /// the default).

@@ -12,7 +12,7 @@ use contopt_results::{CaseReport, CaseStatus, ModelLimit, Resolution};
 
 use super::edge::{line_through, points_per_cell, sharp_edge};
 use crate::mesh_surface::MeshSurface;
-use crate::zone::Layout;
+use crate::zone::{GridZone, Layout};
 use crate::{Case, Hertz};
 
 /// Cells across the contact's half-width below which its peak is not resolved (a Hertz
@@ -183,8 +183,7 @@ fn envelope_edge(report: &CaseReport, case: &Case, points: &[[f64; 3]]) -> Optio
     };
     let name = format!("y = ±{:.4} mm", edge.extent);
     let message = format!(
-        "the envelope's case of {:.1} N ({share:.3} of the load the grid is sized for) at \
-         {:+.1}′ reaches the zone's edge {name} (p = {:.4e} MPa there, {:.0} % of its p_max): \
+        "the envelope's case of {:.1} N ({share:.3} times the case's load) at {:+.1}′ reaches the zone's edge {name} (p = {:.4e} MPa there, {:.0} % of its p_max): \
          the zone ends inside its contact, so its pressure, the envelope's worst p_max and all \
          that follows from them are wrong; the zone must reach at least {needed:.4} mm from \
          its centre{why}: {}",
@@ -344,10 +343,12 @@ fn limit(case: &Case, edge: &Edge, p: f64, p_max: f64) -> ModelLimit {
 }
 
 /// What widens a zone along `axis`: a roller's grid across is ±`reach_b`·b (the bearing's
-/// key for a bearing's), any other zone's cells.
+/// key for a bearing's) unless the scene gives its `cell_mm`, any other zone's cells.
 fn widen(case: &Case, axis: usize) -> String {
     let roller = case.spec.contact.gap.roller_gap().is_some();
-    match (roller && axis == 1, case.spec.bearing.is_some()) {
+    let zone = case.spec.contact.zone.downcast::<GridZone>();
+    let sized = zone.is_some_and(|g| g.cell_mm.is_some());
+    match (roller && axis == 1 && !sized, case.spec.bearing.is_some()) {
         (true, true) => "raise bearing.reach_b (the grid's reach across, in Hertz half-widths \
                          of the design load)"
             .into(),
