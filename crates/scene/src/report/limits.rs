@@ -23,7 +23,7 @@ pub const MIN_CELLS_ACROSS: f64 = 8.0;
 const HERTZ_MARGIN: f64 = 1.25;
 
 /// Without Hertz, the zone must grow at least by this factor past an edge the contact reaches.
-const GROWTH: f64 = 1.5;
+pub(crate) const GROWTH: f64 = 1.5;
 
 /// Hertz's half-width beyond this fraction of the radius across the contact leaves the model's
 /// small contact, a ≪ R (Johnson, *Contact Mechanics*, §4.1): there the parabola x²/2R is
@@ -41,8 +41,11 @@ struct Edge {
     on_symmetry_plane: bool,
 }
 
-/// Judges a case's limits into its report.
+/// Judges a case's limits into its report. A limit the design left there, judged on contacts
+/// the report does not show (a bearing's rollers, each on its own grid), is kept: the case is
+/// outside the model, by the shown contact's own limit first (the design's then a warning).
 pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfaceProblem) {
+    let designed = report.limit.take();
     report.hertz = case.plan.hertz.map(|h| contopt_results::Hertz {
         contact: if h.line { "line" } else { "point" }.into(),
         p0_mpa: h.p0,
@@ -64,7 +67,16 @@ pub(crate) fn judge(report: &mut CaseReport, case: &Case, problem: &InterfacePro
         Layout::Mesh(surface) => end_reached(case, surface, points, &pressure, &carrying),
         _ => edge_reached(case, points, &pressure, &carrying, p_max),
     };
-    let reached = reached.or_else(|| envelope_edge(report, case, points));
+    let reached = match (
+        reached.or_else(|| envelope_edge(report, case, points)),
+        designed,
+    ) {
+        (Some(own), Some(other)) => {
+            report.warnings.push(other.message);
+            Some(own)
+        }
+        (own, other) => own.or(other),
+    };
     if let Some(limit) = reached {
         report.status = CaseStatus::OutsideModel;
         report.limit = Some(limit);
