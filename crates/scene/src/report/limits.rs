@@ -195,10 +195,11 @@ fn envelope_edge(report: &CaseReport, case: &Case, points: &[[f64; 3]]) -> Optio
     };
     let name = format!("y = ±{:.4} mm", edge.extent);
     let message = format!(
-        "the envelope's case of {:.1} N ({share:.3} times the case's load) at {:+.1}′ reaches the zone's edge {name} (p = {:.4e} MPa there, {:.0} % of its p_max): \
-         the zone ends inside its contact, so its pressure, the envelope's worst p_max and all \
-         that follows from them are wrong; the zone must reach at least {needed:.4} mm from \
-         its centre{why}: {}",
+        "the envelope's case of {:.1} N ({share:.3} times the case's load) at {:+.1}′ \
+         reaches the zone's edge {name} (p = {:.4e} MPa there, {:.0} % of its p_max): the zone \
+         ends inside its contact, so its pressure, the envelope's worst p_max and all that \
+         follows from them are wrong; the zone must reach at least {needed:.4} mm from its \
+         centre{why}: {}",
         reached.load_n,
         reached.tilt_arcmin,
         reached.edge_across_mpa,
