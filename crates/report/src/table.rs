@@ -567,6 +567,7 @@ mod tests {
             edge_loading: edge,
             approach_um: 5.0,
             cells_across: 20.0,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let mut roller = case("ISO/TS 16281", Some(1500.0));
@@ -640,6 +641,7 @@ mod tests {
             edge_loading: false,
             approach_um: 5.0,
             cells_across: 20.0,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let roller = |label: &str, envelope: Vec<EnvelopeCase>| {

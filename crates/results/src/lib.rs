@@ -359,6 +359,10 @@ pub struct EnvelopeCase {
     /// Cells across the contact's half-width through its peak: below the report's least
     /// (`MIN_CELLS_ACROSS` of the scene crate, 8) the case carries a warning.
     pub cells_across: f64,
+    /// The largest pressure on the grid's outermost rows across \[MPa\]: above 10⁻⁶ of the
+    /// case's p_max its contact reaches the grid's edge across, and the case is outside the
+    /// model.
+    pub edge_across_mpa: f64,
     /// The pressure along the centre row.
     pub centre_line: Vec<CurvePoint>,
 }

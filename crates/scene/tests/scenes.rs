@@ -137,6 +137,43 @@ fn a_label_with_a_line_break_is_refused() {
     );
 }
 
+/// A scene's `name` names its one results folder and its `description` heads its report: a
+/// case that set them renamed the whole scene's folder (the first case: `contopt run` wrote
+/// every case into `results/other/`) or was ignored (a later case), both without a word. Now
+/// refused at the case's key.
+#[test]
+fn a_case_cannot_rename_the_scene() {
+    for (set, key) in [
+        ("name = \"other\"", "case[0].set.name"),
+        ("description = \"mine\"", "case[0].set.description"),
+    ] {
+        let message = refused(&with_case(text("hertz"), "renamed", set));
+        assert!(
+            message.contains("mine.toml:") && message.contains(key) && message.contains("scene's"),
+            "{message}"
+        );
+    }
+}
+
+/// A case that sets one key twice, written two ways, is refused: the last value was solved
+/// while the case's numbers (`params` in result.json) reported the first (radius 20 mm
+/// reported, 40 mm solved). A table setting two keys of one table is not twice.
+#[test]
+fn a_case_setting_a_key_twice_is_refused() {
+    let set = "\"contact.gap.radius_mm\" = 20.0, contact = { gap = { radius_mm = 40.0 } }";
+    let message = refused(&with_case(text("hertz"), "twice", set));
+    assert!(
+        message.contains("case[0].set")
+            && message.contains("`contact.gap.radius_mm` and `contact.gap.radius_mm`"),
+        "{message}"
+    );
+    let whole = "\"contact.gap\" = { kind = \"cylinder\", radius_mm = 5.0 }, \
+                 \"contact.gap.radius_mm\" = 6.0";
+    assert!(refused(&with_case(text("hertz"), "whole", whole)).contains("twice"));
+    let both = "contact = { gap = { radius_mm = 40.0 }, load = { force_n = 10.0 } }";
+    parse(&with_case(text("hertz"), "both", both)).unwrap();
+}
+
 /// A table of another kind replaces the scene's whole: a key of the scene's table it leaves
 /// out is missing, and the error says why. A choice written under its name (a load) merged
 /// into the scene's another is two choices, refused with why.

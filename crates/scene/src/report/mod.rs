@@ -23,6 +23,7 @@ use contopt_contact::InterfaceProblem;
 use contopt_results::CaseReport;
 
 pub use figures::PENETRATION_WARNING;
+pub(crate) use limits::GROWTH;
 pub use limits::MIN_CELLS_ACROSS;
 
 use crate::methods::Designed;
