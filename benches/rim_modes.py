@@ -13,7 +13,14 @@ P = R K^-1 R^T. This script measures, on the peers' geometry:
     the load spread over the face, to the solver's stop (sum |dp| / sum p < 1e-10), with P
     alone, with the rim deflated (Z: the outermost cells, or 2 x 2 blocks of them; A Z
     restricted by the kernel, each step one product A z more), and from a coarser grid's
-    exact answer (nested start).
+    exact answer (nested start);
+  * P less the Schur correction with K^-1's kernel cut off beyond 8 cells (local: the
+    residual near the rim and a sparse solve on the band);
+  * the edge-weighted forms of P (after the modified operators that invert the single layer
+    exactly on a disk, Hiptmair, Jerez-Hanckes and Urzua-Torres): W^-1 P W with W = diag(sqrt
+    of each cell's distance to the face's edge, d - 1/2 in cells), whose spectrum has a real
+    part that stays put but is not symmetric, and its symmetric mean (W^-1 P W + W P W^-1) / 2,
+    two masked circulants a step.
 
 Run with numpy and scipy (the peers' venv has both):
 
@@ -25,6 +32,8 @@ Figures from it are in the book's performance chapter ("The flat punch's fine st
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve
 from scipy.ndimage import distance_transform_edt
+from scipy.sparse import csc_matrix
+from scipy.sparse.linalg import factorized
 
 TOLERANCE = 1e-10
 
@@ -130,7 +139,8 @@ def deflation(kernel, dist, n, side):
 
 def pcg(a, p, b, x, defl=None, tolerance=TOLERANCE):
     """Preconditioned conjugate gradients (deflated when `defl` is given) to `tolerance` on
-    the step's change; returns the steps and the answer."""
+    the step's change, conjugated by Polak-Ribiere as the solver (which a preconditioner
+    that is not symmetric needs); returns the steps and the answer."""
 
     def project(z):
         if defl is None:
@@ -153,13 +163,44 @@ def pcg(a, p, b, x, defl=None, tolerance=TOLERANCE):
         ad = a(d)
         alpha = rz / np.sum(d * ad)
         x = x + alpha * d
-        r = r - alpha * ad
+        r, last = r - alpha * ad, r
         if np.abs(alpha * d).sum() / np.abs(x).sum() < tolerance:
             return step, x
         z = project(p(r))
-        rz, old = np.sum(r * z), rz
-        d = z + (rz / old) * d
+        beta = np.sum(z * (r - last)) / rz
+        rz = np.sum(r * z)
+        d = z + beta * d
     return step, x
+
+
+def edge_weights(dist):
+    """sqrt of each face cell's distance to the face's edge (d - 1/2 cells), 0 off it: the
+    rigid punch's pressure falls as its inverse, 1/sqrt(d), at the rim."""
+    return np.sqrt(np.maximum(dist - 0.5, 0.0))
+
+
+def weighted_spectra(n):
+    """The edge-weighted forms of P on the face, dense: the real parts' range and the largest
+    imaginary part of W^-1 P W A's eigenvalues, and the condition number with the symmetric
+    mean (W^-1 P W + W P W^-1) / 2."""
+    kernel, _, face, dist = grid(n)
+    inverse, _ = exterior(n)
+    pts = np.argwhere(face)
+    a = block(kernel, pts, pts)
+    prec = block(inverse, pts, pts)
+    w = edge_weights(dist)[pts[:, 0], pts[:, 1]]
+    left = prec * w[None, :] / w[:, None]
+    values = np.linalg.eigvals(left @ a)
+    lower = np.linalg.cholesky(a)
+    mean = np.linalg.eigvalsh(lower.T @ (0.5 * (left + left.T)) @ lower)
+    return values.real.min(), values.real.max(), np.abs(values.imag).max(), mean.max() / mean.min()
+
+
+def weighted(p, face, dist):
+    """W^-1 P W and the symmetric mean (W^-1 P W + W P W^-1) / 2 as functions of the residual."""
+    w = edge_weights(dist)
+    inv = np.where(face, 1.0 / np.where(w > 0, w, 1.0), 0.0)
+    return (lambda r: inv * p(w * r)), (lambda r: 0.5 * (inv * p(w * r) + w * p(inv * r)))
 
 
 def schur_band(n, width):
@@ -187,6 +228,37 @@ def schur_band(n, width):
     return apply
 
 
+def local_schur_band(n, width, reach):
+    """`schur_band` with K^-1's kernel cut off beyond `reach` cells (it falls like 1/r^3): the
+    correction then reads the residual on the face's cells within `reach` of the band only,
+    and the band's own block is sparse."""
+    _, spectrum, face, dist = grid(n)
+    m = 2 * n
+    inverse, outside = exterior(n)
+    band = np.argwhere((outside > 0) & (outside <= width))
+    near = np.argwhere(face & (dist <= reach + 1))
+
+    def cut(rows, cols):
+        di = rows[:, 0][:, None] - cols[:, 0][None, :]
+        dj = rows[:, 1][:, None] - cols[:, 1][None, :]
+        values = inverse[di % m, dj % m]
+        values[di * di + dj * dj > reach * reach] = 0.0
+        return csc_matrix(values)
+
+    solve = factorized(cut(band, band))
+    coupling = cut(band, near)
+    at = (near[:, 0], near[:, 1])
+
+    def p(r):
+        padded = np.zeros((m, m))
+        padded[:n, :n] = r * face
+        y = np.fft.irfft2(np.fft.rfft2(padded) / spectrum, s=(m, m))[:n, :n] * face
+        y[at] -= coupling.T @ solve(coupling @ r[at])
+        return y
+
+    return p
+
+
 def nested_start(n):
     """The coarser grid's answer (its own face, cells twice as wide, solved to 1e-13), each
     fine cell taking its coarse cell's pressure or, off the coarse face, the nearest coarse
@@ -211,8 +283,16 @@ def main():
             + " ".join(f"{c:6.3f}" for c in banded)
         )
     print(
+        "dense, edge-weighted: N, W^-1 P W A's real parts (least, largest) and largest imaginary"
+        " part, cond with the symmetric mean"
+    )
+    for n in [32, 64, 96]:
+        low, high, imag, mean = weighted_spectra(n)
+        print(f"{n:5d} {low:6.3f} {high:6.3f} {imag:6.3f} {mean:6.3f}")
+    print(
         "steps to 1e-10: N, P alone, rim deflated (cells), (2 x 2 blocks: groups), nested start,"
-        " P with the Schur correction through 4 exterior cells (up to 512: its band is dense)"
+        " P with the Schur correction through 4 exterior cells (up to 512: its band is dense),"
+        " the same with K^-1 cut off beyond 8 cells, W^-1 P W, the symmetric mean"
     )
     for n in [64, 128, 256, 512, 1024]:
         kernel, face, dist, a, p = operators(n)
@@ -224,9 +304,12 @@ def main():
         start = nested_start(n) * face
         start *= np.sum(b * start) / np.sum(start * a(start))
         schur = pcg(a, schur_band(n, 4), b, uniform)[0] if n <= 512 else "-"
+        left, mean = weighted(p, face, dist)
         print(
             f"{n:5d} {steps(uniform):4d} {steps(uniform, cells):4d} ({cells[2]})"
             f" {steps(uniform, blocks):4d} ({blocks[2]}) {steps(start):4d} {schur:>4}"
+            f" {pcg(a, local_schur_band(n, 4, 8), b, uniform)[0]:4d}"
+            f" {pcg(a, left, b, uniform)[0]:4d} {pcg(a, mean, b, uniform)[0]:4d}"
         )
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 //! each replaced whole (written beside its name, then renamed over it).
 
 use std::fs::OpenOptions;
-use std::io::{Error, ErrorKind, Result, Write};
+use std::io::{BufWriter, Error, ErrorKind, Result, Write};
 use std::path::{Path, PathBuf};
 
 /// The list of the files a run wrote, kept in the folder for the next run.
@@ -142,6 +142,15 @@ impl ResultsDir {
     /// exclusively, so never through a link), then renamed over `name`, which replaces a link
     /// there instead of following it. A failed write leaves the old file as it was.
     pub fn write(&mut self, name: &str, contents: &[u8]) -> Result<()> {
+        self.write_with(name, &mut |f| f.write_all(contents))
+    }
+
+    /// [`ResultsDir::write`] with the contents streamed by `write` through a buffer.
+    pub fn write_with(
+        &mut self,
+        name: &str,
+        write: &mut dyn FnMut(&mut dyn Write) -> Result<()>,
+    ) -> Result<()> {
         let target = self.dir.join(name);
         let spare = self
             .dir
@@ -150,7 +159,11 @@ impl ResultsDir {
             .write(true)
             .create_new(true)
             .open(&spare)
-            .and_then(|mut f| f.write_all(contents))
+            .and_then(|f| {
+                let mut buffered = BufWriter::new(f);
+                write(&mut buffered)?;
+                buffered.flush()
+            })
             .and_then(|()| std::fs::rename(&spare, &target));
         if written.is_err() {
             let _ = std::fs::remove_file(&spare);
@@ -164,6 +177,14 @@ impl ResultsDir {
 impl contopt_report::Sink for ResultsDir {
     fn put(&mut self, name: &str, contents: &[u8]) -> Result<()> {
         self.write(name, contents)
+    }
+
+    fn put_with(
+        &mut self,
+        name: &str,
+        write: &mut dyn FnMut(&mut dyn Write) -> Result<()>,
+    ) -> Result<()> {
+        self.write_with(name, write)
     }
 }
 

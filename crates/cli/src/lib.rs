@@ -251,8 +251,13 @@ fn fail(e: &dyn std::fmt::Display) -> ExitCode {
 /// Prints `text` on stdout; a reader that has gone (`contopt run … | head`) ends the output
 /// quietly instead of a panic.
 fn emit(text: &str) {
-    let mut out = std::io::stdout().lock();
-    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+    emit_with(&mut |out| out.write_all(text.as_bytes()));
+}
+
+/// Prints what `write` writes, streamed through a buffer, as [`emit`] does.
+fn emit_with(write: &mut dyn FnMut(&mut dyn Write) -> std::io::Result<()>) {
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    if let Err(e) = write(&mut out).and_then(|()| out.flush()) {
         if e.kind() != std::io::ErrorKind::BrokenPipe {
             eprintln!("could not print the results: {e}");
         }
@@ -328,8 +333,9 @@ fn write_folder(report: &Report, out: &Path) -> std::io::Result<ResultsDir> {
 fn write_shard(partial: &Partial, first: usize, out: &Path) -> std::io::Result<ResultsDir> {
     let scene = ResultsDir::create(out, &partial.report.scene)?;
     let mut dir = ResultsDir::create(scene.path(), &partial.shard.folder())?;
-    let json = serde_json::to_string_pretty(partial).map_err(std::io::Error::other)?;
-    dir.write(merge::PARTIAL, json.as_bytes())?;
+    dir.write_with(merge::PARTIAL, &mut |w| {
+        serde_json::to_writer_pretty(w, partial).map_err(std::io::Error::other)
+    })?;
     contopt_report::write_cases(&partial.report, first, &mut dir)?;
     dir.finish()
 }
@@ -346,7 +352,10 @@ fn finish(
         warn(report);
     }
     if print.json {
-        emit(&(serde_json::to_string_pretty(report).unwrap_or_default() + "\n"));
+        emit_with(&mut |out| {
+            serde_json::to_writer_pretty(&mut *out, report).map_err(std::io::Error::other)?;
+            out.write_all(b"\n")
+        });
     } else if !print.quiet {
         emit(&contopt_report::table(report));
     }

@@ -217,6 +217,16 @@ pub trait ElasticBody: Send + Sync {
         None
     }
 
+    /// The size of the body's own elements under each interface point \[mm\], when the points
+    /// do not count them (a solid, its points a grid's cells or its faces' Gauss points: the
+    /// largest face each point reads): a contact many cells wide may still span only one or
+    /// two of its elements, too few for its deformation there. `None` (the default) when the
+    /// interface points are the body's own discretisation (a grid, rings, a plane mesh's
+    /// nodes) or it has no mesh.
+    fn element_sizes(&self) -> Option<&[f64]> {
+        None
+    }
+
     /// The stresses below the surface under the contact pressure `pressure` \[MPa\] at the
     /// interface points (and the body's given loads, if it has any): the peaks of each
     /// criterion over the requested depths, and the requested sections. `None` (the default)

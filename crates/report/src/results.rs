@@ -22,6 +22,19 @@ use crate::{heat_map, section_map, BarChart, Figure, LineChart};
 pub trait Sink {
     /// Writes `contents` as the file `name` (a plain file name).
     fn put(&mut self, name: &str, contents: &[u8]) -> io::Result<()>;
+
+    /// Writes the file `name` as `write` writes it: a sink that writes files streams it, so a
+    /// large file (a 2048² grid's `result.json`, about 1 GB) is not held in memory whole. By
+    /// default, into memory and then [`Sink::put`].
+    fn put_with(
+        &mut self,
+        name: &str,
+        write: &mut dyn FnMut(&mut dyn io::Write) -> io::Result<()>,
+    ) -> io::Result<()> {
+        let mut contents = vec![];
+        write(&mut contents)?;
+        self.put(name, &contents)
+    }
 }
 
 /// Files in memory, by name.
@@ -59,9 +72,10 @@ pub fn write(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
 /// `interface.csv`, `p.{svg,png}`, `dh.{svg,png}` and a bearing's `lives.{svg,png}` — the first
 /// part of [`write()`], which a merge of job-array shards writes from their joined report.
 pub fn write_scene(report: &Report, sink: &mut dyn Sink) -> io::Result<()> {
-    let json = serde_json::to_string_pretty(report).map_err(io::Error::other)?;
-    sink.put("result.json", json.as_bytes())?;
-    sink.put("interface.csv", interface_csv(report).as_bytes())?;
+    sink.put_with("result.json", &mut |w| {
+        serde_json::to_writer_pretty(w, report).map_err(io::Error::other)
+    })?;
+    sink.put_with("interface.csv", &mut |w| interface_csv(report, w))?;
     if let Some(chart) = pressure_chart(report) {
         put(sink, "p", &chart.draw()?)?;
     }
@@ -163,20 +177,20 @@ fn put(sink: &mut dyn Sink, stem: &str, figure: &Figure) -> io::Result<()> {
 const INTERFACE_HEADER: &str = "case,x_mm,y_mm,z_mm,p_mpa,d_um,dh_um,h_um\n";
 
 /// The fields at every interface point of every case.
-fn interface_csv(report: &Report) -> String {
-    let mut csv = String::from(INTERFACE_HEADER);
+fn interface_csv(report: &Report, csv: &mut dyn io::Write) -> io::Result<()> {
+    csv.write_all(INTERFACE_HEADER.as_bytes())?;
     for c in &report.cases {
         let label = csv_field(&c.label);
         for q in &c.interface {
             let [x, y, z] = q.x_mm;
-            let _ = writeln!(
+            writeln!(
                 csv,
                 "{label},{x},{y},{z},{},{},{},{}",
                 q.p_mpa, q.d_um, q.dh_um, q.h_um
-            );
+            )?;
         }
     }
-    csv
+    Ok(())
 }
 
 /// A CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a quote or a

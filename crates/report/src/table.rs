@@ -193,8 +193,13 @@ fn figure(v: Option<f64>) -> String {
         None => "-".into(),
         Some(0.0) => "0".into(),
         Some(v) if (1e-3..1e6).contains(&v.abs()) => {
-            let decimals = (5 - v.abs().log10().floor() as i32).clamp(0, 8) as usize;
-            format!("{v:.decimals$}")
+            let decimals = |x: f64| (5 - x.abs().log10().floor() as i32).clamp(0, 8) as usize;
+            // Rounding may carry into the next power of ten (99.999996 to 100.0000): the
+            // decimals of the rounded value keep six digits.
+            let d = decimals(v);
+            let rounded: f64 = format!("{v:.d$}").parse().unwrap_or(v);
+            let d = d.min(decimals(rounded));
+            format!("{v:.d$}")
         }
         Some(v) => format!("{v:.5e}"),
     }
@@ -532,6 +537,14 @@ mod tests {
 
     /// Load factors read as written: one decimal where exact, else three significant digits.
     #[test]
+    fn six_digits_also_when_rounding_carries() {
+        let shown: Vec<String> = [99.999996, 99.99994, 0.009999996, 123.4564]
+            .map(|v| figure(Some(v)))
+            .to_vec();
+        assert_eq!(shown, ["100.000", "99.9999", "0.0100000", "123.456"]);
+    }
+
+    #[test]
     fn load_factors_keep_a_light_case_apart() {
         let shown: Vec<String> = [0.5, 1.0, 1.5, 0.01, 0.125, 0.0333, 12.34]
             .map(super::load_factor)
@@ -554,6 +567,7 @@ mod tests {
             edge_loading: edge,
             approach_um: 5.0,
             cells_across: 20.0,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let mut roller = case("ISO/TS 16281", Some(1500.0));
@@ -627,6 +641,7 @@ mod tests {
             edge_loading: false,
             approach_um: 5.0,
             cells_across: 20.0,
+            edge_across_mpa: 0.0,
             centre_line: vec![],
         };
         let roller = |label: &str, envelope: Vec<EnvelopeCase>| {

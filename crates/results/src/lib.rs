@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 /// The version of this schema. Raised whenever a field changes meaning, unit or name, or goes;
 /// a new field raises it too, so that a reader can refuse a file it does not know.
-pub const SCHEMA_VERSION: u32 = 9;
+pub const SCHEMA_VERSION: u32 = 10;
 
 /// The JSON Schema of [`Report`] (draft 2020-12), derived from the types.
 pub fn schema() -> serde_json::Value {
@@ -140,6 +140,10 @@ pub struct CaseReport {
     pub resolution: Option<Resolution>,
     /// The passes of the optimisation (Table 2's columns); empty without one.
     pub passes: Vec<Pass>,
+    /// The steps of a contact analysis's solve, each method's at each level, and Kalker's
+    /// counts; null for a design (its passes count their solves) and for a solve that ended
+    /// in an error (`termination` says which).
+    pub solve: Option<SolveSteps>,
     /// The fields at the interface points.
     pub interface: Vec<Point>,
     /// Wall time of the stages \[ms\]: `build`, then `solve`, `optimise`, `search`,
@@ -239,6 +243,37 @@ pub struct Pass {
     pub iterd: usize,
 }
 
+/// The steps of one contact solve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct SolveSteps {
+    /// The steps of each method the solve ran, by level: the solver's own at level 0
+    /// (Polonsky–Keer's on the zone's grid, the augmented Lagrangian's Uzawa updates, the
+    /// QP's interior-point steps), each method it runs one level deeper (Polonsky–Keer's
+    /// nested start: each coarser grid one level more; the augmented Lagrangian's Kalker
+    /// solves); by level, outermost first, and within a level in the order they first ran.
+    pub steps: Vec<MethodSteps>,
+    /// Kalker's solves on a contact set (the paper's `iterp`); 0 for a solver without
+    /// Kalker's iteration (Polonsky–Keer, the QP).
+    pub iterp: usize,
+    /// Kalker's penetration checks (the paper's `iterd`); 0 as `iterp`.
+    pub iterd: usize,
+}
+
+/// The steps one method took at one level of a solve.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(transform = every_field_required)]
+pub struct MethodSteps {
+    /// The method.
+    pub method: Method,
+    /// Its level: 0 for the solver, one more for each method that runs it.
+    pub level: usize,
+    /// Its steps (iterations) at that level, summed over its runs there.
+    pub steps: usize,
+}
+
 /// The fields at one interface point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -327,6 +362,10 @@ pub struct EnvelopeCase {
     /// Cells across the contact's half-width through its peak: below the report's least
     /// (`MIN_CELLS_ACROSS` of the scene crate, 8) the case carries a warning.
     pub cells_across: f64,
+    /// The largest pressure on the grid's outermost rows across \[MPa\]: above 10⁻⁶ of the
+    /// case's p_max its contact reaches the grid's edge across, and the case is outside the
+    /// model.
+    pub edge_across_mpa: f64,
     /// The pressure along the centre row.
     pub centre_line: Vec<CurvePoint>,
 }
@@ -699,6 +738,7 @@ impl CaseReport {
             hertz: None,
             resolution: None,
             passes: vec![],
+            solve: None,
             interface: vec![],
             timings_ms: BTreeMap::new(),
             roller: None,

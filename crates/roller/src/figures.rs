@@ -90,6 +90,10 @@ pub struct CaseFigures {
     /// pressure in the peak's column (a case far lighter than the load the grid was sized for
     /// spans few).
     pub cells_across: f64,
+    /// The largest pressure on the grid's outermost rows across \[MPa\]: a contact that
+    /// carries pressure there reaches the grid's edge across (a case far heavier than the load
+    /// the grid was sized for), where the grid, not the roller, ends it.
+    pub edge_across_mpa: f64,
     /// The crown's largest drop at the end columns \[µm\].
     pub crown_drop_end_um: f64,
     /// The roller's approach \[µm\].
@@ -137,6 +141,7 @@ impl CaseFigures {
                 0.25 * dy * (carrying(columns.first) + carrying(columns.last)),
             ],
             cells_across: 0.5 * carrying(points[top][0]),
+            edge_across_mpa: edge_across(points, pressure, dy),
             crown_drop_end_um: 1e3 * end_drop,
             approach_um: 1e3 * contact.approach_mm,
             centre_line: (0..points.len())
@@ -145,6 +150,21 @@ impl CaseFigures {
                 .collect(),
         }
     }
+}
+
+/// The largest pressure on the outermost rows across (the least and the largest y) of a grid
+/// of `points` with cells `dy` across \[MPa\].
+fn edge_across(points: &[[f64; 3]], pressure: &[f64], dy: f64) -> f64 {
+    let (low, high) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x[1]), h.max(x[1]))
+        });
+    let outer = |y: f64| y < low + 0.5 * dy || y > high - 0.5 * dy;
+    (points.iter().zip(pressure))
+        .filter(|(x, _)| outer(x[1]))
+        .map(|(_, &p)| p)
+        .fold(0.0, f64::max)
 }
 
 /// The figures of every case of a roller under one crown, and the worst p_max over them.
@@ -196,6 +216,8 @@ mod tests {
         assert!((f.crown_drop_end_um - 2.0).abs() < 1e-12);
         // The peak's column x = −1 carries one cell of three.
         assert_eq!(f.cells_across, 0.5);
+        // The rows y = ±0.1 carry 1 at x = 0.
+        assert_eq!(f.edge_across_mpa, 1.0);
         assert_eq!(f.centre_line, vec![[-1.0, 3.0], [0.0, 2.0], [1.0, 1.0]]);
         let all = RollerFigures::new(&[contact], &points, &drop, 0.1);
         assert_eq!(all.worst_p_max, 3.0);

@@ -26,6 +26,9 @@ pub(crate) struct CaseInput {
     pub tables: Tables,
 }
 
+/// The keys of the scene as a whole, which no case sets.
+const SCENE_KEYS: [&str; 2] = ["name", "description"];
+
 /// The tables of the scene a `[[case]]` set: merged key by key, or replaced whole.
 #[derive(Default)]
 pub(crate) struct Tables {
@@ -202,6 +205,41 @@ fn put(
         .try_for_each(|(key, entry)| put(case, &format!("{path}.{}", key.name()), entry, tables))
 }
 
+/// Refuses a case's `changes` that set one key twice, written two ways (`"contact.gap.radius_mm"
+/// = 20.0` beside `contact = { gap = { radius_mm = 40.0 } }`): the last would win, while the
+/// case's numbers reported the first.
+fn twice(changes: &[(contopt_input::Key, Node)]) -> Result<(), String> {
+    let mut set: Vec<String> = vec![];
+    for (key, value) in changes {
+        for leaf in leaves(key.name(), value) {
+            let overlaps = |other: &String| {
+                *other == leaf
+                    || other.starts_with(&format!("{leaf}."))
+                    || leaf.starts_with(&format!("{other}."))
+            };
+            if let Some(other) = set.iter().find(|o| overlaps(o)) {
+                return Err(format!(
+                    "sets `{leaf}` and `{other}`, one key twice: write each key of the case once"
+                ));
+            }
+            set.push(leaf);
+        }
+    }
+    Ok(())
+}
+
+/// The dotted paths of the values `value` at `path` sets: its own, or its entries' where it is
+/// a table.
+fn leaves(path: &str, value: &Node) -> Vec<String> {
+    match value.value() {
+        Value::Table(entries) if !entries.is_empty() => entries
+            .iter()
+            .flat_map(|(key, entry)| leaves(&format!("{path}.{}", key.name()), entry))
+            .collect(),
+        _ => vec![path.to_string()],
+    }
+}
+
 /// One case per `[[case]]`: its `label` and the dotted keys it `set`s, with their values.
 fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>, SceneError> {
     let Value::Array(items) = list.value() else {
@@ -238,6 +276,15 @@ fn listed_cases(tree: &Node, list: &Node, at: &Locator) -> Result<Vec<CaseInput>
                 Some(Value::Table(entries)) => entries.as_slice(),
                 _ => return Err(at.at(&format!("{path}.set"), "give the keys the case sets")),
             };
+            if let Some((key, _)) = changes.iter().find(|(k, _)| SCENE_KEYS.contains(&k.name())) {
+                return Err(at.at(
+                    &format!("{path}.set.{}", key.name()),
+                    "is the scene's, one for all its cases (the name names the results folder, \
+                     the description heads the report): set it at the top of the scene, and \
+                     tell the cases apart by their labels",
+                ));
+            }
+            twice(changes).map_err(|m| at.at(&format!("{path}.set"), m))?;
             let mut case = tree.clone();
             let mut params = BTreeMap::new();
             let mut tables = Tables::default();

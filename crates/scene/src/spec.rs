@@ -154,6 +154,7 @@ impl CaseSpec {
             profile_axis: opt.and_then(|o| o.profile_axis),
             envelope: self.envelope.as_ref(),
             gap: &*self.contact.gap,
+            zone: &self.contact.zone,
             layout,
             roller,
         }

@@ -558,3 +558,46 @@ fn a_bearing_without_clearance_leaves_its_edge_rollers_unloaded() {
         report.warnings
     );
 }
+
+/// A contact that reaches its own grid's edge across, though the shown worst contact does not,
+/// puts the case outside the model, as the shown contact's edge does: a duty cycle of 20 kN
+/// aligned and 14 kN misaligned by 6′ on ISO's crown, the grids ±1.1 Hertz half-widths
+/// across. Roller 2 of the misaligned case (1411 N on the grid of its class, 1786 N) piles its
+/// pressure on one end and reaches its grid's outer rows; it was a warning, "its pressure and
+/// lives are wrong", with exit 0 and the lives printed as the case's. Now the case's limit names
+/// the contacts and `bearing.reach_b`; at ±3 half-widths (the default) the case is solved.
+#[test]
+fn a_roller_off_its_grid_puts_the_case_outside_the_model() {
+    let text = |reach: &str| {
+        format!(
+            "name = \"tilted\"\n[bearing]\nrollers = 14\nroller_diameter_mm = 10.0\n\
+             roller_length_mm = 10.0\nchamfer_mm = 0.2\npitch_diameter_mm = 65.0\n\
+             clearance_mm = 0.0406\nmaterial = {{ e_mpa = 2.1e5, nu = 0.3 }}\n\
+             cells = [40, 25]\nroller_profile = \"iso\"\nreach_b = {reach}\n\
+             [[bearing.load]]\nlabel = \"heavy\"\nradial_n = 20000.0\nfraction = 0.5\n\
+             [[bearing.load]]\nlabel = \"tilted\"\nradial_n = 14000.0\n\
+             misalignment_arcmin = 6.0\nfraction = 0.5\n\
+             [solver]\nkind = \"polonsky_keer\"\n"
+        )
+    };
+    let run = |reach: &str| {
+        let scene = Scene::parse(&text(reach), Format::Toml, Path::new("tilted.toml")).unwrap();
+        scene.cases()[0].run().unwrap()
+    };
+    let narrow = run("1.1");
+    assert_eq!(
+        narrow.status,
+        contopt_results::CaseStatus::OutsideModel,
+        "{:?}",
+        narrow.warnings
+    );
+    let limit = narrow.limit.as_ref().expect("a limit");
+    assert!(
+        limit.message.contains("load case 1 (\"tilted\") roller 2")
+            && limit.message.contains("bearing.reach_b"),
+        "{}",
+        limit.message
+    );
+    let wide = run("3.0");
+    assert!(wide.is_solved(), "{:?} {:?}", wide.limit, wide.warnings);
+}

@@ -195,6 +195,43 @@ fn a_label_with_a_line_break_is_refused() {
     );
 }
 
+/// A scene's `name` names its one results folder and its `description` heads its report: a
+/// case that set them renamed the whole scene's folder (the first case: `contopt run` wrote
+/// every case into `results/other/`) or was ignored (a later case), both without a word. Now
+/// refused at the case's key.
+#[test]
+fn a_case_cannot_rename_the_scene() {
+    for (set, key) in [
+        ("name = \"other\"", "case[0].set.name"),
+        ("description = \"mine\"", "case[0].set.description"),
+    ] {
+        let message = refused(&with_case(text("hertz"), "renamed", set));
+        assert!(
+            message.contains("mine.toml:") && message.contains(key) && message.contains("scene's"),
+            "{message}"
+        );
+    }
+}
+
+/// A case that sets one key twice, written two ways, is refused: the last value was solved
+/// while the case's numbers (`params` in result.json) reported the first (radius 20 mm
+/// reported, 40 mm solved). A table setting two keys of one table is not twice.
+#[test]
+fn a_case_setting_a_key_twice_is_refused() {
+    let set = "\"contact.gap.radius_mm\" = 20.0, contact = { gap = { radius_mm = 40.0 } }";
+    let message = refused(&with_case(text("hertz"), "twice", set));
+    assert!(
+        message.contains("case[0].set")
+            && message.contains("`contact.gap.radius_mm` and `contact.gap.radius_mm`"),
+        "{message}"
+    );
+    let whole = "\"contact.gap\" = { kind = \"cylinder\", radius_mm = 5.0 }, \
+                 \"contact.gap.radius_mm\" = 6.0";
+    assert!(refused(&with_case(text("hertz"), "whole", whole)).contains("twice"));
+    let both = "contact = { gap = { radius_mm = 40.0 }, load = { force_n = 10.0 } }";
+    parse(&with_case(text("hertz"), "both", both)).unwrap();
+}
+
 /// A table of another kind replaces the scene's whole: a key of the scene's table it leaves
 /// out is missing, and the error says why. A choice written under its name (a load) merged
 /// into the scene's another is two choices, refused with why.
@@ -470,6 +507,67 @@ fn a_run_reports_to_its_observer() {
     let stopped = scene.cases()[0].run_observed(&stop).unwrap();
     assert!(!stopped.is_solved());
     assert_eq!(stopped.termination, Termination::Stopped { after: 2 });
+}
+
+/// A contact analysis reports its solve's steps by method and level, as its observer saw
+/// them, and Kalker's counts: Polonsky–Keer's on the zone's grid and its nested start's
+/// coarser grids apart; the augmented Lagrangian's Uzawa updates and its Kalker solves.
+#[test]
+fn a_contact_analysis_reports_its_steps_by_level() {
+    for (solver, inner) in [
+        ("\"polonsky_keer\"", Method::PolonskyKeer),
+        (
+            "{ kind = \"augmented_lagrangian\", c_mpa_per_mm = 2e6 }",
+            Method::Kalker,
+        ),
+    ] {
+        let edits = [
+            ("contact.zone.cells", Some("[24, 24]")),
+            ("contact.zone.cell_mm", Some("[0.04, 0.04]")),
+            ("output", None),
+            ("solver", Some(solver)),
+        ];
+        let scene = Scene::bundled_with("hertz", &edits).unwrap();
+        let seen = RefCell::new(std::collections::BTreeMap::new());
+        let watch = |e: &Event| {
+            if e.end.is_none() {
+                *seen.borrow_mut().entry((e.level, e.method)).or_insert(0) += 1;
+            }
+            Flow::Continue
+        };
+        let report = scene.cases()[0].run_observed(&watch).unwrap();
+        assert!(report.is_solved(), "{solver}: {}", report.message);
+        let solve = report.solve.expect("an analysis reports its solve");
+        let mut reported: Vec<_> = solve
+            .steps
+            .iter()
+            .map(|s| ((s.level, s.method), s.steps))
+            .collect();
+        reported.sort();
+        let seen: Vec<_> = seen.into_inner().into_iter().collect();
+        assert_eq!(reported, seen, "{solver}");
+        let deeper: usize = solve
+            .steps
+            .iter()
+            .filter(|s| s.level > 0)
+            .map(|s| s.steps)
+            .sum();
+        assert!(
+            solve
+                .steps
+                .iter()
+                .any(|s| s.level == 1 && s.method == inner)
+                && deeper > 0,
+            "{solver}: {:?}",
+            solve.steps
+        );
+        if inner == Method::Kalker {
+            assert_eq!(deeper, solve.iterp, "{solver}: each Kalker solve is a step");
+            assert!(solve.iterd >= 1 && solve.iterd <= solve.iterp);
+        } else {
+            assert_eq!([solve.iterp, solve.iterd], [0, 0]);
+        }
+    }
 }
 
 /// A scene written in JSON reads as its TOML, and its errors are placed in the JSON text.

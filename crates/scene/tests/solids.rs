@@ -36,6 +36,38 @@ fn the_bundled_sphere_on_a_solid_block_against_hertz() {
     let cell = 0.07 * 0.07;
     let load: f64 = result.interface.iter().map(|q| q.p_mpa * cell).sum();
     assert!((load / 2000.0 - 1.0).abs() < 1e-9, "load {load}");
+    assert!(
+        !result.warnings.iter().any(|w| w.contains("own elements")),
+        "{:?}",
+        result.warnings
+    );
+}
+
+/// The same sphere under 50 N on cells of 0.0175 mm: Hertz's a = 0.2043 mm spans 11.7 cells
+/// but only 1.1 of the block's elements (up to 0.178 mm under the contact), and p_max is 6.9 %
+/// above Hertz's p₀ = 571.8 MPa (before, without a word: the cells' count passed). The case
+/// now says so, naming the block and the element size that would resolve it.
+#[test]
+fn a_contact_spanning_too_few_of_a_solid_s_elements_is_named() {
+    let light = [
+        ("contact.load", Some("{ force_n = 50.0 }")),
+        ("contact.zone.cells", Some("[48, 48]")),
+        ("contact.zone.cell_mm", Some("[0.0175, 0.0175]")),
+        ("output", None),
+    ];
+    let result = scene(&light).unwrap().cases()[0].run().unwrap();
+    let p_max = result.interface.iter().fold(0.0f64, |m, q| m.max(q.p_mpa));
+    assert!((p_max / 571.8 - 1.069).abs() < 0.01, "p_max {p_max}");
+    let warned: Vec<_> = (result.warnings.iter())
+        .filter(|w| w.contains("own elements"))
+        .collect();
+    assert!(
+        warned.len() == 1
+            && warned[0].contains("`solid-block-on-grid`'s own elements under the contact are up to 0.1780 mm, 1.1 across")
+            && warned[0].contains("fewer than 1.5"),
+        "{:?}",
+        result.warnings
+    );
 }
 
 /// A rigid sphere on the block: its 24 × 24 cells of 0.07 mm lie on faces with 225 nodes, so

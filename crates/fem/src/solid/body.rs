@@ -106,6 +106,8 @@ pub struct SolidBody {
     load_displacement: Vec<f64>,
     rigid_modes: Vec<RigidMode>,
     gap_shape: GapShape,
+    /// The largest face each interface point's cell reads \[mm\].
+    element_sizes: Vec<f64>,
     stats: SolidStats,
     /// Built at the first preconditioned step.
     preconditioner: std::sync::OnceLock<Option<HalfSpaceInverse>>,
@@ -175,6 +177,7 @@ impl SolidBody {
             settings.memory_limit_bytes,
         )?;
         let rows: Vec<Row> = samples.iter().map(|s| s.row(model.mesh())).collect();
+        let element_sizes = samples.iter().map(|s| s.face_size(model.mesh())).collect();
         let interface = Interface::new(
             Geometry::Surface,
             samples.iter().map(|s| s.point).collect(),
@@ -220,6 +223,7 @@ impl SolidBody {
             load_displacement,
             rigid_modes,
             gap_shape,
+            element_sizes,
             stats,
             preconditioner: std::sync::OnceLock::new(),
             work: Spares::default(),
@@ -459,6 +463,10 @@ impl ElasticBody for SolidBody {
 
     fn pressure_basis(&self) -> Option<&GapShape> {
         Some(&self.gap_shape)
+    }
+
+    fn element_sizes(&self) -> Option<&[f64]> {
+        Some(&self.element_sizes)
     }
 
     fn rigid_modes(&self) -> &[RigidMode] {

@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use contopt_core::{check, Error, Result};
 
-use super::element::cross;
+use super::element::{cross, FaceKind};
 use super::mesh::{norm, SolidFace, SolidMesh};
 
 /// Newton steps of a projection onto a face, at most.
@@ -264,6 +264,31 @@ impl SolidSample {
     /// Gauss points ([`SolidSample`]).
     pub fn sub_rule(&self) -> [usize; 2] {
         self.rule
+    }
+
+    /// The size of the largest face the sample reads: the longest edge between the corners of
+    /// a face its sub-points meet \[mm\].
+    pub fn face_size(&self, mesh: &SolidMesh) -> f64 {
+        let mut faces: Vec<SolidFace> = self.parts.iter().map(|p| p.face).collect();
+        faces.sort_unstable();
+        faces.dedup();
+        let longest_edge = |f: SolidFace| {
+            let corners = match mesh.face_kind(f) {
+                FaceKind::Tri6 => 3,
+                FaceKind::Quad8 | FaceKind::Quad9 => 4,
+            };
+            let nodes = mesh.face_nodes(f);
+            (0..corners)
+                .map(|k| {
+                    let (a, b) = (
+                        mesh.nodes()[nodes[k]],
+                        mesh.nodes()[nodes[(k + 1) % corners]],
+                    );
+                    norm(std::array::from_fn(|c| a[c] - b[c]))
+                })
+                .fold(0.0, f64::max)
+        };
+        faces.into_iter().map(longest_edge).fold(0.0, f64::max)
     }
 
     /// `cells` read on `faces` along `normals`, each reported with its weight.

@@ -15,7 +15,8 @@ use contopt_core::stress::peak_index;
 use contopt_core::{ContactState, Error, Result, Termination};
 
 use contopt_results::{
-    BearingLoadCase, BearingReport, BearingRoller, CaseReport, TunedProfile, WorstContact,
+    BearingLoadCase, BearingReport, BearingRoller, CaseReport, ModelLimit, TunedProfile,
+    WorstContact,
 };
 use contopt_roller::{
     bearing_cases, end_ratio, hertz_slice_load, penalised_worst, robust_crown,
@@ -31,7 +32,7 @@ use super::grids::{self, Grids, Solved};
 use super::{duty_cycle_levels, BearingObjective, BearingPlan};
 use crate::lives::{CaseSlices, LivesInput, LivesOutput};
 use crate::methods::{roller_report, BearingCrown, Check, Context, Design, Designed};
-use crate::report::MIN_CELLS_ACROSS;
+use crate::report::{GROWTH, MIN_CELLS_ACROSS};
 
 /// Two rollers whose loads agree to this fraction and whose tilts agree to this many
 /// arc-minutes are one contact (a roller and its mirror across the load line: round-off).
@@ -605,11 +606,13 @@ fn finish(
         .filter(|&s| grids.of[s % n] == 0)
         .max_by(|&a, &b| states[a].p_max().total_cmp(&states[b].p_max()))
         .unwrap_or(worst);
+    let mut reached = vec![];
     for r in [solved, opposite] {
         let designed = designed.is_some() && r.raceway == plan.raceway;
         (report.warnings).extend(resolution_warnings(plan, r, designed)?);
-        report.warnings.extend(edge_warning(plan, r));
+        reached.extend(edge_reached(plan, r));
     }
+    report.limit = edge_limit(plan, &reached);
     if shown != worst {
         report.warnings.push(elsewhere(plan, env, worst % n));
     }
@@ -944,12 +947,12 @@ fn resolution_warnings(plan: &BearingPlan, ring: &Ring, designed: bool) -> Resul
 /// A point carries pressure when it holds more than this fraction of its contact's p_max.
 const CARRIES: f64 = 1e-6;
 
-/// The warning of contacts whose pressure reaches their grid's outer rows across: the grid
-/// ends inside them, and `bearing.reach_b` widens it.
-fn edge_warning(plan: &BearingPlan, ring: &Ring) -> Option<String> {
+/// The contacts whose pressure reaches their grid's outer rows across, each named once with
+/// the reach of its grid across \[mm\]: the grid ends inside them.
+fn edge_reached(plan: &BearingPlan, ring: &Ring) -> Vec<(String, f64)> {
     let (env, grids, states) = (&ring.env, &ring.grids, &ring.solved.states);
     let n = env.contacts.len().max(1);
-    let mut reached: Vec<String> = vec![];
+    let mut reached: Vec<(String, f64)> = vec![];
     for (s, state) in states.iter().enumerate() {
         let k = s % n;
         let grid = grids.of(k);
@@ -959,18 +962,32 @@ fn edge_warning(plan: &BearingPlan, ring: &Ring) -> Option<String> {
         let edge = (points.iter().zip(&state.pressure))
             .any(|(x, p)| x[1].abs() > outer - 0.5 * grid.cell[1] && *p > limit);
         let name = named_on(plan, ring, k);
-        if edge && !reached.contains(&name) {
-            reached.push(name);
+        if edge && !reached.iter().any(|(r, _)| *r == name) {
+            reached.push((name, outer + 0.5 * grid.cell[1]));
         }
     }
-    (!reached.is_empty()).then(|| {
-        format!(
-            "the pressure of {} reaches the outer rows of its grid across (±{} Hertz \
-             half-widths of its grid's load): the grid ends inside the contact, so its pressure \
-             and lives are wrong; raise bearing.reach_b",
-            listed(&reached),
-            plan.reach
-        )
+    reached
+}
+
+/// The limit of a case whose contacts `reached` their grids' outer rows across (named, with
+/// each grid's reach \[mm\]): the grid ends inside them, so their pressures and the lives
+/// are wrong, and `bearing.reach_b` widens every grid. It puts the case outside the model, as
+/// the shown contact's own edge does ([`crate::report`]'s limits, which keep it).
+fn edge_limit(plan: &BearingPlan, reached: &[(String, f64)]) -> Option<ModelLimit> {
+    let &(_, extent) = reached.first()?;
+    let names: Vec<String> = reached.iter().map(|(name, _)| name.clone()).collect();
+    let message = format!(
+        "the pressure of {} reaches the outer rows of its grid across (±{} Hertz half-widths \
+         of its grid's load): the grid ends inside the contact, so its pressure and the lives \
+         are wrong; raise bearing.reach_b",
+        listed(&names),
+        plan.reach
+    );
+    Some(ModelLimit {
+        edge: format!("y = ±{extent:.4} mm"),
+        extent_mm: extent,
+        needed_mm: GROWTH * extent,
+        message,
     })
 }
 

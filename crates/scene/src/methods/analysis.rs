@@ -1,7 +1,10 @@
 //! No design: the contact of the given bodies and gap, solved once.
 
+use std::cell::RefCell;
+
+use contopt_core::observe::{Event, Flow, Observer};
 use contopt_core::Result;
-use contopt_results::CaseReport;
+use contopt_results::{CaseReport, MethodSteps, SolveSteps};
 
 use super::{contacts, envelope_contacts, roller_figures, Check, Context, Design, Designed};
 
@@ -17,8 +20,16 @@ impl Design for Analysis {
     /// under the same crown.
     fn run(&self, c: &Context, report: &mut CaseReport) -> Result<Designed> {
         let started = std::time::Instant::now();
-        let state = c.solver.solve_observed(c.problem, None, c.observer)?;
+        let counted = Counted::new(c.observer);
+        let state = c.solver.solve_observed(c.problem, None, &counted)?;
         report.time("solve", started);
+        let mut steps = counted.steps.into_inner();
+        steps.sort_by_key(|s| s.level);
+        report.solve = Some(SolveSteps {
+            steps,
+            iterp: state.iterp,
+            iterd: state.iterd,
+        });
         let mut designed = Designed::contact(state.clone());
         if let (Some(roller), true) = (c.case.roller, state.termination.is_solved()) {
             let length = roller.length;
@@ -38,5 +49,42 @@ impl Design for Analysis {
             designed.crown = Some(drop);
         }
         Ok(designed)
+    }
+}
+
+/// An observer that counts a solve's steps by method and level and passes every event on.
+struct Counted<'a> {
+    inner: &'a dyn Observer,
+    steps: RefCell<Vec<MethodSteps>>,
+}
+
+impl<'a> Counted<'a> {
+    fn new(inner: &'a dyn Observer) -> Self {
+        Self {
+            inner,
+            steps: RefCell::new(vec![]),
+        }
+    }
+}
+
+impl Observer for Counted<'_> {
+    /// A step is an event that does not end its method (the last event repeats the last
+    /// step with how it ended).
+    fn observe(&self, e: &Event) -> Flow {
+        if e.end.is_none() {
+            let mut steps = self.steps.borrow_mut();
+            match steps
+                .iter_mut()
+                .find(|s| s.method == e.method && s.level == e.level)
+            {
+                Some(s) => s.steps += 1,
+                None => steps.push(MethodSteps {
+                    method: e.method,
+                    level: e.level,
+                    steps: 1,
+                }),
+            }
+        }
+        self.inner.observe(e)
     }
 }

@@ -7,6 +7,7 @@
 
 mod analysis;
 mod envelope;
+mod facing;
 mod gap;
 pub(crate) mod search;
 
@@ -17,9 +18,10 @@ pub use search::{
     Circular, CircularSearch, Family, FujiwaraKawase, FujiwaraKawaseSearch, ProfileSearch,
 };
 
+use crate::chosen::Chosen;
 use crate::gap::GapKind;
 use crate::region::OmegaVSpec;
-use crate::zone::Layout;
+use crate::zone::{Layout, ZoneKind};
 use contopt_contact::{ContactSolver, InterfaceProblem};
 use contopt_core::observe::{Method, Nested, Observer};
 use contopt_core::{ContactState, Error, GapShape, Result, Termination, GEOMETRY_TOLERANCE};
@@ -79,6 +81,8 @@ pub struct CaseView<'a> {
     pub envelope: Option<&'a Envelope>,
     /// The initial gap's shape.
     pub gap: &'a dyn GapKind,
+    /// The zone the gap is read on.
+    pub zone: &'a Chosen<dyn ZoneKind>,
     /// The zone with every size known.
     pub layout: &'a Layout,
     /// A roller gap's roller, its crown built.
@@ -264,8 +268,9 @@ fn controller(c: &Context) -> Result<Box<dyn Controller>> {
 
 /// The gap shape, the controller and Ω_v of an optimisation of `c`: the profile along
 /// `profile_axis` (a roller's axis by default), else at the finite-element face nodes (the
-/// faces beyond Ω_v following its edge, [`follow_edge`]), else at every point; Ω_v from
-/// `omega_v`, a roller's centre row by default, else everywhere.
+/// faces beyond Ω_v following its edge, [`follow_edge`]), else at every point where the bodies
+/// face each other, the others following the nearest ([`facing::tied`]); Ω_v from `omega_v`,
+/// a roller's centre row by default, else everywhere, within the points that face each other.
 fn setup(c: &Context) -> Result<Setup> {
     let case = &c.case;
     let roller = case.roller.is_some();
@@ -284,11 +289,20 @@ fn setup(c: &Context) -> Result<Setup> {
         ),
         (None, false) => None,
     };
+    let facing = facing::facing(case, iface.points());
+    let omega_v = match (omega_v, &facing) {
+        (Some(mask), Some(facing)) => Some(mask.iter().zip(facing).map(|(m, f)| m & f).collect()),
+        (None, Some(facing)) => Some(facing.clone()),
+        (mask, None) => mask,
+    };
     let shape = match (axis, c.problem.pressure_basis(), &omega_v) {
         (Some(axis), _, _) => GapShape::extruded(iface, axis)?,
         (None, Some(basis), Some(mask)) => follow_edge(basis, mask, iface.points())?,
         (None, Some(basis), None) => basis.clone(),
-        (None, None, _) => GapShape::pointwise(iface),
+        (None, None, _) => match &facing {
+            Some(facing) => facing::tied(iface, facing)?,
+            None => GapShape::pointwise(iface),
+        },
     };
     Ok(Setup {
         shape,
@@ -417,6 +431,7 @@ pub(crate) fn roller_report(
                 edge_loading: f.edge_loading,
                 approach_um: f.approach_um,
                 cells_across: f.cells_across,
+                edge_across_mpa: f.edge_across_mpa,
                 centre_line: f
                     .centre_line
                     .iter()

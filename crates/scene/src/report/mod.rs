@@ -24,6 +24,7 @@ use contopt_results::CaseReport;
 
 pub use edge::sharp_edge_warning;
 pub use figures::PENETRATION_WARNING;
+pub(crate) use limits::GROWTH;
 pub use limits::MIN_CELLS_ACROSS;
 
 use crate::methods::Designed;
@@ -64,6 +65,7 @@ pub(crate) fn complete(report: &mut CaseReport, found: Found) -> Result<(), Scen
     let rigid = designed.rigid.clone();
     figures::fill(report, case, &problem, designed);
     limits::judge(report, case, &problem);
+    limits::coarse_elements(report, [built.first(), built.second()]);
     below_surface(report, case, built).map_err(|e| at.library("output.subsurface", e))?;
     if own_contact {
         fields::compute(report, case, built, &problem, &rigid);
