@@ -93,7 +93,9 @@ impl Optimisation<'_> {
     /// N is where −m is least, so min Δh = 0); stop when TOLH (4.2) ≤
     /// [`IterationSettings::tolh_mm2`] (the paper: 0.5·10⁻⁶ mm²) and the pass's pressure on
     /// Ω_v falls short of v·p_max by at most [`OMEGA_V_EVEN`] of p_max (TOLH is absolute in
-    /// mm², which gap changes of a fraction of a micrometre meet from their first passes),
+    /// mm², which gap changes of a fraction of a micrometre meet from their first passes) or
+    /// Δh has stopped moving (its change within [`ROUND_OFF`] of its size: the checks of the
+    /// optimum then say why Ω_v is not held),
     /// after at most [`IterationSettings::max_iterations`] passes (step 7). Each pass is
     /// reported to the observer ([`Optimisation::with_observer`]) with its TOLH.
     ///
@@ -146,9 +148,11 @@ impl Optimisation<'_> {
                 .rows
                 .push(Pass::new(k, p_max, &next, tolh_k, [&state]));
             // Step 7, once Ω_v also carries v·p_max (TOLH is absolute: gap changes of a
-            // fraction of a micrometre meet it long before).
+            // fraction of a micrometre meet it long before) or the gap change has stopped
+            // moving, when the optimum's own checks say why Ω_v is not held.
+            let moving = tolh_k.sqrt() > ROUND_OFF * norm(&next);
             let step = match Step::converged_below(tolh_k, tolh) {
-                Step::Last(..) if !self.even_on_omega_v(&state.pressure, p_max)? => {
+                Step::Last(..) if moving && !self.even_on_omega_v(&state.pressure, p_max)? => {
                     Step::Next(tolh_k)
                 }
                 step => step,
@@ -450,4 +454,9 @@ impl StepSix {
             }
         }
     }
+}
+
+/// The Euclidean norm of `v`.
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
