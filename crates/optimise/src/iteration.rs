@@ -92,12 +92,11 @@ impl Optimisation<'_> {
     /// Q, exact when Q interpolates like the displacements; under [`crate::Reference::Least`]
     /// N is where −m is least, so min Δh = 0); stop when TOLH (4.2) ≤
     /// [`IterationSettings::tolh_mm2`] (the paper: 0.5·10⁻⁶ mm²) and the pass's pressure on
-    /// Ω_v falls short of v·p_max by at most [`OMEGA_V_EVEN`] of p_max (TOLH is absolute in
-    /// mm², which gap changes of a fraction of a micrometre meet from their first passes) or
-    /// Δh has stopped moving (its change within [`ROUND_OFF`] of its size: the checks of the
-    /// optimum then say why Ω_v is not held),
-    /// after at most [`IterationSettings::max_iterations`] passes (step 7). Each pass is
-    /// reported to the observer ([`Optimisation::with_observer`]) with its TOLH.
+    /// Ω_v falls short of v·p_max by at most 5 % of p_max (TOLH is absolute in mm², which gap
+    /// changes of a fraction of a micrometre meet from their first passes) or Δh has stopped
+    /// moving (its change within 10⁻⁹ of its size: the checks of the optimum then say why Ω_v
+    /// is not held), after at most [`IterationSettings::max_iterations`] passes (step 7). Each
+    /// pass is reported to the observer ([`Optimisation::with_observer`]) with its TOLH.
     ///
     /// The optimum holds the last contact solution with the gap change it was solved with.
     /// A contact solve that does not converge ends the loop with [`Termination::Inner`],
