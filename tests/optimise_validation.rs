@@ -238,6 +238,15 @@ fn given_displacement_iteration_matches_the_lp() {
     }
 }
 
+/// A steel half-space on `n` rings out to radius `a`, their edges a·sin(πk/2n), clustered at
+/// the rim where a flat punch's pressure changes fastest.
+fn clustered_half_space(a: f64, n: usize) -> AxisymmetricHalfSpace {
+    let edges: Vec<f64> = (0..=n)
+        .map(|k| a * (0.5 * PI * k as f64 / n as f64).sin())
+        .collect();
+    AxisymmetricHalfSpace::new("half-space", Material::new(E, NU).unwrap(), &edges).unwrap()
+}
+
 /// A rigid flat punch (a = 1 mm) held at an approach of 1 µm on a half-space (axisymmetric
 /// rings clustered at the rim), v = 1: the iteration of §3.2 under the given displacement
 /// agrees with the linear programme. Its gap changes are a fraction of a micrometre, so the
@@ -248,11 +257,7 @@ fn given_displacement_iteration_matches_the_lp() {
 fn a_small_given_displacement_iterates_to_the_lp() {
     let (a, approach) = (1.0, 1e-3);
     let n = 60;
-    let edges: Vec<f64> = (0..=n)
-        .map(|k| a * (0.5 * PI * k as f64 / n as f64).sin())
-        .collect();
-    let body =
-        AxisymmetricHalfSpace::new("half-space", Material::new(E, NU).unwrap(), &edges).unwrap();
+    let body = clustered_half_space(a, n);
     let punch = RigidBody::fixed("punch", body.interface());
     let problem = InterfaceProblem::new(&body, &punch, &vec![-approach; n]).unwrap();
     let shape = GapShape::pointwise(body.interface());
@@ -298,11 +303,7 @@ fn a_small_given_displacement_iterates_to_the_lp() {
 fn constant_pressure_on_a_half_space() {
     let (a, p) = (10.0, 100.0);
     let n = 120;
-    let edges: Vec<f64> = (0..=n)
-        .map(|k| a * (0.5 * PI * k as f64 / n as f64).sin())
-        .collect();
-    let body =
-        AxisymmetricHalfSpace::new("half-space", Material::new(E, NU).unwrap(), &edges).unwrap();
+    let body = clustered_half_space(a, n);
     let force = p * PI * a * a;
     let punch = RigidBody::pressed("punch", body.interface(), [0.0, 1.0, 0.0], force).unwrap();
     let problem = InterfaceProblem::new(&body, &punch, &vec![0.0; n]).unwrap();
